@@ -1,0 +1,31 @@
+#pragma once
+// The forces of a mechanical system, kept by kind in contiguous arrays: a kind the
+// scene does not use is an empty vector and costs one branch, never a virtual call
+// per particle.
+#include <vector>
+
+#include "motus/forces/inverse_square_gravity.hpp"
+#include "motus/forces/linear_drag.hpp"
+#include "motus/forces/pendulum_torque.hpp"
+#include "motus/forces/spring.hpp"
+#include "motus/forces/uniform_gravity.hpp"
+#include "motus/vector.hpp"
+
+namespace motus {
+
+struct ForceSet {
+  std::vector<UniformGravity> gravity;
+  std::vector<Spring> springs;
+  std::vector<LinearDrag> drag;
+  std::vector<CentralGravity> central_gravity;
+  std::vector<MutualGravity> mutual_gravity;
+  std::vector<PendulumTorque> pendulums;
+
+  // F += every force at (t, x, v).
+  void add_forces(double t, int d, const Vector& m, ConstVectorRef x, ConstVectorRef v, VectorRef F) const;
+  // Total potential energy of the conservative forces (drag has none).
+  double potential(int d, const Vector& m, ConstVectorRef x) const;
+  bool empty() const;
+};
+
+}  // namespace motus

@@ -1,0 +1,39 @@
+#pragma once
+// Classic fourth-order Runge–Kutta, as on the notes' slide:
+//   k1 = d(x_n) Δt
+//   k2 = d(x_n + ½ k1) Δt
+//   k3 = d(x_n + ½ k2) Δt
+//   k4 = d(x_n + k3) Δt
+//   x_{n+1} = x_n + k1/6 + k2/3 + k3/3 + k4/6
+// Here k_i holds d(...) without the factor Δt, which is applied once at the end.
+#include "motus/systems/first_order_system.hpp"
+
+namespace motus {
+
+class Rk4 {
+public:
+  void resize(int n) {
+    k1_.resize(n);
+    k2_.resize(n);
+    k3_.resize(n);
+    k4_.resize(n);
+    y_stage_.resize(n);
+  }
+
+  template <FirstOrder System>
+  void step(System& f, double t, double h, VectorRef y) {
+    f.derivative(t, y, k1_);
+    y_stage_ = y + (0.5 * h) * k1_;
+    f.derivative(t + 0.5 * h, y_stage_, k2_);
+    y_stage_ = y + (0.5 * h) * k2_;
+    f.derivative(t + 0.5 * h, y_stage_, k3_);
+    y_stage_ = y + h * k3_;
+    f.derivative(t + h, y_stage_, k4_);
+    y += (h / 6) * (k1_ + 2 * k2_ + 2 * k3_ + k4_);
+  }
+
+private:
+  Vector k1_, k2_, k3_, k4_, y_stage_;
+};
+
+}  // namespace motus

@@ -1,0 +1,26 @@
+#pragma once
+// Symplectic (semi-implicit) Euler, the notes' first form — velocity first:
+//   v_{n+1} = v_n + a_n Δt
+//   p_{n+1} = p_n + v_{n+1} Δt
+// First order, but on x'' = −ω²x it keeps ½(v² + ω²x² − ω²Δt·x·v) exactly, so the
+// energy wobbles and never drifts. Box2D and Bullet integrate this way.
+#include "motus/systems/mechanical_system.hpp"
+
+namespace motus {
+
+class SymplecticEuler {
+public:
+  void resize(int n) { a_.resize(n); }
+
+  template <Mechanical System>
+  void step(System& s, double t, double h, VectorRef x, VectorRef v) {
+    s.acceleration(t, x, v, a_);
+    v += h * a_;
+    x += h * v;
+  }
+
+private:
+  Vector a_;
+};
+
+}  // namespace motus

@@ -1,0 +1,39 @@
+#pragma once
+// Velocity Verlet ("kick, drift, kick"):
+//   v_{n+½} = v_n + ½ a_n Δt
+//   p_{n+1} = p_n + v_{n+½} Δt
+//   v_{n+1} = v_{n+½} + ½ a_{n+1} Δt
+// The same positions as velocityless Verlet, with velocities. a_{n+1} is kept for
+// the next step, so one force evaluation per step. Second order; on x'' = −ω²x it
+// keeps ½(v² + ω²(1 − ω²Δt²/4) x²) exactly.
+#include "motus/systems/mechanical_system.hpp"
+
+namespace motus {
+
+class VelocityVerlet {
+public:
+  void resize(int n) {
+    a_.resize(n);
+    have_acceleration_ = false;
+  }
+  // Forget the cached a_n (call after changing x or v from outside).
+  void reset() { have_acceleration_ = false; }
+
+  template <Mechanical System>
+  void step(System& s, double t, double h, VectorRef x, VectorRef v) {
+    if (!have_acceleration_) {
+      s.acceleration(t, x, v, a_);
+      have_acceleration_ = true;
+    }
+    v += (0.5 * h) * a_;
+    x += h * v;
+    s.acceleration(t + h, x, v, a_);
+    v += (0.5 * h) * a_;
+  }
+
+private:
+  Vector a_;
+  bool have_acceleration_ = false;
+};
+
+}  // namespace motus

@@ -1,0 +1,46 @@
+#pragma once
+// Velocityless (Störmer) Verlet, as the notes derive it:
+//   p_{n+1} = 2 p_n − p_{n−1} + a_n Δt²
+// It needs p_{n−1} to start. The notes' v_n Δt ≈ p_n − p_{n−1} would give
+// p_{−1} = p_0 − v_0 Δt, which makes the method first order; the Taylor start
+//   p_{−1} = p_0 − v_0 Δt + ½ a_0 Δt²
+// keeps it second order.
+// Velocities are not part of the method. We report the central difference
+//   v_{n+1} = (p_{n+2} − p_n) / 2Δt = (p_{n+1} − p_n)/Δt + ½ a_{n+1} Δt,
+// using a_{n+1}, which the next step needs anyway: one force evaluation per step.
+// (Velocity-dependent forces such as drag see that reported velocity.)
+#include "motus/systems/mechanical_system.hpp"
+
+namespace motus {
+
+class Verlet {
+public:
+  void resize(int n) {
+    a_.resize(n);
+    x_previous_.resize(n);
+    x_next_.resize(n);
+    started_ = false;
+  }
+  // Forget p_{n−1} (call after changing x or v from outside).
+  void reset() { started_ = false; }
+
+  template <Mechanical System>
+  void step(System& s, double t, double h, VectorRef x, VectorRef v) {
+    if (!started_) {
+      s.acceleration(t, x, v, a_);
+      x_previous_ = x - h * v + (0.5 * h * h) * a_;
+      started_ = true;
+    }
+    x_next_ = 2 * x - x_previous_ + (h * h) * a_;
+    x_previous_ = x;
+    x = x_next_;
+    s.acceleration(t + h, x, v, a_);
+    v = (x - x_previous_) / h + (0.5 * h) * a_;
+  }
+
+private:
+  Vector a_, x_previous_, x_next_;
+  bool started_ = false;
+};
+
+}  // namespace motus

@@ -1,0 +1,38 @@
+#pragma once
+// The integrators by their command-line names, and what each one is.
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace motus {
+
+enum class Integrator {
+  Euler,
+  Midpoint,
+  Rk4,
+  Rk4Doubling,
+  Rk45,
+  SymplecticEuler,
+  SymplecticEulerX,
+  Verlet,
+  VelocityVerlet,
+  Yoshida4,
+};
+
+struct IntegratorInfo {
+  Integrator id;
+  const char* name;         // command-line name
+  int order;                // global order of accuracy
+  bool adaptive;            // chooses its own steps from a tolerance
+  bool needs_mechanical;    // the symplectic family works on x and v, not on y
+  const char* description;  // one line
+};
+
+const std::vector<IntegratorInfo>& all_integrators();
+const IntegratorInfo& info(Integrator id);
+std::optional<Integrator> integrator_from_name(std::string_view name);
+// "euler, midpoint, ..." for error messages.
+std::string integrator_names();
+
+}  // namespace motus

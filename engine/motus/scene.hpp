@@ -1,0 +1,58 @@
+#pragma once
+// The backend-neutral description of a scene: what a scene file says, after it has
+// been read and checked. Every engine builds its world from this, never from JSON.
+// The format is documented in docs/scene-format.md.
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "motus/forces/force_set.hpp"
+
+namespace motus {
+
+struct BodyDescription {
+  double mass = 1;
+  std::vector<double> position;  // `dimensions` numbers
+  std::vector<double> velocity;
+};
+
+struct MechanicalDescription {
+  int dimensions = 2;
+  std::vector<BodyDescription> bodies;
+  ForceSet forces;
+};
+
+struct FirstOrderDescription {
+  std::string type;                          // "lorenz", "world2", ... (see system_catalog.hpp)
+  std::map<std::string, double> parameters;  // every parameter, defaults filled in
+  std::vector<double> initial;
+};
+
+// A state known to high accuracy at time t (e.g. ../shared/reference/lorenz.json).
+struct ReferenceState {
+  double t = 0;
+  std::vector<double> state;
+};
+
+struct SceneDescription {
+  std::string name;
+  std::string description;
+  std::optional<MechanicalDescription> mechanical;  // exactly one of these two
+  std::optional<FirstOrderDescription> first_order;
+
+  std::string integrator = "rk4";
+  double dt = 0.01;
+  double duration = 1;
+  double start_time = 0;
+  double rtol = 1e-6;
+  double atol = 1e-9;
+  double output_interval = 0;  // trajectory rows every this much time; 0: every step
+
+  std::string exact;                     // an analytic solution the scene has ("" for none)
+  std::vector<ReferenceState> reference; // reference states, where no analytic solution exists
+
+  bool is_mechanical() const { return mechanical.has_value(); }
+};
+
+}  // namespace motus

@@ -1,0 +1,208 @@
+#include "motus/simulation.hpp"
+
+#include <cmath>
+#include <stdexcept>
+#include <variant>
+
+#include "motus/integrate/euler.hpp"
+#include "motus/integrate/midpoint.hpp"
+#include "motus/integrate/rk4.hpp"
+#include "motus/integrate/rk45.hpp"
+#include "motus/integrate/rk4_doubling.hpp"
+#include "motus/integrate/symplectic_euler.hpp"
+#include "motus/integrate/symplectic_euler_x.hpp"
+#include "motus/integrate/velocity_verlet.hpp"
+#include "motus/integrate/verlet.hpp"
+#include "motus/integrate/yoshida4.hpp"
+#include "motus/scene_error.hpp"
+#include "motus/systems/mechanical_as_first_order.hpp"
+#include "motus/systems/system_catalog.hpp"
+
+namespace motus {
+
+struct Simulation::Steppers {
+  std::variant<Euler, Midpoint, Rk4, Rk4Doubling, Rk45, SymplecticEuler, SymplecticEulerX, Verlet, VelocityVerlet,
+               Yoshida4>
+      any;
+};
+
+namespace {
+
+// The three calling shapes: step(f, t, h, y); try_step(f, t, h, y); step(s, t, h, x, v).
+template <class T>
+constexpr bool is_adaptive = std::is_same_v<T, Rk4Doubling> || std::is_same_v<T, Rk45>;
+template <class T>
+constexpr bool is_symplectic = std::is_same_v<T, SymplecticEuler> || std::is_same_v<T, SymplecticEulerX> ||
+                               std::is_same_v<T, Verlet> || std::is_same_v<T, VelocityVerlet> ||
+                               std::is_same_v<T, Yoshida4>;
+
+}  // namespace
+
+long fixed_step_count(double duration, double dt) {
+  const double steps = duration / dt;
+  const double nearest = std::round(steps);
+  if (std::abs(nearest - steps) <= 1e-9 * std::max(1.0, steps)) return static_cast<long>(nearest);
+  return static_cast<long>(std::ceil(steps));
+}
+
+Simulation::Simulation(const SceneDescription& scene, Integrator integrator)
+    : scene_(scene), integrator_(integrator), stepper_(std::make_unique<Steppers>()), t_(scene.start_time) {
+  if (scene.mechanical) {
+    const auto& m = *scene.mechanical;
+    std::vector<double> masses;
+    const int n = static_cast<int>(m.bodies.size()) * m.dimensions;
+    y_.resize(2 * n);
+    for (size_t i = 0; i < m.bodies.size(); ++i) {
+      masses.push_back(m.bodies[i].mass);
+      for (int k = 0; k < m.dimensions; ++k) {
+        y_[static_cast<Eigen::Index>(i) * m.dimensions + k] = m.bodies[i].position[k];
+        y_[n + static_cast<Eigen::Index>(i) * m.dimensions + k] = m.bodies[i].velocity[k];
+      }
+    }
+    mechanical_ = std::make_unique<MechanicalSystem>(m.dimensions, masses, m.forces);
+  } else if (scene.first_order) {
+    const SystemInfo* info = find_first_order_system(scene.first_order->type);
+    if (!info) throw SceneError("system.type", "unknown system \"" + scene.first_order->type + "\"");
+    first_order_ = info->make(scene.first_order->parameters);
+    const auto& init = scene.first_order->initial;
+    if (static_cast<int>(init.size()) != first_order_->size())
+      throw SceneError("system.initial", "needs " + std::to_string(first_order_->size()) + " numbers (" +
+                                             std::to_string(init.size()) + " given)");
+    y_ = Eigen::Map<const Vector>(init.data(), static_cast<Eigen::Index>(init.size()));
+  } else {
+    throw SceneError("", "a scene needs either \"bodies\" (mechanical) or \"system\" (first-order)");
+  }
+
+  if (motus::info(integrator).needs_mechanical && !mechanical_)
+    throw SceneError("integrator", std::string(motus::info(integrator).name) +
+                                       " is symplectic: it needs a mechanical scene (bodies), and this scene is the "
+                                       "first-order system \"" + scene.first_order->type +
+                                       "\"; use euler, midpoint, rk4, rk4-doubling or rk45");
+
+  auto& any = stepper_->any;
+  switch (integrator) {
+    case Integrator::Euler: any.emplace<Euler>(); break;
+    case Integrator::Midpoint: any.emplace<Midpoint>(); break;
+    case Integrator::Rk4: any.emplace<Rk4>(); break;
+    case Integrator::Rk4Doubling: any.emplace<Rk4Doubling>(); break;
+    case Integrator::Rk45: any.emplace<Rk45>(); break;
+    case Integrator::SymplecticEuler: any.emplace<SymplecticEuler>(); break;
+    case Integrator::SymplecticEulerX: any.emplace<SymplecticEulerX>(); break;
+    case Integrator::Verlet: any.emplace<Verlet>(); break;
+    case Integrator::VelocityVerlet: any.emplace<VelocityVerlet>(); break;
+    case Integrator::Yoshida4: any.emplace<Yoshida4>(); break;
+  }
+  // Mechanical steppers work on x (or v): half the state. The rest work on all of it.
+  const int n = static_cast<int>(y_.size());
+  std::visit(
+      [&](auto& s) {
+        using S = std::decay_t<decltype(s)>;
+        if constexpr (is_symplectic<S>)
+          s.resize(n / 2);
+        else
+          s.resize(n);
+      },
+      any);
+}
+
+Simulation::~Simulation() = default;
+
+long Simulation::evaluations() const {
+  return mechanical_ ? mechanical_->evaluations : first_order_->evaluations;
+}
+
+void Simulation::advance(double end_time, double dt, Tolerance tolerance,
+                         const std::function<void(const Simulation&)>& after_step) {
+  if (!(dt > 0)) throw std::invalid_argument("dt must be > 0");
+  if (!(end_time > t_)) return;
+
+  auto run = [&](auto& stepper, auto& system) {
+    using S = std::decay_t<decltype(stepper)>;
+    if constexpr (is_adaptive<S>) {
+      stepper.set_tolerance(tolerance);
+      if (adaptive_h_ <= 0) adaptive_h_ = dt;
+      while (t_ < end_time) {
+        double h = std::min(adaptive_h_, end_time - t_);
+        const bool landing = h < adaptive_h_;  // shortened to land on end_time
+        const bool accepted = stepper.try_step(system, t_, h, y_);
+        if (!landing || !accepted) adaptive_h_ = h;
+        if (!accepted) {
+          ++rejected_;
+          if (adaptive_h_ < 1e-14 * std::max(1.0, std::abs(t_)))
+            throw std::runtime_error("step size underflow at t = " + std::to_string(t_) +
+                                     ": the tolerance cannot be met in double precision");
+          continue;
+        }
+        if (landing) t_ = end_time;  // exactly, whatever t + h rounded to
+        ++steps_;
+        if (after_step) after_step(*this);
+      }
+    } else {
+      const long n = fixed_step_count(end_time - t_, dt);
+      const double t0 = t_;
+      const int half = static_cast<int>(y_.size() / 2);
+      for (long i = 0; i < n; ++i) {
+        if constexpr (!is_symplectic<S>) {
+          stepper.step(system, t_, dt, y_);
+        } else {
+          auto x = y_.head(half);
+          auto v = y_.tail(half);
+          stepper.step(system, t_, dt, x, v);
+        }
+        t_ = t0 + static_cast<double>(i + 1) * dt;  // no drift from adding dt a million times
+        ++steps_;
+        if (after_step) after_step(*this);
+      }
+    }
+  };
+
+  std::visit(
+      [&](auto& stepper) {
+        using S = std::decay_t<decltype(stepper)>;
+        if constexpr (!is_symplectic<S>) {
+          if (mechanical_) {
+            MechanicalAsFirstOrder as_first_order(*mechanical_);
+            run(stepper, as_first_order);
+          } else {
+            run(stepper, *first_order_);
+          }
+        } else {
+          run(stepper, *mechanical_);
+        }
+      },
+      stepper_->any);
+}
+
+std::vector<std::string> Simulation::state_names() const {
+  if (!mechanical_) return first_order_->variable_names();
+  static const char* axes[] = {"x", "y", "z"};
+  std::vector<std::string> names;
+  const int d = mechanical_->dimensions();
+  for (const char* prefix : {"", "v"})
+    for (int i = 0; i < mechanical_->particles(); ++i)
+      for (int k = 0; k < d; ++k) names.push_back(std::string(prefix) + axes[k] + std::to_string(i));
+  return names;
+}
+
+std::optional<Energy> Simulation::energy() const {
+  if (!mechanical_) return std::nullopt;
+  const int n = mechanical_->size();
+  Energy e;
+  e.kinetic = mechanical_->kinetic_energy(y_.tail(n));
+  e.potential = mechanical_->potential_energy(y_.head(n));
+  e.total = e.kinetic + e.potential;
+  return e;
+}
+
+Vector Simulation::momentum() const {
+  if (!mechanical_) return Vector(0);
+  return mechanical_->momentum(y_.tail(mechanical_->size()));
+}
+
+Vector Simulation::angular_momentum() const {
+  if (!mechanical_) return Vector(0);
+  const int n = mechanical_->size();
+  return mechanical_->angular_momentum(y_.head(n), y_.tail(n));
+}
+
+}  // namespace motus

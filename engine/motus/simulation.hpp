@@ -1,0 +1,80 @@
+#pragma once
+// A scene's system, its state, and one integrator stepping it: the run loop that
+// `motus run`, the benchmarks and the tests share. It builds the system the scene
+// describes (a first-order system, or point masses with only the forces the scene
+// uses) and dispatches once per run, never per step or per particle.
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "motus/integrate/step_size_control.hpp"
+#include "motus/integrator_name.hpp"
+#include "motus/scene.hpp"
+#include "motus/systems/first_order_system.hpp"
+#include "motus/systems/mechanical_system.hpp"
+
+namespace motus {
+
+struct Energy {
+  double kinetic = 0, potential = 0, total = 0;
+};
+
+class Simulation {
+public:
+  // Throws SceneError("integrator", ...) for a symplectic integrator on a first-order
+  // system, and SceneError for a scene the engine cannot build.
+  Simulation(const SceneDescription& scene, Integrator integrator);
+  ~Simulation();
+  Simulation(const Simulation&) = delete;
+  Simulation& operator=(const Simulation&) = delete;
+
+  const SceneDescription& scene() const { return scene_; }
+  Integrator integrator() const { return integrator_; }
+  bool is_mechanical() const { return mechanical_ != nullptr; }
+
+  double time() const { return t_; }
+  // The whole state: y for a first-order system, [x; v] for a mechanical one.
+  const Vector& state() const { return y_; }
+  // Names of the state's entries, for CSV headers ("x0", "vx0", ... or "P", "NR", ...).
+  std::vector<std::string> state_names() const;
+
+  // Mechanical systems only (nullopt / empty for first-order ones).
+  std::optional<Energy> energy() const;
+  Vector momentum() const;
+  Vector angular_momentum() const;
+  MechanicalSystem* mechanical_system() { return mechanical_.get(); }
+  FirstOrderSystem* first_order_system() { return first_order_.get(); }
+
+  // Advance to end_time.
+  //   Fixed-step integrators take whole steps of dt: round((end_time − t)/dt) of them when
+  //   that lands within 1e-9 of end_time, else one more, so time() may pass end_time by
+  //   less than dt.
+  //   Adaptive ones start from dt (or the step they last chose), pick their own steps
+  //   within `tolerance`, and land exactly on end_time.
+  // after_step, if given, is called after every accepted step.
+  void advance(double end_time, double dt, Tolerance tolerance,
+               const std::function<void(const Simulation&)>& after_step = {});
+
+  long steps() const { return steps_; }
+  long rejected() const { return rejected_; }
+  long evaluations() const;
+
+private:
+  struct Steppers;
+  SceneDescription scene_;
+  Integrator integrator_;
+  std::unique_ptr<FirstOrderSystem> first_order_;
+  std::unique_ptr<MechanicalSystem> mechanical_;
+  std::unique_ptr<Steppers> stepper_;
+  Vector y_;
+  double t_ = 0;
+  double adaptive_h_ = 0;  // the step an adaptive integrator would like to take next
+  long steps_ = 0, rejected_ = 0;
+};
+
+// The number of fixed steps of dt that advance() takes to cover `duration`.
+long fixed_step_count(double duration, double dt);
+
+}  // namespace motus

@@ -1,0 +1,33 @@
+#pragma once
+// The first-order systems a scene can name in `system.type`, with their parameters
+// and defaults. The scene loader checks parameters against this list; `motus list`
+// prints it.
+#include <functional>
+#include <map>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "motus/systems/first_order_system.hpp"
+
+namespace motus {
+
+struct ParameterInfo {
+  std::string name;
+  double default_value;
+  std::string meaning;
+};
+
+struct SystemInfo {
+  std::string type;
+  std::string description;
+  std::vector<std::string> variables;
+  std::vector<ParameterInfo> parameters;
+  std::function<std::unique_ptr<FirstOrderSystem>(const std::map<std::string, double>&)> make;
+};
+
+const std::vector<SystemInfo>& first_order_systems();
+const SystemInfo* find_first_order_system(std::string_view type);
+
+}  // namespace motus
