@@ -45,7 +45,9 @@ public:
   Vector momentum() const;
   Vector angular_momentum() const;
   MechanicalSystem* mechanical_system() { return mechanical_.get(); }
+  const MechanicalSystem* mechanical_system() const { return mechanical_.get(); }
   FirstOrderSystem* first_order_system() { return first_order_.get(); }
+  const FirstOrderSystem* first_order_system() const { return first_order_.get(); }
 
   // Advance to end_time.
   //   Fixed-step integrators take whole steps of dt: round((end_time − t)/dt) of them when

@@ -2,6 +2,8 @@
 
 #include <stdexcept>
 
+#include <Eigen/Geometry>  // Vector3d::cross (declared by Eigen/Core, defined here)
+
 namespace motus {
 
 MechanicalSystem::MechanicalSystem(int dimensions, std::vector<double> masses, ForceSet forces)

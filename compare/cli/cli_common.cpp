@@ -1,0 +1,43 @@
+#include "cli_common.hpp"
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+
+namespace fs = std::filesystem;
+
+namespace motus::cli {
+
+std::string scenes_directory() {
+  if (const char* env = std::getenv("MOTUS_SCENES"); env && *env) return env;
+  return MOTUS_SOURCE_SCENES_DIR;  // set by CMake
+}
+
+std::string resolve_scene_path(const std::string& argument) {
+  if (fs::exists(argument)) return argument;
+  const bool plain_name = argument.find('/') == std::string::npos;
+  if (plain_name) {
+    fs::path shipped = fs::path(scenes_directory()) / argument;
+    if (shipped.extension() != ".json") shipped += ".json";
+    if (fs::exists(shipped)) return shipped.string();
+  }
+  return argument;  // the loader says "no such file"
+}
+
+std::vector<std::string> shipped_scenes() {
+  std::vector<std::string> files;
+  std::error_code error;
+  for (const auto& entry : fs::directory_iterator(scenes_directory(), error))
+    if (entry.path().extension() == ".json") files.push_back(entry.path().string());
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
+void check_can_write(const std::string& path, bool overwrite) {
+  if (fs::exists(path) && !overwrite)
+    throw InputError(path + ": already exists; choose another name or pass --overwrite");
+  const fs::path parent = fs::path(path).parent_path();
+  if (!parent.empty() && !fs::is_directory(parent)) throw InputError(path + ": folder " + parent.string() + " does not exist");
+}
+
+}  // namespace motus::cli

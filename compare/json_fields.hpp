@@ -1,0 +1,60 @@
+#pragma once
+// Reading one JSON object field by field, knowing where we are: every error names the
+// field's path ("bodies[2].mass"), every field nobody asked for is reported as unknown.
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "motus/scene_error.hpp"
+
+namespace motus {
+
+class JsonFields {
+public:
+  JsonFields(const nlohmann::json& object, std::string path);
+
+  // Fields: required ones throw when missing; optional ones return the default.
+  double number(const std::string& key);
+  double number(const std::string& key, double fallback);
+  double positive(const std::string& key);                   // > 0
+  double positive(const std::string& key, double fallback);
+  double non_negative(const std::string& key);                   // ≥ 0
+  double non_negative(const std::string& key, double fallback);
+  long integer(const std::string& key);
+  long integer(const std::string& key, long fallback);
+  std::string string(const std::string& key);
+  std::string string(const std::string& key, const std::string& fallback);
+  // An array of exactly `size` finite numbers (any size when size < 0).
+  std::vector<double> numbers(const std::string& key, int size);
+  std::vector<double> numbers(const std::string& key, int size, const std::vector<double>& fallback);
+  bool has(const std::string& key) const;
+  // Sub-objects and arrays of objects, each with its own path.
+  JsonFields object(const std::string& key);
+  std::vector<JsonFields> objects(const std::string& key);
+  // Every key of this object (for maps such as a system's parameters).
+  std::vector<std::string> keys() const;
+
+  // Throws for the first field that no call above asked for.
+  void reject_unknown() const;
+
+  const std::string& path() const { return path_; }
+  std::string path_of(const std::string& key) const;
+  [[noreturn]] void fail(const std::string& key, const std::string& message) const;
+
+private:
+  const nlohmann::json& at(const std::string& key);
+  const nlohmann::json* find(const std::string& key);
+  double checked_number(const nlohmann::json& value, const std::string& key) const;
+
+  const nlohmann::json& object_;
+  std::string path_;
+  std::set<std::string> used_;      // keys read
+  std::vector<std::string> asked_;  // keys asked for, present or not, in order
+};
+
+// "a number", "a string", "an array", ... for messages.
+std::string json_type_name(const nlohmann::json& value);
+
+}  // namespace motus

@@ -1,0 +1,220 @@
+#include "scene_file.hpp"
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "json_fields.hpp"
+#include "motus/exact/exact_solution.hpp"
+#include "motus/integrator_name.hpp"
+#include "motus/scene_error.hpp"
+#include "motus/systems/system_catalog.hpp"
+#include "scene_overrides.hpp"
+
+namespace motus {
+namespace {
+
+std::array<double, 3> padded(const std::vector<double>& v) {
+  std::array<double, 3> a{0, 0, 0};
+  for (size_t k = 0; k < v.size() && k < 3; ++k) a[k] = v[k];
+  return a;
+}
+
+int body_index(JsonFields& f, const std::string& key, size_t bodies) {
+  const long i = f.integer(key);
+  if (i < 0 || i >= static_cast<long>(bodies))
+    f.fail(key, "must name a body: 0 to " + std::to_string(static_cast<long>(bodies) - 1) + " (got " +
+                    std::to_string(i) + ")");
+  return static_cast<int>(i);
+}
+
+void read_force(JsonFields& f, int d, size_t bodies, ForceSet& forces) {
+  const std::string type = f.string("type");
+  if (type == "gravity") {
+    forces.gravity.push_back({padded(f.numbers("g", d))});
+  } else if (type == "spring") {
+    Spring s;
+    s.a = body_index(f, "a", bodies);
+    if (f.has("b") == f.has("anchor")) f.fail("b", "a spring needs exactly one of \"b\" (a body) and \"anchor\" (a point)");
+    if (f.has("b")) {
+      s.b = body_index(f, "b", bodies);
+      if (s.b == s.a) f.fail("b", "a spring needs two different bodies");
+    } else {
+      s.anchor = padded(f.numbers("anchor", d));
+    }
+    s.stiffness = f.non_negative("stiffness");
+    s.rest_length = f.non_negative("rest_length", 0);
+    s.damping = f.non_negative("damping", 0);
+    forces.springs.push_back(s);
+  } else if (type == "drag") {
+    LinearDrag g;
+    g.coefficient = f.non_negative("coefficient");
+    g.body = f.has("body") ? body_index(f, "body", bodies) : -1;
+    forces.drag.push_back(g);
+  } else if (type == "central_gravity") {
+    CentralGravity g;
+    g.mu = f.positive("mu");
+    g.centre = padded(f.numbers("centre", d, std::vector<double>(static_cast<size_t>(d), 0.0)));
+    g.softening = f.non_negative("softening", 0);
+    g.body = f.has("body") ? body_index(f, "body", bodies) : -1;
+    forces.central_gravity.push_back(g);
+  } else if (type == "mutual_gravity") {
+    MutualGravity g;
+    g.G = f.positive("G");
+    g.softening = f.non_negative("softening", 0);
+    forces.mutual_gravity.push_back(g);
+  } else if (type == "pendulum") {
+    if (d != 1) f.fail("type", "a pendulum force acts on a 1-D body (its angle); this scene has " + std::to_string(d) + " dimensions");
+    PendulumTorque p;
+    p.body = f.has("body") ? body_index(f, "body", bodies) : 0;
+    p.g = f.positive("g", 9.81);
+    p.length = f.positive("length");
+    forces.pendulums.push_back(p);
+  } else {
+    f.fail("type", "unknown force \"" + type + "\" (known: gravity, spring, drag, central_gravity, mutual_gravity, pendulum)");
+  }
+  f.reject_unknown();
+}
+
+MechanicalDescription read_mechanical(JsonFields& scene) {
+  MechanicalDescription m;
+  const long d = scene.integer("dimensions");
+  if (d < 1 || d > 3) scene.fail("dimensions", "must be 1, 2 or 3 (got " + std::to_string(d) + ")");
+  m.dimensions = static_cast<int>(d);
+  auto bodies = scene.objects("bodies");
+  if (bodies.empty()) scene.fail("bodies", "needs at least one body");
+  for (auto& b : bodies) {
+    BodyDescription body;
+    body.mass = b.positive("mass");
+    body.position = b.numbers("position", m.dimensions);
+    body.velocity = b.numbers("velocity", m.dimensions, std::vector<double>(static_cast<size_t>(d), 0.0));
+    b.reject_unknown();
+    m.bodies.push_back(body);
+  }
+  for (auto& f : scene.objects("forces")) read_force(f, m.dimensions, m.bodies.size(), m.forces);
+  return m;
+}
+
+FirstOrderDescription read_first_order(JsonFields system) {
+  FirstOrderDescription s;
+  s.type = system.string("type");
+  const SystemInfo* info = find_first_order_system(s.type);
+  if (!info) {
+    std::string known;
+    for (const auto& i : first_order_systems()) known += (known.empty() ? "" : ", ") + i.type;
+    system.fail("type", "unknown system \"" + s.type + "\" (known: " + known + ")");
+  }
+  for (const auto& p : info->parameters) s.parameters[p.name] = p.default_value;
+  if (system.has("parameters")) {
+    JsonFields parameters = system.object("parameters");
+    for (const auto& p : info->parameters) s.parameters[p.name] = parameters.number(p.name, p.default_value);
+    parameters.reject_unknown();
+  }
+  s.initial = system.numbers("initial", static_cast<int>(info->variables.size()));
+  system.reject_unknown();
+  return s;
+}
+
+SceneDescription read_scene(const nlohmann::json& document, const std::string& stem) {
+  JsonFields f(document, "");
+  SceneDescription scene;
+  f.string("$schema", "");  // editors may point at docs/scene.schema.json
+  scene.name = f.string("name", stem);
+  scene.description = f.string("description", "");
+
+  if (f.has("system") && f.has("bodies")) f.fail("system", "a scene has either \"system\" or \"bodies\", not both");
+  if (f.has("system")) {
+    scene.first_order = read_first_order(f.object("system"));
+  } else if (f.has("bodies")) {
+    scene.mechanical = read_mechanical(f);
+  } else {
+    f.fail("bodies", "missing: a scene needs \"bodies\" (point masses) or \"system\" (a first-order system)");
+  }
+
+  scene.integrator = f.string("integrator", "rk4");
+  const auto id = integrator_from_name(scene.integrator);
+  if (!id) f.fail("integrator", "unknown integrator \"" + scene.integrator + "\" (known: " + integrator_names() + ")");
+  if (info(*id).needs_mechanical && !scene.mechanical)
+    f.fail("integrator", scene.integrator + " is symplectic and needs a mechanical scene (bodies); use euler, midpoint, rk4, rk4-doubling or rk45");
+  scene.dt = f.positive("dt");
+  scene.duration = f.positive("duration");
+  scene.start_time = f.number("start_time", 0);
+  scene.rtol = f.positive("rtol", scene.rtol);
+  scene.atol = f.positive("atol", scene.atol);
+  scene.output_interval = f.non_negative("output_interval", 0);
+
+  scene.exact = f.string("exact", "");
+  for (auto& r : f.objects("reference")) {
+    ReferenceState state;
+    state.t = r.number("t");
+    const int size = scene.first_order ? static_cast<int>(scene.first_order->initial.size())
+                                       : 2 * scene.mechanical->dimensions * static_cast<int>(scene.mechanical->bodies.size());
+    state.state = r.numbers("state", size);
+    r.reject_unknown();
+    scene.reference.push_back(state);
+  }
+  if (!scene.exact.empty() && !scene.reference.empty())
+    f.fail("reference", "a scene has either an \"exact\" solution or \"reference\" states, not both");
+  f.reject_unknown();
+  check_exact_solution(scene);
+  return scene;
+}
+
+std::string describe_parse_error(const std::string& text, const nlohmann::json::parse_error& e) {
+  // nlohmann reports a byte offset; people want a line and a column.
+  size_t line = 1, column = 1;
+  for (size_t i = 0; i + 1 < e.byte && i < text.size(); ++i) {
+    if (text[i] == '\n') {
+      ++line;
+      column = 1;
+    } else {
+      ++column;
+    }
+  }
+  std::string what = e.what();
+  const auto colon = what.rfind(": ");
+  if (colon != std::string::npos) what = what.substr(colon + 2);
+  return "malformed JSON at line " + std::to_string(line) + ", column " + std::to_string(column) + ": " + what;
+}
+
+}  // namespace
+
+SceneFileError::SceneFileError(const std::string& file_, const std::string& field_, const std::string& message_)
+    : std::runtime_error(file_ + ": " + (field_.empty() ? "" : field_ + ": ") + message_),
+      file(file_), field(field_), message(message_) {}
+
+SceneDescription parse_scene(const std::string& text, const std::string& file, const std::vector<std::string>& overrides) {
+  nlohmann::json document;
+  try {
+    document = nlohmann::json::parse(text);
+  } catch (const nlohmann::json::parse_error& e) {
+    throw SceneFileError(file, "", describe_parse_error(text, e));
+  }
+  std::string current;
+  try {
+    for (const auto& o : overrides) {
+      current = o;
+      apply_override(document, o);
+    }
+    current.clear();
+    return read_scene(document, std::filesystem::path(file).stem().string());
+  } catch (const SceneError& e) {
+    std::string message = e.what();
+    if (!current.empty()) message += " (in --set " + current + ")";
+    throw SceneFileError(file, e.field(), message);
+  }
+}
+
+SceneDescription load_scene(const std::string& file, const std::vector<std::string>& overrides) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) {
+    const bool exists = std::filesystem::exists(file);
+    throw SceneFileError(file, "", exists ? "cannot be read" : "no such file (motus list shows the scenes)");
+  }
+  std::stringstream text;
+  text << in.rdbuf();
+  return parse_scene(text.str(), file, overrides);
+}
+
+}  // namespace motus

@@ -1,0 +1,28 @@
+#pragma once
+// Scene files: JSON in, a checked SceneDescription out. The format is documented in
+// docs/scene-format.md and docs/scene.schema.json.
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "motus/scene.hpp"
+
+namespace motus {
+
+// A scene file that cannot be used: file, field path and what is wrong, printed as
+// one line "FILE: FIELD: MESSAGE".
+class SceneFileError : public std::runtime_error {
+public:
+  SceneFileError(const std::string& file, const std::string& field, const std::string& message);
+  std::string file, field, message;
+};
+
+// Reads and checks a scene file, after applying `overrides` ("PATH=VALUE", the
+// command line's --set) to the JSON exactly as if the file had said them.
+SceneDescription load_scene(const std::string& file, const std::vector<std::string>& overrides = {});
+
+// The same, from JSON text already in memory (`file` is only used in messages).
+SceneDescription parse_scene(const std::string& text, const std::string& file,
+                             const std::vector<std::string>& overrides = {});
+
+}  // namespace motus
