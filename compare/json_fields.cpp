@@ -1,5 +1,6 @@
 #include "json_fields.hpp"
 
+#include <cctype>
 #include <cmath>
 
 namespace motus {
@@ -41,6 +42,12 @@ const nlohmann::json& JsonFields::at(const std::string& key) {
 }
 
 double JsonFields::checked_number(const nlohmann::json& value, const std::string& key) const {
+  if (value.is_string()) {  // what --set makes of NaN, inf, ... (JSON itself has no such numbers)
+    std::string word = value.get<std::string>();
+    for (auto& c : word) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    if (word == "nan" || word == "inf" || word == "-inf" || word == "infinity" || word == "-infinity")
+      fail(key, "must be a finite number (got " + value.get<std::string>() + ")");
+  }
   if (!value.is_number()) fail(key, "must be a number, not " + json_type_name(value));
   const double x = value.get<double>();
   if (!std::isfinite(x)) fail(key, "must be a finite number");

@@ -161,10 +161,73 @@ SceneDescription read_scene(const nlohmann::json& document, const std::string& s
   return scene;
 }
 
-std::string describe_parse_error(const std::string& text, const nlohmann::json::parse_error& e) {
+// Where in the document a parse failed, as a field path: a SAX pass that keeps the
+// path of keys and indices and stops at the error nlohmann reports.
+class FieldPathTracker : public nlohmann::json::json_sax_t {
+public:
+  std::string path() const {
+    std::string p;
+    for (const auto& frame : stack_) {
+      if (frame.is_array) {
+        if (frame.index >= 0) p += "[" + std::to_string(frame.index) + "]";
+      } else if (!frame.key.empty()) {
+        p += (p.empty() ? "" : ".") + frame.key;
+      }
+    }
+    return p;
+  }
+  bool null() override { return value(); }
+  bool boolean(bool) override { return value(); }
+  bool number_integer(number_integer_t) override { return value(); }
+  bool number_unsigned(number_unsigned_t) override { return value(); }
+  bool number_float(number_float_t, const string_t&) override { return value(); }
+  bool string(string_t&) override { return value(); }
+  bool binary(binary_t&) override { return value(); }
+  bool start_object(std::size_t) override {
+    advance();
+    stack_.push_back({false, -1, ""});
+    return true;
+  }
+  bool key(string_t& k) override {
+    stack_.back().key = k;
+    return true;
+  }
+  bool end_object() override { return end(); }
+  bool start_array(std::size_t) override {
+    advance();
+    stack_.push_back({true, -1, ""});
+    return true;
+  }
+  bool end_array() override { return end(); }
+  bool parse_error(std::size_t, const std::string&, const nlohmann::json::exception&) override { return false; }
+
+private:
+  struct Frame {
+    bool is_array;
+    long index;
+    std::string key;
+  };
+  void advance() {
+    if (!stack_.empty() && stack_.back().is_array) ++stack_.back().index;
+  }
+  bool value() {
+    advance();
+    return true;
+  }
+  bool end() {
+    stack_.pop_back();
+    return true;
+  }
+  std::vector<Frame> stack_;
+};
+
+[[noreturn]] void throw_parse_error(const std::string& text, const std::string& file, const nlohmann::json::exception& e,
+                                    std::size_t byte) {
+  FieldPathTracker tracker;
+  nlohmann::json::sax_parse(text, &tracker);
   // nlohmann reports a byte offset; people want a line and a column.
   size_t line = 1, column = 1;
-  for (size_t i = 0; i + 1 < e.byte && i < text.size(); ++i) {
+  for (size_t i = 0; i + 1 < byte && i < text.size(); ++i) {
     if (text[i] == '\n') {
       ++line;
       column = 1;
@@ -173,9 +236,12 @@ std::string describe_parse_error(const std::string& text, const nlohmann::json::
     }
   }
   std::string what = e.what();
-  const auto colon = what.rfind(": ");
-  if (colon != std::string::npos) what = what.substr(colon + 2);
-  return "malformed JSON at line " + std::to_string(line) + ", column " + std::to_string(column) + ": " + what;
+  const auto bracket = what.find("] ");
+  if (bracket != std::string::npos) what = what.substr(bracket + 2);
+  if (const auto colon = what.rfind(": "); e.id == 101 && colon != std::string::npos) what = what.substr(colon + 2);
+  if (e.id == 406) what += " (numbers must be finite)";
+  const std::string where = byte ? " at line " + std::to_string(line) + ", column " + std::to_string(column) : "";
+  throw SceneFileError(file, tracker.path(), "malformed JSON" + where + ": " + what);
 }
 
 }  // namespace
@@ -189,7 +255,9 @@ SceneDescription parse_scene(const std::string& text, const std::string& file, c
   try {
     document = nlohmann::json::parse(text);
   } catch (const nlohmann::json::parse_error& e) {
-    throw SceneFileError(file, "", describe_parse_error(text, e));
+    throw_parse_error(text, file, e, e.byte);
+  } catch (const nlohmann::json::exception& e) {  // e.g. 1e999: number overflow
+    throw_parse_error(text, file, e, 0);
   }
   std::string current;
   try {

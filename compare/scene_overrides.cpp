@@ -28,7 +28,8 @@ void apply_override(nlohmann::json& scene, const std::string& assignment) {
       const size_t index = std::stoul(digits);
       if (!node->is_array()) throw SceneError(walked, "is not an array, so " + path + " cannot be set");
       if (index >= node->size())
-        throw SceneError(walked, "has " + std::to_string(node->size()) + " entries, so " + path + " cannot be set");
+        throw SceneError(walked, "has " + std::to_string(node->size()) + (node->size() == 1 ? " entry" : " entries") +
+                                    ", so " + path + " cannot be set");
       walked += "[" + digits + "]";
       node = &(*node)[index];
       i = close + 1;
