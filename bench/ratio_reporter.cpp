@@ -4,15 +4,15 @@
 
 namespace motus::bench {
 
-void RatioReporter::add_ratio(std::string label, std::string numerator, std::string denominator) {
-  ratios_.push_back({std::move(label), std::move(numerator), std::move(denominator)});
+void RatioReporter::add_ratio(std::string label, std::string numerator, std::string denominator,
+                              double numerator_per) {
+  ratios_.push_back({std::move(label), std::move(numerator), std::move(denominator), numerator_per});
 }
 
 void RatioReporter::ReportRuns(const std::vector<Run>& runs) {
   for (const auto& run : runs)
     if (run.run_type == Run::RT_Iteration && !run.error_occurred)
-      ns_per_iteration_[run.benchmark_name()] =
-          run.GetAdjustedRealTime() * (run.time_unit == benchmark::kNanosecond ? 1 : 1);
+      ns_per_iteration_[run.benchmark_name()] = run.GetAdjustedRealTime() * benchmark::GetTimeUnitMultiplier(run.time_unit) * 1e9;
   ConsoleReporter::ReportRuns(runs);
 }
 
@@ -23,7 +23,7 @@ void RatioReporter::Finalize() {
   for (const auto& r : ratios_) {
     const auto a = ns_per_iteration_.find(r.numerator), b = ns_per_iteration_.find(r.denominator);
     if (a == ns_per_iteration_.end() || b == ns_per_iteration_.end()) continue;  // filtered out
-    std::printf("  %-58s %6.3fx  (%s / %s)\n", r.label.c_str(), a->second / b->second, r.numerator.c_str(),
+    std::printf("  %-58s %6.3fx  (%s / %s)\n", r.label.c_str(), a->second / r.numerator_per / b->second, r.numerator.c_str(),
                 r.denominator.c_str());
   }
 }
