@@ -26,7 +26,10 @@ void JsonFields::fail(const std::string& key, const std::string& message) const 
   throw SceneError(path_of(key), message);
 }
 
-bool JsonFields::has(const std::string& key) const { return object_.contains(key); }
+bool JsonFields::has(const std::string& key) const {
+  asked_.push_back(key);  // a key the reader looks for is a known one, for reject_unknown's list
+  return object_.contains(key);
+}
 
 const nlohmann::json* JsonFields::find(const std::string& key) {
   asked_.push_back(key);

@@ -51,7 +51,7 @@ private:
   const nlohmann::json& object_;
   std::string path_;
   std::set<std::string> used_;      // keys read
-  std::vector<std::string> asked_;  // keys asked for, present or not, in order
+  mutable std::vector<std::string> asked_;  // keys asked for (or tested with has), present or not, in order
 };
 
 // "a number", "a string", "an array", ... for messages.

@@ -238,7 +238,7 @@ private:
   std::string what = e.what();
   const auto bracket = what.find("] ");
   if (bracket != std::string::npos) what = what.substr(bracket + 2);
-  if (const auto colon = what.rfind(": "); e.id == 101 && colon != std::string::npos) what = what.substr(colon + 2);
+  if (const auto colon = what.find(": "); e.id == 101 && colon != std::string::npos) what = what.substr(colon + 2);
   if (e.id == 406) what += " (numbers must be finite)";
   const std::string where = byte ? " at line " + std::to_string(line) + ", column " + std::to_string(column) : "";
   throw SceneFileError(file, tracker.path(), "malformed JSON" + where + ": " + what);

@@ -40,7 +40,7 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    fmt::print(stderr, "motus: error: {}\n(run `motus --help` or `motus SUBCOMMAND --help`)\n", e.what());
+    fmt::print(stderr, "motus: error: {} (run `motus --help` or `motus SUBCOMMAND --help`)\n", e.what());
     return kExitBadInput;
   }
 

@@ -101,7 +101,11 @@ int run_command(const RunOptions& o) {
 
   const std::string integrator_name = o.integrator.value_or(scene.integrator);
   const auto integrator = integrator_from_name(integrator_name);
-  if (!integrator) throw InputError("--integrator: unknown integrator \"" + integrator_name + "\" (known: " + integrator_names() + ")");
+  if (!integrator)
+    throw InputError(path + ": --integrator: unknown integrator \"" + integrator_name + "\" (known: " + integrator_names() + ")");
+  if (info(*integrator).needs_mechanical && !scene.is_mechanical())  // the file's own integrator was checked by the loader
+    throw InputError(path + ": --integrator: " + integrator_name + " is symplectic and needs a mechanical scene (bodies); " +
+                     "use euler, midpoint, rk4, rk4-doubling or rk45");
   const double dt = o.dt.value_or(scene.dt);
   if (!(dt > 0) || !std::isfinite(dt)) throw InputError("--dt: must be a finite number > 0");
   if (o.steps && *o.steps <= 0) throw InputError("--steps: must be > 0");
