@@ -1,0 +1,364 @@
+// The `motus` command as a user meets it: the built binary run through the shell.
+//   Bad input (docs/scene-format.md "Errors", docs/cli.md): exit status 2 and exactly one line on standard error,
+//   "motus: error: FILE: FIELD: MESSAGE", naming the file, the field path and what is wrong.
+//   Good input: every shipped scene runs and `--json` prints the fields docs/cli.md documents.
+//   Numbers: the notes' Euler table for the spring (shared/reference/integrators.md: m = 10, k = 5, x0 = 20,
+//   h = 1 gives x = 20, 20, 10, -10, -35, -55 and v = 0, -10, -20, -25, -20, -2.5 at t = 0..5).
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::string kMotus = MOTUS_BINARY;
+const std::string kScenes = MOTUS_SCENES_DIR;
+
+std::string scene(const std::string& name) { return (fs::path(kScenes) / (name + ".json")).string(); }
+
+std::string read_file(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+void write_file(const fs::path& path, const std::string& text) {
+  std::ofstream out(path, std::ios::binary);
+  out << text;
+}
+
+// A fresh folder per test (ctest may run tests in parallel).
+class TempDir {
+public:
+  TempDir() {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    std::string name = std::string(info->test_suite_name()) + "_" + info->name();
+    std::replace(name.begin(), name.end(), '/', '_');
+    path_ = fs::temp_directory_path() / ("motus_test_cli_" + std::to_string(::getpid()) + "_" + name);
+    fs::remove_all(path_);
+    fs::create_directories(path_);
+  }
+  ~TempDir() {
+    std::error_code ignored;
+    fs::remove_all(path_, ignored);
+  }
+  fs::path operator/(const std::string& file) const { return path_ / file; }
+
+private:
+  fs::path path_;
+};
+
+std::string shell_quote(const std::string& s) {
+  std::string q = "'";
+  for (char c : s) {
+    if (c == '\'')
+      q += "'\\''";
+    else
+      q += c;
+  }
+  return q + "'";
+}
+
+struct Result {
+  int status = -1;
+  std::string out, err;
+};
+
+// Runs `motus ARGS...` with standard output and error captured in files of `dir`.
+Result run_motus(const TempDir& dir, const std::vector<std::string>& args) {
+  std::string command = shell_quote(kMotus);
+  for (const auto& a : args) {
+    command += ' ';
+    command += shell_quote(a);
+  }
+  const fs::path out = dir / "stdout.txt", err = dir / "stderr.txt";
+  command += " >";
+  command += shell_quote(out.string());
+  command += " 2>";
+  command += shell_quote(err.string());
+  command += " </dev/null";
+  const int raw = std::system(command.c_str());
+  Result r;
+  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+  r.out = read_file(out);
+  r.err = read_file(err);
+  return r;
+}
+
+long count_lines(const std::string& s) { return std::count(s.begin(), s.end(), '\n'); }
+
+// ---------------------------------------------------------------------------------------------------------
+// Bad input: one case per row. `file` is the scene's text (written to a temporary file) or, when it starts
+// with "@", the name of a shipped scene. The one line of standard error must contain `FILE: FIELD: ` and
+// `what`.
+
+struct BadInput {
+  const char* name;
+  std::string file;
+  std::vector<std::string> args;  // after `run SCENE`
+  std::string field;
+  std::string what;
+};
+
+// A small valid mechanical scene with two bodies, to break one field at a time.
+std::string two_bodies(const std::string& second_body, const std::string& extra = "") {
+  return R"({"dimensions": 1, "bodies": [{"mass": 1, "position": [0]}, )" + second_body +
+         R"(], "forces": [{"type": "spring", "a": 0, "b": 1, "stiffness": 1}], "dt": 0.1, "duration": 1)" + extra +
+         "}";
+}
+const std::string kGoodBody = R"({"mass": 2, "position": [1]})";
+
+const std::vector<BadInput> kBadInputs = {
+    {"malformed_json", "{\n  \"dimensions\": 1,\n  \"bodies\": [{\"mass\": 1 \"position\": [0]}],\n  \"dt\": 1\n}", {},
+     "bodies[0].mass", "malformed JSON at line 3"},
+    {"trailing_comma", two_bodies(kGoodBody + ",", ""), {}, "bodies[1]", "malformed JSON"},
+    {"nan_literal_in_file", two_bodies(R"({"mass": NaN, "position": [1]})"), {}, "bodies[1].mass",
+     "malformed JSON at line 1"},
+    {"unknown_body_field", two_bodies(R"({"mass": 2, "position": [1], "velocty": [0]})"), {}, "bodies[1].velocty",
+     "unknown field (expected one of: mass, position, velocity)"},
+    {"unknown_top_level_field", two_bodies(kGoodBody, R"(, "exat": "harmonic")"), {}, "exat", "unknown field"},
+    {"unknown_force_field", R"({"dimensions": 1, "bodies": [{"mass": 1, "position": [1]}],
+        "forces": [{"type": "spring", "a": 0, "anchor": [0], "stiffness": 1, "k": 1}], "dt": 1, "duration": 1})",
+     {}, "forces[0].k", "unknown field"},
+    {"unknown_parameter", R"({"system": {"type": "lorenz", "parameters": {"sigmaa": 10}, "initial": [1, 1, 1]},
+        "dt": 0.01, "duration": 1})",
+     {}, "system.parameters.sigmaa", "unknown field (expected one of: sigma, rho, beta)"},
+    {"missing_mass", two_bodies(R"({"position": [1]})"), {}, "bodies[1].mass", "missing (required)"},
+    {"missing_dt", R"({"dimensions": 1, "bodies": [{"mass": 1, "position": [1]}], "duration": 1})", {}, "dt",
+     "missing (required)"},
+    {"missing_bodies_and_system", R"({"dt": 1, "duration": 1})", {}, "bodies", "missing"},
+    {"wrong_type_mass", two_bodies(R"({"mass": "2", "position": [1]})"), {}, "bodies[1].mass",
+     "must be a number, not a string"},
+    {"wrong_type_position", two_bodies(R"({"mass": 2, "position": 1})"), {}, "bodies[1].position",
+     "must be an array of numbers, not a number"},
+    {"wrong_length_position", two_bodies(R"({"mass": 2, "position": [1, 2]})"), {}, "bodies[1].position",
+     "must have 1 number (got 2)"},
+    {"zero_mass", two_bodies(R"({"mass": 0, "position": [1]})"), {}, "bodies[1].mass", "must be > 0"},
+    {"negative_mass", two_bodies(R"({"mass": -1, "position": [1]})"), {}, "bodies[1].mass", "must be > 0"},
+    {"zero_dt", R"({"dimensions": 1, "bodies": [{"mass": 1, "position": [1]}], "dt": 0, "duration": 1})", {}, "dt",
+     "must be > 0"},
+    {"negative_dt", R"({"dimensions": 1, "bodies": [{"mass": 1, "position": [1]}], "dt": -0.5, "duration": 1})", {},
+     "dt", "must be > 0"},
+    {"infinite_number_in_file", two_bodies(R"({"mass": 1e999, "position": [1]})"), {}, "bodies[1].mass",
+     "numbers must be finite"},
+    {"nan_via_set", "@spring", {"--set", "bodies[0].mass=NaN"}, "bodies[0].mass",
+     "must be a finite number (got NaN)"},
+    {"infinity_via_set", "@spring", {"--set", "dt=inf"}, "dt", "must be a finite number (got inf)"},
+    {"zero_mass_via_set", "@spring", {"--set", "bodies[0].mass=0"}, "bodies[0].mass", "must be > 0"},
+    {"unknown_integrator_in_file", two_bodies(kGoodBody, R"(, "integrator": "rk5")"), {}, "integrator",
+     "unknown integrator \"rk5\""},
+    {"unknown_integrator_option", "@spring", {"--integrator", "rk5"}, "--integrator", "unknown integrator \"rk5\""},
+    {"symplectic_on_system_in_file", R"({"system": {"type": "lorenz", "initial": [1, 1, 1]},
+        "integrator": "velocity-verlet", "dt": 0.01, "duration": 1})",
+     {}, "integrator", "velocity-verlet is symplectic"},
+    {"symplectic_on_system_option", "@lorenz", {"--integrator", "verlet"}, "--integrator", "verlet is symplectic"},
+    {"spring_with_b_and_anchor", R"({"dimensions": 1, "bodies": [{"mass": 1, "position": [1]}, {"mass": 1, "position": [2]}],
+        "forces": [{"type": "spring", "a": 0, "b": 1, "anchor": [0], "stiffness": 1}], "dt": 1, "duration": 1})",
+     {}, "forces[0].b", "exactly one of"},
+    {"pendulum_in_2d", R"({"dimensions": 2, "bodies": [{"mass": 1, "position": [0, 0]}],
+        "forces": [{"type": "pendulum", "length": 1}], "dt": 1, "duration": 1})",
+     {}, "forces[0].type", "1-D"},
+    {"exact_that_does_not_fit", "@spring", {"--set", "exact=kepler"}, "exact", "\"kepler\" needs"},
+    {"set_index_out_of_range", "@spring", {"--set", "bodies[3].mass=1"}, "bodies",
+     "has 1 entry, so bodies[3].mass cannot be set"},
+    {"set_bad_index", "@spring", {"--set", "bodies[x].mass=1"}, "bodies[x].mass", "bad index"},
+    {"set_through_a_number", "@spring", {"--set", "dt.x=1"}, "dt", "is not an object"},
+    {"set_without_value", "@spring", {"--set", "bodies[0].mass"}, "bodies[0].mass", "needs PATH=VALUE"},
+    {"set_unknown_field", "@spring", {"--set", "bodies[0].mas=1"}, "bodies[0].mas", "unknown field"},
+};
+
+void PrintTo(const BadInput& c, std::ostream* os) { *os << c.name; }
+
+class BadInputTest : public ::testing::TestWithParam<BadInput> {};
+
+TEST_P(BadInputTest, ExitsTwoWithOneLineNamingFileAndField) {
+  const BadInput& c = GetParam();
+  TempDir dir;
+  std::string file;
+  if (c.file.rfind('@', 0) == 0) {
+    file = scene(c.file.substr(1));
+  } else {
+    file = (dir / "bad_scene.json").string();
+    write_file(file, c.file);
+  }
+  std::vector<std::string> args = {"run", file};
+  args.insert(args.end(), c.args.begin(), c.args.end());
+  const Result r = run_motus(dir, args);
+
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_EQ(count_lines(r.err), 1) << "stderr:\n" << r.err;
+  EXPECT_TRUE(r.out.empty()) << r.out;
+  const std::string expected_prefix = "motus: error: " + file + ": " + c.field + ": ";
+  EXPECT_EQ(r.err.rfind(expected_prefix, 0), 0u) << "expected to start with: " << expected_prefix << "\nstderr: " << r.err;
+  EXPECT_NE(r.err.find(c.what), std::string::npos) << "expected: " << c.what << "\nstderr: " << r.err;
+}
+
+INSTANTIATE_TEST_SUITE_P(Cli, BadInputTest, ::testing::ValuesIn(kBadInputs),
+                         [](const auto& info) { return std::string(info.param.name); });
+
+TEST(CliErrors, MissingFileIsOneLineExitTwo) {
+  TempDir dir;
+  const std::string file = (dir / "no_such_scene.json").string();
+  const Result r = run_motus(dir, {"run", file});
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(count_lines(r.err), 1) << r.err;
+  EXPECT_EQ(r.err, "motus: error: " + file + ": no such file (motus list shows the scenes)\n");
+}
+
+TEST(CliErrors, BadOptionValueIsOneLineExitTwo) {
+  TempDir dir;
+  for (const std::vector<std::string>& args :
+       {std::vector<std::string>{"run", scene("spring"), "--dt", "abc"},
+        std::vector<std::string>{"run", scene("spring"), "--no-such-option"},
+        std::vector<std::string>{"run", scene("spring"), "--steps", "3", "--duration", "2"},
+        std::vector<std::string>{"run", scene("spring"), "--dt", "0"},
+        std::vector<std::string>{"run", scene("spring"), "--steps", "0"}}) {
+    const Result r = run_motus(dir, args);
+    EXPECT_EQ(r.status, 2) << args.back() << ": " << r.err;
+    EXPECT_EQ(count_lines(r.err), 1) << args.back() << ": " << r.err;
+    EXPECT_EQ(r.err.rfind("motus: error: ", 0), 0u) << r.err;
+  }
+}
+
+// ---------------------------------------------------------------------------------------------------------
+// Good input.
+
+std::vector<fs::path> shipped_scenes() {
+  std::vector<fs::path> files;
+  for (const auto& e : fs::directory_iterator(kScenes))
+    if (e.path().extension() == ".json") files.push_back(e.path());
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
+void expect_number(const nlohmann::json& j, const std::string& what) {
+  EXPECT_TRUE(j.is_number()) << what << " is " << j.dump();
+}
+
+void expect_numbers(const nlohmann::json& j, const std::string& what) {
+  ASSERT_TRUE(j.is_array()) << what << " is " << j.dump();
+  for (const auto& x : j) EXPECT_TRUE(x.is_number()) << what << " is " << j.dump();
+}
+
+TEST(CliRun, EveryShippedSceneRunsAndPrintsTheDocumentedJson) {
+  TempDir dir;
+  const auto scenes = shipped_scenes();
+  ASSERT_GE(scenes.size(), 12u);  // the twelve scenes of docs/scene-format.md
+  for (const auto& file : scenes) {
+    SCOPED_TRACE(file.string());
+    const Result r = run_motus(dir, {"run", file.string(), "--json"});
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_TRUE(r.err.empty()) << r.err;
+    const auto j = nlohmann::json::parse(r.out, nullptr, /*allow_exceptions=*/false);
+    ASSERT_FALSE(j.is_discarded()) << r.out;
+    ASSERT_TRUE(j.is_object());
+
+    EXPECT_EQ(j.at("scene"), file.stem().string());
+    EXPECT_TRUE(j.at("file").is_string());
+    EXPECT_TRUE(j.at("integrator").is_string());
+    for (const char* key : {"dt", "t", "wall_seconds"}) expect_number(j.at(key), key);
+    for (const char* key : {"steps", "rejected", "evaluations"}) EXPECT_TRUE(j.at(key).is_number_integer()) << key;
+    EXPECT_GT(j.at("steps").get<long>(), 0);
+    EXPECT_GE(j.at("evaluations").get<long>(), j.at("steps").get<long>());
+
+    const auto scene_json = nlohmann::json::parse(read_file(file));
+    const double end = scene_json.value("start_time", 0.0) + scene_json.at("duration").get<double>();
+    EXPECT_GE(j.at("t").get<double>(), end - 1e-9 * std::max(1.0, std::abs(end)));
+    EXPECT_LT(j.at("t").get<double>(), end + j.at("dt").get<double>());
+
+    if (scene_json.contains("bodies")) {
+      for (const char* when : {"initial", "final"}) {
+        for (const char* part : {"kinetic", "potential", "total"})
+          expect_number(j.at("energy").at(when).at(part), std::string("energy.") + when + "." + part);
+        expect_numbers(j.at("momentum").at(when), std::string("momentum.") + when);
+      }
+      const size_t bodies = scene_json.at("bodies").size(), d = scene_json.at("dimensions").get<size_t>();
+      ASSERT_EQ(j.at("state").at("x").size(), bodies);
+      ASSERT_EQ(j.at("state").at("v").size(), bodies);
+      for (size_t i = 0; i < bodies; ++i) {
+        EXPECT_EQ(j.at("state").at("x")[i].size(), d);
+        EXPECT_EQ(j.at("state").at("v")[i].size(), d);
+      }
+      EXPECT_EQ(j.at("momentum").at("final").size(), d);
+    } else {
+      EXPECT_TRUE(j.at("energy").is_null());
+      EXPECT_TRUE(j.at("momentum").is_null());
+      EXPECT_TRUE(j.at("angular_momentum").is_null());
+      expect_numbers(j.at("state").at("y"), "state.y");
+      EXPECT_EQ(j.at("state").at("y").size(), scene_json.at("system").at("initial").size());
+      EXPECT_EQ(j.at("state").at("names").size(), j.at("state").at("y").size());
+    }
+  }
+}
+
+// The notes' table (shared/reference/integrators.md): explicit Euler, h = 1, t = 5: x = −55, v = −2.5.
+TEST(CliRun, SpringJsonMatchesTheNotesEulerTableAtFive) {
+  TempDir dir;
+  const Result r = run_motus(dir, {"run", scene("spring"), "--json"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j.at("integrator"), "euler");
+  EXPECT_EQ(j.at("t").get<double>(), 5.0);
+  EXPECT_EQ(j.at("steps").get<long>(), 5);
+  EXPECT_EQ(j.at("state").at("x")[0][0].get<double>(), -55.0);
+  EXPECT_EQ(j.at("state").at("v")[0][0].get<double>(), -2.5);
+  // Energies of that state: ½ m v² = ½·10·6.25, ½ k x² = ½·5·3025; at the start ½·5·400.
+  EXPECT_EQ(j.at("energy").at("final").at("kinetic").get<double>(), 31.25);
+  EXPECT_EQ(j.at("energy").at("final").at("potential").get<double>(), 7562.5);
+  EXPECT_EQ(j.at("energy").at("initial").at("total").get<double>(), 1000.0);
+}
+
+// The same table at t = 3: x = −10, v = −25.
+TEST(CliRun, StepsThreeEndsAtThreeOnTheNotesTable) {
+  TempDir dir;
+  const Result r = run_motus(dir, {"run", scene("spring"), "--steps", "3", "--json"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j.at("t").get<double>(), 3.0);
+  EXPECT_EQ(j.at("steps").get<long>(), 3);
+  EXPECT_EQ(j.at("state").at("x")[0][0].get<double>(), -10.0);
+  EXPECT_EQ(j.at("state").at("v")[0][0].get<double>(), -25.0);
+}
+
+TEST(CliRun, TrajectoryRefusesToOverwriteUnlessAsked) {
+  TempDir dir;
+  const std::string csv = (dir / "trajectory.csv").string();
+  write_file(csv, "precious\n");
+
+  Result r = run_motus(dir, {"run", scene("spring"), "--trajectory", csv});
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(count_lines(r.err), 1) << r.err;
+  EXPECT_EQ(r.err.rfind("motus: error: " + csv + ": already exists", 0), 0u) << r.err;
+  EXPECT_NE(r.err.find("--overwrite"), std::string::npos) << r.err;
+  EXPECT_EQ(read_file(csv), "precious\n");
+
+  r = run_motus(dir, {"run", scene("spring"), "--trajectory", csv, "--overwrite"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  // Header, then one row per step of the notes' table (output_interval 0: every step).
+  EXPECT_EQ(read_file(csv),
+            "t,x0,vx0,kinetic,potential,total\n"
+            "0,20,0,0,1000,1000\n"
+            "1,20,-10,500,1000,1500\n"
+            "2,10,-20,2000,250,2250\n"
+            "3,-10,-25,3125,250,3375\n"
+            "4,-35,-20,2000,3062.5,5062.5\n"
+            "5,-55,-2.5,31.25,7562.5,7593.75\n");
+
+  // A new file is written without --overwrite.
+  const std::string fresh = (dir / "fresh.csv").string();
+  r = run_motus(dir, {"run", scene("spring"), "--trajectory", fresh});
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_TRUE(fs::exists(fresh));
+}
+
+}  // namespace
