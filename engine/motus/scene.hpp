@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "motus/collide/colliders.hpp"
+#include "motus/constrain/constraints.hpp"
 #include "motus/forces/force_set.hpp"
 
 namespace motus {
@@ -15,12 +17,18 @@ struct BodyDescription {
   double mass = 1;
   std::vector<double> position;  // `dimensions` numbers
   std::vector<double> velocity;
+  double radius = 0;       // a ball when > 0; a point mass (it still meets walls) when 0
+  double restitution = 1;  // e; a pair's e is the product of the two (see collide/impulse.hpp)
 };
 
 struct MechanicalDescription {
   int dimensions = 2;
   std::vector<BodyDescription> bodies;
   ForceSet forces;
+  Colliders colliders;                 // static walls; none: no collision detection at all
+  std::vector<StickConstraint> sticks; // Verlet distance constraints
+  std::vector<PinConstraint> pins;     // bodies held at fixed points
+  int constraint_iterations = 10;      // projection sweeps per step
 };
 
 struct FirstOrderDescription {

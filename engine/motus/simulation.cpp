@@ -49,17 +49,15 @@ Simulation::Simulation(const SceneDescription& scene, Integrator integrator)
     : scene_(scene), integrator_(integrator), stepper_(std::make_unique<Steppers>()), t_(scene.start_time) {
   if (scene.mechanical) {
     const auto& m = *scene.mechanical;
-    std::vector<double> masses;
     const int n = static_cast<int>(m.bodies.size()) * m.dimensions;
     y_.resize(2 * n);
     for (size_t i = 0; i < m.bodies.size(); ++i) {
-      masses.push_back(m.bodies[i].mass);
       for (int k = 0; k < m.dimensions; ++k) {
         y_[static_cast<Eigen::Index>(i) * m.dimensions + k] = m.bodies[i].position[k];
         y_[n + static_cast<Eigen::Index>(i) * m.dimensions + k] = m.bodies[i].velocity[k];
       }
     }
-    mechanical_ = std::make_unique<MechanicalSystem>(m.dimensions, masses, m.forces);
+    world_ = std::make_unique<World>(m, integrator);  // throws if the integrator cannot run its passes
   } else if (scene.first_order) {
     const SystemInfo* info = find_first_order_system(scene.first_order->type);
     if (!info) throw SceneError("system.type", "unknown system \"" + scene.first_order->type + "\"");
@@ -73,7 +71,7 @@ Simulation::Simulation(const SceneDescription& scene, Integrator integrator)
     throw SceneError("", "a scene needs either \"bodies\" (mechanical) or \"system\" (first-order)");
   }
 
-  if (motus::info(integrator).needs_mechanical && !mechanical_)
+  if (motus::info(integrator).needs_mechanical && !world_)
     throw SceneError("integrator", std::string(motus::info(integrator).name) +
                                        " is symplectic: it needs a mechanical scene (bodies), and this scene is the "
                                        "first-order system \"" + scene.first_order->type +
@@ -108,7 +106,7 @@ Simulation::Simulation(const SceneDescription& scene, Integrator integrator)
 Simulation::~Simulation() = default;
 
 long Simulation::evaluations() const {
-  return mechanical_ ? mechanical_->evaluations : first_order_->evaluations;
+  return world_ ? world_->system().evaluations : first_order_->evaluations;
 }
 
 void Simulation::advance(double end_time, double dt, Tolerance tolerance,
@@ -147,7 +145,7 @@ void Simulation::advance(double end_time, double dt, Tolerance tolerance,
         } else {
           auto x = y_.head(half);
           auto v = y_.tail(half);
-          stepper.step(system, t_, dt, x, v);
+          world_->step(stepper, t_, dt, x, v);
         }
         t_ = t0 + static_cast<double>(i + 1) * dt;  // no drift from adding dt a million times
         ++steps_;
@@ -160,49 +158,49 @@ void Simulation::advance(double end_time, double dt, Tolerance tolerance,
       [&](auto& stepper) {
         using S = std::decay_t<decltype(stepper)>;
         if constexpr (!is_symplectic<S>) {
-          if (mechanical_) {
-            MechanicalAsFirstOrder as_first_order(*mechanical_);
+          if (world_) {
+            MechanicalAsFirstOrder as_first_order(world_->system());
             run(stepper, as_first_order);
           } else {
             run(stepper, *first_order_);
           }
         } else {
-          run(stepper, *mechanical_);
+          run(stepper, world_->system());
         }
       },
       stepper_->any);
 }
 
 std::vector<std::string> Simulation::state_names() const {
-  if (!mechanical_) return first_order_->variable_names();
+  if (!world_) return first_order_->variable_names();
   static const char* axes[] = {"x", "y", "z"};
   std::vector<std::string> names;
-  const int d = mechanical_->dimensions();
+  const int d = world_->system().dimensions();
   for (const char* prefix : {"", "v"})
-    for (int i = 0; i < mechanical_->particles(); ++i)
+    for (int i = 0; i < world_->system().particles(); ++i)
       for (int k = 0; k < d; ++k) names.push_back(std::string(prefix) + axes[k] + std::to_string(i));
   return names;
 }
 
 std::optional<Energy> Simulation::energy() const {
-  if (!mechanical_) return std::nullopt;
-  const int n = mechanical_->size();
+  if (!world_) return std::nullopt;
+  const int n = world_->system().size();
   Energy e;
-  e.kinetic = mechanical_->kinetic_energy(y_.tail(n));
-  e.potential = mechanical_->potential_energy(y_.head(n));
+  e.kinetic = world_->system().kinetic_energy(y_.tail(n));
+  e.potential = world_->system().potential_energy(y_.head(n));
   e.total = e.kinetic + e.potential;
   return e;
 }
 
 Vector Simulation::momentum() const {
-  if (!mechanical_) return Vector(0);
-  return mechanical_->momentum(y_.tail(mechanical_->size()));
+  if (!world_) return Vector(0);
+  return world_->system().momentum(y_.tail(world_->system().size()));
 }
 
 Vector Simulation::angular_momentum() const {
-  if (!mechanical_) return Vector(0);
-  const int n = mechanical_->size();
-  return mechanical_->angular_momentum(y_.head(n), y_.tail(n));
+  if (!world_) return Vector(0);
+  const int n = world_->system().size();
+  return world_->system().angular_momentum(y_.head(n), y_.tail(n));
 }
 
 }  // namespace motus

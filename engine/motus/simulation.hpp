@@ -14,6 +14,7 @@
 #include "motus/scene.hpp"
 #include "motus/systems/first_order_system.hpp"
 #include "motus/systems/mechanical_system.hpp"
+#include "motus/world.hpp"
 
 namespace motus {
 
@@ -32,7 +33,7 @@ public:
 
   const SceneDescription& scene() const { return scene_; }
   Integrator integrator() const { return integrator_; }
-  bool is_mechanical() const { return mechanical_ != nullptr; }
+  bool is_mechanical() const { return world_ != nullptr; }
 
   double time() const { return t_; }
   // The whole state: y for a first-order system, [x; v] for a mechanical one.
@@ -44,8 +45,10 @@ public:
   std::optional<Energy> energy() const;
   Vector momentum() const;
   Vector angular_momentum() const;
-  MechanicalSystem* mechanical_system() { return mechanical_.get(); }
-  const MechanicalSystem* mechanical_system() const { return mechanical_.get(); }
+  MechanicalSystem* mechanical_system() { return world_ ? &world_->system() : nullptr; }
+  const MechanicalSystem* mechanical_system() const { return world_ ? &world_->system() : nullptr; }
+  // The world of a mechanical scene (its passes, collision counters, constraint error).
+  const World* world() const { return world_.get(); }
   FirstOrderSystem* first_order_system() { return first_order_.get(); }
   const FirstOrderSystem* first_order_system() const { return first_order_.get(); }
 
@@ -68,7 +71,7 @@ private:
   SceneDescription scene_;
   Integrator integrator_;
   std::unique_ptr<FirstOrderSystem> first_order_;
-  std::unique_ptr<MechanicalSystem> mechanical_;
+  std::unique_ptr<World> world_;
   std::unique_ptr<Steppers> stepper_;
   Vector y_;
   double t_ = 0;

@@ -14,10 +14,18 @@ public:
 
   template <Mechanical System>
   void step(System& s, double t, double h, VectorRef x, VectorRef v) {
+    kick(s, t, h, x, v);
+    drift(h, x, v);
+  }
+
+  // The two halves, for a world that replaces the straight-line drift with one that
+  // stops at every collision (collide/ball_collisions.hpp).
+  template <Mechanical System>
+  void kick(System& s, double t, double h, ConstVectorRef x, VectorRef v) {
     s.acceleration(t, x, v, a_);
     v += h * a_;
-    x += h * v;
   }
+  static void drift(double h, VectorRef x, ConstVectorRef v) { x += h * v; }
 
 private:
   Vector a_;

@@ -23,6 +23,9 @@ public:
   }
   // Forget p_{n−1} (call after changing x or v from outside).
   void reset() { started_ = false; }
+  // p_n after a step (p_{n+1} is the state's x): a world that moves x by projection
+  // (constraints, walls) reads the velocity from the two, as Jakobsen's Verlet does.
+  const Vector& previous_positions() const { return x_previous_; }
 
   template <Mechanical System>
   void step(System& s, double t, double h, VectorRef x, VectorRef v) {

@@ -1,0 +1,123 @@
+#pragma once
+// Bodies that touch: balls (and points) move on straight lines through a step, and every
+// contact — ball with ball, ball with wall — is resolved at its own time of impact, in
+// time order (an event-driven drift). Nothing tunnels, however fast, and contacts that
+// happen at the same instant (Newton's cradle) are resolved one after another, exactly.
+//
+// One step, for time h, given the velocities the integrator's kick left:
+//   1. find every contact that can happen within h: a uniform grid over the balls'
+//      start positions, with cells large enough that two balls which can meet within h
+//      are in neighbouring cells (the broad phase: O(N), not O(N²)); balls moving
+//      farther than a radius in one step are "fast" and query the cells along their path;
+//   2. take the earliest contact, move its two bodies to that time, apply the impulse
+//      (impulse.hpp), and look again for the contacts of just those two;
+//   3. repeat until no contact is left within h; move everything to the end of the step.
+// Overlap found at the start of a step (from the scene, or rounding) is removed by
+// moving positions apart along the normal, mass-weighted; velocities are not touched.
+#include <array>
+#include <vector>
+
+#include "motus/collide/colliders.hpp"
+#include "motus/vector.hpp"
+
+namespace motus {
+
+struct CollisionCounters {
+  long grid_builds = 0;           // broad phase: grids built
+  long cell_queries = 0;          // broad phase: grid cells looked into
+  long pair_tests = 0;            // narrow phase: time-of-impact computations between two balls
+  long ball_collisions = 0;
+  long wall_collisions = 0;
+  long position_corrections = 0;  // overlaps removed by moving positions
+
+  long broad_phase_queries() const { return grid_builds + cell_queries; }
+};
+
+template <int D>
+class BallCollisions {
+public:
+  using Point = Eigen::Matrix<double, D, 1>;
+
+  // radius 0 makes a point: it meets walls but not other bodies.
+  BallCollisions(const Vector& inverse_mass, std::vector<double> radius, std::vector<double> restitution,
+                 const Colliders& colliders);
+
+  // Moves every body for time h on straight lines from x with velocities v, resolving
+  // every contact at its time of impact. x and v hold N·D numbers.
+  void drift(VectorRef x, VectorRef v, double h);
+
+  const CollisionCounters& counters() const { return counters_; }
+
+private:
+  struct Event {
+    double t;
+    int i, other;  // other ≥ 0: a ball; other < 0: wall −1 − other
+    unsigned count_i, count_other;
+    bool operator>(const Event& e) const { return t > e.t; }
+  };
+  struct Plane {
+    Point normal;
+    double offset, restitution;
+  };
+  struct Segment {
+    Point a, b;
+    double restitution;
+  };
+  using Cell = std::array<int, D>;
+
+  auto position(int i) { return Eigen::Map<Point>(x_ + D * i); }
+  auto velocity(int i) { return Eigen::Map<Point>(v_ + D * i); }
+  Point position_at(int i, double t) { return position(i) + velocity(i) * (t - local_time_[i]); }
+  void advance(int i, double t);
+
+  void build_grid();
+  Cell cell_of(const Point& p) const;
+  int cell_index(const Cell& c) const;
+  template <class Visit>
+  void for_cells_in_box(const Point& low, const Point& high, Visit&& visit);
+
+  void find_initial_events();
+  void find_events(int i, double t, int exclude);
+  void find_wall_events(int i, double t);
+  void test_pair(int i, int k, double t);
+  void separate_if_overlapping(int i, int k);
+  void separate_from_walls(int i);
+  double wall_impact(int i, int wall, double t, Point* normal);
+  void push(double t, int i, int other);
+  void resolve(const Event& e);
+  void mark_fast_if_needed(int i, double t);
+
+  int n_;
+  Vector inverse_mass_;
+  std::vector<double> radius_, restitution_;
+  double max_radius_ = 0;
+  std::vector<Plane> planes_;
+  std::vector<Segment> segments_;
+  CollisionCounters counters_;
+
+  // Per step (sized once; a step allocates nothing once they have grown).
+  double* x_ = nullptr;
+  double* v_ = nullptr;
+  double h_ = 0;
+  double sweep_ = 0;  // farthest any slow ball may travel in this step
+  std::vector<double> local_time_, travelled_;
+  std::vector<unsigned> collision_count_;  // ever; events carry it to detect staleness
+  std::vector<unsigned> collisions_this_step_;
+  std::vector<char> fast_flag_;
+  std::vector<int> fast_, balls_;
+  std::vector<Event> events_;
+  long events_this_step_ = 0;
+
+  // The grid of slow balls' start positions, counting-sorted by cell.
+  Point origin_;
+  double cell_size_ = 1;
+  Cell dims_{};
+  std::vector<int> cell_start_, sorted_;
+  std::vector<Cell> ball_cell_;
+};
+
+extern template class BallCollisions<1>;
+extern template class BallCollisions<2>;
+extern template class BallCollisions<3>;
+
+}  // namespace motus

@@ -1,0 +1,45 @@
+#pragma once
+// Position-based constraints on velocityless Verlet (Jakobsen, "Advanced Character
+// Physics"; the notes' fabric-and-ragdoll demo): after the Verlet step moves every
+// body, positions are projected back onto the constraints, a fixed number of sweeps:
+//   each stick:  move its two ends along the stick, in proportion to their inverse
+//                masses, until it has its rest length;
+//   each wall:   push a body that is inside a wall back to its surface;
+//   each pair of overlapping balls: push them apart, mass-weighted;
+//   each pin:    put the body back on its point (pins go last, so they never move).
+// The velocity is then what Verlet always implies: (x_{n+1} − x_n)/Δt.
+#include <vector>
+
+#include "motus/collide/colliders.hpp"
+#include "motus/constrain/constraints.hpp"
+#include "motus/vector.hpp"
+
+namespace motus {
+
+class ConstraintProjection {
+public:
+  ConstraintProjection(int dimensions, const Vector& inverse_mass, std::vector<double> radius,
+                       std::vector<StickConstraint> sticks, std::vector<PinConstraint> pins,
+                       const Colliders& colliders, int iterations);
+
+  // `iterations` sweeps over sticks, walls and ball pairs, then the pins.
+  void project(VectorRef x);
+
+  // The largest |length − rest length| / rest length over the sticks (0 without sticks).
+  double max_relative_stick_error(ConstVectorRef x) const;
+  bool pinned(int body) const;
+
+  long broad_phase_queries() const { return broad_phase_queries_; }
+
+private:
+  int d_;
+  Vector inverse_mass_;  // pinned bodies count as infinitely heavy
+  std::vector<double> radius_;
+  std::vector<StickConstraint> sticks_;
+  std::vector<PinConstraint> pins_;
+  Colliders colliders_;
+  int iterations_;
+  long broad_phase_queries_ = 0;
+};
+
+}  // namespace motus

@@ -1,0 +1,82 @@
+#pragma once
+// A mechanical scene's world: point masses and exactly the passes its scene uses,
+// stepped in order (Box2D-Lite's World::Step as a recipe):
+//   forces       the integrator's kick, a = F/m          — only if the scene has forces
+//   drift        straight lines, x += v Δt               — always
+//   collisions   the drift stops at every contact and resolves it with an impulse
+//                (symplectic-euler), or contacts are projected apart (verlet)
+//                                                        — only with walls or two balls
+//   constraints  sticks and pins by projection (verlet)  — only with sticks or pins
+// A scene without colliders does no collision detection at all; one without sticks
+// never projects; one without forces never evaluates them.
+#include <memory>
+#include <string>
+#include <type_traits>
+#include <variant>
+#include <vector>
+
+#include "motus/collide/ball_collisions.hpp"
+#include "motus/constrain/constraint_projection.hpp"
+#include "motus/integrate/symplectic_euler.hpp"
+#include "motus/integrate/verlet.hpp"
+#include "motus/integrator_name.hpp"
+#include "motus/scene.hpp"
+#include "motus/systems/mechanical_system.hpp"
+
+namespace motus {
+
+class World {
+public:
+  // Throws SceneError("integrator", ...) when the integrator cannot run this scene's passes.
+  World(const MechanicalDescription& scene, Integrator integrator);
+
+  MechanicalSystem& system() { return system_; }
+  const MechanicalSystem& system() const { return system_; }
+
+  bool has_forces() const { return has_forces_; }
+  bool has_collisions() const { return !std::holds_alternative<std::monostate>(collisions_); }
+  bool has_constraints() const { return constraints_ != nullptr; }
+  // The passes this world runs, in order (for summaries and reports).
+  std::vector<std::string> passes() const;
+
+  // One step of h from (x, v) at time t with the scene's integrator.
+  template <class Stepper>
+  void step(Stepper& stepper, double t, double h, VectorRef x, VectorRef v);
+
+  // Counted work: all zero when the scene has no collision pass.
+  CollisionCounters collision_counters() const;
+  // The largest relative stick-length error now (0 without sticks).
+  double constraint_error(ConstVectorRef x) const;
+
+private:
+  void drift_with_collisions(VectorRef x, VectorRef v, double h);
+
+  MechanicalSystem system_;
+  Integrator integrator_;
+  bool has_forces_;
+  std::variant<std::monostate, BallCollisions<1>, BallCollisions<2>, BallCollisions<3>> collisions_;
+  std::unique_ptr<ConstraintProjection> constraints_;
+  bool project_contacts_ = false;  // verlet: walls and balls are projection constraints too
+};
+
+template <class Stepper>
+void World::step(Stepper& stepper, double t, double h, VectorRef x, VectorRef v) {
+  if constexpr (std::is_same_v<Stepper, SymplecticEuler>) {
+    if (has_collisions()) {
+      if (has_forces_) stepper.kick(system_, t, h, x, v);
+      drift_with_collisions(x, v, h);
+      return;
+    }
+  }
+  if constexpr (std::is_same_v<Stepper, Verlet>) {
+    if (constraints_) {
+      stepper.step(system_, t, h, x, v);
+      constraints_->project(x);
+      v = (x - stepper.previous_positions()) / h;
+      return;
+    }
+  }
+  stepper.step(system_, t, h, x, v);
+}
+
+}  // namespace motus
