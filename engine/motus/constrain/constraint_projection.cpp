@@ -1,19 +1,292 @@
 #include "motus/constrain/constraint_projection.hpp"
 
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <string>
+
+#include "motus/scene_error.hpp"
+
+// Jakobsen's relaxation ("Advanced Character Physics", 2001), as the notes' fabric and
+// ragdoll demo runs it. Each constraint on its own is easy: a stick that is too long
+// moves its two ends towards each other until it has its length; a body inside a wall
+// moves to the wall's surface. Satisfying one breaks its neighbours a little, so we
+// sweep over all of them a fixed number of times: every sweep shrinks the errors, and
+// what is left after `iterations` sweeps is the cloth's stretchiness. A single stick is
+// satisfied exactly by one projection; a cloth needs more sweeps the more sticks a
+// disturbance has to travel through.
+//
+// The projection changes positions only. Verlet reads the velocity from the positions
+// (x_{n+1} − x_n)/Δt, so a projected body also gets the velocity that the projection
+// implies: a particle pushed out of the floor stops falling without any impulse.
+
 namespace motus {
+namespace {
+
+// Cells of the broad phase are hashed into a table of this many buckets per ball (a
+// power of two at least this large): few enough to stay small, enough that unrelated
+// cells seldom share a bucket.
+constexpr int kBucketsPerBall = 2;
+
+// The classic spatial-hash primes (Teschner et al., "Optimized Spatial Hashing for
+// Collision Detection of Deformable Objects", 2003).
+std::uint64_t hash_cell(const std::array<std::int64_t, 3>& c) {
+  return static_cast<std::uint64_t>(c[0]) * 73856093u ^ static_cast<std::uint64_t>(c[1]) * 19349663u ^
+         static_cast<std::uint64_t>(c[2]) * 83492791u;
+}
+
+}  // namespace
 
 ConstraintProjection::ConstraintProjection(int dimensions, const Vector& inverse_mass, std::vector<double> radius,
                                            std::vector<StickConstraint> sticks, std::vector<PinConstraint> pins,
                                            const Colliders& colliders, int iterations)
     : d_(dimensions), inverse_mass_(inverse_mass), radius_(std::move(radius)), sticks_(std::move(sticks)),
       pins_(std::move(pins)), colliders_(colliders), iterations_(iterations) {
+  const int n = static_cast<int>(inverse_mass_.size());
+  if (d_ < 1 || d_ > 3) throw SceneError("dimensions", "constraints need 1, 2 or 3 dimensions");
+  if (iterations_ < 1)
+    throw SceneError("constraint_iterations", "must be at least 1 (" + std::to_string(iterations_) + " given)");
+  auto check_body = [n](int body, const std::string& field) {
+    if (body < 0 || body >= n)
+      throw SceneError(field, "body " + std::to_string(body) + " does not exist: the scene has bodies 0.." +
+                                  std::to_string(n - 1));
+  };
+  for (size_t s = 0; s < sticks_.size(); ++s) {
+    const std::string field = "sticks[" + std::to_string(s) + "]";
+    check_body(sticks_[s].a, field + ".a");
+    check_body(sticks_[s].b, field + ".b");
+    if (sticks_[s].a == sticks_[s].b) throw SceneError(field, "a stick needs two different bodies");
+    if (!(sticks_[s].length > 0)) throw SceneError(field + ".length", "a stick's rest length must be > 0");
+  }
+  for (size_t p = 0; p < pins_.size(); ++p) check_body(pins_[p].body, "pins[" + std::to_string(p) + "].body");
+  // A pinned body is infinitely heavy: sticks and contacts move only its partners.
   for (const auto& p : pins_) inverse_mass_[p.body] = 0;
+
+  // Walls, in the one form the sweep needs: a box container is its 2·d inward faces.
+  for (const auto& p : colliders_.planes) {
+    double length = 0;
+    for (int k = 0; k < d_; ++k) length += p.normal[k] * p.normal[k];
+    length = std::sqrt(length);
+    if (!(length > 0)) throw SceneError("colliders", "a plane's normal must not be zero");
+    Wall w;
+    for (int k = 0; k < d_; ++k) w.normal[k] = p.normal[k] / length;
+    w.offset = p.offset / length;
+    walls_.push_back(w);
+  }
+  for (const auto& b : colliders_.boxes)
+    for (int k = 0; k < d_; ++k) {
+      Wall low, high;
+      low.normal[k] = 1;
+      low.offset = b.min[k];
+      high.normal[k] = -1;
+      high.offset = -b.max[k];
+      walls_.push_back(low);
+      walls_.push_back(high);
+    }
+  if (!colliders_.segments.empty() && d_ != 2)
+    throw SceneError("colliders", "segment colliders exist in 2-D scenes only");
+
+  for (int i = 0; i < n; ++i)
+    if (radius_[i] > 0) {
+      balls_.push_back(i);
+      max_radius_ = std::max(max_radius_, radius_[i]);
+    }
+
+  // Everything project() touches is sized here, so a step allocates nothing.
+  previous_x_.resize(static_cast<Eigen::Index>(n) * d_);
+  if (balls_.size() >= 2) {
+    int buckets = 1;
+    while (buckets < kBucketsPerBall * static_cast<int>(balls_.size())) buckets *= 2;
+    bucket_start_.assign(static_cast<size_t>(buckets) + 1, 0);
+    bucket_of_.resize(balls_.size());
+    sorted_.resize(balls_.size());
+    // Balls of equal size packed as tightly as they go touch at most 12 others (3-D);
+    // the candidate list keeps any growth beyond this, so it stops allocating.
+    pairs_.reserve(8 * balls_.size());
+  }
 }
 
-void ConstraintProjection::project(VectorRef) {}  // TODO(helper): Jakobsen relaxation
-
-double ConstraintProjection::max_relative_stick_error(ConstVectorRef) const { return 0; }
-
 bool ConstraintProjection::pinned(int body) const { return inverse_mass_[body] == 0; }
+
+void ConstraintProjection::project(VectorRef x) {
+  place_pins(x);  // first, so the sticks pull towards where the pins really are
+  if (balls_.size() >= 2) find_ball_pairs(x);
+  for (int sweep = 0; sweep < iterations_; ++sweep) {
+    project_sticks(x);
+    project_walls(x);
+    project_ball_pairs(x);
+  }
+  place_pins(x);  // last, exactly: nothing above moves a body of inverse mass 0, but be sure
+  previous_x_ = x;
+  have_previous_ = true;
+}
+
+void ConstraintProjection::place_pins(VectorRef x) const {
+  for (const auto& p : pins_)
+    for (int k = 0; k < d_; ++k) x[p.body * d_ + k] = p.position[k];
+}
+
+// Move both ends along the stick, each by its share of the error: the lighter body moves
+// more (shares w_a/(w_a+w_b) and w_b/(w_a+w_b) of the inverse masses), so the stick's
+// centre of mass stays where it was and the projection adds no momentum.
+void ConstraintProjection::project_sticks(VectorRef x) const {
+  for (const auto& s : sticks_) {
+    const double wa = inverse_mass_[s.a], wb = inverse_mass_[s.b];
+    const double w = wa + wb;
+    if (w == 0) continue;  // both ends pinned: nothing may move
+    auto xa = x.segment(s.a * d_, d_);
+    auto xb = x.segment(s.b * d_, d_);
+    const Point delta = xb - xa;
+    const double length = delta.norm();
+    if (length == 0) continue;  // the two ends coincide: no direction to push along
+    const double stretch = (length - s.length) / length;
+    xa += (stretch * wa / w) * delta;
+    xb -= (stretch * wb / w) * delta;
+  }
+}
+
+// A body is a ball of its radius (0: a point). Inside a wall it goes straight back to the
+// surface, to distance `radius` from it; along the wall it keeps its position, so Verlet's
+// implied velocity keeps its tangential part (no friction) and loses the normal one.
+void ConstraintProjection::project_walls(VectorRef x) const {
+  if (walls_.empty() && colliders_.segments.empty()) return;
+  const int n = static_cast<int>(radius_.size());
+  for (int i = 0; i < n; ++i) {
+    if (inverse_mass_[i] == 0) continue;  // pinned: the pin wins
+    auto xi = x.segment(i * d_, d_);
+    const double r = radius_[i];
+    for (const Wall& wall : walls_) {
+      double height = -wall.offset - r;  // n·x − offset − r: < 0 means inside the wall
+      for (int k = 0; k < d_; ++k) height += wall.normal[k] * xi[k];
+      if (height < 0)
+        for (int k = 0; k < d_; ++k) xi[k] -= height * wall.normal[k];
+    }
+    for (const auto& s : colliders_.segments) project_segment(s, i, xi);
+  }
+}
+
+// A 2-D segment has two sides and no inside. A ball closer than its radius to the segment
+// is pushed away from the nearest point. A point (or a ball fast enough to pass through in
+// one step) could end up on the other side, where "away from the nearest point" would
+// push it on through; so a body that was on one side after the last projection and is now
+// on the other, within the segment's extent, goes back to the side it came from.
+void ConstraintProjection::project_segment(const SegmentCollider& s, int i, VectorRef xi) const {
+  const Eigen::Vector2d a(s.a[0], s.a[1]), b(s.b[0], s.b[1]);
+  const Eigen::Vector2d along = b - a;
+  const double length2 = along.squaredNorm();
+  const Eigen::Vector2d p(xi[0], xi[1]);
+  const double reach = length2 > 0 ? along.dot(p - a) / length2 : 0.0;
+  const Eigen::Vector2d closest = a + std::clamp(reach, 0.0, 1.0) * along;
+  const double r = radius_[i];
+
+  if (have_previous_ && length2 > 0 && reach > 0 && reach < 1) {
+    auto side = [&](const Eigen::Vector2d& q) { return along.x() * (q.y() - a.y()) - along.y() * (q.x() - a.x()); };
+    const double before = side({previous_x_[i * 2], previous_x_[i * 2 + 1]});
+    const double now = side(p);
+    if (before * now < 0) {  // crossed: back to the side it came from, at distance r
+      const Eigen::Vector2d normal = Eigen::Vector2d(-along.y(), along.x()).normalized() * (before > 0 ? 1 : -1);
+      const Eigen::Vector2d q = closest + r * normal;
+      xi[0] = q.x();
+      xi[1] = q.y();
+      return;
+    }
+  }
+  const Eigen::Vector2d away = p - closest;
+  const double distance = away.norm();
+  if (distance < r && distance > 0) {
+    const Eigen::Vector2d q = closest + (r / distance) * away;
+    xi[0] = q.x();
+    xi[1] = q.y();
+  }
+}
+
+// The broad phase, once per project(): hash every ball into a uniform grid of cells
+// (a spatial hash, so the grid needs no bounds), then look for each ball's partners in
+// its own and the neighbouring cells only — O(N) rather than all N²/2 pairs. A pair is
+// kept as a candidate when it is closer than r_a + r_b + margin; the sweeps then test
+// only the candidates. The margin (the largest radius) covers the distance balls move
+// relative to each other during the sweeps; the few pairs it would miss (balls thrown
+// together by more than a radius within one projection) are found at the next step.
+void ConstraintProjection::find_ball_pairs(ConstVectorRef x) {
+  const double margin = max_radius_;
+  const double cell = 2 * max_radius_ + margin;  // the farthest a candidate pair can be apart
+  const auto buckets = static_cast<std::uint64_t>(bucket_start_.size() - 1);
+  auto cell_of = [&](int i) {
+    std::array<std::int64_t, 3> c{0, 0, 0};
+    for (int k = 0; k < d_; ++k) c[k] = static_cast<std::int64_t>(std::floor(x[i * d_ + k] / cell));
+    return c;
+  };
+
+  // Counting sort of the balls by bucket.
+  std::fill(bucket_start_.begin(), bucket_start_.end(), 0);
+  for (size_t s = 0; s < balls_.size(); ++s) {
+    bucket_of_[s] = static_cast<int>(hash_cell(cell_of(balls_[s])) & (buckets - 1));
+    ++bucket_start_[static_cast<size_t>(bucket_of_[s]) + 1];
+  }
+  for (size_t b = 0; b + 1 < bucket_start_.size(); ++b) bucket_start_[b + 1] += bucket_start_[b];
+  for (size_t s = 0; s < balls_.size(); ++s) sorted_[static_cast<size_t>(bucket_start_[bucket_of_[s]]++)] = static_cast<int>(s);
+  for (size_t b = bucket_start_.size() - 1; b > 0; --b) bucket_start_[b] = bucket_start_[b - 1];
+  bucket_start_[0] = 0;
+
+  pairs_.clear();
+  int neighbours = 1;
+  for (int k = 0; k < d_; ++k) neighbours *= 3;
+  for (size_t s = 0; s < balls_.size(); ++s) {
+    const int i = balls_[s];
+    const auto home = cell_of(i);
+    // Two neighbouring cells may hash to the same bucket: look into each bucket once.
+    std::array<int, 27> seen{};
+    int seen_count = 0;
+    for (int code = 0; code < neighbours; ++code) {
+      auto c = home;
+      for (int k = 0, rest = code; k < d_; ++k, rest /= 3) c[k] += rest % 3 - 1;
+      const int bucket = static_cast<int>(hash_cell(c) & (buckets - 1));
+      if (std::find(seen.begin(), seen.begin() + seen_count, bucket) != seen.begin() + seen_count) continue;
+      seen[static_cast<size_t>(seen_count++)] = bucket;
+      ++broad_phase_queries_;
+      for (int u = bucket_start_[bucket]; u < bucket_start_[bucket + 1]; ++u) {
+        const auto other = static_cast<size_t>(sorted_[static_cast<size_t>(u)]);
+        if (other <= s) continue;  // each pair once: from its earlier ball
+        const int k = balls_[other];
+        const double reach = radius_[i] + radius_[k] + margin;
+        if ((x.segment(k * d_, d_) - x.segment(i * d_, d_)).squaredNorm() < reach * reach) pairs_.push_back({i, k});
+      }
+    }
+  }
+}
+
+// Two overlapping balls move apart along the line of their centres until they touch,
+// shared by inverse mass like a stick's ends (a contact is a stick that only pushes).
+void ConstraintProjection::project_ball_pairs(VectorRef x) const {
+  for (const auto& [i, k] : pairs_) {
+    const double wi = inverse_mass_[i], wk = inverse_mass_[k];
+    const double w = wi + wk;
+    if (w == 0) continue;
+    auto xi = x.segment(i * d_, d_);
+    auto xk = x.segment(k * d_, d_);
+    Point delta = xk - xi;
+    const double touching = radius_[i] + radius_[k];
+    const double distance2 = delta.squaredNorm();
+    if (distance2 >= touching * touching) continue;
+    double distance = std::sqrt(distance2);
+    if (distance == 0) {  // coincident centres: any direction will do
+      delta = Point::Zero(d_);
+      delta[0] = 1;
+      distance = 1;
+    }
+    const double depth = (touching - distance) / distance;
+    xi -= (depth * wi / w) * delta;
+    xk += (depth * wk / w) * delta;
+  }
+}
+
+double ConstraintProjection::max_relative_stick_error(ConstVectorRef x) const {
+  double worst = 0;
+  for (const auto& s : sticks_) {
+    const double length = (x.segment(s.b * d_, d_) - x.segment(s.a * d_, d_)).norm();
+    worst = std::max(worst, std::abs(length - s.length) / s.length);
+  }
+  return worst;
+}
 
 }  // namespace motus

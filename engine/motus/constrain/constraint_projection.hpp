@@ -8,6 +8,8 @@
 //   each pair of overlapping balls: push them apart, mass-weighted;
 //   each pin:    put the body back on its point (pins go last, so they never move).
 // The velocity is then what Verlet always implies: (x_{n+1} − x_n)/Δt.
+#include <array>
+#include <utility>
 #include <vector>
 
 #include "motus/collide/colliders.hpp"
@@ -32,6 +34,21 @@ public:
   long broad_phase_queries() const { return broad_phase_queries_; }
 
 private:
+  // A point of the scene's d ≤ 3 dimensions, on the stack (no allocation).
+  using Point = Eigen::Matrix<double, Eigen::Dynamic, 1, Eigen::ColMajor, 3, 1>;
+  // A wall in the one form the sweep needs: the free half-space n·x ≥ offset, |n| = 1.
+  struct Wall {
+    std::array<double, 3> normal{0, 0, 0};
+    double offset = 0;
+  };
+
+  void place_pins(VectorRef x) const;
+  void project_sticks(VectorRef x) const;
+  void project_walls(VectorRef x) const;
+  void project_segment(const SegmentCollider& s, int i, VectorRef xi) const;
+  void find_ball_pairs(ConstVectorRef x);
+  void project_ball_pairs(VectorRef x) const;
+
   int d_;
   Vector inverse_mass_;  // pinned bodies count as infinitely heavy
   std::vector<double> radius_;
@@ -40,6 +57,17 @@ private:
   Colliders colliders_;
   int iterations_;
   long broad_phase_queries_ = 0;
+
+  std::vector<Wall> walls_;  // planes, and each box's inward faces
+  std::vector<int> balls_;   // bodies with radius > 0
+  double max_radius_ = 0;
+  Vector previous_x_;        // positions after the last projection: which side of a segment
+  bool have_previous_ = false;
+
+  // Broad phase (sized in the constructor): balls counting-sorted by hash bucket, and
+  // the candidate pairs the sweeps test.
+  std::vector<int> bucket_start_, bucket_of_, sorted_;
+  std::vector<std::pair<int, int>> pairs_;
 };
 
 }  // namespace motus
