@@ -93,7 +93,7 @@ ConstraintProjection::ConstraintProjection(int dimensions, const Vector& inverse
     }
 
   // Everything project() touches is sized here, so a step allocates nothing.
-  previous_x_.resize(static_cast<Eigen::Index>(n) * d_);
+  side_.assign(static_cast<size_t>(n) * colliders_.segments.size(), 0);
   if (balls_.size() >= 2) {
     int buckets = 1;
     while (buckets < kBucketsPerBall * static_cast<int>(balls_.size())) buckets *= 2;
@@ -116,9 +116,12 @@ void ConstraintProjection::project(VectorRef x) {
     project_walls(x);
     project_ball_pairs(x);
   }
+  // Walls win: a sweep's last ball pushes may have nudged a body into a wall, and while a
+  // stick a little off its length is only stretchiness, a body seen through the floor is
+  // a bug. (Sweeps are what make sticks and contacts agree; this only settles who is last.)
+  project_walls(x);
   place_pins(x);  // last, exactly: nothing above moves a body of inverse mass 0, but be sure
-  previous_x_ = x;
-  have_previous_ = true;
+  remember_segment_sides(x);
 }
 
 void ConstraintProjection::place_pins(VectorRef x) const {
@@ -161,16 +164,27 @@ void ConstraintProjection::project_walls(VectorRef x) const {
       if (height < 0)
         for (int k = 0; k < d_; ++k) xi[k] -= height * wall.normal[k];
     }
-    for (const auto& s : colliders_.segments) project_segment(s, i, xi);
+    for (size_t j = 0; j < colliders_.segments.size(); ++j) project_segment(j, i, xi);
   }
 }
 
 // A 2-D segment has two sides and no inside. A ball closer than its radius to the segment
 // is pushed away from the nearest point. A point (or a ball fast enough to pass through in
 // one step) could end up on the other side, where "away from the nearest point" would
-// push it on through; so a body that was on one side after the last projection and is now
-// on the other, within the segment's extent, goes back to the side it came from.
-void ConstraintProjection::project_segment(const SegmentCollider& s, int i, VectorRef xi) const {
+// push it on through; so each body remembers which side of each segment it was last seen
+// on, and one that turns up on the other side, within the segment's extent, goes back to
+// the side it came from.
+namespace {
+
+// > 0 left of a→b, < 0 right of it, 0 on its line.
+double side_of(const SegmentCollider& s, double x, double y) {
+  return (s.b[0] - s.a[0]) * (y - s.a[1]) - (s.b[1] - s.a[1]) * (x - s.a[0]);
+}
+
+}  // namespace
+
+void ConstraintProjection::project_segment(size_t j, int i, VectorRef xi) const {
+  const SegmentCollider& s = colliders_.segments[j];
   const Eigen::Vector2d a(s.a[0], s.a[1]), b(s.b[0], s.b[1]);
   const Eigen::Vector2d along = b - a;
   const double length2 = along.squaredNorm();
@@ -179,17 +193,14 @@ void ConstraintProjection::project_segment(const SegmentCollider& s, int i, Vect
   const Eigen::Vector2d closest = a + std::clamp(reach, 0.0, 1.0) * along;
   const double r = radius_[i];
 
-  if (have_previous_ && length2 > 0 && reach > 0 && reach < 1) {
-    auto side = [&](const Eigen::Vector2d& q) { return along.x() * (q.y() - a.y()) - along.y() * (q.x() - a.x()); };
-    const double before = side({previous_x_[i * 2], previous_x_[i * 2 + 1]});
-    const double now = side(p);
-    if (before * now < 0) {  // crossed: back to the side it came from, at distance r
-      const Eigen::Vector2d normal = Eigen::Vector2d(-along.y(), along.x()).normalized() * (before > 0 ? 1 : -1);
-      const Eigen::Vector2d q = closest + r * normal;
-      xi[0] = q.x();
-      xi[1] = q.y();
-      return;
-    }
+  const signed char before = side_[static_cast<size_t>(i) * colliders_.segments.size() + j];
+  if (before != 0 && reach > 0 && reach < 1 && before * side_of(s, p.x(), p.y()) < 0) {
+    // Crossed: back to the side it came from, at distance r.
+    const Eigen::Vector2d normal = Eigen::Vector2d(-along.y(), along.x()).normalized();
+    const Eigen::Vector2d q = closest + (before * r) * normal;
+    xi[0] = q.x();
+    xi[1] = q.y();
+    return;
   }
   const Eigen::Vector2d away = p - closest;
   const double distance = away.norm();
@@ -198,6 +209,17 @@ void ConstraintProjection::project_segment(const SegmentCollider& s, int i, Vect
     xi[0] = q.x();
     xi[1] = q.y();
   }
+}
+
+// After a projection, note each body's side of each segment; a body exactly on a
+// segment's line (a point resting on it) keeps the side it had.
+void ConstraintProjection::remember_segment_sides(ConstVectorRef x) {
+  const size_t segments = colliders_.segments.size();
+  for (size_t i = 0; i * segments < side_.size(); ++i)
+    for (size_t j = 0; j < segments; ++j) {
+      const double side = side_of(colliders_.segments[j], x[2 * i], x[2 * i + 1]);
+      if (side != 0) side_[i * segments + j] = side > 0 ? 1 : -1;
+    }
 }
 
 // The broad phase, once per project(): hash every ball into a uniform grid of cells

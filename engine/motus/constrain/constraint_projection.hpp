@@ -6,6 +6,7 @@
 //                masses, until it has its rest length;
 //   each wall:   push a body that is inside a wall back to its surface;
 //   each pair of overlapping balls: push them apart, mass-weighted;
+//   then the walls once more (no body ends a step inside a wall), and
 //   each pin:    put the body back on its point (pins go last, so they never move).
 // The velocity is then what Verlet always implies: (x_{n+1} − x_n)/Δt.
 #include <array>
@@ -45,7 +46,8 @@ private:
   void place_pins(VectorRef x) const;
   void project_sticks(VectorRef x) const;
   void project_walls(VectorRef x) const;
-  void project_segment(const SegmentCollider& s, int i, VectorRef xi) const;
+  void project_segment(size_t j, int i, VectorRef xi) const;
+  void remember_segment_sides(ConstVectorRef x);
   void find_ball_pairs(ConstVectorRef x);
   void project_ball_pairs(VectorRef x) const;
 
@@ -61,8 +63,7 @@ private:
   std::vector<Wall> walls_;  // planes, and each box's inward faces
   std::vector<int> balls_;   // bodies with radius > 0
   double max_radius_ = 0;
-  Vector previous_x_;        // positions after the last projection: which side of a segment
-  bool have_previous_ = false;
+  std::vector<signed char> side_;  // body i's side of segment j (+1, −1; 0: not yet seen)
 
   // Broad phase (sized in the constructor): balls counting-sorted by hash bucket, and
   // the candidate pairs the sweeps test.
