@@ -100,8 +100,9 @@ ConstraintProjection::ConstraintProjection(int dimensions, const Vector& inverse
     bucket_start_.assign(static_cast<size_t>(buckets) + 1, 0);
     bucket_of_.resize(balls_.size());
     sorted_.resize(balls_.size());
-    // Balls of equal size packed as tightly as they go touch at most 12 others (3-D);
-    // the candidate list keeps any growth beyond this, so it stops allocating.
+    // Each pair is listed once, so equal balls packed as tightly as they go (12 neighbours
+    // in 3-D) give 6 per ball; 8 leaves room for the margin. A scene that needs more
+    // grows the list once, and it keeps its capacity from then on.
     pairs_.reserve(8 * balls_.size());
   }
 }
