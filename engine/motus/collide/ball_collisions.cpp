@@ -13,10 +13,13 @@ namespace motus {
 namespace {
 
 // After this many collisions in one step, a ball's inelastic contacts (e < 1) become
-// perfectly inelastic (e = 0): stops the endless chatter of "inelastic collapse" (a ball
-// trapped between two others losing a fraction of its speed at every touch) without
-// touching elastic scenes.
+// perfectly inelastic (e = 0): it stops the endless chatter of "inelastic collapse" (a
+// ball trapped between two others losing a fraction of its speed at every touch)
+// without touching elastic scenes.
 constexpr unsigned kCollapseLimit = 64;
+
+// Overlap smaller than this fraction of the contact distance is rounding, not overlap.
+constexpr double kOverlapSlack = 1e-12;
 
 }  // namespace
 
@@ -33,26 +36,26 @@ BallCollisions<D>::BallCollisions(const Vector& inverse_mass, std::vector<double
     Point n;
     for (int k = 0; k < D; ++k) n[k] = p.normal[k];
     const double length = n.norm();
-    planes_.push_back({n / length, p.offset / length, p.restitution});
+    planes_.push_back({n / length, p.offset / length, p.restitution, -1, 0});
   }
   for (const auto& b : colliders.boxes)  // a container: one inward-facing plane per face
     for (int k = 0; k < D; ++k) {
       Point n = Point::Zero();
       n[k] = 1;
-      planes_.push_back({n, b.min[k], b.restitution});
-      planes_.push_back({-n, -b.max[k], b.restitution});
+      planes_.push_back({n, b.min[k], b.restitution, k, 1});
+      planes_.push_back({-n, -b.max[k], b.restitution, k, -1});
     }
   if constexpr (D == 2) {
     for (const auto& s : colliders.segments) segments_.push_back({{s.a[0], s.a[1]}, {s.b[0], s.b[1]}, s.restitution});
   } else if (!colliders.segments.empty()) {
     throw std::invalid_argument("segment colliders exist in 2-D scenes only");
   }
-  local_time_.resize(n_);
-  travelled_.resize(n_);
+  local_time_.assign(n_, 0.0);
+  travelled_.assign(n_, 0.0);
   collision_count_.assign(n_, 0);
-  collisions_this_step_.resize(n_);
-  fast_flag_.resize(n_);
-  ball_cell_.resize(n_);
+  collisions_this_step_.assign(n_, 0);
+  fast_flag_.assign(n_, 0);
+  ball_cell_.assign(n_, 0);
 }
 
 template <int D>
@@ -69,26 +72,23 @@ void BallCollisions<D>::drift(VectorRef x, VectorRef v, double h) {
   x_ = x.data();
   v_ = v.data();
   h_ = h;
-  std::fill(local_time_.begin(), local_time_.end(), 0.0);
-  std::fill(travelled_.begin(), travelled_.end(), 0.0);
-  std::fill(collisions_this_step_.begin(), collisions_this_step_.end(), 0u);
-  std::fill(fast_flag_.begin(), fast_flag_.end(), 0);
-  fast_.clear();
   events_.clear();
   events_this_step_ = 0;
 
-  // A ball that moves farther than the largest radius in this step is fast; the grid's
-  // cells are sized for the slow ones.
-  sweep_ = 0;
+  // A ball that may move farther than the largest radius in this step is fast; the
+  // grid's cells are sized for the slow ones.
+  double slow_speed2 = 0;
+  const double limit2 = max_radius_ * max_radius_ / (h * h);
   for (int i : balls_) {
-    const double s = velocity(i).norm() * h;
-    if (s <= max_radius_) {
-      sweep_ = std::max(sweep_, s);
+    const double speed2 = velocity(i).squaredNorm();
+    if (speed2 <= limit2) {
+      slow_speed2 = std::max(slow_speed2, speed2);
     } else {
       fast_flag_[i] = 1;
       fast_.push_back(i);
     }
   }
+  sweep_ = std::sqrt(slow_speed2) * h;
   if (balls_.size() >= 2) build_grid();
   find_initial_events();
 
@@ -104,13 +104,26 @@ void BallCollisions<D>::drift(VectorRef x, VectorRef v, double h) {
                                " collisions in one step: the scene cannot settle (overlapping bodies?)");
     resolve(e);
   }
-  for (int i = 0; i < n_; ++i) advance(i, h);
+
+  // Everybody to the end of the step; then clear what this step marked.
+  for (int i = 0; i < n_; ++i) {
+    position(i) += velocity(i) * (h - local_time_[i]);
+    local_time_[i] = 0;
+  }
+  for (int i : moved_) {
+    travelled_[i] = 0;
+    collisions_this_step_[i] = 0;
+  }
+  moved_.clear();
+  for (int i : fast_) fast_flag_[i] = 0;
+  fast_.clear();
 }
 
 template <int D>
 void BallCollisions<D>::build_grid() {
   ++counters_.grid_builds;
-  // Two slow balls that meet within h started at most r_a + r_b + 2·sweep apart.
+  // Two slow balls that meet within h started at most r_a + r_b + 2·sweep apart, so
+  // with cells this big they are in the same or neighbouring cells.
   cell_size_ = 2 * max_radius_ + 2 * sweep_;
   Point low = Point::Constant(INFINITY), high = Point::Constant(-INFINITY);
   long slow = 0;
@@ -120,35 +133,58 @@ void BallCollisions<D>::build_grid() {
       high = high.cwiseMax(position(i));
       ++slow;
     }
-  if (slow == 0) {
-    low.setZero();
-    high.setZero();
-  }
-  origin_ = low;
+  if (slow == 0) low = high = Point::Zero();
+  grid_low_ = low;
+  grid_high_ = high;
   // Dense cells over the balls' extent, but never many more cells than balls (a sparse
   // scene gets bigger cells instead).
+  const double budget = 4.0 * static_cast<double>(slow) + 64;
   for (;;) {
     double total = 1;
     for (int k = 0; k < D; ++k) {
       dims_[k] = static_cast<int>(std::min((high[k] - low[k]) / cell_size_, 1e6)) + 1;
       total *= dims_[k];
     }
-    if (total <= 4.0 * static_cast<double>(slow) + 64) break;
-    cell_size_ *= std::pow(total / (4.0 * static_cast<double>(slow) + 64), 1.0 / D) * 1.01;
+    if (total <= budget) break;
+    cell_size_ *= std::pow(total / budget, 1.0 / D) * 1.01;
   }
+  inverse_cell_size_ = 1 / cell_size_;
+  origin_ = low - Point::Constant(cell_size_);  // one cell of padding below
   int cells = 1;
-  for (int k = 0; k < D; ++k) cells *= dims_[k];
+  for (int k = 0; k < D; ++k) {
+    dims_[k] += 2;  // and one above
+    stride_[k] = cells;
+    cells *= dims_[k];
+  }
+  // The neighbour cells as index offsets: all 3^D of them; and the "forward" half (last
+  // non-zero step +1), which visits every pair of neighbouring cells once, as rows:
+  // three cells side by side along x are consecutive in the sorted array, so a row is
+  // one range of balls. In 2-D that is the rest of the ball's own row and one row above.
+  neighbour_offsets_.clear();
+  forward_rows_.clear();
+  int total = 1;
+  for (int k = 0; k < D; ++k) total *= 3;
+  for (int code = 0; code < total; ++code) {
+    int offset = 0, leading = 0;
+    for (int k = 0, c = code; k < D; ++k, c /= 3) {
+      offset += (c % 3 - 1) * stride_[k];
+      if (k > 0 && c % 3 != 1) leading = c % 3 - 1;
+    }
+    neighbour_offsets_.push_back(offset);
+    if (leading > 0 && code % 3 == 1) forward_rows_.push_back(offset);  // the middle cell of a row above
+  }
+
   cell_start_.assign(static_cast<size_t>(cells) + 1, 0);
   for (int i : balls_)
     if (!fast_flag_[i]) {
-      ball_cell_[i] = cell_of(position(i));
-      ++cell_start_[static_cast<size_t>(cell_index(ball_cell_[i])) + 1];
+      ball_cell_[i] = cell_index(cell_of(position(i)));
+      ++cell_start_[static_cast<size_t>(ball_cell_[i]) + 1];
     }
   for (int c = 0; c < cells; ++c) cell_start_[c + 1] += cell_start_[c];
   sorted_.resize(static_cast<size_t>(slow));
-  // Scatter (cell_start_ is used as the running insertion point, then shifted back).
+  // Scatter, using cell_start_ as each cell's insertion point, then shift it back.
   for (int i : balls_)
-    if (!fast_flag_[i]) sorted_[cell_start_[cell_index(ball_cell_[i])]++] = i;
+    if (!fast_flag_[i]) sorted_[cell_start_[ball_cell_[i]]++] = i;
   for (int c = cells; c > 0; --c) cell_start_[c] = cell_start_[c - 1];
   cell_start_[0] = 0;
 }
@@ -157,14 +193,16 @@ template <int D>
 typename BallCollisions<D>::Cell BallCollisions<D>::cell_of(const Point& p) const {
   Cell c;
   for (int k = 0; k < D; ++k)
-    c[k] = std::clamp(static_cast<int>(std::floor((p[k] - origin_[k]) / cell_size_)), 0, dims_[k] - 1);
+    // Truncation, not floor: the padding cell makes every coordinate ≥ 1 before the
+    // clamp, and std::floor is a library call on baseline x86-64.
+    c[k] = std::clamp(static_cast<int>(std::min((p[k] - origin_[k]) * inverse_cell_size_, 1e9)), 1, dims_[k] - 2);
   return c;
 }
 
 template <int D>
 int BallCollisions<D>::cell_index(const Cell& c) const {
   int index = 0;
-  for (int k = D - 1; k >= 0; --k) index = index * dims_[k] + c[k];
+  for (int k = 0; k < D; ++k) index += c[k] * stride_[k];
   return index;
 }
 
@@ -179,7 +217,7 @@ void BallCollisions<D>::for_cells_in_box(const Point& low, const Point& high, Vi
     const int index = cell_index(c);
     for (int s = cell_start_[index]; s < cell_start_[index + 1]; ++s) visit(sorted_[s]);
     int k = 0;
-    while (k < D && c[k] == b[k]) c[k] = a[k], ++k;  // odometer over the box of cells
+    while (k < D && c[k] == b[k]) c[k] = a[k], ++k;  // an odometer over the box of cells
     if (k == D) break;
     ++c[k];
   }
@@ -192,21 +230,18 @@ void BallCollisions<D>::push(double t, int i, int other) {
 }
 
 template <int D>
-void BallCollisions<D>::separate_if_overlapping(int i, int k) {
-  Point d = position(k) - position(i);
-  const double R = radius_[i] + radius_[k];
-  const double distance2 = d.squaredNorm();
-  if (distance2 >= R * R * (1 - 1e-12)) return;
+void BallCollisions<D>::separate(int i, int k) {
   const double w = inverse_mass_[i] + inverse_mass_[k];
   if (w == 0) return;
-  const double distance = std::sqrt(distance2);
+  const Point d = position(k) - position(i);
+  const double distance = d.norm();
   Point n = Point::Zero();
   if (distance > 0) {
     n = d / distance;
   } else {
     n[0] = 1;  // coincident centres: any direction will do
   }
-  const double depth = R - distance;
+  const double depth = radius_[i] + radius_[k] - distance;
   position(i) -= (depth * inverse_mass_[i] / w) * n;
   position(k) += (depth * inverse_mass_[k] / w) * n;
   ++counters_.position_corrections;
@@ -224,86 +259,106 @@ void BallCollisions<D>::test_pair(int i, int k, double t) {
 
 template <int D>
 void BallCollisions<D>::find_initial_events() {
+  // Walls, at the start of the step (every body at local time 0). Bodies outside the
+  // grid (points, fast balls) and every general plane or segment: body by body. The
+  // faces of box containers: only the balls in the layer of cells next to the face,
+  // because a ball two cells in is more than r + sweep away from it.
+  const bool grid = balls_.size() >= 2;
+  const bool general_walls =
+      !segments_.empty() || std::any_of(planes_.begin(), planes_.end(), [](const Plane& p) { return p.axis < 0; });
   for (int i = 0; i < n_; ++i) {
-    separate_from_walls(i);
-    find_wall_events(i, 0);
+    if (fast_flag_[i]) {
+      separate_from_walls(i);  // its events come with find_events below
+      continue;
+    }
+    const bool in_grid = grid && radius_[i] > 0;
+    if (in_grid && !general_walls) continue;  // the faces are done by layer below
+    for (size_t w = 0; w < planes_.size(); ++w)
+      if (!in_grid || planes_[w].axis < 0) initial_plane_event(i, static_cast<int>(w));
+    for (size_t g = 0; g < segments_.size(); ++g) {
+      separate_from_walls(i);
+      const double toi = segment_impact(segments_[g], position(i), velocity(i), radius_[i], h_, nullptr);
+      if (toi != kNoImpact) push(toi, i, -1 - static_cast<int>(planes_.size() + g));
+    }
   }
-  if (balls_.size() < 2) return;
+  if (grid) {
+    for (size_t w = 0; w < planes_.size(); ++w) {
+      const Plane& plane = planes_[w];
+      if (plane.axis < 0) continue;
+      const int a = plane.axis;
+      const bool low_face = plane.sign > 0;
+      const bool all_inside = low_face ? grid_low_[a] >= plane.offset : grid_high_[a] <= -plane.offset;
+      Point from = origin_ + Point::Constant(1.5 * cell_size_), to;
+      for (int k = 0; k < D; ++k) to[k] = origin_[k] + (dims_[k] - 1.5) * cell_size_;
+      if (all_inside) {
+        if (low_face) to[a] = from[a];
+        else from[a] = to[a];
+      }
+      for_cells_in_box(from, to, [&](int i) { initial_plane_event(i, static_cast<int>(w)); });
+    }
+  }
+
   // Slow pairs: each ball against the later balls of its own cell and the balls of its
-  // "forward" neighbour cells, so every pair of neighbouring cells is visited once.
-  static const std::vector<Cell> forward = [] {
-    std::vector<Cell> offsets;  // the half of the 3^D − 1 neighbours whose last non-zero offset is +1
-    int total = 1;
-    for (int k = 0; k < D; ++k) total *= 3;
-    for (int code = 0; code < total; ++code) {
-      Cell o;
-      for (int k = 0, c = code; k < D; ++k, c /= 3) o[k] = c % 3 - 1;
-      int leading = 0;
-      for (int k = D - 1; k >= 0 && leading == 0; --k) leading = o[k];
-      if (leading > 0) offsets.push_back(o);
-    }
-    return offsets;
-  }();
+  // forward neighbour cells. This is the hot loop of a step: it keeps ball i in
+  // registers and decides most pairs ("not approaching") without a square root.
+  long tests = 0;
+  const double* x = x_;  // local copies: the compiler need not reload them after a push
+  const double* v = v_;
+  const double* radius = radius_.data();
+  const int* sorted = sorted_.data();
+  const int* cell_start = cell_start_.data();
   for (size_t s = 0; s < sorted_.size(); ++s) {
-    const int i = sorted_[s];
-    const Cell& c = ball_cell_[i];
-    const int index = cell_index(c);
-    for (int u = static_cast<int>(s) + 1; u < cell_start_[index + 1]; ++u) {
-      separate_if_overlapping(i, sorted_[u]);
-      test_pair(i, sorted_[u], 0);
-    }
-    for (const Cell& o : forward) {
-      Cell neighbour;
-      bool inside = true;
-      for (int k = 0; k < D; ++k) {
-        neighbour[k] = c[k] + o[k];
-        inside &= neighbour[k] >= 0 && neighbour[k] < dims_[k];
+    const int i = sorted[s];
+    Point p_i = Eigen::Map<const Point>(x + D * i);
+    const Point v_i = Eigen::Map<const Point>(v + D * i);
+    const double r_i = radius[i];
+    auto test = [&](int k) {
+      ++tests;
+      Point dp = Eigen::Map<const Point>(x + D * k) - p_i;
+      const double R = r_i + radius[k];
+      double dp_dp = dp.squaredNorm();
+      if (dp_dp < R * R * (1 - kOverlapSlack)) {  // overlapping: move apart first (rare)
+        separate(i, k);
+        p_i = position(i);
+        dp = position(k) - p_i;
+        dp_dp = dp.squaredNorm();
       }
-      if (!inside) continue;
-      ++counters_.cell_queries;
-      const int m = cell_index(neighbour);
-      for (int u = cell_start_[m]; u < cell_start_[m + 1]; ++u) {
-        separate_if_overlapping(i, sorted_[u]);
-        test_pair(i, sorted_[u], 0);
-      }
+      const Point dv = Eigen::Map<const Point>(v + D * k) - v_i;
+      const double dp_dv = dp.dot(dv);
+      if (dp_dv >= 0) return;  // not approaching
+      const double toi = sphere_sphere_impact(dp_dp, dp_dv, dv.squaredNorm(), R, h_);
+      if (toi != kNoImpact) push(toi, i, k);
+    };
+    const int c = ball_cell_[i];
+    // The later balls of its own cell and of the next cell along x.
+    for (int u = static_cast<int>(s) + 1; u < cell_start[c + 2]; ++u) test(sorted[u]);
+    // The rows above: three cells each.
+    for (int offset : forward_rows_) {
+      const int m = c + offset;
+      for (int u = cell_start[m - 1]; u < cell_start[m + 2]; ++u) test(sorted[u]);
     }
   }
+  counters_.pair_tests += tests;
+  counters_.cell_queries += static_cast<long>(sorted_.size() * (forward_rows_.size() + 1));
   // Fast balls look along their whole path (and at each other).
-  for (size_t a = 0; a < fast_.size(); ++a) {
-    find_events(fast_[a], 0, -1);
-  }
+  for (size_t a = 0; a < fast_.size(); ++a) find_events(fast_[a], 0, -1);
 }
 
 template <int D>
-void BallCollisions<D>::separate_from_walls(int i) {
-  for (const Plane& plane : planes_) {
-    const double gap = plane.normal.dot(position(i)) - plane.offset - radius_[i];
-    if (gap < 0) {
-      position(i) -= gap * plane.normal;
-      ++counters_.position_corrections;
-    }
+void BallCollisions<D>::initial_plane_event(int i, int w) {
+  const Plane& plane = planes_[static_cast<size_t>(w)];
+  auto p = position(i);
+  const auto u = velocity(i);
+  double gap = (plane.axis >= 0 ? plane.sign * p[plane.axis] : plane.normal.dot(p)) - plane.offset - radius_[i];
+  if (gap < 0) {  // rounding (or the scene) left it a hair inside the wall
+    p -= gap * plane.normal;
+    gap = 0;
+    ++counters_.position_corrections;
   }
-  if constexpr (D == 2) {
-    for (const Segment& s : segments_) {
-      const Point along = s.b - s.a;
-      const double reach = std::clamp(along.dot(position(i) - s.a) / along.squaredNorm(), 0.0, 1.0);
-      const Point d = position(i) - (s.a + reach * along);
-      const double distance = d.norm();
-      if (distance < radius_[i] && distance > 0) {
-        position(i) += (radius_[i] - distance) / distance * d;
-        ++counters_.position_corrections;
-      }
-    }
-  }
-}
-
-template <int D>
-void BallCollisions<D>::find_wall_events(int i, double t) {
-  const int walls = static_cast<int>(planes_.size() + segments_.size());
-  for (int w = 0; w < walls; ++w) {
-    const double toi = wall_impact(i, w, t, nullptr);
-    if (toi != kNoImpact) push(t + toi, i, -1 - w);
-  }
+  const double closing = plane.axis >= 0 ? plane.sign * u[plane.axis] : plane.normal.dot(u);
+  if (gap + closing * h_ > 0) return;  // does not reach it this step
+  const double toi = sphere_plane_impact(gap, closing, h_);
+  if (toi != kNoImpact) push(toi, i, -1 - w);
 }
 
 template <int D>
@@ -312,15 +367,15 @@ void BallCollisions<D>::find_events(int i, double t, int exclude) {
   if (radius_[i] <= 0 || balls_.size() < 2) return;
   if (!fast_flag_[i]) {
     // Its possible partners started in the neighbouring cells, or are fast.
-    const Cell& c = ball_cell_[i];
-    Point low, high;
-    for (int k = 0; k < D; ++k) {
-      low[k] = origin_[k] + (c[k] - 1 + 0.5) * cell_size_;
-      high[k] = origin_[k] + (c[k] + 1 + 0.5) * cell_size_;
+    const int c = ball_cell_[i];
+    for (int offset : neighbour_offsets_) {
+      ++counters_.cell_queries;
+      const int m = c + offset;
+      for (int u = cell_start_[m]; u < cell_start_[m + 1]; ++u) {
+        const int k = sorted_[u];
+        if (k != i && k != exclude && !fast_flag_[k]) test_pair(i, k, t);
+      }
     }
-    for_cells_in_box(low, high, [&](int k) {
-      if (k != i && k != exclude && !fast_flag_[k]) test_pair(i, k, t);
-    });
   } else {
     // A fast ball's partners started anywhere near its remaining path.
     const Point p = position_at(i, t), q = p + velocity(i) * (h_ - t);
@@ -334,20 +389,35 @@ void BallCollisions<D>::find_events(int i, double t, int exclude) {
 }
 
 template <int D>
-double BallCollisions<D>::wall_impact(int i, int w, double t, Point* normal) {
+void BallCollisions<D>::find_wall_events(int i, double t) {
   const Point p = position_at(i, t);
   const Point u = velocity(i);
-  const double r = radius_[i];
-  const double horizon = h_ - t;
-  if (w < static_cast<int>(planes_.size())) {
+  const double r = radius_[i], horizon = h_ - t;
+  for (size_t w = 0; w < planes_.size(); ++w) {
     const Plane& plane = planes_[w];
-    if (normal) *normal = plane.normal;
-    return sphere_plane_impact(plane.normal.dot(p) - plane.offset - r, plane.normal.dot(u), horizon);
+    double gap, closing;
+    if (plane.axis >= 0) {
+      gap = plane.sign * p[plane.axis] - plane.offset - r;
+      closing = plane.sign * u[plane.axis];
+    } else {
+      gap = plane.normal.dot(p) - plane.offset - r;
+      closing = plane.normal.dot(u);
+    }
+    const double toi = sphere_plane_impact(gap, closing, horizon);
+    if (toi != kNoImpact) push(t + toi, i, -1 - static_cast<int>(w));
   }
+  for (size_t s = 0; s < segments_.size(); ++s) {
+    const double toi = segment_impact(segments_[s], p, u, r, horizon, nullptr);
+    if (toi != kNoImpact) push(t + toi, i, -1 - static_cast<int>(planes_.size() + s));
+  }
+}
+
+template <int D>
+double BallCollisions<D>::segment_impact(const Segment& s, const Point& p, const Point& u, double r, double horizon,
+                                         Point* normal) const {
   if constexpr (D == 2) {
-    // A segment is a capsule of radius r around it for the ball's centre: its two sides
-    // (lines) and its two round ends (points).
-    const Segment& s = segments_[static_cast<size_t>(w) - planes_.size()];
+    // For the ball's centre a segment is a capsule of radius r: two flat sides and two
+    // round ends. The first of those it reaches is the contact.
     const Point along = s.b - s.a;
     const double length = along.norm();
     const Point tangent = along / length;
@@ -375,7 +445,41 @@ double BallCollisions<D>::wall_impact(int i, int w, double t, Point* normal) {
     if (normal) *normal = best_normal;
     return best;
   } else {
+    (void)s, (void)p, (void)u, (void)r, (void)horizon, (void)normal;
     return kNoImpact;
+  }
+}
+
+template <int D>
+typename BallCollisions<D>::Point BallCollisions<D>::wall_normal(int i, int wall) {
+  if (wall < static_cast<int>(planes_.size())) return planes_[static_cast<size_t>(wall)].normal;
+  Point normal = Point::Zero();
+  segment_impact(segments_[static_cast<size_t>(wall) - planes_.size()], position(i), velocity(i), radius_[i], 0,
+                 &normal);
+  return normal;
+}
+
+template <int D>
+void BallCollisions<D>::separate_from_walls(int i) {
+  for (const Plane& plane : planes_) {  // (rounding can leave a body a hair inside a wall)
+    const double gap = (plane.axis >= 0 ? plane.sign * position(i)[plane.axis] : plane.normal.dot(position(i))) -
+                       plane.offset - radius_[i];
+    if (gap < 0) {
+      position(i) -= gap * plane.normal;
+      ++counters_.position_corrections;
+    }
+  }
+  if constexpr (D == 2) {
+    for (const Segment& s : segments_) {
+      const Point along = s.b - s.a;
+      const double reach = std::clamp(along.dot(position(i) - s.a) / along.squaredNorm(), 0.0, 1.0);
+      const Point d = position(i) - (s.a + reach * along);
+      const double distance = d.norm();
+      if (distance < radius_[i] && distance > 0) {
+        position(i) += (radius_[i] - distance) / distance * d;
+        ++counters_.position_corrections;
+      }
+    }
   }
 }
 
@@ -391,15 +495,18 @@ void BallCollisions<D>::mark_fast_if_needed(int i, double t) {
 template <int D>
 void BallCollisions<D>::resolve(const Event& e) {
   const int i = e.i;
+  if (collisions_this_step_[i] == 0) moved_.push_back(i);
   advance(i, e.t);
   if (e.other >= 0) {
     const int k = e.other;
+    if (collisions_this_step_[k] == 0) moved_.push_back(k);
     advance(k, e.t);
     const Point d = position(k) - position(i);
     const double distance = d.norm();
     if (distance > 0) {
       double restitution = restitution_[i] * restitution_[k];
-      if (restitution < 1 && (collisions_this_step_[i] > kCollapseLimit || collisions_this_step_[k] > kCollapseLimit))
+      if (restitution < 1 &&
+          (collisions_this_step_[i] > kCollapseLimit || collisions_this_step_[k] > kCollapseLimit))
         restitution = 0;
       collide_balls(velocity(i), velocity(k), inverse_mass_[i], inverse_mass_[k], Point(d / distance), restitution);
     }
@@ -413,14 +520,13 @@ void BallCollisions<D>::resolve(const Event& e) {
     find_events(i, e.t, k);
     find_events(k, e.t, i);
   } else {
-    Point n;
-    wall_impact(i, -1 - e.other, e.t, &n);  // the normal at the contact
     const int w = -1 - e.other;
-    const double wall_e = w < static_cast<int>(planes_.size()) ? planes_[w].restitution
-                                                               : segments_[static_cast<size_t>(w) - planes_.size()].restitution;
+    const double wall_e = w < static_cast<int>(planes_.size())
+                              ? planes_[static_cast<size_t>(w)].restitution
+                              : segments_[static_cast<size_t>(w) - planes_.size()].restitution;
     double restitution = restitution_[i] * wall_e;
     if (restitution < 1 && collisions_this_step_[i] > kCollapseLimit) restitution = 0;
-    bounce_off_wall(velocity(i), n, restitution);
+    bounce_off_wall(velocity(i), wall_normal(i, w), restitution);
     ++collision_count_[i];
     ++collisions_this_step_[i];
     ++counters_.wall_collisions;

@@ -55,9 +55,13 @@ private:
     unsigned count_i, count_other;
     bool operator>(const Event& e) const { return t > e.t; }
   };
+  // The free side is normal·x ≥ offset. Box faces are axis-aligned (axis ≥ 0, normal
+  // = sign·e_axis), which makes their test two multiplications.
   struct Plane {
     Point normal;
     double offset, restitution;
+    int axis;
+    double sign;
   };
   struct Segment {
     Point a, b;
@@ -77,12 +81,14 @@ private:
   void for_cells_in_box(const Point& low, const Point& high, Visit&& visit);
 
   void find_initial_events();
+  void initial_plane_event(int i, int wall);
   void find_events(int i, double t, int exclude);
   void find_wall_events(int i, double t);
   void test_pair(int i, int k, double t);
-  void separate_if_overlapping(int i, int k);
+  void separate(int i, int k);
   void separate_from_walls(int i);
-  double wall_impact(int i, int wall, double t, Point* normal);
+  double segment_impact(const Segment& s, const Point& p, const Point& u, double r, double horizon, Point* normal) const;
+  Point wall_normal(int i, int wall);
   void push(double t, int i, int other);
   void resolve(const Event& e);
   void mark_fast_if_needed(int i, double t);
@@ -104,16 +110,17 @@ private:
   std::vector<unsigned> collision_count_;  // ever; events carry it to detect staleness
   std::vector<unsigned> collisions_this_step_;
   std::vector<char> fast_flag_;
-  std::vector<int> fast_, balls_;
+  std::vector<int> fast_, balls_, moved_;
   std::vector<Event> events_;
   long events_this_step_ = 0;
 
-  // The grid of slow balls' start positions, counting-sorted by cell.
-  Point origin_;
-  double cell_size_ = 1;
-  Cell dims_{};
-  std::vector<int> cell_start_, sorted_;
-  std::vector<Cell> ball_cell_;
+  // The grid of slow balls' start positions, counting-sorted by cell. It has one empty
+  // cell of padding on every side, so a neighbour of a ball's cell is always a cell.
+  Point origin_, grid_low_, grid_high_;
+  double cell_size_ = 1, inverse_cell_size_ = 1;
+  Cell dims_{}, stride_{};
+  std::vector<int> cell_start_, sorted_, ball_cell_;
+  std::vector<int> forward_rows_, neighbour_offsets_;
 };
 
 extern template class BallCollisions<1>;

@@ -1,0 +1,31 @@
+#pragma once
+// The ball gas of the benchmarks and peers.md: N balls on a square (cubic) lattice,
+// velocities uniform in [−speed, speed]^d, inside a box container that fits the lattice.
+// The random numbers come from SplitMix64 (Steele, Lea & Flood 2014) so that a seed
+// gives the same balls on every machine and in every engine.
+#include <array>
+#include <cstdint>
+
+#include "motus/scene.hpp"
+
+namespace motus {
+
+struct BallLattice {
+  long count = 100;
+  double spacing = 2;      // m between neighbouring balls
+  double radius = 0.5;     // m
+  double mass = 1;         // kg
+  double speed = 1;        // each velocity component uniform in [−speed, speed], m/s
+  std::uint64_t seed = 1;
+  double restitution = 1;  // the balls'; the container's walls have e = 1
+  std::array<double, 3> origin{0, 0, 0};  // the container's lower corner
+  bool container = true;
+};
+
+// Appends the balls (and, with `container`, a box around the lattice) to `scene`.
+void add_ball_lattice(MechanicalDescription& scene, const BallLattice& lattice);
+
+// Uniform in [0, 1) from a SplitMix64 state (which it advances).
+double splitmix64_uniform(std::uint64_t& state);
+
+}  // namespace motus
