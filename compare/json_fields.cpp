@@ -93,6 +93,13 @@ long JsonFields::integer(const std::string& key, long fallback) {
   return has(key) ? integer(key) : fallback;
 }
 
+bool JsonFields::boolean(const std::string& key, bool fallback) {
+  const auto* v = find(key);
+  if (!v) return fallback;
+  if (!v->is_boolean()) fail(key, "must be true or false, not " + json_type_name(*v));
+  return v->get<bool>();
+}
+
 std::string JsonFields::string(const std::string& key) {
   const auto& v = at(key);
   if (!v.is_string()) fail(key, "must be a string, not " + json_type_name(v));

@@ -24,6 +24,7 @@ public:
   double non_negative(const std::string& key, double fallback);
   long integer(const std::string& key);
   long integer(const std::string& key, long fallback);
+  bool boolean(const std::string& key, bool fallback);
   std::string string(const std::string& key);
   std::string string(const std::string& key, const std::string& fallback);
   // An array of exactly `size` finite numbers (any size when size < 0).

@@ -1,11 +1,13 @@
 #include "scene_file.hpp"
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "json_fields.hpp"
+#include "motus/ball_lattice.hpp"
 #include "motus/exact/exact_solution.hpp"
 #include "motus/integrator_name.hpp"
 #include "motus/scene_error.hpp"
@@ -77,22 +79,113 @@ void read_force(JsonFields& f, int d, size_t bodies, ForceSet& forces) {
   f.reject_unknown();
 }
 
+double restitution(JsonFields& f, const std::string& key) {
+  const double e = f.number(key, 1.0);
+  if (e < 0 || e > 1) f.fail(key, "must be between 0 and 1 (got " + nlohmann::json(e).dump() + ")");
+  return e;
+}
+
+void read_lattice(JsonFields f, MechanicalDescription& m) {
+  BallLattice lattice;
+  lattice.count = f.integer("count");
+  if (lattice.count < 1 || lattice.count > 10'000'000) f.fail("count", "must be from 1 to 10,000,000");
+  lattice.spacing = f.positive("spacing", lattice.spacing);
+  lattice.radius = f.positive("radius", lattice.radius);
+  if (2 * lattice.radius > lattice.spacing) f.fail("radius", "balls of this radius overlap at this spacing");
+  lattice.mass = f.positive("mass", lattice.mass);
+  lattice.speed = f.non_negative("speed", lattice.speed);
+  const long seed = f.integer("seed", 1);
+  if (seed < 0) f.fail("seed", "must be >= 0");
+  lattice.seed = static_cast<std::uint64_t>(seed);
+  lattice.restitution = restitution(f, "restitution");
+  lattice.origin = padded(f.numbers("origin", m.dimensions, std::vector<double>(static_cast<size_t>(m.dimensions), 0.0)));
+  lattice.container = f.boolean("container", true);
+  f.reject_unknown();
+  add_ball_lattice(m, lattice);
+}
+
+void read_collider(JsonFields& f, int d, Colliders& colliders) {
+  const std::string type = f.string("type");
+  if (type == "plane") {
+    PlaneCollider p;
+    const auto normal = f.numbers("normal", d);
+    double length2 = 0;
+    for (double c : normal) length2 += c * c;
+    if (length2 == 0) f.fail("normal", "must not be zero");
+    p.normal = padded(normal);
+    p.offset = f.number("offset", 0);
+    p.restitution = restitution(f, "restitution");
+    colliders.planes.push_back(p);
+  } else if (type == "box") {
+    BoxCollider b;
+    b.min = padded(f.numbers("min", d));
+    b.max = padded(f.numbers("max", d));
+    for (int k = 0; k < d; ++k)
+      if (!(b.max[k] > b.min[k])) f.fail("max", "must be greater than min in every coordinate");
+    b.restitution = restitution(f, "restitution");
+    colliders.boxes.push_back(b);
+  } else if (type == "segment") {
+    if (d != 2) f.fail("type", "segments exist in 2-D scenes only; this scene has " + std::to_string(d) + " dimensions");
+    SegmentCollider s;
+    s.a = padded(f.numbers("a", d));
+    s.b = padded(f.numbers("b", d));
+    if (s.a == s.b) f.fail("b", "a segment needs two different end points");
+    s.restitution = restitution(f, "restitution");
+    colliders.segments.push_back(s);
+  } else {
+    f.fail("type", "unknown collider \"" + type + "\" (known: plane, box, segment)");
+  }
+  f.reject_unknown();
+}
+
+double distance(const BodyDescription& a, const BodyDescription& b) {
+  double s = 0;
+  for (size_t k = 0; k < a.position.size(); ++k) s += (a.position[k] - b.position[k]) * (a.position[k] - b.position[k]);
+  return std::sqrt(s);
+}
+
 MechanicalDescription read_mechanical(JsonFields& scene) {
   MechanicalDescription m;
   const long d = scene.integer("dimensions");
   if (d < 1 || d > 3) scene.fail("dimensions", "must be 1, 2 or 3 (got " + std::to_string(d) + ")");
   m.dimensions = static_cast<int>(d);
-  auto bodies = scene.objects("bodies");
-  if (bodies.empty()) scene.fail("bodies", "needs at least one body");
-  for (auto& b : bodies) {
+  for (auto& b : scene.objects("bodies")) {
     BodyDescription body;
     body.mass = b.positive("mass");
     body.position = b.numbers("position", m.dimensions);
     body.velocity = b.numbers("velocity", m.dimensions, std::vector<double>(static_cast<size_t>(d), 0.0));
+    body.radius = b.non_negative("radius", 0);
+    body.restitution = restitution(b, "restitution");
     b.reject_unknown();
     m.bodies.push_back(body);
   }
+  // Generators append their bodies (and walls, sticks, pins) after the listed ones.
+  if (scene.has("lattice")) read_lattice(scene.object("lattice"), m);
+  if (m.bodies.empty()) scene.fail("bodies", "needs at least one body (listed, or from a generator such as \"lattice\")");
+
   for (auto& f : scene.objects("forces")) read_force(f, m.dimensions, m.bodies.size(), m.forces);
+  for (auto& c : scene.objects("colliders")) read_collider(c, m.dimensions, m.colliders);
+  for (auto& f : scene.objects("sticks")) {
+    StickConstraint stick;
+    stick.a = body_index(f, "a", m.bodies.size());
+    stick.b = body_index(f, "b", m.bodies.size());
+    if (stick.a == stick.b) f.fail("b", "a stick needs two different bodies");
+    const double start = distance(m.bodies[static_cast<size_t>(stick.a)], m.bodies[static_cast<size_t>(stick.b)]);
+    stick.length = f.has("length") ? f.positive("length") : start;
+    if (!(stick.length > 0)) f.fail("length", "the two bodies start at the same point: give the stick a length");
+    f.reject_unknown();
+    m.sticks.push_back(stick);
+  }
+  for (auto& f : scene.objects("pins")) {
+    PinConstraint pin;
+    pin.body = body_index(f, "body", m.bodies.size());
+    pin.position = padded(f.numbers("position", m.dimensions, m.bodies[static_cast<size_t>(pin.body)].position));
+    f.reject_unknown();
+    m.pins.push_back(pin);
+  }
+  const long iterations = scene.integer("constraint_iterations", 10);
+  if (iterations < 1 || iterations > 10000) scene.fail("constraint_iterations", "must be from 1 to 10000");
+  m.constraint_iterations = static_cast<int>(iterations);
   return m;
 }
 
@@ -126,7 +219,7 @@ SceneDescription read_scene(const nlohmann::json& document, const std::string& s
   if (f.has("system") && f.has("bodies")) f.fail("system", "a scene has either \"system\" or \"bodies\", not both");
   if (f.has("system")) {
     scene.first_order = read_first_order(f.object("system"));
-  } else if (f.has("bodies")) {
+  } else if (f.has("bodies") || f.has("lattice") || f.has("cloth") || f.has("rope")) {
     scene.mechanical = read_mechanical(f);
   } else {
     f.fail("bodies", "missing: a scene needs \"bodies\" (point masses) or \"system\" (a first-order system)");
