@@ -8,6 +8,7 @@
 
 #include "json_fields.hpp"
 #include "motus/ball_lattice.hpp"
+#include "motus/scene_generators.hpp"
 #include "motus/exact/exact_solution.hpp"
 #include "motus/integrator_name.hpp"
 #include "motus/scene_error.hpp"
@@ -104,6 +105,41 @@ void read_lattice(JsonFields f, MechanicalDescription& m) {
   add_ball_lattice(m, lattice);
 }
 
+int small_count(JsonFields& f, const std::string& key, long fallback, long max) {
+  const long n = f.integer(key, fallback);
+  if (n < 1 || n > max) f.fail(key, "must be from 1 to " + std::to_string(max));
+  return static_cast<int>(n);
+}
+
+void read_cloth(JsonFields f, MechanicalDescription& m) {
+  ClothGenerator cloth;
+  cloth.rows = small_count(f, "rows", cloth.rows, 1000);
+  cloth.columns = small_count(f, "columns", cloth.columns, 1000);
+  cloth.spacing = f.positive("spacing", cloth.spacing);
+  cloth.mass = f.positive("mass", cloth.mass);
+  cloth.origin = padded(f.numbers("origin", m.dimensions, std::vector<double>(static_cast<size_t>(m.dimensions), 0.0)));
+  cloth.shear = f.boolean("shear", cloth.shear);
+  cloth.pin = f.string("pin", cloth.pin);
+  cloth.plane = f.string("plane", cloth.plane);
+  f.reject_unknown();
+  add_cloth(m, cloth);  // SceneError("cloth.pin", ...) for values it cannot build
+}
+
+void read_rope(JsonFields f, MechanicalDescription& m) {
+  RopeGenerator rope;
+  rope.segments = small_count(f, "segments", rope.segments, 100000);
+  rope.segment_length = f.positive("segment_length", rope.segment_length);
+  rope.mass = f.positive("mass", rope.mass);
+  const std::vector<double> zero(static_cast<size_t>(m.dimensions), 0.0);
+  rope.origin = padded(f.numbers("origin", m.dimensions, zero));
+  std::vector<double> along = zero;
+  along[0] = 1;
+  rope.direction = padded(f.numbers("direction", m.dimensions, along));
+  rope.pin_first = f.boolean("pin_first", rope.pin_first);
+  f.reject_unknown();
+  add_rope(m, rope);
+}
+
 void read_collider(JsonFields& f, int d, Colliders& colliders) {
   const std::string type = f.string("type");
   if (type == "plane") {
@@ -161,6 +197,8 @@ MechanicalDescription read_mechanical(JsonFields& scene) {
   }
   // Generators append their bodies (and walls, sticks, pins) after the listed ones.
   if (scene.has("lattice")) read_lattice(scene.object("lattice"), m);
+  if (scene.has("cloth")) read_cloth(scene.object("cloth"), m);
+  if (scene.has("rope")) read_rope(scene.object("rope"), m);
   if (m.bodies.empty()) scene.fail("bodies", "needs at least one body (listed, or from a generator such as \"lattice\")");
 
   for (auto& f : scene.objects("forces")) read_force(f, m.dimensions, m.bodies.size(), m.forces);

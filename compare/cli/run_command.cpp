@@ -31,6 +31,7 @@ public:
     out_ << "t";
     for (const auto& n : sim.state_names()) out_ << ',' << n;
     if (sim.is_mechanical()) out_ << ",kinetic,potential,total";
+    if (sim.has_constraints()) out_ << ",constraint_error";
     if (!sim.is_mechanical()) {
       aux_names_ = sim.first_order_system()->auxiliary_names();
       for (const auto& n : aux_names_) out_ << ',' << n;
@@ -43,17 +44,23 @@ public:
   void after_step(const Simulation& sim) {
     if (sim.time() + 1e-9 * std::max(1.0, std::abs(sim.time())) >= next_) row(sim);
   }
+  // The end of the run gets a row even when it is not an output time.
+  void finish(const Simulation& sim) {
+    if (sim.time() > last_) row(sim);
+  }
 
 private:
   void row(const Simulation& sim) {
     out_ << fmt::format("{:.17g}", sim.time());
     for (double v : sim.state()) out_ << fmt::format(",{:.17g}", v);
     if (const auto e = sim.energy()) out_ << fmt::format(",{:.17g},{:.17g},{:.17g}", e->kinetic, e->potential, e->total);
+    if (sim.has_constraints()) out_ << fmt::format(",{:.17g}", sim.constraint_error());
     if (!aux_names_.empty()) {
       sim.first_order_system()->auxiliaries(sim.time(), sim.state(), aux_);
       for (double v : aux_) out_ << fmt::format(",{:.17g}", v);
     }
     out_ << '\n';
+    last_ = sim.time();
     while (next_ <= sim.time() + 1e-9 * std::max(1.0, std::abs(sim.time()))) {
       if (interval_ <= 0) {
         next_ = -INFINITY;  // every step
@@ -66,9 +73,17 @@ private:
   std::ofstream out_;
   double interval_;
   double next_ = 0;
+  double last_ = -INFINITY;
   std::vector<std::string> aux_names_;
   Vector aux_;
 };
+
+// A state that overflowed is a result to show, but not a run that went well.
+int report_non_finite(const Simulation& sim) {
+  fmt::print(stderr, "motus: the run failed: the state is no longer finite at t = {:g} (the integrator is unstable "
+             "at this step; try a smaller --dt or another --integrator)\n", sim.time());
+  return kExitFailure;
+}
 
 std::string vec(const Vector& v) {
   std::vector<std::string> parts;
@@ -79,7 +94,7 @@ std::string vec(const Vector& v) {
 }  // namespace
 
 CLI::App* add_run_command(CLI::App& app, RunOptions& o) {
-  auto* run = app.add_subcommand("run", "Integrate one scene and report energy, momentum, work and the final state");
+  auto* run = app.add_subcommand("run", "Integrate one scene and report energy, momentum, steps, derivative evaluations, wall time and the final state");
   run->add_option("scene", o.scene, "Scene file, or the name of a shipped scene (see `motus list`)")->required();
   run->add_option("--integrator", o.integrator, "Integrator (default: the scene's); see `motus list`");
   run->add_option("--dt", o.dt, "Step size, s (the first step for adaptive integrators; default: the scene's)");
@@ -126,13 +141,20 @@ int run_command(const RunOptions& o) {
   }
   ProgressBar progress(sim.time(), sim.time() + duration, scene.name);
   const auto began = std::chrono::steady_clock::now();
+  double worst_constraint_error = sim.constraint_error();
+  const bool constrained = sim.has_constraints();
   sim.advance(sim.time() + duration, dt, tolerance, [&](const Simulation& s) {
     if (trajectory) trajectory->after_step(s);
+    if (constrained) worst_constraint_error = std::max(worst_constraint_error, s.constraint_error());
     progress.update(s.time());
   });
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count();
   progress.finish();
+  if (trajectory) trajectory->finish(sim);
   const bool adaptive = info(*integrator).adaptive;
+  const World* world = sim.world();
+  const CollisionCounters collisions = world ? world->collision_counters() : CollisionCounters{};
+  const bool finite = sim.state().allFinite();
 
   if (o.json) {
     nlohmann::json j;
@@ -163,9 +185,20 @@ int run_command(const RunOptions& o) {
     } else {
       j["state"] = {{"y", to_std(sim.state())}, {"names", sim.state_names()}};
     }
+    j["passes"] = world ? nlohmann::json(world->passes()) : nlohmann::json(nullptr);
+    j["constraint_error"] = constrained ? nlohmann::json{{"max", worst_constraint_error}, {"final", sim.constraint_error()}}
+                                        : nlohmann::json(nullptr);
+    j["collisions"] = world && world->has_collisions()
+                          ? nlohmann::json{{"ball", collisions.ball_collisions},
+                                           {"wall", collisions.wall_collisions},
+                                           {"broad_phase_queries", collisions.broad_phase_queries()},
+                                           {"pair_tests", collisions.pair_tests},
+                                           {"position_corrections", collisions.position_corrections}}
+                          : nlohmann::json(nullptr);
+    j["finite"] = finite;
     if (!o.trajectory.empty()) j["trajectory"] = o.trajectory;
     fmt::print("{}\n", j.dump(2));
-    return 0;
+    return finite ? 0 : report_non_finite(sim);
   }
 
   fmt::print("scene        {}  ({})\n", scene.name, path);
@@ -195,8 +228,16 @@ int run_command(const RunOptions& o) {
   fmt::print("\nsteps        {} accepted, {} rejected\n", sim.steps(), sim.rejected());
   fmt::print("evaluations  {} derivative evaluations\n", sim.evaluations());
   fmt::print("wall time    {:.6f} s ({:.1f} ns per step)\n", wall, sim.steps() ? 1e9 * wall / static_cast<double>(sim.steps()) : 0.0);
+  if (world) fmt::print("passes       {}\n", fmt::join(world->passes(), ", "));
+  if (world && world->has_collisions())
+    fmt::print("collisions   {} ball-ball, {} with walls; broad phase {} queries, {} pair tests; {} overlaps removed\n",
+               collisions.ball_collisions, collisions.wall_collisions, collisions.broad_phase_queries(),
+               collisions.pair_tests, collisions.position_corrections);
+  if (constrained)
+    fmt::print("constraints  largest stick-length error {:.3e} over the run, {:.3e} at the end\n", worst_constraint_error,
+               sim.constraint_error());
   if (!o.trajectory.empty()) fmt::print("trajectory   {}\n", o.trajectory);
-  return 0;
+  return finite ? 0 : report_non_finite(sim);
 }
 
 }  // namespace motus::cli

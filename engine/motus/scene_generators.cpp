@@ -38,6 +38,10 @@ void add_pin(MechanicalDescription& scene, int body) {
 
 void add_cloth(MechanicalDescription& scene, const ClothGenerator& cloth) {
   if (scene.dimensions < 2) throw SceneError("cloth", "a cloth hangs in the x–y plane: it needs dimensions 2 or 3");
+  if (cloth.plane != "xy" && cloth.plane != "xz")
+    throw SceneError("cloth.plane", "unknown \"" + cloth.plane + "\"; use \"xy\" (hanging) or \"xz\" (lying flat)");
+  if (cloth.plane == "xz" && scene.dimensions != 3)
+    throw SceneError("cloth.plane", "a cloth lying in the x–z plane needs a 3-D scene");
   if (cloth.rows < 1 || cloth.columns < 1 || cloth.rows * static_cast<long>(cloth.columns) < 2)
     throw SceneError("cloth.rows", "a cloth needs rows ≥ 1, columns ≥ 1 and at least two particles (" +
                                        std::to_string(cloth.rows) + " × " + std::to_string(cloth.columns) + " given)");
@@ -52,7 +56,11 @@ void add_cloth(MechanicalDescription& scene, const ClothGenerator& cloth) {
     for (int c = 0; c < cloth.columns; ++c) {
       std::array<double, 3> p = cloth.origin;
       p[0] += c * cloth.spacing;
-      p[1] -= r * cloth.spacing;
+      if (cloth.plane == "xy") {
+        p[1] -= r * cloth.spacing;
+      } else {
+        p[2] += r * cloth.spacing;
+      }
       add_particle(scene, cloth.mass, p);
     }
   for (int r = 0; r < cloth.rows; ++r)

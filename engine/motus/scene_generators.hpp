@@ -9,8 +9,10 @@
 
 namespace motus {
 
-// A rows × columns grid of point masses in the x–y plane, hanging from `origin` (its
-// top-left corner): column c, row r sits at origin + (c·spacing, −r·spacing). Structural
+// A rows × columns grid of point masses, from `origin` (its top-left corner). In the
+// "xy" plane it hangs: column c, row r sits at origin + (c·spacing, −r·spacing, 0). In
+// the "xz" plane (3-D scenes) it lies flat: origin + (c·spacing, 0, r·spacing), and
+// falls, pinned along its first row, into a drape. Structural
 // sticks join horizontal and vertical neighbours; shear sticks (both diagonals of every
 // square) keep the squares from folding flat. Every rest length is the initial distance.
 struct ClothGenerator {
@@ -20,6 +22,7 @@ struct ClothGenerator {
   std::array<double, 3> origin{0, 0, 0};
   bool shear = true;
   std::string pin = "top-corners";  // "top-corners", "top-row" or "none"
+  std::string plane = "xy";         // "xy" (hanging) or "xz" (lying flat; 3-D only)
 };
 
 // segments + 1 point masses on a straight line from `origin` along `direction`, joined

@@ -192,6 +192,10 @@ std::optional<Energy> Simulation::energy() const {
   return e;
 }
 
+double Simulation::constraint_error() const {
+  return world_ ? world_->constraint_error(y_.head(world_->system().size())) : 0.0;
+}
+
 Vector Simulation::momentum() const {
   if (!world_) return Vector(0);
   return world_->system().momentum(y_.tail(world_->system().size()));

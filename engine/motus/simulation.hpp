@@ -49,6 +49,9 @@ public:
   const MechanicalSystem* mechanical_system() const { return world_ ? &world_->system() : nullptr; }
   // The world of a mechanical scene (its passes, collision counters, constraint error).
   const World* world() const { return world_.get(); }
+  bool has_constraints() const { return world_ && world_->has_constraints(); }
+  // The largest relative stick-length error now (0 without sticks).
+  double constraint_error() const;
   FirstOrderSystem* first_order_system() { return first_order_.get(); }
   const FirstOrderSystem* first_order_system() const { return first_order_.get(); }
 

@@ -62,6 +62,7 @@ ConstraintProjection::ConstraintProjection(int dimensions, const Vector& inverse
   // A pinned body is infinitely heavy: sticks and contacts move only its partners.
   for (const auto& p : pins_) inverse_mass_[p.body] = 0;
 
+
   // Walls, in the one form the sweep needs: a box container is its 2·d inward faces.
   for (const auto& p : colliders_.planes) {
     double length = 0;
@@ -133,25 +134,37 @@ void ConstraintProjection::place_pins(VectorRef x) const {
 // Move both ends along the stick, each by its share of the error: the lighter body moves
 // more (shares w_a/(w_a+w_b) and w_b/(w_a+w_b) of the inverse masses), so the stick's
 // centre of mass stays where it was and the projection adds no momentum.
-void ConstraintProjection::project_sticks(VectorRef x) const {
-  for (const auto& s : sticks_) {
-    const double wa = inverse_mass_[s.a], wb = inverse_mass_[s.b];
+namespace {
+
+// One sweep over the sticks, with the dimension known at compile time: this is the
+// inner loop of a cloth (thousands of sticks, tens of sweeps, every step).
+template <int D>
+void project_sticks_in(const std::vector<StickConstraint>& sticks, const Vector& inverse_mass, double* x) {
+  using P = Eigen::Matrix<double, D, 1>;
+  for (const auto& s : sticks) {
+    const double wa = inverse_mass[s.a], wb = inverse_mass[s.b];
     const double w = wa + wb;
     if (w == 0) continue;  // both ends pinned: nothing may move
-    auto xa = x.segment(s.a * d_, d_);
-    auto xb = x.segment(s.b * d_, d_);
-    const Point delta = xb - xa;
+    Eigen::Map<P> xa(x + D * s.a), xb(x + D * s.b);
+    const P delta = xb - xa;
     const double length = delta.norm();
     if (length == 0) continue;  // the two ends coincide: no direction to push along
-    const double stretch = (length - s.length) / length;
-    xa += (stretch * wa / w) * delta;
-    xb -= (stretch * wb / w) * delta;
+    const double stretch = (length - s.length) / (length * w);
+    xa += (stretch * wa) * delta;
+    xb -= (stretch * wb) * delta;
   }
 }
 
-// A body is a ball of its radius (0: a point). Inside a wall it goes straight back to the
-// surface, to distance `radius` from it; along the wall it keeps its position, so Verlet's
-// implied velocity keeps its tangential part (no friction) and loses the normal one.
+}  // namespace
+
+void ConstraintProjection::project_sticks(VectorRef x) const {
+  switch (d_) {
+    case 1: project_sticks_in<1>(sticks_, inverse_mass_, x.data()); break;
+    case 2: project_sticks_in<2>(sticks_, inverse_mass_, x.data()); break;
+    default: project_sticks_in<3>(sticks_, inverse_mass_, x.data()); break;
+  }
+}
+
 void ConstraintProjection::project_walls(VectorRef x) const {
   if (walls_.empty() && colliders_.segments.empty()) return;
   const int n = static_cast<int>(radius_.size());
