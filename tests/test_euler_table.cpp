@@ -32,8 +32,8 @@ TEST(EulerTable, ReproducesTheNotesSpringTableExactly) {
     EXPECT_EQ(v[i], v_expected[i]) << "v at t = " << i;
     // a = F/m = −k x / m, computed by the engine's own force code.
     motus::Vector a(1);
-    sim.mechanical_system()->acceleration(static_cast<double>(i), motus::Vector::Constant(1, x[i]),
-                                          motus::Vector::Constant(1, v[i]), a);
+    const motus::Vector xi = motus::Vector::Constant(1, x[i]), vi = motus::Vector::Constant(1, v[i]);
+    sim.mechanical_system()->acceleration(static_cast<double>(i), xi, vi, a);
     EXPECT_EQ(a[0], a_expected[i]) << "a at t = " << i;
   }
 }

@@ -138,19 +138,26 @@ void Simulation::advance(double end_time, double dt, Tolerance tolerance,
     } else {
       const long n = fixed_step_count(end_time - t_, dt);
       const double t0 = t_;
-      const int half = static_cast<int>(y_.size() / 2);
+      const long steps0 = steps_;
+      const Eigen::Index half = y_.size() / 2;
+      // x and v as views into the state, made once: a step then passes them on as they are.
+      Eigen::Map<Vector> x(y_.data(), half), v(y_.data() + half, half);
+      double t = t0;  // local, so the loop keeps it in a register
       for (long i = 0; i < n; ++i) {
         if constexpr (!is_symplectic<S>) {
-          stepper.step(system, t_, dt, y_);
+          stepper.step(system, t, dt, y_);
         } else {
-          auto x = y_.head(half);
-          auto v = y_.tail(half);
-          world_->step(stepper, t_, dt, x, v);
+          world_->step(stepper, t, dt, x, v);
         }
-        t_ = t0 + static_cast<double>(i + 1) * dt;  // no drift from adding dt a million times
-        ++steps_;
-        if (after_step) after_step(*this);
+        t = t0 + static_cast<double>(i + 1) * dt;  // no drift from adding dt a million times
+        if (after_step) {
+          t_ = t;
+          steps_ = steps0 + i + 1;
+          after_step(*this);
+        }
       }
+      t_ = t;
+      steps_ = steps0 + n;
     }
   };
 

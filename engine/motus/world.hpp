@@ -39,9 +39,10 @@ public:
   // The passes this world runs, in order (for summaries and reports).
   std::vector<std::string> passes() const;
 
-  // One step of h from (x, v) at time t with the scene's integrator.
+  // One step of h from (x, v) at time t with the scene's integrator. (Always inlined into
+  // the run loop: bench_collisions holds it to 1.10x of the bare integrator.)
   template <class Stepper>
-  void step(Stepper& stepper, double t, double h, VectorRef x, VectorRef v);
+  [[gnu::always_inline]] void step(Stepper& stepper, double t, double h, VectorRef x, VectorRef v);
 
   // Counted work: all zero when the scene has no collision pass.
   CollisionCounters collision_counters() const;
@@ -60,7 +61,7 @@ private:
 };
 
 template <class Stepper>
-void World::step(Stepper& stepper, double t, double h, VectorRef x, VectorRef v) {
+inline void World::step(Stepper& stepper, double t, double h, VectorRef x, VectorRef v) {
   if constexpr (std::is_same_v<Stepper, SymplecticEuler>) {
     if (has_collisions()) {
       if (has_forces_) stepper.kick(system_, t, h, x, v);
