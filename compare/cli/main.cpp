@@ -53,7 +53,7 @@ int main(int argc, char** argv) {
     return kExitBadInput;
   } catch (const motus::SceneError& e) {
     // Raised while building the run (e.g. a symplectic integrator on a first-order system).
-    const std::string& scene = run->parsed() ? run_options.scene : precision_options.scene;
+    const std::string scene = resolve_scene_path(run->parsed() ? run_options.scene : precision_options.scene);
     fmt::print(stderr, "motus: error: {}: {}{}\n", scene, e.field().empty() ? "" : e.field() + ": ", e.what());
     return kExitBadInput;
   } catch (const InputError& e) {

@@ -79,9 +79,9 @@ private:
 };
 
 // A state that overflowed is a result to show, but not a run that went well.
-int report_non_finite(const Simulation& sim) {
-  fmt::print(stderr, "motus: the run failed: the state is no longer finite at t = {:g} (the integrator is unstable "
-             "at this step; try a smaller --dt or another --integrator)\n", sim.time());
+int report_non_finite(double by) {
+  fmt::print(stderr, "motus: the run failed: the state was no longer finite by t = {:g} (the integrator is unstable "
+             "at this step; try a smaller --dt or another --integrator)\n", by);
   return kExitFailure;
 }
 
@@ -143,8 +143,10 @@ int run_command(const RunOptions& o) {
   const auto began = std::chrono::steady_clock::now();
   double worst_constraint_error = sim.constraint_error();
   const bool constrained = sim.has_constraints();
+  double non_finite_by = NAN;  // checked every 16 steps: the first time seen not finite
   sim.advance(sim.time() + duration, dt, tolerance, [&](const Simulation& s) {
     if (trajectory) trajectory->after_step(s);
+    if ((s.steps() & 15) == 0 && std::isnan(non_finite_by) && !s.state().allFinite()) non_finite_by = s.time();
     if (constrained) worst_constraint_error = std::max(worst_constraint_error, s.constraint_error());
     progress.update(s.time());
   });
@@ -198,7 +200,7 @@ int run_command(const RunOptions& o) {
     j["finite"] = finite;
     if (!o.trajectory.empty()) j["trajectory"] = o.trajectory;
     fmt::print("{}\n", j.dump(2));
-    return finite ? 0 : report_non_finite(sim);
+    return finite ? 0 : report_non_finite(std::isnan(non_finite_by) ? sim.time() : non_finite_by);
   }
 
   fmt::print("scene        {}  ({})\n", scene.name, path);
@@ -237,7 +239,7 @@ int run_command(const RunOptions& o) {
     fmt::print("constraints  largest stick-length error {:.3e} over the run, {:.3e} at the end\n", worst_constraint_error,
                sim.constraint_error());
   if (!o.trajectory.empty()) fmt::print("trajectory   {}\n", o.trajectory);
-  return finite ? 0 : report_non_finite(sim);
+  return finite ? 0 : report_non_finite(std::isnan(non_finite_by) ? sim.time() : non_finite_by);
 }
 
 }  // namespace motus::cli

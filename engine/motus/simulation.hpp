@@ -49,7 +49,8 @@ public:
   const MechanicalSystem* mechanical_system() const { return world_ ? &world_->system() : nullptr; }
   // The world of a mechanical scene (its passes, collision counters, constraint error).
   const World* world() const { return world_.get(); }
-  bool has_constraints() const { return world_ && world_->has_constraints(); }
+  // Whether the scene has sticks (whose error constraint_error() measures).
+  bool has_constraints() const { return world_ && world_->has_sticks(); }
   // The largest relative stick-length error now (0 without sticks).
   double constraint_error() const;
   FirstOrderSystem* first_order_system() { return first_order_.get(); }

@@ -14,7 +14,11 @@ MechanicalSystem make_system(const MechanicalDescription& scene) {
 }  // namespace
 
 World::World(const MechanicalDescription& scene, Integrator integrator)
-    : system_(make_system(scene)), integrator_(integrator), has_forces_(!scene.forces.empty()) {
+    : system_(make_system(scene)), integrator_(integrator), has_forces_(!scene.forces.empty()),
+      has_sticks_(!scene.sticks.empty()) {
+  const ForceSet& f = scene.forces;
+  position_dependent_forces_ =
+      !f.springs.empty() || !f.central_gravity.empty() || !f.mutual_gravity.empty() || !f.pendulums.empty();
   std::vector<double> radius, restitution;
   int balls = 0;
   for (const auto& b : scene.bodies) {
@@ -80,7 +84,7 @@ CollisionCounters World::collision_counters() const {
 }
 
 double World::constraint_error(ConstVectorRef x) const {
-  return constraints_ ? constraints_->max_relative_stick_error(x) : 0.0;
+  return has_sticks_ ? constraints_->max_relative_stick_error(x) : 0.0;
 }
 
 }  // namespace motus

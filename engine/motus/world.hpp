@@ -7,8 +7,10 @@
 //                (symplectic-euler), or contacts are projected apart (verlet)
 //                                                        — only with walls or two balls
 //   constraints  sticks and pins by projection (verlet)  — only with sticks or pins
-// A scene without colliders does no collision detection at all; one without sticks
-// never projects; one without forces never evaluates them.
+// A scene without colliders does no collision detection at all; one without sticks or
+// contacts never projects; with collisions and no forces, the kick is skipped. (Without
+// any pass the integrator steps the system as it is; an empty force set costs it a
+// zeroed array.)
 #include <memory>
 #include <string>
 #include <type_traits>
@@ -36,6 +38,7 @@ public:
   bool has_forces() const { return has_forces_; }
   bool has_collisions() const { return !std::holds_alternative<std::monostate>(collisions_); }
   bool has_constraints() const { return constraints_ != nullptr; }
+  bool has_sticks() const { return has_sticks_; }
   // The passes this world runs, in order (for summaries and reports).
   std::vector<std::string> passes() const;
 
@@ -58,6 +61,8 @@ private:
   std::variant<std::monostate, BallCollisions<1>, BallCollisions<2>, BallCollisions<3>> collisions_;
   std::unique_ptr<ConstraintProjection> constraints_;
   bool project_contacts_ = false;  // verlet: walls and balls are projection constraints too
+  bool has_sticks_ = false;
+  bool position_dependent_forces_ = false;  // anything but uniform gravity and drag
 };
 
 template <class Stepper>
@@ -74,6 +79,9 @@ inline void World::step(Stepper& stepper, double t, double h, VectorRef x, Vecto
       stepper.step(system_, t, h, x, v);
       constraints_->project(x);
       v = (x - stepper.previous_positions()) / h;
+      // The acceleration Verlet keeps for its next step was taken before the projection
+      // moved x; forces that depend on position must see where the bodies really are.
+      if (position_dependent_forces_) stepper.refresh_acceleration(system_, t + h, x, v);
       return;
     }
   }

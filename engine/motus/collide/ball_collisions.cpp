@@ -506,7 +506,7 @@ void BallCollisions<D>::resolve(const Event& e) {
     if (distance > 0) {
       double restitution = restitution_[i] * restitution_[k];
       if (restitution < 1 &&
-          (collisions_this_step_[i] > kCollapseLimit || collisions_this_step_[k] > kCollapseLimit))
+          (collisions_this_step_[i] >= kCollapseLimit || collisions_this_step_[k] >= kCollapseLimit))
         restitution = 0;
       collide_balls(velocity(i), velocity(k), inverse_mass_[i], inverse_mass_[k], Point(d / distance), restitution);
     }
@@ -525,7 +525,7 @@ void BallCollisions<D>::resolve(const Event& e) {
                               ? planes_[static_cast<size_t>(w)].restitution
                               : segments_[static_cast<size_t>(w) - planes_.size()].restitution;
     double restitution = restitution_[i] * wall_e;
-    if (restitution < 1 && collisions_this_step_[i] > kCollapseLimit) restitution = 0;
+    if (restitution < 1 && collisions_this_step_[i] >= kCollapseLimit) restitution = 0;
     bounce_off_wall(velocity(i), wall_normal(i, w), restitution);
     ++collision_count_[i];
     ++collisions_this_step_[i];

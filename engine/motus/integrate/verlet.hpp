@@ -26,6 +26,11 @@ public:
   // p_n after a step (p_{n+1} is the state's x): a world that moves x by projection
   // (constraints, walls) reads the velocity from the two, as Jakobsen's Verlet does.
   const Vector& previous_positions() const { return x_previous_; }
+  // Take a_{n+1} again after x was moved from outside (the next step uses it).
+  template <Mechanical System>
+  void refresh_acceleration(System& s, double t, ConstVectorRef x, ConstVectorRef v) {
+    s.acceleration(t, x, v, a_);
+  }
 
   template <Mechanical System>
   void step(System& s, double t, double h, VectorRef x, VectorRef v) {
