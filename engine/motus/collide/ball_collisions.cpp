@@ -76,13 +76,17 @@ void BallCollisions<D>::drift(VectorRef x, VectorRef v, double h) {
   events_this_step_ = 0;
 
   // A ball that may move farther than the largest radius in this step is fast; the
-  // grid's cells are sized for the slow ones.
+  // grid's cells are sized for the slow ones, and cover their extent.
   double slow_speed2 = 0;
   const double limit2 = max_radius_ * max_radius_ / (h * h);
+  grid_low_ = Point::Constant(INFINITY);
+  grid_high_ = Point::Constant(-INFINITY);
   for (int i : balls_) {
     const double speed2 = velocity(i).squaredNorm();
     if (speed2 <= limit2) {
       slow_speed2 = std::max(slow_speed2, speed2);
+      grid_low_ = grid_low_.cwiseMin(position(i));
+      grid_high_ = grid_high_.cwiseMax(position(i));
     } else {
       fast_flag_[i] = 1;
       fast_.push_back(i);
@@ -125,17 +129,9 @@ void BallCollisions<D>::build_grid() {
   // Two slow balls that meet within h started at most r_a + r_b + 2·sweep apart, so
   // with cells this big they are in the same or neighbouring cells.
   cell_size_ = 2 * max_radius_ + 2 * sweep_;
-  Point low = Point::Constant(INFINITY), high = Point::Constant(-INFINITY);
-  long slow = 0;
-  for (int i : balls_)
-    if (!fast_flag_[i]) {
-      low = low.cwiseMin(position(i));
-      high = high.cwiseMax(position(i));
-      ++slow;
-    }
-  if (slow == 0) low = high = Point::Zero();
-  grid_low_ = low;
-  grid_high_ = high;
+  const long slow = static_cast<long>(balls_.size() - fast_.size());
+  if (slow == 0) grid_low_ = grid_high_ = Point::Zero();
+  const Point low = grid_low_, high = grid_high_;
   // Dense cells over the balls' extent, but never many more cells than balls (a sparse
   // scene gets bigger cells instead).
   const double budget = 4.0 * static_cast<double>(slow) + 64;
