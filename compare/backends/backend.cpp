@@ -8,8 +8,14 @@ namespace motus::compare {
 namespace {
 
 std::string join_elements(const std::string& engine, const std::vector<std::string>& elements) {
-  std::string text;
-  for (const auto& e : elements) text += (text.empty() ? "" : "\n") + ("not supported by " + engine + ": " + e);
+  std::string text;  // (appended piece by piece: GCC 12 warns falsely on "literal" + string, PR105651)
+  for (const auto& e : elements) {
+    if (!text.empty()) text += '\n';
+    text += "not supported by ";
+    text += engine;
+    text += ": ";
+    text += e;
+  }
   return text;
 }
 
