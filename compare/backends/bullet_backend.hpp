@@ -1,5 +1,12 @@
 #pragma once
-// STUB: being written (issue 4).
+// Bullet 3.24 (the double build, -DBT_USE_DOUBLE_PRECISION) behind the backend interface:
+// one btRigidBody with a btSphereShape per body, btStaticPlaneShape walls, the scene's
+// uniform gravity as the world's gravity and every other force applied with
+// applyCentralForce each step (motus's formulas, PeerForces), sticks as one-row rigid
+// distance constraints solved by Bullet's own sequential-impulse solver, pins as static
+// bodies. 2-D scenes live in the z = 0 plane, 1-D scenes on the x axis (linear factors).
+// Bullet's headers stay in the .cpp: only the motus_backends target is compiled with
+// BT_USE_DOUBLE_PRECISION, and a btScalar of the wrong width would break the ABI.
 #include <memory>
 
 #include "backend.hpp"

@@ -2,13 +2,16 @@
 //   motus run SCENE ...               integrate a scene, report energy and momentum
 //   motus list                        scenes, integrators, systems
 //   motus bench precision SCENE ...   run time against error
+//   motus render SCENE --out DIR ...  PNG frames (and a video) of a scene
 #include <fmt/format.h>
 
 #include <CLI/CLI.hpp>
 
 #include "bench_precision_command.hpp"
+#include "compare_command.hpp"
 #include "cli_common.hpp"
 #include "list_command.hpp"
+#include "render_command.hpp"
 #include "motus/scene_error.hpp"
 #include "run_command.hpp"
 #include "scene_file.hpp"
@@ -25,11 +28,15 @@ int main(int argc, char** argv) {
 
   RunOptions run_options;
   auto* run = add_run_command(app, run_options);
+  CompareOptions compare_options;
+  auto* compare = add_compare_command(app, compare_options);
   auto* list = add_list_command(app);
   auto* bench = app.add_subcommand("bench", "Benchmarks: `motus bench precision SCENE` (run time against error)");
   bench->require_subcommand(1);
   BenchPrecisionOptions precision_options;
   auto* precision = add_bench_precision_command(*bench, precision_options);
+  RenderOptions render_options;
+  auto* render = add_render_command(app, render_options);
 
   try {
     app.parse(argc, argv);
@@ -46,14 +53,18 @@ int main(int argc, char** argv) {
 
   try {
     if (*run) return run_command(run_options);
+    if (*compare) return compare_command(compare_options);
     if (*list) return list_command();
     if (*precision) return bench_precision_command(precision_options);
+    if (*render) return render_command(render_options);
   } catch (const motus::SceneFileError& e) {
     fmt::print(stderr, "motus: error: {}\n", e.what());
     return kExitBadInput;
   } catch (const motus::SceneError& e) {
     // Raised while building the run (e.g. a symplectic integrator on a first-order system).
-    const std::string scene = resolve_scene_path(run->parsed() ? run_options.scene : precision_options.scene);
+    const std::string scene = resolve_scene_path(run->parsed()       ? run_options.scene
+                                                 : compare->parsed() ? compare_options.scene
+                                                                     : precision_options.scene);
     fmt::print(stderr, "motus: error: {}: {}{}\n", scene, e.field().empty() ? "" : e.field() + ": ", e.what());
     return kExitBadInput;
   } catch (const InputError& e) {

@@ -1,0 +1,26 @@
+#pragma once
+// `motus compare SCENE`: the same scene in motus, Box2D and Bullet, side by side — a
+// table of energy and momentum drift, penetration, constraint error and time per step,
+// and a report folder with the metrics, plots and index.html.
+#include <CLI/CLI.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace motus::cli {
+
+struct CompareOptions {
+  std::string scene;
+  std::vector<std::string> engines = {"motus", "box2d", "bullet"};
+  std::optional<std::string> integrator;
+  std::optional<double> dt, duration;
+  std::vector<std::string> sets;
+  std::string out;
+  long samples = 200;
+  bool json = false;
+};
+
+CLI::App* add_compare_command(CLI::App& app, CompareOptions& options);
+int compare_command(const CompareOptions& options);
+
+}  // namespace motus::cli

@@ -1,0 +1,156 @@
+#include "render_command.hpp"
+
+#include <fmt/format.h>
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <regex>
+
+#include "cli_common.hpp"
+#include "motus/render/canvas.hpp"
+#include "motus/render/draw.hpp"
+#include "motus/render/video.hpp"
+#include "motus/simulation.hpp"
+#include "progress_bar.hpp"
+#include "scene_file.hpp"
+
+namespace fs = std::filesystem;
+
+namespace motus::cli {
+namespace {
+
+std::pair<int, int> parse_size(const std::string& text) {
+  static const std::regex pattern(R"((\d{1,6})[xX](\d{1,6}))");
+  std::smatch m;
+  if (!std::regex_match(text, m, pattern)) throw InputError("--size: expected WIDTHxHEIGHT, e.g. 640x480 (got \"" + text + "\")");
+  const int w = std::stoi(m[1]), h = std::stoi(m[2]);
+  if (w < 16 || h < 16) throw InputError("--size: each side must be at least 16 pixels (got " + text + ")");
+  return {w, h};
+}
+
+// The output folder: created, or (with --overwrite) emptied of earlier frames and videos.
+void prepare_folder(const std::string& out, bool overwrite) {
+  if (fs::exists(out)) {
+    if (!fs::is_directory(out)) throw InputError(out + ": exists and is not a folder; choose another --out");
+    if (!overwrite) throw InputError(out + ": already exists; choose another --out or pass --overwrite");
+    static const std::regex ours(R"(frame_\d+\.png|.+\.(mp4|gif))");
+    for (const auto& entry : fs::directory_iterator(out))
+      if (entry.is_regular_file() && std::regex_match(entry.path().filename().string(), ours)) fs::remove(entry.path());
+    return;
+  }
+  std::error_code error;
+  fs::create_directories(out, error);
+  if (error) throw InputError(out + ": cannot be created (" + error.message() + ")");
+}
+
+}  // namespace
+
+CLI::App* add_render_command(CLI::App& app, RenderOptions& o) {
+  auto* render = app.add_subcommand("render", "Simulate a scene and draw it as PNG frames (and optionally one MP4 or GIF)");
+  render->add_option("scene", o.scene, "Scene file, or the name of a shipped scene (see `motus list`)")->required();
+  render->add_option("--out", o.out, "Folder for frame_00000.png, ... (must not exist unless --overwrite)")->required();
+  render->add_option("--size", o.size, "Frame size in pixels")->type_name("WxH")->capture_default_str();
+  render->add_option("--fps", o.fps, "Frames per second of simulated time")->capture_default_str();
+  render->add_option("--duration", o.duration, "Simulated time to draw, s (default: the scene's)");
+  render->add_option("--integrator", o.integrator, "Integrator (default: the scene's); see `motus list`");
+  render->add_option("--set", o.sets, "Override a scene field, e.g. --set lattice.count=1000 (repeatable)")
+      ->type_name("PATH=VALUE");
+  render->add_option("--video", o.video, "Also assemble the frames into SCENE.mp4 or SCENE.gif with ffmpeg")
+      ->check(CLI::IsMember({"mp4", "gif"}));
+  render->add_flag("--overwrite", o.overwrite, "Reuse an existing --out folder (its frames and videos are replaced)");
+  render->add_flag("--trails", o.trails, "Draw each body's recent path (scenes with at most 64 bodies)");
+  render->add_flag("--arrows", o.arrows, "Draw velocity arrows (where each body will be in 0.25 s)");
+  render->add_option("--supersample", o.supersample, "Anti-aliasing: render N times larger and average (1-4)")
+      ->check(CLI::Range(1, 4))
+      ->capture_default_str();
+  return render;
+}
+
+int render_command(const RenderOptions& o) {
+  const std::string path = resolve_scene_path(o.scene);
+  SceneDescription scene = load_scene(path, o.sets);
+  const std::string integrator_name = o.integrator.value_or(scene.integrator);
+  const auto integrator = integrator_from_name(integrator_name);
+  if (!integrator)
+    throw InputError(path + ": --integrator: unknown integrator \"" + integrator_name + "\" (known: " + integrator_names() + ")");
+  if (info(*integrator).needs_mechanical && !scene.is_mechanical())
+    throw InputError(path + ": --integrator: " + integrator_name + " is symplectic and needs a mechanical scene (bodies); " +
+                     "use euler, midpoint, rk4, rk4-doubling or rk45");
+  const auto [width, height] = parse_size(o.size);
+  if (!(o.fps > 0) || !std::isfinite(o.fps) || o.fps > 10000) throw InputError("--fps: must be a number > 0 (and at most 10000)");
+  const double duration = o.duration.value_or(scene.duration);
+  if (!(duration >= 0) || !std::isfinite(duration)) throw InputError("--duration: must be a finite number >= 0");
+  const long frames = static_cast<long>(std::floor(duration * o.fps + 1e-9)) + 1;
+  if (frames > 100000) throw InputError(fmt::format("--duration/--fps: {} frames is too many (at most 100,000)", frames));
+  std::optional<render::VideoFormat> video;
+  if (!o.video.empty()) {
+    video = render::video_format_from_name(o.video);
+    if (render::find_program("ffmpeg").empty())
+      throw InputError("ffmpeg not found on PATH: --video needs it (install the Debian package ffmpeg)");
+  }
+
+  try {
+    render::Canvas canvas(width, height, o.supersample);  // fails first, before any folder is made
+    Simulation sim(scene, *integrator);
+    prepare_folder(o.out, o.overwrite);
+
+    // Simulate: mechanical scenes keep one state per frame; first-order ones every step
+    // too (an attractor's curve is drawn through all of them).
+    const double t0 = sim.time(), dt = scene.dt;
+    const Tolerance tolerance{scene.atol, scene.rtol};
+    render::Recording recording;
+    std::vector<size_t> frame_index;
+    auto record = [&](const Simulation& s) {
+      const auto e = s.energy();
+      recording.add(s.time(), std::span<const double>(s.state().data(), static_cast<size_t>(s.state().size())),
+                    e ? std::optional<double>(e->total) : std::nullopt);
+    };
+    const bool every_step = !scene.is_mechanical();
+    const double min_gap = scene.output_interval > 0 ? scene.output_interval * 0.999 : 0;
+    ProgressBar progress(0, 2.0 * static_cast<double>(frames), scene.name, 1);
+    const auto began = std::chrono::steady_clock::now();
+    record(sim);
+    frame_index.push_back(0);
+    for (long k = 1; k < frames; ++k) {
+      const double target = t0 + static_cast<double>(k) / o.fps;
+      if (sim.time() < target - 1e-9 * std::max(1.0, std::abs(target))) {
+        sim.advance(target, dt, tolerance, [&](const Simulation& s) {
+          if (every_step && s.time() - recording.times.back() >= min_gap) record(s);
+        });
+        if (!every_step || recording.times.back() != sim.time()) record(sim);
+      }
+      frame_index.push_back(recording.size() - 1);
+      progress.update(static_cast<double>(k));
+    }
+
+    // Draw: one camera for the whole run, so nothing jumps.
+    const render::Viewport view = canvas.full();
+    const render::Camera camera = render::fit_camera(scene, recording, view);
+    render::DrawOptions options;
+    options.trails = o.trails;
+    options.velocity_arrows = o.arrows;
+    const std::string note = integrator_name + (o.sets.empty() ? "" : "  " + fmt::format("{}", fmt::join(o.sets, " ")));
+    render::Image image;
+    for (long k = 0; k < frames; ++k) {
+      render::draw_frame(canvas, view, scene, recording, frame_index[static_cast<size_t>(k)], camera, options, note);
+      canvas.image(image);
+      render::write_png((fs::path(o.out) / fmt::format("frame_{:05d}.png", k)).string(), image);
+      progress.update(static_cast<double>(frames + k));
+    }
+    progress.finish();
+    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count();
+    fmt::print("{} frames of {}x{} at {:g} fps ({:g} s of {}) in {}/ ({:.1f} s)\n", frames, width, height, o.fps,
+               duration, scene.name, o.out, wall);
+    if (video) {
+      const std::string file = (fs::path(o.out) / (scene.name + "." + o.video)).string();
+      render::encode_video((fs::path(o.out) / "frame_%05d.png").string(), o.fps, file, *video);
+      fmt::print("video        {}\n", file);
+    }
+  } catch (const render::RenderError& e) {
+    throw InputError(e.what());
+  }
+  return 0;
+}
+
+}  // namespace motus::cli

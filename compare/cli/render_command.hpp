@@ -1,0 +1,29 @@
+#pragma once
+// `motus render SCENE --out DIR`: simulate a scene and draw it as PNG frames (and,
+// with --video, one MP4 or GIF through ffmpeg). See docs/render.md.
+#include <CLI/CLI.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace motus::cli {
+
+struct RenderOptions {
+  std::string scene;
+  std::string out;
+  std::string size = "640x480";
+  double fps = 30;
+  std::optional<double> duration;
+  std::optional<std::string> integrator;
+  std::vector<std::string> sets;
+  std::string video;  // "", "mp4" or "gif"
+  bool overwrite = false;
+  bool trails = false;
+  bool arrows = false;
+  int supersample = 2;
+};
+
+CLI::App* add_render_command(CLI::App& app, RenderOptions& options);
+int render_command(const RenderOptions& options);
+
+}  // namespace motus::cli
