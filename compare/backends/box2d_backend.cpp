@@ -70,6 +70,13 @@ struct Box2dBackend::World {
   double run_fastest = 0;    // the largest speed·dt after any step, m
   long capped = 0;           // body-steps that ended at b2_maxTranslation
   long first_capped_step = -1;
+  struct Stick {
+    size_t a, b;
+    double length;
+  };
+  std::vector<Stick> sticks;
+  double worst_stick = 0;  // the largest |length − rest| / rest after any step
+  long worst_stick_step = 0;
 
   void read_state() {
     const size_t n = bodies.size();
@@ -116,10 +123,9 @@ struct Box2dBackend::World {
 Box2dBackend::Box2dBackend() = default;
 Box2dBackend::~Box2dBackend() = default;
 
-std::string Box2dBackend::version() const {
-  return format("Box2D %d.%d.%d, float", static_cast<int>(b2_version.major), static_cast<int>(b2_version.minor),
-                static_cast<int>(b2_version.revision));
-}
+// Not from b2_version: Box2D 2.4.1's library still says 2.4.0 there (upstream never
+// bumped it; Debian's libbox2d.so.2.4.1 and box2dConfigVersion.cmake say 2.4.1).
+std::string Box2dBackend::version() const { return "Box2D 2.4.1, float"; }
 
 void Box2dBackend::build(const SceneDescription& scene, Integrator /*integrator*/, double dt) {
   world_.reset();
@@ -269,6 +275,7 @@ void Box2dBackend::build(const SceneDescription& scene, Integrator /*integrator*
     def.damping = 0;
     def.collideConnected = true;
     w->world->CreateJoint(&def);
+    w->sticks.push_back({static_cast<size_t>(stick.a), static_cast<size_t>(stick.b), stick.length});
   }
   w->has_sticks = !m.sticks.empty();
   world_ = std::move(w);
@@ -301,6 +308,16 @@ void Box2dBackend::step() {
     if (travel >= cap * (1 - 1e-5)) {
       ++w.capped;
       if (w.first_capped_step < 0) w.first_capped_step = w.steps;
+    }
+  }
+  // The sticks' length error, which Box2D's iterative solver leaves.
+  for (const auto& stick : w.sticks) {
+    const b2Vec2 d = w.bodies[stick.a]->GetPosition() - w.bodies[stick.b]->GetPosition();
+    const double error =
+        std::abs(std::hypot(static_cast<double>(d.x), static_cast<double>(d.y)) - stick.length) / stick.length;
+    if (error > w.worst_stick) {
+      w.worst_stick = error;
+      w.worst_stick_step = w.steps;
     }
   }
 }
@@ -353,8 +370,9 @@ std::vector<std::string> Box2dBackend::notes() const {
                      std::max(w.farthest, 1.0) * 1.2e-7, w.farthest));
   const double cap = b2_maxTranslation;
   s.push_back(format("b2_maxTranslation (%g m per step): the fastest body moves %.3g m per step at the start "
-                     "(%.3g%% of it)",
-                     cap, w.start_fastest, 100 * w.start_fastest / cap));
+                     "(%.3g%% of it%s)",
+                     cap, w.start_fastest, 100 * w.start_fastest / cap,
+                     w.start_fastest > cap ? ": Box2D will slow it to the cap" : ""));
   if (w.capped > 0)
     s.push_back(format("b2_maxTranslation capped %ld body-steps (first at step %ld, t = %.6g s): those bodies moved "
                        "only %g m in a step where the scene says farther",
@@ -372,9 +390,13 @@ std::vector<std::string> Box2dBackend::notes() const {
     s.push_back(format("segments keep Box2D's edge skin b2_polygonRadius = %g m: a ball's centre stays r + %g m "
                        "from them (planes and box faces are moved back by the skin)",
                        static_cast<double>(b2_polygonRadius), static_cast<double>(b2_polygonRadius)));
-  if (w.has_sticks)
+  if (w.has_sticks) {
     s.push_back("sticks are b2DistanceJoints solved by sequential impulses (8 velocity, 3 position iterations), "
                 "not projected as in motus: their lengths err as far as that solver leaves them");
+    if (w.steps > 0)
+      s.push_back(format("sticks: the worst length error so far is %.3g%% of the rest length (after step %ld)",
+                         100 * w.worst_stick, w.worst_stick_step));
+  }
   return s;
 }
 
