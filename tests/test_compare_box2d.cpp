@@ -1,0 +1,392 @@
+// Box2D 2.4.1 behind the backend interface (issue 4). Both engines run through
+// Backend (make_backend("motus"), make_backend("box2d")) with the same dt.
+//  - Without contacts, Box2D integrates as symplectic Euler does (shared/reference/
+//    peers.md: v += h(g + F/m), then x += h v), so motus with symplectic-euler must
+//    reproduce it to float precision.
+//  - With contacts, Box2D's sequential-impulse solver differs from motus's exact
+//    impulses at the time of impact: its deviations are measured here and asserted in a
+//    band around today's value (the issue: "each peer's deviation ... asserted within
+//    what it measures today"), so that a change is noticed.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <string>
+
+#include "backend.hpp"
+#include "scene_file.hpp"
+
+namespace {
+
+using motus::BodyDescription;
+using motus::Integrator;
+using motus::MechanicalDescription;
+using motus::SceneDescription;
+using motus::compare::Backend;
+using motus::compare::make_backend;
+using motus::compare::Snapshot;
+using motus::compare::Unsupported;
+
+SceneDescription load(const std::string& name) { return motus::load_scene(MOTUS_SCENES_DIR "/" + name + ".json"); }
+
+long steps_of(const SceneDescription& scene) { return std::lround(scene.duration / scene.dt); }
+
+std::unique_ptr<Backend> built(const std::string& engine, const SceneDescription& scene, double dt,
+                               Integrator integrator = Integrator::SymplecticEuler) {
+  auto b = make_backend(engine);
+  b->build(scene, integrator, dt);
+  return b;
+}
+
+Snapshot run(Backend& b, long steps) {
+  for (long i = 0; i < steps; ++i) b.step();
+  Snapshot s;
+  b.read(s);
+  return s;
+}
+
+// One body of mass 2, no walls, 2-D, optionally under gravity (0, −10) (peers.md's g).
+SceneDescription one_body(std::vector<double> x, std::vector<double> v, bool gravity) {
+  SceneDescription scene;
+  MechanicalDescription m;
+  m.dimensions = 2;
+  BodyDescription body;
+  body.mass = 2;
+  body.radius = 0.5;
+  body.position = std::move(x);
+  body.velocity = std::move(v);
+  m.bodies.push_back(body);
+  if (gravity) m.forces.gravity.push_back({{0, -10, 0}});
+  scene.mechanical = m;
+  scene.integrator = "symplectic-euler";
+  scene.dt = 1.0 / 60;
+  return scene;
+}
+
+// Runs motus (symplectic Euler) and Box2D side by side and checks after every step that
+// they agree to float precision: 1e-5 relative to the largest |coordinate| (|velocity|)
+// seen so far. Float positions are rounded relative to their own size, and the rounding
+// of each step's x += h·v accumulates along the path, so "relative" means relative to
+// the path's scale, not to a coordinate that happens to pass near zero.
+void expect_same_trajectory(const SceneDescription& scene, double dt, long steps) {
+  auto motus = built("motus", scene, dt);
+  auto box2d = built("box2d", scene, dt);
+  Snapshot a, b;
+  double x_scale = 1, v_scale = 1;
+  for (long i = 1; i <= steps; ++i) {
+    motus->step();
+    box2d->step();
+    motus->read(a);
+    box2d->read(b);
+    ASSERT_EQ(a.x.size(), b.x.size());
+    EXPECT_NEAR(a.t, b.t, 1e-12);
+    for (size_t k = 0; k < a.x.size(); ++k) {
+      x_scale = std::max(x_scale, std::abs(a.x[k]));
+      v_scale = std::max(v_scale, std::abs(a.v[k]));
+    }
+    for (size_t k = 0; k < a.x.size(); ++k) {
+      ASSERT_NEAR(b.x[k], a.x[k], 1e-5 * x_scale) << "step " << i << ", coordinate " << k;
+      ASSERT_NEAR(b.v[k], a.v[k], 1e-5 * v_scale) << "step " << i << ", coordinate " << k;
+    }
+  }
+}
+
+double kinetic_energy(const SceneDescription& scene, const Snapshot& s) {
+  const auto& bodies = scene.mechanical->bodies;
+  double e = 0;
+  for (size_t i = 0; i < bodies.size(); ++i)
+    e += 0.5 * bodies[i].mass * (s.v[2 * i] * s.v[2 * i] + s.v[2 * i + 1] * s.v[2 * i + 1]);
+  return e;
+}
+
+double momentum(const SceneDescription& scene, const Snapshot& s, int k) {
+  const auto& bodies = scene.mechanical->bodies;
+  double p = 0;
+  for (size_t i = 0; i < bodies.size(); ++i) p += bodies[i].mass * s.v[2 * i + static_cast<size_t>(k)];
+  return p;
+}
+
+bool has_line_containing(const std::vector<std::string>& lines, const std::string& text) {
+  return std::any_of(lines.begin(), lines.end(), [&](const std::string& l) { return l.find(text) != std::string::npos; });
+}
+
+// ---- the same integrator: no contacts
+
+TEST(Box2dSameIntegrator, FreeFallEndsWherePeersMdSays) {
+  // peers.md: falling 1 s at 60 Hz from 100 m with g = 10 ends at y = 94.91667 m,
+  // v = −10 m/s in motus's symplectic Euler, Box2D and Bullet (the exact fall: 95 m).
+  const SceneDescription scene = one_body({0, 100}, {0, 0}, true);
+  const Snapshot b = run(*built("box2d", scene, 1.0 / 60), 60);
+  EXPECT_NEAR(b.x[1], 94.91667, 1e-5 * 100);  // float: 1e-5 relative
+  EXPECT_NEAR(b.v[1], -10, 1e-5 * 10);
+  EXPECT_EQ(b.x[0], 0);
+  EXPECT_NEAR(b.t, 1, 1e-12);
+  expect_same_trajectory(scene, 1.0 / 60, 60);
+}
+
+TEST(Box2dSameIntegrator, ProjectileMatchesMotusToFloatPrecision) {
+  // Launched at (20, 20) m/s under g = (0, −10): 4 s at 60 Hz (it lands near y = 0).
+  expect_same_trajectory(one_body({0, 0}, {20, 20}, true), 1.0 / 60, 240);
+}
+
+TEST(Box2dSameIntegrator, SpringAppliedAsAForceMatchesMotusToFloatPrecision) {
+  // A zero-length spring (k = 4 N/m) from the body (m = 2 kg) to the origin: a 2-D
+  // harmonic oscillator of period 2π·sqrt(m/k) ≈ 4.44 s, run for 10 s (600 steps). Box2D
+  // gets F = −k x from PeerForces through ApplyForceToCenter before each step: its kick
+  // is symplectic Euler's with the same force.
+  SceneDescription scene = one_body({1, 0.5}, {0, 1}, false);
+  motus::Spring spring;
+  spring.a = 0;
+  spring.anchor = {0, 0, 0};
+  spring.stiffness = 4;
+  scene.mechanical->forces.springs.push_back(spring);
+  expect_same_trajectory(scene, 1.0 / 60, 600);
+}
+
+TEST(Box2dSameIntegrator, PointsPassThroughEachOtherAndBounceOffWalls) {
+  // Two points (radius 0) inside a box: as in motus, they meet the walls but not each
+  // other (Box2D: a collision filter). Head-on at ±1 m/s from x = ∓1: they cross at
+  // t = 1 s and reach the walls at x = ±5 at t = 6 s; 8 s is 480 steps.
+  SceneDescription scene;
+  MechanicalDescription m;
+  m.dimensions = 2;
+  BodyDescription a, b;
+  a.position = {-1, 1};
+  a.velocity = {1, 0};
+  b.position = {1, 1};
+  b.velocity = {-1, 0};
+  m.bodies = {a, b};
+  m.colliders.boxes.push_back({{-5, 0, 0}, {5, 10, 0}, 1});
+  scene.mechanical = m;
+  const Snapshot s = run(*built("box2d", scene, 1.0 / 60), 120);  // t = 2 s: crossed, not yet at a wall
+  EXPECT_NEAR(s.x[0], 1, 1e-5);
+  EXPECT_NEAR(s.x[2], -1, 1e-5);
+  EXPECT_NEAR(s.v[0], 1, 1e-6);
+  // After the walls (t = 8 s): body 0 bounced off x = 5 at t = 6 s and is back at 3 m.
+  // Box2D meets the wall at the start of a step with up to one step's overlap and (a
+  // point being a 1e-4 m circle) a b2_linearSlop tolerance: within 2 cm of motus.
+  auto motus = built("motus", scene, 1.0 / 60);
+  auto box2d = built("box2d", scene, 1.0 / 60);
+  const Snapshot sm = run(*motus, 480), sb = run(*box2d, 480);
+  EXPECT_NEAR(sm.x[0], 3, 1e-9);
+  EXPECT_NEAR(sm.x[2], -3, 1e-9);
+  EXPECT_NEAR(sb.x[0], sm.x[0], 0.02);
+  EXPECT_NEAR(sb.x[2], sm.x[2], 0.02);
+  EXPECT_NEAR(sb.v[0], -1, 1e-5);
+  EXPECT_NEAR(sb.v[2], 1, 1e-5);
+}
+
+// ---- contacts: Box2D's own solver, measured
+
+TEST(Box2dContacts, HeadOnIsExactInVelocity) {
+  // head_on: masses 1 and 3 at ±1 m/s, e = 1. Analytic (1-D elastic collision): the light
+  // ball leaves at −2 m/s, the heavy one stops. Box2D, measured: (−2, 0) and (0, 0)
+  // exactly (deviation 0: the normal is the line of centres however deep the overlap).
+  const SceneDescription scene = load("head_on");
+  auto box2d = built("box2d", scene, scene.dt);
+  Snapshot s0;
+  box2d->read(s0);
+  const Snapshot s = run(*box2d, steps_of(scene));
+  const double deviation = std::max({std::abs(s.v[0] + 2), std::abs(s.v[1]), std::abs(s.v[2]), std::abs(s.v[3])});
+  EXPECT_LE(deviation, 1e-6);  // measured 0; float's ulp at 2 is 2.4e-7
+  // Momentum (−1·1 + 3·1 = 2 along x) kept to float precision (measured: exactly).
+  EXPECT_NEAR(momentum(scene, s, 0), momentum(scene, s0, 0), 1e-6);
+  EXPECT_NEAR(momentum(scene, s, 1), 0, 1e-6);
+  // Positions: Box2D finds the contact at the start of a step in which the balls already
+  // overlap (they close 2 cm per step) and pushes the overlap apart with its position
+  // solver. Measured at t = 4 s: −5.48488 m and 0.494961 m against motus's exact −5.5
+  // and 0.5, i.e. within one step's closing distance (2 cm).
+  EXPECT_NEAR(s.x[0], -5.5, 0.02);
+  EXPECT_NEAR(s.x[2], 0.5, 0.02);
+  EXPECT_GT(std::abs(s.x[0] + 5.5), 1e-3);  // measured 0.0151: not the exact answer
+}
+
+TEST(Box2dContacts, ObliqueKeepsMomentumButTiltsTheNormal) {
+  // oblique: equal balls, impact parameter 0.5 (half the sum of the radii), e = 1.
+  // Analytic: they leave at 90°, (0.25, √3/4) and (0.75, −√3/4) m/s (motus: to 1e-12,
+  // test_collisions). Box2D, measured: (0.2526269, 0.4345187) and (0.7473731, −0.4345187):
+  // a deviation of |Δv| = 3.028e-3 m/s for each ball. Box2D takes the contact normal at
+  // the start of the step in which it finds the overlap (the balls close 1 cm per step;
+  // here they overlap by 5.2 mm), tilted by about 0.17° from the normal at first touch.
+  const SceneDescription scene = load("oblique");
+  auto box2d = built("box2d", scene, scene.dt);
+  Snapshot s0;
+  box2d->read(s0);
+  const Snapshot s = run(*box2d, steps_of(scene));
+  const double r3 = std::sqrt(3.0) / 4;
+  const double dev0 = std::hypot(s.v[0] - 0.25, s.v[1] - r3), dev1 = std::hypot(s.v[2] - 0.75, s.v[3] + r3);
+  constexpr double measured = 3.028e-3;
+  for (double dev : {dev0, dev1}) {
+    EXPECT_LE(dev, 2 * measured);
+    EXPECT_GE(dev, 0.5 * measured);  // not zero today: a change is noticed
+  }
+  // Momentum kept to float precision (measured: exactly); energy measured −5.05e-8 relative.
+  EXPECT_NEAR(momentum(scene, s, 0), momentum(scene, s0, 0), 1e-6);
+  EXPECT_NEAR(momentum(scene, s, 1), momentum(scene, s0, 1), 1e-6);
+  EXPECT_NEAR(kinetic_energy(scene, s) / kinetic_energy(scene, s0) - 1, 0, 1e-6);
+  // The outgoing directions are still perpendicular to within the tilt: v0·v1 ≈ 0.
+  // Measured 0.2526269·0.7473731 − 0.4345187² = 2.0e-6 (m/s)².
+  EXPECT_NEAR(s.v[0] * s.v[2] + s.v[1] * s.v[3], 0, 1e-4);
+}
+
+TEST(Box2dContacts, NewtonsCradleSpreadsTheMomentum) {
+  // newtons_cradle: four balls at rest touching in a row, a fifth arriving at 1 m/s.
+  // motus (contacts at the same instant resolved in order): the last leaves at 1 m/s and
+  // the others stop, to 1e-9.
+  const SceneDescription scene = load("newtons_cradle");
+  const Snapshot m = run(*built("motus", scene, scene.dt), steps_of(scene));
+  for (int i = 0; i < 4; ++i) EXPECT_NEAR(m.v[2 * static_cast<size_t>(i)], 0, 1e-9) << "ball " << i;
+  EXPECT_NEAR(m.v[8], 1, 1e-9);
+  // Box2D, measured after 3 s: (−0.5731, 0.3569, 0.3711, 0.4023, 0.4428) m/s. Its solver
+  // treats the touching row as one simultaneous system: only the first contact is
+  // approaching, so only it gets a restitution target, and the iterations spread the
+  // impulse down the row instead of passing it on; the first ball rebounds. Momentum is
+  // kept (sum = 1), kinetic energy is not: measured −4.86%.
+  const Snapshot b = run(*built("box2d", scene, scene.dt), steps_of(scene));
+  const double measured[5] = {-0.573059082, 0.3568692207, 0.3710904121, 0.4022521973, 0.4428472519};
+  for (size_t i = 0; i < 5; ++i) {
+    EXPECT_NEAR(b.v[2 * i], measured[i], 0.02) << "ball " << i;
+    EXPECT_NEAR(b.v[2 * i + 1], 0, 1e-6) << "ball " << i;
+  }
+  EXPECT_NEAR(momentum(scene, b, 0), 1, 1e-5);
+  const double energy_change = kinetic_energy(scene, b) / 0.5 - 1;  // it starts with ½·1·1² J
+  EXPECT_LE(energy_change, -0.0486 / 2);
+  EXPECT_GE(energy_change, -0.0486 * 2);
+}
+
+TEST(Box2dContacts, BallGasEnergyDriftIsMeasuredAndMotusKeepsIt) {
+  // ball_gas (peers.md: 400 balls of radius 0.5, spacing 2, velocities in [−1, 1]², no
+  // gravity, e = 1 with each other and with the box, 1/60 s steps), 600 steps.
+  // Box2D, measured: −1.2e-8 after 100 steps, −5.3e-10 after 200, then +4.806e-3 in one
+  // step (202), when ball 380, against the left wall, is hit by ball 361: the three-way
+  // contact (wall, 380, 361) is solved as one system by sequential impulses, each contact
+  // aiming at −e times its own approach speed, which over-restitutes (361 leaves at
+  // 1.90 m/s). +4.79317e-3 after 600 steps. (peers.md's ~1e-7 for 1,000 and 10,000 balls
+  // is a different run: a single wall-and-ball pile-up like this one dominates.)
+  const SceneDescription scene = load("ball_gas");
+  ASSERT_EQ(scene.mechanical->bodies.size(), 400u);
+  double drift[2];
+  int k = 0;
+  for (const char* engine : {"box2d", "motus"}) {
+    auto b = built(engine, scene, scene.dt);
+    Snapshot s0;
+    b->read(s0);
+    const Snapshot s = run(*b, 600);
+    drift[k++] = kinetic_energy(scene, s) / kinetic_energy(scene, s0) - 1;
+  }
+  constexpr double measured_box2d = 4.79317e-3;
+  EXPECT_GE(drift[0], measured_box2d / 2);
+  EXPECT_LE(drift[0], measured_box2d * 2);
+  // motus: exact impulses keep the energy to rounding (measured 1.1e-15).
+  EXPECT_LE(std::abs(drift[1]), 1e-10);
+  EXPECT_LE(std::abs(drift[1]), std::abs(drift[0]));
+}
+
+TEST(Box2dContacts, RestitutionIsTheProductNotTheMax) {
+  // drop: a ball of e = 0.8 falls 10 m onto a floor of e = 1. motus's pair e is the
+  // product, 0.8; Box2D's own max(0.8, 1) = 1 would bounce it back at full speed. The
+  // PreSolve listener makes it 0.8: the first bounce leaves at 0.8 times the speed the
+  // ball had after the step's gravity kick (measured ratio 0.80000012, float).
+  const SceneDescription scene = load("drop");
+  auto box2d = built("box2d", scene, scene.dt);
+  Snapshot s, before;
+  box2d->read(s);
+  for (int i = 0; i < 3000; ++i) {
+    before = s;
+    box2d->step();
+    box2d->read(s);
+    if (before.v[1] < 0 && s.v[1] > 0) break;
+  }
+  ASSERT_GT(s.v[1], 0) << "no bounce within 3 s";
+  const double approach = before.v[1] - 9.81 * scene.dt;  // the velocity the solver sees
+  EXPECT_NEAR(s.v[1] / -approach, 0.8, 1e-5);
+  // The speed at impact: √(2·9.81·10) = 14.007 m/s (measured 14.0089 before the kick).
+  EXPECT_NEAR(-approach, std::sqrt(2 * 9.81 * 10), 0.03);
+}
+
+TEST(Box2dLimits, TranslationCapIsReported) {
+  // A free ball at 300 m/s with 1/60 s steps would move 5 m per step; b2_maxTranslation
+  // (2 m per step) slows it to 120 m/s: after 1 s it is at 120 m (motus: 300 m).
+  const SceneDescription scene = one_body({0, 0}, {300, 0}, false);
+  auto box2d = built("box2d", scene, 1.0 / 60);
+  EXPECT_TRUE(has_line_containing(box2d->notes(), "250% of it: Box2D will slow it to the cap"));
+  const Snapshot b = run(*box2d, 60);
+  EXPECT_NEAR(b.x[0], 120, 1e-3);
+  EXPECT_NEAR(b.v[0], 120, 1e-3);
+  EXPECT_TRUE(has_line_containing(box2d->notes(), "b2_maxTranslation capped 60 body-steps (first at step 1"));
+  const Snapshot m = run(*built("motus", scene, 1.0 / 60), 60);
+  EXPECT_NEAR(m.x[0], 300, 1e-9);
+  // A slow scene says the cap was not reached, and Box2D's float precision.
+  auto slow = built("box2d", one_body({0, 0}, {1, 0}, false), 1.0 / 60);
+  run(*slow, 10);
+  EXPECT_TRUE(has_line_containing(slow->notes(), "b2_maxTranslation not reached in 10 steps"));
+  EXPECT_TRUE(has_line_containing(slow->notes(), "Box2D is float"));
+}
+
+TEST(Box2dLimits, StickPendulumKeepsItsStickAndPin) {
+  // stick_pendulum: a 1 m stick from a pinned body. Box2D: the pinned body is static at
+  // the pin (exactly 0, 0) and the rigid distance joint keeps the length to float
+  // precision: measured worst error 1.15e-7 over 600 steps.
+  const SceneDescription scene = load("stick_pendulum");
+  auto box2d = built("box2d", scene, scene.dt, Integrator::Verlet);
+  double worst = 0;
+  Snapshot s;
+  for (long i = 0; i < steps_of(scene); ++i) {
+    box2d->step();
+    box2d->read(s);
+    worst = std::max(worst, std::abs(std::hypot(s.x[2] - s.x[0], s.x[3] - s.x[1]) - 1));
+  }
+  EXPECT_LE(worst, 1e-6);
+  EXPECT_EQ(s.x[0], 0);
+  EXPECT_EQ(s.x[1], 0);
+  EXPECT_EQ(s.v[0], 0);
+  EXPECT_TRUE(has_line_containing(box2d->settings(), "pins: the pinned body is a static body"));
+  EXPECT_TRUE(has_line_containing(box2d->notes(), "sticks: the worst length error so far"));
+}
+
+// ---- what Box2D cannot run
+
+TEST(Box2dUnsupported, ThreeAndOneDimensionalScenesAreRefused) {
+  auto box2d = make_backend("box2d");
+  const SceneDescription gas3 = load("ball_gas_3d");
+  try {
+    box2d->build(gas3, Integrator::SymplecticEuler, gas3.dt);
+    FAIL() << "a 3-D scene was accepted";
+  } catch (const Unsupported& e) {
+    EXPECT_STREQ(e.what(), "not supported by box2d: 3-D scenes");
+    EXPECT_EQ(e.engine(), "box2d");
+    EXPECT_EQ(e.elements(), std::vector<std::string>{"3-D scenes"});
+  }
+  const SceneDescription spring = load("spring");  // 1-D
+  EXPECT_THROW(box2d->build(spring, Integrator::SymplecticEuler, spring.dt), Unsupported);
+}
+
+TEST(Box2dUnsupported, BodyStartingOutsideAWallIsRefused) {
+  // motus moves such a body onto the wall's surface; a Box2D edge would hold it on the
+  // wall's side, a different scene: refused, naming the body and the wall.
+  SceneDescription scene = one_body({0, -1}, {0, 0}, true);
+  scene.mechanical->colliders.planes.push_back({{0, 1, 0}, 0, 1});
+  try {
+    make_backend("box2d")->build(scene, Integrator::SymplecticEuler, 0.01);
+    FAIL() << "accepted";
+  } catch (const Unsupported& e) {
+    ASSERT_EQ(e.elements().size(), 1u);
+    EXPECT_NE(e.elements()[0].find("body 0 starting outside plane 0"), std::string::npos) << e.what();
+  }
+}
+
+TEST(Box2dBackend, VersionAndFairSettings) {
+  auto box2d = make_backend("box2d");
+  EXPECT_EQ(box2d->name(), "box2d");
+  EXPECT_EQ(box2d->version(), "Box2D 2.4.1, float");
+  const auto settings = box2d->settings();  // peers.md's fair settings
+  EXPECT_TRUE(has_line_containing(settings, "world.Step(dt, 8, 3)"));
+  EXPECT_TRUE(has_line_containing(settings, "restitution threshold: 0 m/s"));
+  EXPECT_TRUE(has_line_containing(settings, "sleep: off"));
+  EXPECT_TRUE(has_line_containing(settings, "damping: 0"));
+  EXPECT_TRUE(has_line_containing(settings, "friction: 0"));
+  EXPECT_TRUE(has_line_containing(settings, "the product eA*eB"));
+}
+
+}  // namespace
