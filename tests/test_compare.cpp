@@ -1,0 +1,88 @@
+// `motus compare` as a user runs it (docs/cli.md): the side-by-side table, the --json
+// summary, the report folder, "not supported" for what a peer cannot run, and a report
+// never written over an existing folder. The peers' numbers themselves are held in
+// test_compare_box2d.cpp and test_compare_bullet.cpp.
+#include <nlohmann/json.hpp>
+
+#include "cli_harness.hpp"
+
+namespace {
+
+using namespace motus_test;
+
+const nlohmann::json* engine(const nlohmann::json& summary, const std::string& name) {
+  for (const auto& e : summary.at("engines"))
+    if (e.at("engine") == name) return &e;
+  return nullptr;
+}
+
+TEST(Compare, HeadOnInThreeEnginesWritesTheReport) {
+  TempDir dir;
+  const fs::path out = dir / "report";
+  const Result r = run_motus(dir, {"compare", scene("head_on"), "--out", out.string(), "--json"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j.at("scene"), "head_on");
+  EXPECT_EQ(j.at("report"), (out / "index.html").string());
+  for (const char* name : {"motus", "box2d", "bullet"}) {
+    const auto* e = engine(j, name);
+    ASSERT_NE(e, nullptr) << name;
+    ASSERT_TRUE(e->at("supported").get<bool>()) << name << ": " << e->at("unsupported").dump();
+    EXPECT_EQ(e->at("steps"), 400) << name;  // 4 s at dt = 0.01 (scenes/head_on.json)
+    for (const char* field : {"energy_drift", "momentum_drift", "max_penetration", "constraint_error", "us_per_step"})
+      EXPECT_TRUE(e->at(field).is_number()) << name << "." << field;
+    EXPECT_FALSE(e->at("settings").empty()) << name;
+  }
+  // motus against itself: no distance, and the time ratio 1.
+  EXPECT_EQ(engine(j, "motus")->at("max_distance_from_motus"), 0.0);
+  EXPECT_EQ(engine(j, "motus")->at("time_relative_to_motus"), 1.0);
+  // e = 1 head-on: momentum kept by all three (peers.md: both peers give the exact result).
+  for (const char* name : {"motus", "box2d", "bullet"}) EXPECT_LT(engine(j, name)->at("momentum_drift").get<double>(), 1e-6) << name;
+  for (const char* file : {"index.html", "metrics.csv", "summary.json", "plot.py"})
+    EXPECT_TRUE(fs::exists(out / file)) << file;
+  const std::string html = read_file(out / "index.html");
+  EXPECT_NE(html.find("<table>"), std::string::npos);
+  EXPECT_NE(html.find("box2d"), std::string::npos);
+  // metrics.csv: a header and 201 samples per engine (t0 and 200 more: the default --samples).
+  const std::string csv = read_file(out / "metrics.csv");
+  EXPECT_EQ(count_lines(csv), 1 + 3 * 201);
+}
+
+TEST(Compare, ABox2dCannotRunA3dSceneAndSaysSo) {
+  TempDir dir;
+  const Result r = run_motus(dir, {"compare", scene("bouncing_balls_3d"), "--engines", "motus,box2d", "--duration", "0.1",
+                                   "--out", (dir / "r").string()});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("not supported by box2d: 3-D scenes"), std::string::npos) << r.out;
+  const auto j = nlohmann::json::parse(read_file(dir / "r" / "summary.json"));
+  EXPECT_FALSE(engine(j, "box2d")->at("supported").get<bool>());
+  EXPECT_EQ(engine(j, "box2d")->at("unsupported")[0], "not supported by box2d: 3-D scenes");
+  EXPECT_TRUE(engine(j, "motus")->at("supported").get<bool>());
+}
+
+TEST(Compare, NeverWritesOverAnExistingFolder) {
+  TempDir dir;
+  fs::create_directories(dir / "taken");
+  write_file(dir / "taken" / "keep.txt", "mine");
+  const Result r = run_motus(dir, {"compare", scene("head_on"), "--out", (dir / "taken").string()});
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(count_lines(r.err), 1) << r.err;
+  EXPECT_NE(r.err.find("already exists"), std::string::npos) << r.err;
+  EXPECT_EQ(read_file(dir / "taken" / "keep.txt"), "mine");
+}
+
+TEST(Compare, BadInputIsOneLineAndExitTwo) {
+  TempDir dir;
+  for (const std::vector<std::string>& args :
+       {std::vector<std::string>{"compare", scene("lorenz")},                                    // first-order: no bodies
+        std::vector<std::string>{"compare", scene("head_on"), "--engines", "motus,havok"},      // unknown engine
+        std::vector<std::string>{"compare", scene("head_on"), "--integrator", "rk4"},           // rk4 cannot collide
+        std::vector<std::string>{"compare", scene("head_on"), "--set", "bodies[0].mass=-1"}}) {  // a bad scene
+    const Result r = run_motus(dir, args);
+    EXPECT_EQ(r.status, 2) << args.back() << ": " << r.err;
+    EXPECT_EQ(count_lines(r.err), 1) << r.err;
+    EXPECT_EQ(r.err.rfind("motus: error: ", 0), 0u) << r.err;
+  }
+}
+
+}  // namespace
