@@ -1,0 +1,120 @@
+#include "motus/render/canvas.hpp"
+
+#include <GL/osmesa.h>
+
+#include <cstdlib>
+#include <string>
+
+namespace motus::render {
+
+namespace {
+
+constexpr long kMaxBufferBytes = 1L << 30;  // refuse before allocating more than 1 GiB
+
+bool failure_requested() {
+  const char* env = std::getenv("MOTUS_RENDER_FAIL_CONTEXT");
+  return env && std::string(env) == "1";
+}
+
+}  // namespace
+
+Canvas::Canvas(int width, int height, int supersample) : width_(width), height_(height), supersample_(supersample) {
+  if (width < 1 || height < 1) throw RenderError("canvas size must be at least 1 x 1 pixels");
+  if (supersample < 1 || supersample > 8) throw RenderError("supersampling must be from 1 to 8");
+  const long w = static_cast<long>(width) * supersample, h = static_cast<long>(height) * supersample;
+  if (w * h * 4 > kMaxBufferBytes)
+    throw RenderError("OSMesa could not draw " + std::to_string(width) + " x " + std::to_string(height) +
+                      " pixels: the offscreen buffer would exceed 1 GiB; choose a smaller --size");
+  OSMesaContext context = failure_requested() ? nullptr : OSMesaCreateContextExt(OSMESA_RGBA, 24, 0, 0, nullptr);
+  if (!context)
+    throw RenderError("OSMesa could not create an offscreen OpenGL context (install the Debian package libosmesa6)");
+  context_ = context;
+  buffer_.assign(static_cast<size_t>(w * h * 4), 0);
+  if (!OSMesaMakeCurrent(context, buffer_.data(), GL_UNSIGNED_BYTE, static_cast<GLsizei>(w), static_cast<GLsizei>(h))) {
+    OSMesaDestroyContext(context);
+    context_ = nullptr;
+    throw RenderError("OSMesa could not make a " + std::to_string(w) + " x " + std::to_string(h) +
+                      " pixel context (" + std::to_string(width) + " x " + std::to_string(height) + " at " +
+                      std::to_string(supersample) + "x supersampling); its limit is 16384 x 16384: choose a smaller --size");
+  }
+  const auto* version = reinterpret_cast<const char*>(glGetString(GL_VERSION));
+  if (!version) {
+    OSMesaMakeCurrent(nullptr, nullptr, 0, 0, 0);
+    OSMesaDestroyContext(context);
+    context_ = nullptr;
+    throw RenderError("OpenGL does not answer (glGetString(GL_VERSION) is null): the program must link libOSMesa and "
+                      "not libGL, whose GL entry points would otherwise come first and draw nothing");
+  }
+  gl_version_ = version;
+  OSMesaPixelStore(OSMESA_Y_UP, 1);  // row 0 of the buffer is the bottom row
+  glDisable(GL_DITHER);
+  clear({255, 255, 255, 255});
+}
+
+Canvas::~Canvas() {
+  if (!context_) return;
+  if (OSMesaGetCurrentContext() == static_cast<OSMesaContext>(context_)) OSMesaMakeCurrent(nullptr, nullptr, 0, 0, 0);
+  OSMesaDestroyContext(static_cast<OSMesaContext>(context_));
+}
+
+void Canvas::begin(const Viewport& a) {
+  auto* context = static_cast<OSMesaContext>(context_);
+  if (OSMesaGetCurrentContext() != context)
+    OSMesaMakeCurrent(context, buffer_.data(), GL_UNSIGNED_BYTE, width_ * supersample_, height_ * supersample_);
+  const int s = supersample_;
+  const int bottom = height_ - (a.y + a.height);  // OpenGL counts rows from the bottom
+  glViewport(a.x * s, bottom * s, a.width * s, a.height * s);
+  glEnable(GL_SCISSOR_TEST);
+  glScissor(a.x * s, bottom * s, a.width * s, a.height * s);
+}
+
+void Canvas::clear(Color color) {
+  clear(full(), color);
+  text_.clear();
+}
+
+void Canvas::clear(const Viewport& area, Color c) {
+  begin(area);
+  glClearColor(c.r / 255.0f, c.g / 255.0f, c.b / 255.0f, c.a / 255.0f);
+  glClearDepth(1.0);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  if (area.x == 0 && area.y == 0 && area.width == width_ && area.height == height_) text_.clear();
+}
+
+void Canvas::text(int x, int y, std::string text, const TextStyle& style) {
+  text_.push_back({x, y, std::move(text), style});
+}
+
+Image Canvas::image() {
+  Image out;
+  image(out);
+  return out;
+}
+
+void Canvas::image(Image& out) {
+  begin(full());
+  glFinish();
+  if (out.width != width_ || out.height != height_) out = Image(width_, height_);
+  const int s = supersample_;
+  const size_t row_bytes = static_cast<size_t>(width_) * static_cast<size_t>(s) * 4;
+  const unsigned samples = static_cast<unsigned>(s * s), half = samples / 2;
+  std::vector<unsigned> sums(static_cast<size_t>(width_) * 4);
+  for (int y = 0; y < height_; ++y) {
+    std::fill(sums.begin(), sums.end(), 0u);
+    for (int j = 0; j < s; ++j) {
+      // Output row y (from the top) covers buffer rows counted from the bottom.
+      const size_t buffer_row = static_cast<size_t>((height_ - 1 - y) * s + j);
+      const std::uint8_t* p = &buffer_[buffer_row * row_bytes];
+      for (int x = 0; x < width_; ++x)
+        for (int i = 0; i < s; ++i, p += 4) {
+          unsigned* q = &sums[static_cast<size_t>(x) * 4];
+          q[0] += p[0], q[1] += p[1], q[2] += p[2], q[3] += p[3];
+        }
+    }
+    std::uint8_t* o = &out.rgba[static_cast<size_t>(y) * static_cast<size_t>(width_) * 4];
+    for (size_t k = 0; k < sums.size(); ++k) o[k] = static_cast<std::uint8_t>((sums[k] + half) / samples);
+  }
+  for (const auto& t : text_) draw_text(out, t.x, t.y, t.text, t.style);
+}
+
+}  // namespace motus::render
