@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <fmt/ranges.h>
+
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -11,6 +13,7 @@
 #include "motus/render/canvas.hpp"
 #include "motus/render/draw.hpp"
 #include "motus/render/video.hpp"
+#include "motus/scene_error.hpp"
 #include "motus/simulation.hpp"
 #include "progress_bar.hpp"
 #include "scene_file.hpp"
@@ -130,6 +133,7 @@ int render_command(const RenderOptions& o) {
     render::DrawOptions options;
     options.trails = o.trails;
     options.velocity_arrows = o.arrows;
+    render::fit_ground(scene, recording, options);
     const std::string note = integrator_name + (o.sets.empty() ? "" : "  " + fmt::format("{}", fmt::join(o.sets, " ")));
     render::Image image;
     for (long k = 0; k < frames; ++k) {
@@ -149,6 +153,8 @@ int render_command(const RenderOptions& o) {
     }
   } catch (const render::RenderError& e) {
     throw InputError(e.what());
+  } catch (const SceneError& e) {  // building the run (e.g. a symplectic integrator on a first-order system)
+    throw InputError(path + ": " + (e.field().empty() ? "" : e.field() + ": ") + e.what());
   }
   return 0;
 }
