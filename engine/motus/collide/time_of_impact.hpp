@@ -18,6 +18,10 @@ inline double sphere_sphere_impact(double dp_dp, double dp_dv, double dv_dv, dou
   if (dp_dv >= 0) return kNoImpact;  // not approaching
   const double c = dp_dp - R * R;
   if (c <= 0) return 0;
+  // Most pairs are decided without a square root: if they are still closing at the
+  // horizon, their distance falls all the way, so being apart then means apart
+  // throughout.
+  if (dp_dv + dv_dv * horizon <= 0 && c + horizon * (2 * dp_dv + dv_dv * horizon) > 0) return kNoImpact;
   const double discriminant = dp_dv * dp_dv - dv_dv * c;
   if (discriminant < 0) return kNoImpact;  // they pass each other
   const double t = c / (-dp_dv + std::sqrt(discriminant));
