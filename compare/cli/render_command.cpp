@@ -12,6 +12,7 @@
 #include "cli_common.hpp"
 #include "motus/render/canvas.hpp"
 #include "motus/render/draw.hpp"
+#include "motus/render/text.hpp"
 #include "motus/render/video.hpp"
 #include "motus/scene_error.hpp"
 #include "motus/simulation.hpp"
@@ -95,6 +96,7 @@ int render_command(const RenderOptions& o) {
 
   try {
     render::Canvas canvas(width, height, o.supersample);  // fails first, before any folder is made
+    render::Font::default_font();                           // so does a missing font
     Simulation sim(scene, *integrator);
     prepare_folder(o.out, o.overwrite);
 

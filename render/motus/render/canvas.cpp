@@ -2,6 +2,7 @@
 
 #include <GL/osmesa.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <string>
 
@@ -35,7 +36,7 @@ Canvas::Canvas(int width, int height, int supersample) : width_(width), height_(
     context_ = nullptr;
     throw RenderError("OSMesa could not make a " + std::to_string(w) + " x " + std::to_string(h) +
                       " pixel context (" + std::to_string(width) + " x " + std::to_string(height) + " at " +
-                      std::to_string(supersample) + "x supersampling); its limit is 16384 x 16384: choose a smaller --size");
+                      std::to_string(supersample) + "x supersampling): choose a smaller --size");
   }
   const auto* version = reinterpret_cast<const char*>(glGetString(GL_VERSION));
   if (!version) {
@@ -46,6 +47,21 @@ Canvas::Canvas(int width, int height, int supersample) : width_(width), height_(
                       "not libGL, whose GL entry points would otherwise come first and draw nothing");
   }
   gl_version_ = version;
+  // OSMesa makes a context of any size, but draws only within its limits.
+  GLint max_width = 0, max_height = 0, max_viewport[2] = {0, 0};
+  OSMesaGetIntegerv(OSMESA_MAX_WIDTH, &max_width);
+  OSMesaGetIntegerv(OSMESA_MAX_HEIGHT, &max_height);
+  glGetIntegerv(GL_MAX_VIEWPORT_DIMS, max_viewport);
+  const long limit_w = std::min<long>(max_width, max_viewport[0]), limit_h = std::min<long>(max_height, max_viewport[1]);
+  if (w > limit_w || h > limit_h) {
+    OSMesaMakeCurrent(nullptr, nullptr, 0, 0, 0);
+    OSMesaDestroyContext(context);
+    context_ = nullptr;
+    throw RenderError("OSMesa cannot draw " + std::to_string(width) + " x " + std::to_string(height) + " pixels at " +
+                      std::to_string(supersample) + "x supersampling (" + std::to_string(w) + " x " + std::to_string(h) +
+                      "); its limit is " + std::to_string(limit_w) + " x " + std::to_string(limit_h) +
+                      ": choose a smaller --size or --supersample");
+  }
   OSMesaPixelStore(OSMESA_Y_UP, 1);  // row 0 of the buffer is the bottom row
   glDisable(GL_DITHER);
   clear({255, 255, 255, 255});

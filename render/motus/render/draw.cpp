@@ -595,7 +595,7 @@ std::vector<std::string> variable_names(const SceneDescription& scene, size_t co
   std::vector<std::string> names;
   if (scene.first_order)
     if (const auto* info = find_first_order_system(scene.first_order->type)) names = info->variables;
-  for (size_t i = names.size(); i < count; ++i) names.push_back("y" + std::to_string(i));
+  for (size_t i = names.size(); i < count; ++i) names.push_back(std::string(1, 'y').append(std::to_string(i)));
   names.resize(count);
   return names;
 }
@@ -784,7 +784,7 @@ void draw_time_series(Canvas& canvas, const Viewport& v, const Recording& rec, s
       thick_line(px(rec.times[i - 1]), py(rec.states[i - 1][k] / peak), px(rec.times[i]), py(rec.states[i][k] / peak), 2.2, c);
     const double ex = px(rec.times[upto]), ey = py(rec.states[upto][k] / peak);
     disc(ex, ey, 3.5, c, canvas.supersample());
-    const std::string name = k < names.size() ? names[k] : "y" + std::to_string(k);
+    const std::string name = k < names.size() ? names[k] : std::string(1, 'y').append(std::to_string(k));
     canvas.text(static_cast<int>(ex) + 7, static_cast<int>(ey) + 4, name, {12, darker(c, 0.8)});
     // Legend: the name and the scale it was divided by.
     const int ly = static_cast<int>(top) + 14 + static_cast<int>(k) * 18;

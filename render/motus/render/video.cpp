@@ -29,7 +29,7 @@ std::string find_program(const std::string& program) {
   std::stringstream dirs(path);
   std::string dir;
   while (std::getline(dirs, dir, ':')) {
-    if (dir.empty()) dir = ".";
+    if (dir.empty()) dir.assign(1, '.');  // (not = ".": GCC 12 warns falsely, PR105651)
     const std::filesystem::path candidate = std::filesystem::path(dir) / program;
     std::error_code error;
     if (std::filesystem::is_regular_file(candidate, error) && ::access(candidate.c_str(), X_OK) == 0)
