@@ -1,0 +1,333 @@
+// render/: pixels where the projection formula puts them, the sizes asked for, the same bytes for the same
+// input, and the `motus render` command's failures as a user meets them (exit 2, one line).
+//   Pixel positions come from the camera formulas stated in render/motus/render/camera.hpp (restated below);
+//   colours from render::body_color and DrawOptions::background, which the drawing uses unchanged inside a
+//   disc and away from everything.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "motus/render/canvas.hpp"
+#include "motus/render/compose.hpp"
+#include "motus/render/draw.hpp"
+#include "motus/render/image.hpp"
+#include "motus/render/text.hpp"
+#include "scene_file.hpp"
+
+namespace fs = std::filesystem;
+using namespace motus;
+using namespace motus::render;
+
+namespace {
+
+const std::string kMotus = MOTUS_BINARY;
+const std::string kScenes = MOTUS_SCENES_DIR;
+
+std::string read_bytes(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+class TempDir {
+public:
+  TempDir() {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    path_ = fs::temp_directory_path() /
+            ("motus_test_render_" + std::to_string(::getpid()) + "_" + info->test_suite_name() + "_" + info->name());
+    fs::remove_all(path_);
+    fs::create_directories(path_);
+  }
+  ~TempDir() {
+    std::error_code ignored;
+    fs::remove_all(path_, ignored);
+  }
+  fs::path operator/(const std::string& file) const { return path_ / file; }
+
+private:
+  fs::path path_;
+};
+
+std::string quote(const std::string& s) {
+  std::string q = "'";
+  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return q + "'";
+}
+
+struct Result {
+  int status = -1;
+  std::string out, err;
+};
+
+// Runs `ENV motus ARGS...` through /bin/sh (env is "" or "NAME=value ..." put before the command).
+Result run_motus(const TempDir& dir, const std::string& env, const std::vector<std::string>& args) {
+  std::string command = env + (env.empty() ? "" : " ") + quote(kMotus);
+  for (const auto& a : args) command.append(1, ' ').append(quote(a));
+  const fs::path out = dir / "stdout.txt", err = dir / "stderr.txt";
+  command += " >" + quote(out.string()) + " 2>" + quote(err.string()) + " </dev/null";
+  const int raw = std::system(command.c_str());
+  return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, read_bytes(out), read_bytes(err)};
+}
+
+long lines(const std::string& s) { return std::count(s.begin(), s.end(), '\n'); }
+
+// One 2-D ball of radius r at (x, y), nothing else.
+SceneDescription one_ball(int dimensions, std::vector<double> position, double radius) {
+  SceneDescription scene;
+  scene.name = "one_ball";
+  MechanicalDescription m;
+  m.dimensions = dimensions;
+  BodyDescription body;
+  body.radius = radius;
+  body.position = position;
+  body.velocity.assign(position.size(), 0.0);
+  m.bodies.push_back(body);
+  scene.mechanical = m;
+  return scene;
+}
+
+}  // namespace
+
+// Orthographic camera (camera.hpp): px = v.x + v.width/2 + (x − center_x)·scale, py = v.y + v.height/2 − (y − center_y)·scale.
+// A 200 × 160 canvas, center (0, 0), scale 40 px/m, ball of radius 0.5 m at (1, 0.5):
+//   px = 100 + 1·40 = 140, py = 80 − 0.5·40 = 60, radius 0.5·40 = 20 px.
+// Pixel (140, 60) covers [140, 141) × [60, 61): deep inside the disc, so every supersample is the ball's colour.
+// Pixel (140 + 20 + 3, 60) is 3 px beyond the edge: the background, untouched.
+TEST(RenderPixels, BallLandsWhereTheOrthographicFormulaSays) {
+  Canvas canvas(200, 160, 2);
+  const SceneDescription scene = one_ball(2, {1.0, 0.5}, 0.5);
+  const Camera camera = Camera::orthographic(0, 0, 40);
+  const Viewport view = canvas.full();
+  const Vec3 p = project(camera, view, {1.0, 0.5, 0});
+  EXPECT_DOUBLE_EQ(p[0], 140.0);
+  EXPECT_DOUBLE_EQ(p[1], 60.0);
+
+  DrawOptions options;
+  canvas.clear(options.background);
+  const std::vector<double> x{1.0, 0.5};
+  draw_mechanical(canvas, view, scene, {x, {}, {}}, camera, options);
+  const Image image = canvas.image();
+  EXPECT_EQ(image.pixel(140, 60), body_color(0));
+  EXPECT_EQ(image.pixel(140 + 20 + 3, 60), options.background);
+  EXPECT_EQ(image.pixel(140 - 20 - 3, 60), options.background);
+  EXPECT_EQ(image.pixel(140, 60 - 20 - 3), options.background);
+  EXPECT_EQ(image.pixel(140, 60 + 20 + 3), options.background);
+  // Just inside the rim on each side is still the ball (not background).
+  EXPECT_NE(image.pixel(140 + 16, 60), options.background);
+  EXPECT_NE(image.pixel(140, 60 + 16), options.background);
+}
+
+// The same in a viewport (a panel) offset into a larger canvas: everything moves by the viewport's corner.
+TEST(RenderPixels, ViewportOffsetsTheDrawing) {
+  Canvas canvas(400, 160, 2);
+  const SceneDescription scene = one_ball(2, {1.0, 0.5}, 0.5);
+  const Camera camera = Camera::orthographic(0, 0, 40);
+  const Viewport right{200, 0, 200, 160};
+  DrawOptions options;
+  canvas.clear({255, 255, 255, 255});
+  canvas.clear(right, options.background);
+  const std::vector<double> x{1.0, 0.5};
+  draw_mechanical(canvas, right, scene, {x, {}, {}}, camera, options);
+  const Image image = canvas.image();
+  EXPECT_EQ(image.pixel(200 + 140, 60), body_color(0));
+  EXPECT_EQ(image.pixel(140, 60), (Color{255, 255, 255, 255}));  // the left panel is untouched
+}
+
+// Perspective camera (camera.hpp): with f = (target − eye)/|…|, r = f × up, u = r × f, d = p − eye and
+// k = (height/2)/tan(fov/2): px = width/2 + k (d·r)/(d·f), py = height/2 − k (d·u)/(d·f).
+// Eye (0, 0, 10) looking at the origin, fov 40°, a 200 × 200 canvas: a sphere of radius 1 at (2, 1, 0) has
+// d = (2, 1, −10), f = (0, 0, −1), r = (1, 0, 0), u = (0, 1, 0), k = 100/tan 20° = 274.75:
+//   px = 100 + 274.75·2/10 = 154.95, py = 100 − 274.75·1/10 = 72.52; its silhouette's radius is about
+//   k·1/10 = 27.5 px. The centre pixel is lit (not background); 1.4 radii out is background.
+TEST(RenderPixels, SphereLandsWhereThePerspectiveFormulaSays) {
+  Canvas canvas(200, 200, 2);
+  const SceneDescription scene = one_ball(3, {2, 1, 0}, 1);
+  const Camera camera = Camera::perspective({0, 0, 10}, {0, 0, 0}, {0, 1, 0}, 40);
+  const double k = 100 / std::tan(20 * std::numbers::pi / 180);
+  const Vec3 p = project(camera, canvas.full(), {2, 1, 0});
+  EXPECT_NEAR(p[0], 100 + k * 2 / 10, 1e-9);
+  EXPECT_NEAR(p[1], 100 - k * 1 / 10, 1e-9);
+  DrawOptions options;
+  options.ground_grid = false;
+  canvas.clear(options.background);
+  const std::vector<double> x{2, 1, 0};
+  draw_mechanical(canvas, canvas.full(), scene, {x, {}, {}}, camera, options);
+  const Image image = canvas.image();
+  const int cx = static_cast<int>(p[0]), cy = static_cast<int>(p[1]);
+  const double radius = k / 10;
+  EXPECT_NE(image.pixel(cx, cy), options.background);
+  const Color centre = image.pixel(cx, cy);
+  EXPECT_GT(centre.b, centre.r);  // body_color(0) is blue, lit
+  EXPECT_EQ(image.pixel(cx + static_cast<int>(1.4 * radius), cy), options.background);
+  EXPECT_EQ(image.pixel(cx, cy - static_cast<int>(1.4 * radius)), options.background);
+}
+
+TEST(RenderImage, HasTheRequestedSize) {
+  Canvas canvas(317, 211, 2);
+  const Image image = canvas.image();
+  EXPECT_EQ(image.width, 317);
+  EXPECT_EQ(image.height, 211);
+  EXPECT_EQ(image.rgba.size(), 317u * 211u * 4u);
+  TempDir dir;
+  write_png((dir / "a.png").string(), image);
+  const Image back = read_png((dir / "a.png").string());
+  EXPECT_EQ(back.width, 317);
+  EXPECT_EQ(back.height, 211);
+  EXPECT_EQ(back.rgba, image.rgba);
+}
+
+// The first row of the image is the top of the picture (OSMesa's buffer is bottom-up): a ball drawn near
+// the top of the world lands in the image's top half.
+TEST(RenderImage, RowsAreFlippedToTopDown) {
+  Canvas canvas(100, 100, 1);
+  const SceneDescription scene = one_ball(2, {0, 1}, 0.1);  // py = 50 − 1·40 = 10
+  DrawOptions options;
+  canvas.clear(options.background);
+  const std::vector<double> x{0, 1};
+  draw_mechanical(canvas, canvas.full(), scene, {x, {}, {}}, Camera::orthographic(0, 0, 40), options);
+  const Image image = canvas.image();
+  EXPECT_EQ(image.pixel(50, 10), body_color(0));
+  EXPECT_EQ(image.pixel(50, 89), options.background);
+}
+
+TEST(RenderImage, SameInputGivesTheSameBytes) {
+  TempDir dir;
+  const SceneDescription scene = load_scene(kScenes + "/bouncing_balls.json");
+  Recording recording;
+  std::vector<double> state;
+  for (const auto& b : scene.mechanical->bodies) state.insert(state.end(), b.position.begin(), b.position.end());
+  for (const auto& b : scene.mechanical->bodies) state.insert(state.end(), b.velocity.begin(), b.velocity.end());
+  recording.add(0, state, 1.0);
+  for (const char* name : {"a.png", "b.png"}) {
+    Canvas canvas(320, 240, 2);
+    const Camera camera = fit_camera(scene, recording, canvas.full());
+    DrawOptions options;
+    options.velocity_arrows = true;
+    draw_frame(canvas, canvas.full(), scene, recording, 0, camera, options, "a note");
+    write_png((dir / name).string(), canvas.image());
+  }
+  const std::string a = read_bytes(dir / "a.png"), b = read_bytes(dir / "b.png");
+  EXPECT_GT(a.size(), 1000u);
+  EXPECT_EQ(a, b);
+}
+
+TEST(RenderText, DrawsWithTheDefaultFontAndNamesAMissingOne) {
+  Image image(120, 40, {255, 255, 255, 255});
+  draw_text(image, 5, 28, "t = 1.00", {20, {0, 0, 0, 255}});
+  long dark = 0;
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x) dark += image.pixel(x, y).r < 128;
+  EXPECT_GT(dark, 40);
+  EXPECT_GT(text_width("t = 1.00", {20}), 40);
+  try {
+    Font font("/nonexistent/font.ttf");
+    FAIL() << "no error for a missing font";
+  } catch (const RenderError& e) {
+    EXPECT_NE(std::string(e.what()).find("/nonexistent/font.ttf"), std::string::npos);
+    EXPECT_NE(std::string(e.what()).find("fonts-dejavu-core"), std::string::npos);
+  }
+}
+
+TEST(RenderCompose, SideBySidePanelsWithLabels) {
+  const std::vector<Image> panels{Image(100, 80, {255, 0, 0, 255}), Image(100, 80, {0, 0, 255, 255}),
+                                  Image(100, 80, {0, 255, 0, 255})};
+  ComposeStyle style;
+  const Image row = compose_side_by_side(panels, {"motus", "Box2D", "Bullet"}, style);
+  const int band = static_cast<int>(std::ceil(style.label_size * 1.7));
+  EXPECT_EQ(row.width, 3 * 100 + 4 * style.gap);
+  EXPECT_EQ(row.height, 80 + band + 2 * style.gap);
+  EXPECT_EQ(row.pixel(style.gap + 50, style.gap + band + 40), (Color{255, 0, 0, 255}));
+  EXPECT_EQ(row.pixel(2 * style.gap + 100 + 50, style.gap + band + 40), (Color{0, 0, 255, 255}));
+  long ink = 0;  // the labels are drawn in the band above
+  for (int x = 0; x < row.width; ++x)
+    for (int y = style.gap; y < style.gap + band; ++y) ink += row.pixel(x, y).r < 200;
+  EXPECT_GT(ink, 30);
+  const Image sheet = contact_sheet(panels, 2);
+  EXPECT_EQ(sheet.width, 2 * 100 + 3 * style.gap);
+}
+
+// ---------------------------------------------------------------------------------------------------------
+// The command as a user runs it.
+
+TEST(RenderCommand, WritesFramesAtTheRateAskedOfTheSizeAsked) {
+  TempDir dir;
+  const auto r = run_motus(dir, "", {"render", "spring", "--out", (dir / "frames").string(), "--size", "160x120",
+                                     "--fps", "4", "--duration", "1", "--set", "dt=0.05"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  for (int k = 0; k <= 4; ++k) {  // t = 0, 0.25, 0.5, 0.75, 1
+    const fs::path frame = dir / ("frames/frame_0000" + std::to_string(k) + ".png");
+    ASSERT_TRUE(fs::exists(frame)) << frame;
+    const Image image = read_png(frame.string());
+    EXPECT_EQ(image.width, 160);
+    EXPECT_EQ(image.height, 120);
+  }
+  EXPECT_FALSE(fs::exists(dir / "frames/frame_00005.png"));
+}
+
+TEST(RenderCommand, NeverOverwritesAFolderUnlessAsked) {
+  TempDir dir;
+  fs::create_directories(dir / "frames");
+  auto r = run_motus(dir, "", {"render", "spring", "--out", (dir / "frames").string(), "--duration", "0"});
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(lines(r.err), 1) << r.err;
+  EXPECT_NE(r.err.find("--overwrite"), std::string::npos) << r.err;
+  r = run_motus(dir, "", {"render", "spring", "--out", (dir / "frames").string(), "--duration", "0", "--overwrite"});
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_TRUE(fs::exists(dir / "frames/frame_00000.png"));
+}
+
+TEST(RenderCommand, ImpossibleSizeExits2WithOneLine) {
+  TempDir dir;
+  const auto r = run_motus(dir, "", {"render", "spring", "--out", (dir / "frames").string(), "--size", "100000x16"});
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(lines(r.err), 1) << r.err;
+  EXPECT_NE(r.err.find("motus: error: OSMesa"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir / "frames"));  // nothing made before the failure
+}
+
+TEST(RenderCommand, FailedContextExits2WithOneLine) {
+  TempDir dir;
+  const auto r = run_motus(dir, "MOTUS_RENDER_FAIL_CONTEXT=1", {"render", "spring", "--out", (dir / "frames").string()});
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(lines(r.err), 1) << r.err;
+  EXPECT_NE(r.err.find("OSMesa could not create"), std::string::npos) << r.err;
+}
+
+TEST(RenderCommand, MissingFfmpegExits2WithOneLine) {
+  TempDir dir;
+  fs::create_directories(dir / "empty");
+  const auto r = run_motus(dir, "PATH=" + quote((dir / "empty").string()),
+                           {"render", "spring", "--out", (dir / "frames").string(), "--video", "mp4"});
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(lines(r.err), 1) << r.err;
+  EXPECT_NE(r.err.find("ffmpeg not found on PATH"), std::string::npos) << r.err;
+}
+
+TEST(RenderCommand, MissingFontExits2WithOneLine) {
+  TempDir dir;
+  const auto r = run_motus(dir, "MOTUS_FONT=/nonexistent/font.ttf", {"render", "spring", "--out", (dir / "frames").string()});
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(lines(r.err), 1) << r.err;
+  EXPECT_NE(r.err.find("fonts-dejavu-core"), std::string::npos) << r.err;
+}
+
+TEST(RenderCommand, GifThroughFfmpeg) {
+  TempDir dir;
+  const auto r = run_motus(dir, "", {"render", "newtons_cradle", "--out", (dir / "frames").string(), "--size",
+                                     "96x64", "--fps", "5", "--duration", "1", "--video", "gif"});
+  if (r.status == 2 && r.err.find("ffmpeg not found") != std::string::npos) GTEST_SKIP() << "no ffmpeg here";
+  ASSERT_EQ(r.status, 0) << r.err;
+  const std::string gif = read_bytes(dir / "frames/newtons_cradle.gif");
+  ASSERT_GT(gif.size(), 6u);
+  EXPECT_EQ(gif.substr(0, 6), "GIF89a");
+}
