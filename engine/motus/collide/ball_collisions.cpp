@@ -30,7 +30,11 @@ BallCollisions<D>::BallCollisions(const Vector& inverse_mass, std::vector<double
       restitution_(std::move(restitution)) {
   for (int i = 0; i < n_; ++i) {
     max_radius_ = std::max(max_radius_, radius_[i]);
-    if (radius_[i] > 0) balls_.push_back(i);
+    if (radius_[i] > 0) {
+      balls_.push_back(i);
+    } else {
+      points_.push_back(i);
+    }
   }
   for (const auto& p : colliders.planes) {
     Point n;
@@ -170,19 +174,21 @@ void BallCollisions<D>::build_grid() {
     if (leading > 0 && code % 3 == 1) forward_rows_.push_back(offset);  // the middle cell of a row above
   }
 
-  cell_start_.assign(static_cast<size_t>(cells) + 1, 0);
+  // Counting sort by cell, in three passes: count each cell's balls (into slot c + 2),
+  // sum the counts (slot c + 2 becomes the end of cell c), and place each ball at its
+  // cell's insertion point, slot c + 1, which starts at the cell's start and ends at its
+  // end — so that afterwards cell c holds sorted_[cell_start_[c] .. cell_start_[c + 1]).
+  cell_start_.assign(static_cast<size_t>(cells) + 2, 0);
   for (int i : balls_)
     if (!fast_flag_[i]) {
       ball_cell_[i] = cell_index(cell_of(position(i)));
-      ++cell_start_[static_cast<size_t>(ball_cell_[i]) + 1];
+      ++cell_start_[static_cast<size_t>(ball_cell_[i]) + 2];
     }
-  for (int c = 0; c < cells; ++c) cell_start_[c + 1] += cell_start_[c];
+  int sum = 0;  // (in a register: the running sum is one long dependency chain)
+  for (int c = 2; c < cells + 2; ++c) cell_start_[c] = sum += cell_start_[c];
   sorted_.resize(static_cast<size_t>(slow));
-  // Scatter, using cell_start_ as each cell's insertion point, then shift it back.
   for (int i : balls_)
-    if (!fast_flag_[i]) sorted_[cell_start_[ball_cell_[i]]++] = i;
-  for (int c = cells; c > 0; --c) cell_start_[c] = cell_start_[c - 1];
-  cell_start_[0] = 0;
+    if (!fast_flag_[i]) sorted_[cell_start_[ball_cell_[i] + 1]++] = i;
 }
 
 template <int D>
@@ -262,21 +268,21 @@ void BallCollisions<D>::find_initial_events() {
   const bool grid = balls_.size() >= 2;
   const bool general_walls =
       !segments_.empty() || std::any_of(planes_.begin(), planes_.end(), [](const Plane& p) { return p.axis < 0; });
-  for (int i = 0; i < n_; ++i) {
-    if (fast_flag_[i]) {
-      separate_from_walls(i);  // its events come with find_events below
-      continue;
-    }
-    const bool in_grid = grid && radius_[i] > 0;
-    if (in_grid && !general_walls) continue;  // the faces are done by layer below
+  auto walls_one_by_one = [&](int i, bool faces_too) {
     for (size_t w = 0; w < planes_.size(); ++w)
-      if (!in_grid || planes_[w].axis < 0) initial_plane_event(i, static_cast<int>(w));
+      if (faces_too || planes_[w].axis < 0) initial_plane_event(i, static_cast<int>(w));
     for (size_t g = 0; g < segments_.size(); ++g) {
       separate_from_walls(i);
       const double toi = segment_impact(segments_[g], position(i), velocity(i), radius_[i], h_, nullptr);
       if (toi != kNoImpact) push(toi, i, -1 - static_cast<int>(planes_.size() + g));
     }
+  };
+  for (int i : fast_) separate_from_walls(i);  // their events come with find_events below
+  if (!grid || general_walls) {
+    for (int i : balls_)
+      if (!fast_flag_[i]) walls_one_by_one(i, !grid);
   }
+  for (int i : points_) walls_one_by_one(i, true);
   if (grid) {
     for (size_t w = 0; w < planes_.size(); ++w) {
       const Plane& plane = planes_[w];

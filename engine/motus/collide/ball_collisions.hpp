@@ -110,7 +110,7 @@ private:
   std::vector<unsigned> collision_count_;  // ever; events carry it to detect staleness
   std::vector<unsigned> collisions_this_step_;
   std::vector<char> fast_flag_;
-  std::vector<int> fast_, balls_, moved_;
+  std::vector<int> fast_, balls_, points_, moved_;
   std::vector<Event> events_;
   long events_this_step_ = 0;
 
