@@ -113,12 +113,13 @@ void BallCollisions<D>::drift(VectorRef x, VectorRef v, double h) {
     resolve(e);
   }
 
-  // Everybody to the end of the step; then clear what this step marked.
-  for (int i = 0; i < n_; ++i) {
-    position(i) += velocity(i) * (h - local_time_[i]);
-    local_time_[i] = 0;
-  }
+  // Everybody to the end of the step: x += v h for all (one vectorised pass), less the
+  // part of the step the bodies that collided have already moved; then clear what this
+  // step marked.
+  x += h * v;
   for (int i : moved_) {
+    position(i) -= velocity(i) * local_time_[i];
+    local_time_[i] = 0;
     travelled_[i] = 0;
     collisions_this_step_[i] = 0;
   }
