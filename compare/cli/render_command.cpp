@@ -136,7 +136,9 @@ int render_command(const RenderOptions& o) {
     options.trails = o.trails;
     options.velocity_arrows = o.arrows;
     render::fit_ground(scene, recording, options);
-    const std::string note = integrator_name + (o.sets.empty() ? "" : "  " + fmt::format("{}", fmt::join(o.sets, " ")));
+    std::string note = integrator_name;  // and the --set overrides, but the integrator only once
+    for (const auto& set : o.sets)
+      if (set.rfind("integrator=", 0) != 0) note += fmt::format("  {}", set);
     render::Image image;
     for (long k = 0; k < frames; ++k) {
       render::draw_frame(canvas, view, scene, recording, frame_index[static_cast<size_t>(k)], camera, options, note);

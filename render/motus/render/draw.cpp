@@ -289,7 +289,7 @@ void draw_mechanical_1d(Canvas& canvas, const Viewport& v, const MechanicalDescr
     return;
   }
   // The floor the masses slide on, just below them.
-  const double size = 0.1 * unit;
+  const double size = 0.14 * unit;
   const Vec3 origin = project(cam, v, {0, 0, 0});
   const double floor_y = origin[1] + size / 2 + 2;
   thick_line(v.x, floor_y + 1.5, v.x + v.width, floor_y + 1.5, 3, kWall);
@@ -300,7 +300,13 @@ void draw_mechanical_1d(Canvas& canvas, const Viewport& v, const MechanicalDescr
       b = project(cam, v, {f.positions[static_cast<size_t>(s.b)], 0, 0});
     } else {
       b = project(cam, v, {s.anchor[0], 0, 0});
-      const double side = a[0] >= b[0] ? -1 : 1;  // the anchor's wall is behind it
+      if (s.rest_length == 0) {
+        // A zero-length spring (F = −k(x − anchor)): the anchor is where the mass rests, and the
+        // mass swings through it. The spring hangs from a wall at the left edge; a tick marks the anchor.
+        thick_line(b[0], floor_y - 0.35 * size, b[0], floor_y + 0.35 * size, 2, {200, 50, 50, 255});
+        b[0] = v.x + 0.04 * v.width;
+      }
+      const double side = a[0] >= b[0] ? -1 : 1;  // the wall is behind the spring's end
       thick_line(b[0] + side * 3, origin[1] - size, b[0] + side * 3, floor_y, 6, kWall);
     }
     zig_zag(b[0], b[1], a[0], a[1], 0.025 * unit, 10, 2, kStick);
@@ -600,7 +606,12 @@ std::vector<std::string> variable_names(const SceneDescription& scene, size_t co
   return names;
 }
 
+// The overlay's text size for a viewport: 15 px on a 640 × 480 frame, down to 10 px on small ones.
+double overlay_text_size(const Viewport& v) { return std::clamp(std::min(1.0 * v.width, 1.4 * v.height) / 36.0, 10.0, 15.0); }
+
 }  // namespace
+
+double overlay_height(const Viewport& v) { return 3.6 * overlay_text_size(v) + 8; }
 
 // -----------------------------------------------------------------------------------------------------------------
 
@@ -661,7 +672,9 @@ Camera fit_camera(const SceneDescription& scene, const Recording& rec, const Vie
       if (s.b < 0) b.add(s.anchor[0], 0);
     if (b.empty()) b.add(0, 0, 1);
     const double span = std::max(b.x1 - b.x0, 1e-9);
-    return Camera::orthographic((b.x0 + b.x1) / 2, 0, v.width * 0.8 / span);
+    // The middle 80% of the width (a zero-length spring's wall stands at the left edge), below the overlay.
+    const double scale = v.width * 0.76 / span;
+    return Camera::orthographic((b.x0 + b.x1) / 2 - 0.04 * v.width / scale, overlay_height(v) / 2 / scale, scale);
   }
   for (const auto& box : m.colliders.boxes) b.add(box.min[0], box.min[1]), b.add(box.max[0], box.max[1]);
   for (const auto& s : m.colliders.segments) b.add(s.a[0], s.a[1]), b.add(s.b[0], s.b[1]);
@@ -678,9 +691,10 @@ Camera fit_camera(const SceneDescription& scene, const Recording& rec, const Vie
       if (std::abs(p.normal[1]) > 0.99) b.add((b.x0 + b.x1) / 2, p.offset / p.normal[1] - 0.05 * (b.y1 - b.y0));
   double w = b.x1 - b.x0, h = b.y1 - b.y0;
   if (w <= 0 && h <= 0) w = h = 1;
-  const double scale = std::min(w > 0 ? v.width * 0.88 / w : kInf, h > 0 ? v.height * 0.82 / h : kInf);
-  // Centred, a little low so the overlay in the top-left corner has room.
-  return Camera::orthographic((b.x0 + b.x1) / 2, (b.y0 + b.y1) / 2 + 0.03 * v.height / scale, scale);
+  // Below the overlay's band, with a margin of 5% on each side.
+  const double band = overlay_height(v), usable = std::max(v.height - band, 0.5 * v.height);
+  const double scale = std::min(w > 0 ? v.width * 0.9 / w : kInf, h > 0 ? usable * 0.9 / h : kInf);
+  return Camera::orthographic((b.x0 + b.x1) / 2, (b.y0 + b.y1) / 2 + (v.height - usable) / 2 / scale, scale);
 }
 
 void fit_ground(const SceneDescription& scene, const Recording& rec, DrawOptions& options) {
@@ -754,7 +768,7 @@ void draw_time_series(Canvas& canvas, const Viewport& v, const Recording& rec, s
   upto = std::min(upto, rec.size() - 1);
   const size_t count = rec.states.front().size();
   begin_pixels(canvas, v);
-  const double left = v.x + 48, right = v.x + v.width - 190, top = v.y + 96, bottom = v.y + v.height - 34;
+  const double left = v.x + 48, right = v.x + v.width - 205, top = v.y + overlay_height(v) + 30, bottom = v.y + v.height - 34;
   const double t0 = rec.times.front(), t1 = rec.times.back() > t0 ? rec.times.back() : t0 + 1;
   auto px = [&](double t) { return left + (t - t0) / (t1 - t0) * (right - left); };
   auto py = [&](double y) { return bottom - y * (bottom - top); };
@@ -788,24 +802,28 @@ void draw_time_series(Canvas& canvas, const Viewport& v, const Recording& rec, s
     canvas.text(static_cast<int>(ex) + 7, static_cast<int>(ey) + 4, name, {12, darker(c, 0.8)});
     // Legend: the name and the scale it was divided by.
     const int ly = static_cast<int>(top) + 14 + static_cast<int>(k) * 18;
-    disc(right + 58, ly - 4, 4, c, canvas.supersample());
-    canvas.text(static_cast<int>(right) + 68, ly, name + "  max " + format_number("%.3g", peak), {12, kInk});
+    disc(right + 52, ly - 4, 4, c, canvas.supersample());
+    canvas.text(static_cast<int>(right) + 60, ly, name + "  max " + format_number("%.3g", peak), {12, kInk});
   }
   thick_line(px(rec.times[upto]), top, px(rec.times[upto]), bottom, 1, {150, 150, 150, 255});
 }
 
 void draw_overlay(Canvas& canvas, const Viewport& v, const Overlay& o) {
-  int y = v.y + 20;
-  canvas.text(v.x + 10, y, o.title, {15, kInk});
-  y += 18;
-  canvas.text(v.x + 10, y, "t = " + format_number("%.2f", o.time), {13, kInk});
+  // Two lines (three with a note on frames wide enough): "title   t = ...", then the energy drift.
+  const double size = overlay_text_size(v), line = 1.3 * size;
+  const int x = v.x + static_cast<int>(0.6 * size);
+  double y = v.y + 1.3 * size;
+  const TextStyle title{size, kInk}, small{0.87 * size, kInk};
+  canvas.text(x, static_cast<int>(y), o.title, title);
+  canvas.text(x + text_width(o.title, title) + static_cast<int>(size), static_cast<int>(y),
+              "t = " + format_number("%.2f", o.time), small);
   if (o.energy_drift) {
-    y += 17;
-    canvas.text(v.x + 10, y, "\u0394E/|E\u2080| = " + format_number("%+.2e", *o.energy_drift), {13, kInk});
+    y += line;
+    canvas.text(x, static_cast<int>(y), "\u0394E/|E\u2080| = " + format_number("%+.2e", *o.energy_drift), small);
   }
-  if (!o.note.empty()) {
-    y += 17;
-    canvas.text(v.x + 10, y, o.note, {12, {110, 110, 110, 255}});
+  if (!o.note.empty() && v.width >= 400) {
+    y += line;
+    canvas.text(x, static_cast<int>(y), o.note, {0.8 * size, {110, 110, 110, 255}});
   }
 }
 

@@ -87,6 +87,9 @@ struct Overlay {
   std::string note;  // a further line (the integrator, say)
 };
 void draw_overlay(Canvas& canvas, const Viewport& viewport, const Overlay& overlay);
+// The height of the band the overlay takes at the top of a viewport (fit_camera keeps 2-D
+// scenes below it).
+double overlay_height(const Viewport& viewport);
 
 // One frame of `motus render`: background, the scene at recording[index] as above
 // (with trails from the states before it), and the overlay.
