@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "motus/simulation.hpp"
+#include "motus/systems/mechanical_system.hpp"
 
 namespace motus::compare {
 namespace {
@@ -100,17 +101,33 @@ std::vector<EngineRun> run_comparison(const SceneDescription& scene, const Compa
       if (is_reference) reference.push_back(s);
     };
     sample(0);
+    const MechanicalSystem energy_of = [&] {
+      std::vector<double> masses;
+      for (const auto& b : scene.mechanical->bodies) masses.push_back(b.mass);
+      return MechanicalSystem(scene.mechanical->dimensions, masses, scene.mechanical->forces);
+    }();
+    auto keep_frame = [&] {  // the state and its energy, for a picture
+      run.frames.push_back(s);
+      const Eigen::Map<const Vector> x(s.x.data(), static_cast<Eigen::Index>(s.x.size()));
+      const Eigen::Map<const Vector> v(s.v.data(), static_cast<Eigen::Index>(s.v.size()));
+      run.frame_energies.push_back(energy_of.kinetic_energy(v) + energy_of.potential_energy(x));
+    };
+    if (options.frame_every > 0) keep_frame();
     size_t index = 1;
     for (long i = 0; i < steps;) {
-      // Time a batch of steps between two samples; the clock is read twice per batch.
-      const long batch = std::min(every, steps - i);
+      // Time a batch of steps between two samples (or frames); the clock is read twice per batch.
+      long batch = std::min(every - i % every, steps - i);
+      if (options.frame_every > 0) batch = std::min(batch, options.frame_every - i % options.frame_every);
       const auto began = std::chrono::steady_clock::now();
       for (long b = 0; b < batch; ++b) backend->step();
       run.step_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count();
       i += batch;
       backend->read(s);
-      sample(index++);
-      if (progress) progress((done + static_cast<double>(i)) / total_steps);
+      if (i % every == 0 || i == steps) {
+        sample(index++);
+        if (progress) progress((done + static_cast<double>(i)) / total_steps);
+      }
+      if (options.frame_every > 0 && i % options.frame_every == 0) keep_frame();
     }
     run.steps = steps;
     run.notes = backend->notes();  // after the run: limits that bit during it

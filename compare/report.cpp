@@ -185,6 +185,13 @@ std::string write_report(const std::string& folder, const ReportContext& c, cons
          << "</td><td>" << cell(e["time_relative_to_motus"], "{:.2f}×") << "</td></tr>\n";
   }
   html << "</table>\n";
+  if (!c.video.empty() || !c.contact_sheet.empty()) {
+    html << "<h2>Side by side</h2>\n";
+    if (!c.video.empty())
+      html << "<video src=\"" << html_escape(c.video) << "\" controls loop muted style=\"max-width:100%\"></video>\n";
+    if (!c.contact_sheet.empty())
+      html << "<p><img src=\"" << html_escape(c.contact_sheet) << "\" alt=\"the engines side by side at three instants\"></p>\n";
+  }
   if (warning.empty()) {
     html << "<h2>Energy</h2><img src=\"energy.png\" alt=\"relative energy error against time\">\n"
             "<h2>Momentum</h2><img src=\"momentum.png\" alt=\"momentum change against time\">\n";

@@ -16,6 +16,7 @@ struct ReportContext {
   double dt = 0, duration = 0;
   int dimensions = 2;
   long bodies = 0;
+  std::string video, contact_sheet;  // file names in the folder (--render), or ""
 };
 
 // The summary of every engine as one JSON object (also what --json prints).

@@ -71,6 +71,41 @@ TEST(Compare, NeverWritesOverAnExistingFolder) {
   EXPECT_EQ(read_file(dir / "taken" / "keep.txt"), "mine");
 }
 
+// A PNG's width and height, from its IHDR chunk (bytes 16–23, big-endian).
+std::pair<unsigned, unsigned> png_size(const fs::path& file) {
+  const std::string bytes = read_file(file);
+  auto word = [&](size_t at) {
+    unsigned v = 0;
+    for (size_t k = 0; k < 4; ++k) v = (v << 8) | static_cast<unsigned char>(bytes.at(at + k));
+    return v;
+  };
+  return {word(16), word(20)};
+}
+
+TEST(Compare, RenderDrawsTheEnginesSideBySideIntoTheReport) {
+  // 1 s of head_on at 5 frames per second: frames at t = 0, 0.2, ..., 1.0 — six of them,
+  // each three panels of 160 × 120 side by side (wider than three panels: labels and gaps).
+  TempDir dir;
+  const fs::path out = dir / "r";
+  const Result r = run_motus(dir, {"compare", scene("head_on"), "--render", "--size", "160x120", "--fps", "5",
+                                   "--duration", "1", "--out", out.string()});
+  ASSERT_EQ(r.status, 0) << r.err;
+  long frames = 0;
+  for (const auto& f : fs::directory_iterator(out / "frames")) frames += f.path().extension() == ".png";
+  EXPECT_EQ(frames, 6);
+  const auto [width, height] = png_size(out / "frames" / "frame_00000.png");
+  EXPECT_GE(width, 3u * 160);
+  EXPECT_LT(width, 3u * 160 + 40);
+  EXPECT_GE(height, 120u);
+  ASSERT_TRUE(fs::exists(out / "contact_sheet.png"));
+  const std::string html = read_file(out / "index.html");
+  EXPECT_NE(html.find("contact_sheet.png"), std::string::npos);
+  if (fs::exists("/usr/bin/ffmpeg")) {
+    EXPECT_TRUE(fs::exists(out / "comparison.mp4"));
+    EXPECT_NE(html.find("<video src=\"comparison.mp4\""), std::string::npos);
+  }
+}
+
 TEST(Compare, BadInputIsOneLineAndExitTwo) {
   TempDir dir;
   for (const std::vector<std::string>& args :

@@ -5,10 +5,13 @@
 #include <cmath>
 #include <ctime>
 #include <filesystem>
+#include <sstream>
 
 #include "backends/backend.hpp"
 #include "cli_common.hpp"
 #include "comparison.hpp"
+#include "comparison_pictures.hpp"
+#include "motus/render/canvas.hpp"
 #include "motus/simulation.hpp"
 #include "progress_bar.hpp"
 #include "report.hpp"
@@ -48,6 +51,11 @@ CLI::App* add_compare_command(CLI::App& app, CompareOptions& o) {
   c->add_option("--out", o.out, "Report folder (default: a new folder under runs/); must not exist yet");
   c->add_option("--samples", o.samples, "Metric samples over the run")->check(CLI::Range(2L, 100000L));
   c->add_flag("--json", o.json, "Print the summary as one JSON object instead of the table");
+  c->add_flag("--render", o.render,
+              "Also draw the same instants of every engine side by side: PNG frames, an MP4 (ffmpeg) and a contact "
+              "sheet, embedded in the report");
+  c->add_option("--size", o.size, "With --render: the size of each engine's panel, WxH")->capture_default_str();
+  c->add_option("--fps", o.fps, "With --render: frames per second of simulated time")->capture_default_str();
   return c;
 }
 
@@ -75,6 +83,16 @@ int compare_command(const CompareOptions& o) {
   if (!(options.dt > 0) || !std::isfinite(options.dt)) throw InputError("--dt: must be a finite number > 0");
   if (!(options.duration > 0) || !std::isfinite(options.duration)) throw InputError("--duration: must be a finite number > 0");
   options.samples = o.samples;
+  int panel_width = 0, panel_height = 0;
+  if (o.render) {
+    char x = 0;
+    std::istringstream size(o.size);
+    if (!(size >> panel_width >> x >> panel_height) || x != 'x' || panel_width < 64 || panel_height < 48 ||
+        panel_width > 4096 || panel_height > 4096)
+      throw InputError("--size: must be WxH with 64 <= W <= 4096 and 48 <= H <= 4096 (got \"" + o.size + "\")");
+    if (!(o.fps > 0) || !std::isfinite(o.fps)) throw InputError("--fps: must be a finite number > 0");
+    options.frame_every = std::max(1L, std::lround(1 / (o.fps * options.dt)));
+  }
   // Fail before any engine runs if motus cannot run this scene with this integrator.
   if (std::find(options.engines.begin(), options.engines.end(), "motus") != options.engines.end())
     Simulation check(scene, *integrator);
@@ -96,6 +114,18 @@ int compare_command(const CompareOptions& o) {
   context.duration = options.duration;
   context.dimensions = scene.mechanical->dimensions;
   context.bodies = static_cast<long>(scene.mechanical->bodies.size());
+  std::string picture_warning;
+  if (o.render) {
+    try {
+      const auto pictures = compare::draw_comparison(folder, scene, runs, panel_width, panel_height,
+                                                     1 / (static_cast<double>(options.frame_every) * options.dt));
+      context.video = pictures.video;
+      context.contact_sheet = pictures.contact_sheet;
+      picture_warning = pictures.warning;
+    } catch (const render::RenderError& e) {
+      picture_warning = std::string("pictures skipped: ") + e.what();
+    }
+  }
   const std::string warning = compare::write_report(folder, context, runs);
   nlohmann::json summary = compare::summary_json(context, runs);
   summary["report"] = folder + "/index.html";
@@ -124,6 +154,7 @@ int compare_command(const CompareOptions& o) {
     fmt::print("\nreport: {}\n", summary["report"].get<std::string>());
   }
   if (!warning.empty()) fmt::print(stderr, "motus: {}\n", warning);
+  if (!picture_warning.empty()) fmt::print(stderr, "motus: {}\n", picture_warning);
   return 0;
 }
 

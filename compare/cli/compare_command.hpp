@@ -18,6 +18,9 @@ struct CompareOptions {
   std::string out;
   long samples = 200;
   bool json = false;
+  bool render = false;
+  std::string size = "480x360";  // each panel, with --render
+  double fps = 30;               // frames per simulated second, with --render
 };
 
 CLI::App* add_compare_command(CLI::App& app, CompareOptions& options);
