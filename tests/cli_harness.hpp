@@ -73,8 +73,11 @@ struct Result {
 };
 
 // Runs `motus ARGS...` with standard output and error captured in files of `dir`.
-Result run_motus(const TempDir& dir, const std::vector<std::string>& args) {
-  std::string command = shell_quote(kMotus);
+// `environment` ("" or "NAME=value ...") is put before the command.
+Result run_motus(const TempDir& dir, const std::vector<std::string>& args, const std::string& environment = "") {
+  std::string command = environment;
+  if (!command.empty()) command += ' ';
+  command += shell_quote(kMotus);
   for (const auto& a : args) {
     command += ' ';
     command += shell_quote(a);

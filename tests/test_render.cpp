@@ -27,59 +27,11 @@ namespace fs = std::filesystem;
 using namespace motus;
 using namespace motus::render;
 
+#include "cli_harness.hpp"
+
 namespace {
 
-const std::string kMotus = MOTUS_BINARY;
-const std::string kScenes = MOTUS_SCENES_DIR;
-
-std::string read_bytes(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-class TempDir {
-public:
-  TempDir() {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    path_ = fs::temp_directory_path() /
-            ("motus_test_render_" + std::to_string(::getpid()) + "_" + info->test_suite_name() + "_" + info->name());
-    fs::remove_all(path_);
-    fs::create_directories(path_);
-  }
-  ~TempDir() {
-    std::error_code ignored;
-    fs::remove_all(path_, ignored);
-  }
-  fs::path operator/(const std::string& file) const { return path_ / file; }
-
-private:
-  fs::path path_;
-};
-
-std::string quote(const std::string& s) {
-  std::string q = "'";
-  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return q + "'";
-}
-
-struct Result {
-  int status = -1;
-  std::string out, err;
-};
-
-// Runs `ENV motus ARGS...` through /bin/sh (env is "" or "NAME=value ..." put before the command).
-Result run_motus(const TempDir& dir, const std::string& env, const std::vector<std::string>& args) {
-  std::string command = env + (env.empty() ? "" : " ") + quote(kMotus);
-  for (const auto& a : args) command.append(1, ' ').append(quote(a));
-  const fs::path out = dir / "stdout.txt", err = dir / "stderr.txt";
-  command += " >" + quote(out.string()) + " 2>" + quote(err.string()) + " </dev/null";
-  const int raw = std::system(command.c_str());
-  return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, read_bytes(out), read_bytes(err)};
-}
-
-long lines(const std::string& s) { return std::count(s.begin(), s.end(), '\n'); }
+using namespace motus_test;
 
 // One 2-D ball of radius r at (x, y), nothing else.
 SceneDescription one_ball(int dimensions, std::vector<double> position, double radius) {
@@ -216,7 +168,7 @@ TEST(RenderImage, SameInputGivesTheSameBytes) {
     draw_frame(canvas, canvas.full(), scene, recording, 0, camera, options, "a note");
     write_png((dir / name).string(), canvas.image());
   }
-  const std::string a = read_bytes(dir / "a.png"), b = read_bytes(dir / "b.png");
+  const std::string a = read_file(dir / "a.png"), b = read_file(dir / "b.png");
   EXPECT_GT(a.size(), 1000u);
   EXPECT_EQ(a, b);
 }
@@ -261,7 +213,7 @@ TEST(RenderCompose, SideBySidePanelsWithLabels) {
 
 TEST(RenderCommand, WritesFramesAtTheRateAskedOfTheSizeAsked) {
   TempDir dir;
-  const auto r = run_motus(dir, "", {"render", "spring", "--out", (dir / "frames").string(), "--size", "160x120",
+  const auto r = run_motus(dir, {"render", "spring", "--out", (dir / "frames").string(), "--size", "160x120",
                                      "--fps", "4", "--duration", "1", "--set", "dt=0.05"});
   ASSERT_EQ(r.status, 0) << r.err;
   for (int k = 0; k <= 4; ++k) {  // t = 0, 0.25, 0.5, 0.75, 1
@@ -277,57 +229,57 @@ TEST(RenderCommand, WritesFramesAtTheRateAskedOfTheSizeAsked) {
 TEST(RenderCommand, NeverOverwritesAFolderUnlessAsked) {
   TempDir dir;
   fs::create_directories(dir / "frames");
-  auto r = run_motus(dir, "", {"render", "spring", "--out", (dir / "frames").string(), "--duration", "0"});
+  auto r = run_motus(dir, {"render", "spring", "--out", (dir / "frames").string(), "--duration", "0"});
   EXPECT_EQ(r.status, 2);
-  EXPECT_EQ(lines(r.err), 1) << r.err;
+  EXPECT_EQ(count_lines(r.err), 1) << r.err;
   EXPECT_NE(r.err.find("--overwrite"), std::string::npos) << r.err;
-  r = run_motus(dir, "", {"render", "spring", "--out", (dir / "frames").string(), "--duration", "0", "--overwrite"});
+  r = run_motus(dir, {"render", "spring", "--out", (dir / "frames").string(), "--duration", "0", "--overwrite"});
   EXPECT_EQ(r.status, 0) << r.err;
   EXPECT_TRUE(fs::exists(dir / "frames/frame_00000.png"));
 }
 
 TEST(RenderCommand, ImpossibleSizeExits2WithOneLine) {
   TempDir dir;
-  const auto r = run_motus(dir, "", {"render", "spring", "--out", (dir / "frames").string(), "--size", "100000x16"});
+  const auto r = run_motus(dir, {"render", "spring", "--out", (dir / "frames").string(), "--size", "100000x16"});
   EXPECT_EQ(r.status, 2);
-  EXPECT_EQ(lines(r.err), 1) << r.err;
+  EXPECT_EQ(count_lines(r.err), 1) << r.err;
   EXPECT_NE(r.err.find("motus: error: OSMesa"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(dir / "frames"));  // nothing made before the failure
 }
 
 TEST(RenderCommand, FailedContextExits2WithOneLine) {
   TempDir dir;
-  const auto r = run_motus(dir, "MOTUS_RENDER_FAIL_CONTEXT=1", {"render", "spring", "--out", (dir / "frames").string()});
+  const auto r = run_motus(dir, {"render", "spring", "--out", (dir / "frames").string()}, "MOTUS_RENDER_FAIL_CONTEXT=1");
   EXPECT_EQ(r.status, 2);
-  EXPECT_EQ(lines(r.err), 1) << r.err;
+  EXPECT_EQ(count_lines(r.err), 1) << r.err;
   EXPECT_NE(r.err.find("OSMesa could not create"), std::string::npos) << r.err;
 }
 
 TEST(RenderCommand, MissingFfmpegExits2WithOneLine) {
   TempDir dir;
   fs::create_directories(dir / "empty");
-  const auto r = run_motus(dir, "PATH=" + quote((dir / "empty").string()),
-                           {"render", "spring", "--out", (dir / "frames").string(), "--video", "mp4"});
+  const auto r = run_motus(dir, {"render", "spring", "--out", (dir / "frames").string(), "--video", "mp4"},
+                           "PATH=" + shell_quote((dir / "empty").string()));
   EXPECT_EQ(r.status, 2);
-  EXPECT_EQ(lines(r.err), 1) << r.err;
+  EXPECT_EQ(count_lines(r.err), 1) << r.err;
   EXPECT_NE(r.err.find("ffmpeg not found on PATH"), std::string::npos) << r.err;
 }
 
 TEST(RenderCommand, MissingFontExits2WithOneLine) {
   TempDir dir;
-  const auto r = run_motus(dir, "MOTUS_FONT=/nonexistent/font.ttf", {"render", "spring", "--out", (dir / "frames").string()});
+  const auto r = run_motus(dir, {"render", "spring", "--out", (dir / "frames").string()}, "MOTUS_FONT=/nonexistent/font.ttf");
   EXPECT_EQ(r.status, 2);
-  EXPECT_EQ(lines(r.err), 1) << r.err;
+  EXPECT_EQ(count_lines(r.err), 1) << r.err;
   EXPECT_NE(r.err.find("fonts-dejavu-core"), std::string::npos) << r.err;
 }
 
 TEST(RenderCommand, GifThroughFfmpeg) {
   TempDir dir;
-  const auto r = run_motus(dir, "", {"render", "newtons_cradle", "--out", (dir / "frames").string(), "--size",
+  const auto r = run_motus(dir, {"render", "newtons_cradle", "--out", (dir / "frames").string(), "--size",
                                      "96x64", "--fps", "5", "--duration", "1", "--video", "gif"});
   if (r.status == 2 && r.err.find("ffmpeg not found") != std::string::npos) GTEST_SKIP() << "no ffmpeg here";
   ASSERT_EQ(r.status, 0) << r.err;
-  const std::string gif = read_bytes(dir / "frames/newtons_cradle.gif");
+  const std::string gif = read_file(dir / "frames/newtons_cradle.gif");
   ASSERT_GT(gif.size(), 6u);
   EXPECT_EQ(gif.substr(0, 6), "GIF89a");
 }

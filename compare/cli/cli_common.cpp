@@ -33,6 +33,18 @@ std::vector<std::string> shipped_scenes() {
   return files;
 }
 
+Integrator integrator_for(const std::string& path, const SceneDescription& scene,
+                          const std::optional<std::string>& requested) {
+  const std::string name = requested.value_or(scene.integrator);
+  const auto integrator = integrator_from_name(name);
+  if (!integrator)
+    throw InputError(path + ": --integrator: unknown integrator \"" + name + "\" (known: " + integrator_names() + ")");
+  if (info(*integrator).needs_mechanical && !scene.is_mechanical())  // the file's own integrator was checked by the loader
+    throw InputError(path + ": --integrator: " + name + " is symplectic and needs a mechanical scene (bodies); " +
+                     "use euler, midpoint, rk4, rk4-doubling or rk45");
+  return *integrator;
+}
+
 void check_can_write(const std::string& path, bool overwrite) {
   if (fs::exists(path) && !overwrite)
     throw InputError(path + ": already exists; choose another name or pass --overwrite");

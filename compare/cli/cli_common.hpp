@@ -1,9 +1,13 @@
 #pragma once
 // What the `motus` subcommands share: finding scenes, the exit codes, and the one-line
 // error for input that cannot be used.
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
+
+#include "motus/integrator_name.hpp"
+#include "motus/scene.hpp"
 
 namespace motus::cli {
 
@@ -24,6 +28,11 @@ std::string scenes_directory();
 std::string resolve_scene_path(const std::string& argument);
 // Every shipped scene file, sorted.
 std::vector<std::string> shipped_scenes();
+
+// The integrator a subcommand runs: --integrator when given, else the scene's; one line
+// naming the file when it is unknown, or symplectic on a first-order scene.
+Integrator integrator_for(const std::string& path, const SceneDescription& scene,
+                          const std::optional<std::string>& requested);
 
 // Refuses to overwrite an existing file unless asked to (nothing the user wrote is
 // lost without being asked).

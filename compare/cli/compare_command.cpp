@@ -74,10 +74,8 @@ int compare_command(const CompareOptions& o) {
       throw InputError("--engines: unknown engine \"" + e + "\" (known: motus, box2d, bullet)");
     if (std::find(options.engines.begin(), options.engines.end(), e) == options.engines.end()) options.engines.push_back(e);
   }
-  const std::string integrator_name = o.integrator.value_or(scene.integrator);
-  const auto integrator = integrator_from_name(integrator_name);
-  if (!integrator) throw InputError(path + ": --integrator: unknown integrator \"" + integrator_name + "\" (known: " + integrator_names() + ")");
-  options.integrator = *integrator;
+  options.integrator = integrator_for(path, scene, o.integrator);
+  const std::string integrator_name = info(options.integrator).name;
   options.dt = o.dt.value_or(scene.dt);
   options.duration = o.duration.value_or(scene.duration);
   if (!(options.dt > 0) || !std::isfinite(options.dt)) throw InputError("--dt: must be a finite number > 0");
@@ -95,7 +93,7 @@ int compare_command(const CompareOptions& o) {
   }
   // Fail before any engine runs if motus cannot run this scene with this integrator.
   if (std::find(options.engines.begin(), options.engines.end(), "motus") != options.engines.end())
-    Simulation check(scene, *integrator);
+    Simulation check(scene, options.integrator);
 
   const std::string folder = o.out.empty() ? new_run_folder(scene.name) : o.out;
   if (fs::exists(folder)) throw InputError(folder + ": already exists; compare never overwrites a report (choose another --out)");

@@ -74,13 +74,8 @@ CLI::App* add_render_command(CLI::App& app, RenderOptions& o) {
 int render_command(const RenderOptions& o) {
   const std::string path = resolve_scene_path(o.scene);
   SceneDescription scene = load_scene(path, o.sets);
-  const std::string integrator_name = o.integrator.value_or(scene.integrator);
-  const auto integrator = integrator_from_name(integrator_name);
-  if (!integrator)
-    throw InputError(path + ": --integrator: unknown integrator \"" + integrator_name + "\" (known: " + integrator_names() + ")");
-  if (info(*integrator).needs_mechanical && !scene.is_mechanical())
-    throw InputError(path + ": --integrator: " + integrator_name + " is symplectic and needs a mechanical scene (bodies); " +
-                     "use euler, midpoint, rk4, rk4-doubling or rk45");
+  const Integrator integrator = integrator_for(path, scene, o.integrator);
+  const std::string integrator_name = info(integrator).name;
   const auto [width, height] = parse_size(o.size);
   if (!(o.fps > 0) || !std::isfinite(o.fps) || o.fps > 10000) throw InputError("--fps: must be a number > 0 (and at most 10000)");
   const double duration = o.duration.value_or(scene.duration);
@@ -97,7 +92,7 @@ int render_command(const RenderOptions& o) {
   try {
     render::Canvas canvas(width, height, o.supersample);  // fails first, before any folder is made
     render::Font::default_font();                           // so does a missing font
-    Simulation sim(scene, *integrator);
+    Simulation sim(scene, integrator);
     prepare_folder(o.out, o.overwrite);
 
     // Simulate: mechanical scenes keep one state per frame; first-order ones every step

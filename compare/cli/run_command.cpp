@@ -114,13 +114,8 @@ int run_command(const RunOptions& o) {
   const std::string path = resolve_scene_path(o.scene);
   SceneDescription scene = load_scene(path, o.sets);
 
-  const std::string integrator_name = o.integrator.value_or(scene.integrator);
-  const auto integrator = integrator_from_name(integrator_name);
-  if (!integrator)
-    throw InputError(path + ": --integrator: unknown integrator \"" + integrator_name + "\" (known: " + integrator_names() + ")");
-  if (info(*integrator).needs_mechanical && !scene.is_mechanical())  // the file's own integrator was checked by the loader
-    throw InputError(path + ": --integrator: " + integrator_name + " is symplectic and needs a mechanical scene (bodies); " +
-                     "use euler, midpoint, rk4, rk4-doubling or rk45");
+  const Integrator integrator = integrator_for(path, scene, o.integrator);
+  const std::string integrator_name = info(integrator).name;
   const double dt = o.dt.value_or(scene.dt);
   if (!(dt > 0) || !std::isfinite(dt)) throw InputError("--dt: must be a finite number > 0");
   if (o.steps && *o.steps <= 0) throw InputError("--steps: must be > 0");
@@ -129,7 +124,7 @@ int run_command(const RunOptions& o) {
   const Tolerance tolerance{o.atol.value_or(scene.atol), o.rtol.value_or(scene.rtol)};
   if (!(tolerance.atol > 0) || !(tolerance.rtol > 0)) throw InputError("--atol/--rtol: must be > 0");
 
-  Simulation sim(scene, *integrator);  // SceneError: e.g. a symplectic integrator on a first-order system
+  Simulation sim(scene, integrator);  // SceneError: e.g. a symplectic integrator on a first-order system
   const auto energy0 = sim.energy();
   const Vector momentum0 = sim.momentum(), angular0 = sim.angular_momentum();
   const Vector state0 = sim.state();
@@ -153,7 +148,7 @@ int run_command(const RunOptions& o) {
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count();
   progress.finish();
   if (trajectory) trajectory->finish(sim);
-  const bool adaptive = info(*integrator).adaptive;
+  const bool adaptive = info(integrator).adaptive;
   const World* world = sim.world();
   const CollisionCounters collisions = world ? world->collision_counters() : CollisionCounters{};
   const bool finite = sim.state().allFinite();
