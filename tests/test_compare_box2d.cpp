@@ -15,54 +15,12 @@
 #include <string>
 
 #include "backend.hpp"
+#include "compare_test_helpers.hpp"
 #include "scene_file.hpp"
 
 namespace {
 
-using motus::BodyDescription;
-using motus::Integrator;
-using motus::MechanicalDescription;
-using motus::SceneDescription;
-using motus::compare::Backend;
-using motus::compare::make_backend;
-using motus::compare::Snapshot;
-using motus::compare::Unsupported;
-
-SceneDescription load(const std::string& name) { return motus::load_scene(MOTUS_SCENES_DIR "/" + name + ".json"); }
-
-long steps_of(const SceneDescription& scene) { return std::lround(scene.duration / scene.dt); }
-
-std::unique_ptr<Backend> built(const std::string& engine, const SceneDescription& scene, double dt,
-                               Integrator integrator = Integrator::SymplecticEuler) {
-  auto b = make_backend(engine);
-  b->build(scene, integrator, dt);
-  return b;
-}
-
-Snapshot run(Backend& b, long steps) {
-  for (long i = 0; i < steps; ++i) b.step();
-  Snapshot s;
-  b.read(s);
-  return s;
-}
-
-// One body of mass 2, no walls, 2-D, optionally under gravity (0, −10) (peers.md's g).
-SceneDescription one_body(std::vector<double> x, std::vector<double> v, bool gravity) {
-  SceneDescription scene;
-  MechanicalDescription m;
-  m.dimensions = 2;
-  BodyDescription body;
-  body.mass = 2;
-  body.radius = 0.5;
-  body.position = std::move(x);
-  body.velocity = std::move(v);
-  m.bodies.push_back(body);
-  if (gravity) m.forces.gravity.push_back({{0, -10, 0}});
-  scene.mechanical = m;
-  scene.integrator = "symplectic-euler";
-  scene.dt = 1.0 / 60;
-  return scene;
-}
+using namespace motus_test;
 
 // Runs motus (symplectic Euler) and Box2D side by side and checks after every step that
 // they agree to float precision: 1e-5 relative to the largest |coordinate| (|velocity|)
@@ -116,7 +74,7 @@ bool has_line_containing(const std::vector<std::string>& lines, const std::strin
 TEST(Box2dSameIntegrator, FreeFallEndsWherePeersMdSays) {
   // peers.md: falling 1 s at 60 Hz from 100 m with g = 10 ends at y = 94.91667 m,
   // v = −10 m/s in motus's symplectic Euler, Box2D and Bullet (the exact fall: 95 m).
-  const SceneDescription scene = one_body({0, 100}, {0, 0}, true);
+  const SceneDescription scene = with_peers_gravity(one_body({0, 100}, {0, 0}));
   const Snapshot b = run(*built("box2d", scene, 1.0 / 60), 60);
   EXPECT_NEAR(b.x[1], 94.91667, 1e-5 * 100);  // float: 1e-5 relative
   EXPECT_NEAR(b.v[1], -10, 1e-5 * 10);
@@ -127,7 +85,7 @@ TEST(Box2dSameIntegrator, FreeFallEndsWherePeersMdSays) {
 
 TEST(Box2dSameIntegrator, ProjectileMatchesMotusToFloatPrecision) {
   // Launched at (20, 20) m/s under g = (0, −10): 4 s at 60 Hz (it lands near y = 0).
-  expect_same_trajectory(one_body({0, 0}, {20, 20}, true), 1.0 / 60, 240);
+  expect_same_trajectory(with_peers_gravity(one_body({0, 0}, {20, 20})), 1.0 / 60, 240);
 }
 
 TEST(Box2dSameIntegrator, SpringAppliedAsAForceMatchesMotusToFloatPrecision) {
@@ -135,7 +93,7 @@ TEST(Box2dSameIntegrator, SpringAppliedAsAForceMatchesMotusToFloatPrecision) {
   // harmonic oscillator of period 2π·sqrt(m/k) ≈ 4.44 s, run for 10 s (600 steps). Box2D
   // gets F = −k x from PeerForces through ApplyForceToCenter before each step: its kick
   // is symplectic Euler's with the same force.
-  SceneDescription scene = one_body({1, 0.5}, {0, 1}, false);
+  SceneDescription scene = one_body({1, 0.5}, {0, 1});
   motus::Spring spring;
   spring.a = 0;
   spring.anchor = {0, 0, 0};
@@ -308,7 +266,7 @@ TEST(Box2dContacts, RestitutionIsTheProductNotTheMax) {
 TEST(Box2dLimits, TranslationCapIsReported) {
   // A free ball at 300 m/s with 1/60 s steps would move 5 m per step; b2_maxTranslation
   // (2 m per step) slows it to 120 m/s: after 1 s it is at 120 m (motus: 300 m).
-  const SceneDescription scene = one_body({0, 0}, {300, 0}, false);
+  const SceneDescription scene = one_body({0, 0}, {300, 0});
   auto box2d = built("box2d", scene, 1.0 / 60);
   EXPECT_TRUE(has_line_containing(box2d->notes(), "250% of it: Box2D will slow it to the cap"));
   const Snapshot b = run(*box2d, 60);
@@ -318,7 +276,7 @@ TEST(Box2dLimits, TranslationCapIsReported) {
   const Snapshot m = run(*built("motus", scene, 1.0 / 60), 60);
   EXPECT_NEAR(m.x[0], 300, 1e-9);
   // A slow scene says the cap was not reached, and Box2D's float precision.
-  auto slow = built("box2d", one_body({0, 0}, {1, 0}, false), 1.0 / 60);
+  auto slow = built("box2d", one_body({0, 0}, {1, 0}), 1.0 / 60);
   run(*slow, 10);
   EXPECT_TRUE(has_line_containing(slow->notes(), "b2_maxTranslation not reached in 10 steps"));
   EXPECT_TRUE(has_line_containing(slow->notes(), "Box2D is float"));
@@ -365,7 +323,7 @@ TEST(Box2dUnsupported, ThreeAndOneDimensionalScenesAreRefused) {
 TEST(Box2dUnsupported, BodyStartingOutsideAWallIsRefused) {
   // motus moves such a body onto the wall's surface; a Box2D edge would hold it on the
   // wall's side, a different scene: refused, naming the body and the wall.
-  SceneDescription scene = one_body({0, -1}, {0, 0}, true);
+  SceneDescription scene = with_peers_gravity(one_body({0, -1}, {0, 0}));
   scene.mechanical->colliders.planes.push_back({{0, 1, 0}, 0, 1});
   try {
     make_backend("box2d")->build(scene, Integrator::SymplecticEuler, 0.01);

@@ -16,60 +16,12 @@
 #include <vector>
 
 #include "backend.hpp"
+#include "compare_test_helpers.hpp"
 #include "scene_file.hpp"
 
 namespace {
 
-using motus::BodyDescription;
-using motus::Integrator;
-using motus::MechanicalDescription;
-using motus::SceneDescription;
-using motus::compare::Backend;
-using motus::compare::make_backend;
-using motus::compare::Snapshot;
-using motus::compare::Unsupported;
-
-SceneDescription load(const std::string& name, const std::vector<std::string>& overrides = {}) {
-  return motus::load_scene(MOTUS_SCENES_DIR "/" + name + ".json", overrides);
-}
-
-long steps_of(const SceneDescription& scene) { return std::lround(scene.duration / scene.dt); }
-
-std::unique_ptr<Backend> built(const std::string& engine, const SceneDescription& scene, double dt) {
-  auto b = make_backend(engine);
-  b->build(scene, Integrator::SymplecticEuler, dt);
-  return b;
-}
-
-Snapshot state(const Backend& b) {
-  Snapshot s;
-  b.read(s);
-  return s;
-}
-
-Snapshot run(Backend& b, long steps) {
-  for (long i = 0; i < steps; ++i) b.step();
-  return state(b);
-}
-
-// One body of mass 2 (so that F/m is not F), radius 0.5, no walls, in `d` dimensions.
-SceneDescription one_body(std::vector<double> x, std::vector<double> v) {
-  SceneDescription scene;
-  MechanicalDescription m;
-  m.dimensions = static_cast<int>(x.size());
-  BodyDescription body;
-  body.mass = 2;
-  body.radius = 0.5;
-  body.position = std::move(x);
-  body.velocity = std::move(v);
-  m.bodies.push_back(body);
-  scene.mechanical = m;
-  scene.integrator = "symplectic-euler";
-  scene.dt = 1.0 / 60;
-  return scene;
-}
-
-const motus::UniformGravity kPeersGravity{{0, -10, 0}};  // peers.md's g = 10
+using namespace motus_test;
 
 std::vector<double> momentum(const SceneDescription& scene, const Snapshot& s) {
   const int d = scene.mechanical->dimensions;
