@@ -15,7 +15,7 @@
 #include "motus/render/canvas.hpp"
 #include "motus/render/draw.hpp"
 #include "motus/simulation.hpp"
-#include "scene_file.hpp"
+#include "motus/scene_file/scene_file.hpp"
 
 namespace {
 

@@ -7,9 +7,9 @@
 #include <string>
 #include <vector>
 
-#include "backend.hpp"
+#include "motus/compare/backends/backend.hpp"
 #include "motus/simulation.hpp"
-#include "scene_file.hpp"
+#include "motus/scene_file/scene_file.hpp"
 
 namespace motus_test {
 

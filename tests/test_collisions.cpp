@@ -11,7 +11,7 @@
 #include "motus/ball_lattice.hpp"
 #include "motus/scene_error.hpp"
 #include "motus/simulation.hpp"
-#include "scene_file.hpp"
+#include "motus/scene_file/scene_file.hpp"
 
 namespace {
 

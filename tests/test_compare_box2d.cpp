@@ -14,9 +14,9 @@
 #include <memory>
 #include <string>
 
-#include "backend.hpp"
+#include "motus/compare/backends/backend.hpp"
 #include "compare_test_helpers.hpp"
-#include "scene_file.hpp"
+#include "motus/scene_file/scene_file.hpp"
 
 namespace {
 

@@ -15,9 +15,9 @@
 #include <string>
 #include <vector>
 
-#include "backend.hpp"
+#include "motus/compare/backends/backend.hpp"
 #include "compare_test_helpers.hpp"
-#include "scene_file.hpp"
+#include "motus/scene_file/scene_file.hpp"
 
 namespace {
 

@@ -4,7 +4,7 @@
 // JSON loader is not part of the engine). Each number says where it comes from.
 #include <gtest/gtest.h>
 
-#include "scene_file.hpp"
+#include "motus/scene_file/scene_file.hpp"
 
 #include <array>
 #include <atomic>

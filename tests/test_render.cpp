@@ -21,7 +21,7 @@
 #include "motus/render/draw.hpp"
 #include "motus/render/image.hpp"
 #include "motus/render/text.hpp"
-#include "scene_file.hpp"
+#include "motus/scene_file/scene_file.hpp"
 
 namespace fs = std::filesystem;
 using namespace motus;

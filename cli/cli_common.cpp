@@ -1,0 +1,64 @@
+#include "cli_common.hpp"
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+
+namespace fs = std::filesystem;
+
+namespace motus::cli {
+
+std::string executable_directory() {
+  std::error_code error;
+  const fs::path self = fs::read_symlink("/proc/self/exe", error);
+  return error ? std::string(".") : self.parent_path().string();
+}
+
+std::string scenes_directory() {
+  if (const char* env = std::getenv("MOTUS_SCENES"); env && *env) return env;
+  const fs::path installed = (fs::path(executable_directory()) / MOTUS_SCENES_INSTALLED).lexically_normal();
+  std::error_code error;
+  if (fs::is_directory(installed, error)) return installed.string();
+  return MOTUS_SOURCE_SCENES_DIR;  // set by CMake
+}
+
+std::string resolve_scene_path(const std::string& argument) {
+  if (fs::exists(argument)) return argument;
+  const bool plain_name = argument.find('/') == std::string::npos;
+  if (plain_name) {
+    fs::path shipped = fs::path(scenes_directory()) / argument;
+    if (shipped.extension() != ".json") shipped += ".json";
+    if (fs::exists(shipped)) return shipped.string();
+  }
+  return argument;  // the loader says "no such file"
+}
+
+std::vector<std::string> shipped_scenes() {
+  std::vector<std::string> files;
+  std::error_code error;
+  for (const auto& entry : fs::directory_iterator(scenes_directory(), error))
+    if (entry.path().extension() == ".json") files.push_back(entry.path().string());
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
+Integrator integrator_for(const std::string& path, const SceneDescription& scene,
+                          const std::optional<std::string>& requested) {
+  const std::string name = requested.value_or(scene.integrator);
+  const auto integrator = integrator_from_name(name);
+  if (!integrator)
+    throw InputError(path + ": --integrator: unknown integrator \"" + name + "\" (known: " + integrator_names() + ")");
+  if (info(*integrator).needs_mechanical && !scene.is_mechanical())  // the file's own integrator was checked by the loader
+    throw InputError(path + ": --integrator: " + name + " is symplectic and needs a mechanical scene (bodies); " +
+                     "use euler, midpoint, rk4, rk4-doubling or rk45");
+  return *integrator;
+}
+
+void check_can_write(const std::string& path, bool overwrite) {
+  if (fs::exists(path) && !overwrite)
+    throw InputError(path + ": already exists; choose another name or pass --overwrite");
+  const fs::path parent = fs::path(path).parent_path();
+  if (!parent.empty() && !fs::is_directory(parent)) throw InputError(path + ": folder " + parent.string() + " does not exist");
+}
+
+}  // namespace motus::cli

@@ -1,0 +1,181 @@
+#include "compare_command.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <ctime>
+#include <filesystem>
+#include <sstream>
+
+#include "motus/compare/backends/backend.hpp"
+#include "cli_common.hpp"
+#include "motus/compare/comparison.hpp"
+#include "draw_module.hpp"
+#include "motus/simulation.hpp"
+#include "progress_bar.hpp"
+#include "motus/compare/report.hpp"
+#include "motus/scene_file/scene_file.hpp"
+
+namespace fs = std::filesystem;
+
+namespace motus::cli {
+namespace {
+
+// A new folder under runs/, never one that exists.
+std::string new_run_folder(const std::string& scene_name) {
+  const std::time_t now = std::time(nullptr);
+  char stamp[32];
+  std::strftime(stamp, sizeof stamp, "%Y%m%d-%H%M%S", std::localtime(&now));
+  std::string path = fmt::format("runs/compare-{}-{}", scene_name, stamp);
+  for (int i = 2; fs::exists(path); ++i) path = fmt::format("runs/compare-{}-{}-{}", scene_name, stamp, i);
+  return path;
+}
+
+std::string format_or_dash(const nlohmann::json& v, const char* format) {
+  return v.is_null() ? std::string("-") : fmt::format(fmt::runtime(format), v.get<double>());
+}
+
+}  // namespace
+
+CLI::App* add_compare_command(CLI::App& app, CompareOptions& o) {
+  auto* c = app.add_subcommand("compare",
+                               "Run one scene in motus, Box2D 2.4 and Bullet 3 with the same dt and the same metrics; "
+                               "print the table and write a report folder (metrics CSV/JSON, plots, index.html)");
+  c->add_option("scene", o.scene, "Scene file, or the name of a shipped scene (see `motus list`)")->required();
+  c->add_option("--engines", o.engines, "Comma-separated engines (default: motus,box2d,bullet)")->delimiter(',');
+  c->add_option("--integrator", o.integrator, "motus's integrator (default: the scene's); the peers integrate their own way");
+  c->add_option("--dt", o.dt, "Step size, s (default: the scene's)");
+  c->add_option("--duration", o.duration, "Time to run, s (default: the scene's)");
+  c->add_option("--set", o.sets, "Override a scene field (repeatable), e.g. --set lattice.count=10000")->type_name("PATH=VALUE");
+  c->add_option("--out", o.out, "Report folder (default: a new folder under runs/); must not exist yet");
+  c->add_option("--samples", o.samples, "Metric samples over the run")->check(CLI::Range(2L, 100000L));
+  c->add_flag("--json", o.json, "Print the summary as one JSON object instead of the table");
+  c->add_flag("--render", o.render,
+              "Also draw the same instants of every engine side by side: PNG frames, an MP4 (ffmpeg) and a contact "
+              "sheet, embedded in the report");
+  c->add_option("--size", o.size, "With --render: the size of each engine's panel, WxH")->capture_default_str();
+  c->add_option("--fps", o.fps, "With --render: frames per second of simulated time")->capture_default_str();
+  return c;
+}
+
+int compare_command(const CompareOptions& o) {
+  const std::string path = resolve_scene_path(o.scene);
+  const SceneDescription scene = load_scene(path, o.sets);
+  if (!scene.mechanical)
+    throw InputError(path + ": is a first-order system (\"" + scene.first_order->type +
+                     "\"); compare runs scenes of bodies, which the peer engines model");
+
+  compare::ComparisonOptions options;
+  const auto known = compare::backend_names();
+  options.engines.clear();
+  for (const auto& e : o.engines) {
+    if (std::find(known.begin(), known.end(), e) == known.end())
+      throw InputError("--engines: unknown engine \"" + e + "\" (known: motus, box2d, bullet)");
+    if (std::find(options.engines.begin(), options.engines.end(), e) == options.engines.end()) options.engines.push_back(e);
+  }
+  options.integrator = integrator_for(path, scene, o.integrator);
+  const std::string integrator_name = info(options.integrator).name;
+  options.dt = o.dt.value_or(scene.dt);
+  options.duration = o.duration.value_or(scene.duration);
+  if (!(options.dt > 0) || !std::isfinite(options.dt)) throw InputError("--dt: must be a finite number > 0");
+  if (!(options.duration > 0) || !std::isfinite(options.duration)) throw InputError("--duration: must be a finite number > 0");
+  options.samples = o.samples;
+  int panel_width = 0, panel_height = 0;
+  if (o.render) {
+    char x = 0;
+    std::istringstream size(o.size);
+    if (!(size >> panel_width >> x >> panel_height) || x != 'x' || panel_width < 64 || panel_height < 48 ||
+        panel_width > 4096 || panel_height > 4096)
+      throw InputError("--size: must be WxH with 64 <= W <= 4096 and 48 <= H <= 4096 (got \"" + o.size + "\")");
+    if (!(o.fps > 0) || !std::isfinite(o.fps)) throw InputError("--fps: must be a finite number > 0");
+    options.frame_every = std::max(1L, std::lround(1 / (o.fps * options.dt)));
+  }
+  // Fail before any engine runs if motus cannot run this scene with this integrator.
+  if (std::find(options.engines.begin(), options.engines.end(), "motus") != options.engines.end())
+    Simulation check(scene, options.integrator);
+
+  const std::string folder = o.out.empty() ? new_run_folder(scene.name) : o.out;
+  if (fs::exists(folder)) throw InputError(folder + ": already exists; compare never overwrites a report (choose another --out)");
+
+  ProgressBar progress(0, 1, "compare " + scene.name, 1);
+  const auto runs = compare::run_comparison(scene, options, [&](double f) { progress.update(f); });
+  progress.finish();
+
+  fs::create_directories(folder);
+  compare::ReportContext context;
+  context.scene_name = scene.name;
+  context.scene_file = path;
+  context.description = scene.description;
+  context.integrator = integrator_name;
+  context.dt = options.dt;
+  context.duration = options.duration;
+  context.dimensions = scene.mechanical->dimensions;
+  context.bodies = static_cast<long>(scene.mechanical->bodies.size());
+  std::string picture_warning;
+  if (o.render) {
+    draw::ComparisonJob job;
+    job.scene = &scene;
+    job.width = panel_width;
+    job.height = panel_height;
+    job.fps = 1 / (static_cast<double>(options.frame_every) * options.dt);
+    job.folder = folder;
+    for (const auto& run : runs) {
+      draw::Panel panel{run.engine, run.version, {}, run.unsupported};
+      for (size_t k = 0; k < run.frames.size(); ++k) {
+        const compare::Snapshot& s = run.frames[k];
+        panel.frames.times.push_back(s.t);
+        std::vector<double> state(s.x);
+        state.insert(state.end(), s.v.begin(), s.v.end());
+        panel.frames.states.push_back(std::move(state));
+        panel.frames.energies.push_back(run.frame_energies[k]);
+      }
+      job.panels.push_back(std::move(panel));
+    }
+    draw::ComparisonPictures pictures;
+    std::string error;
+    try {
+      error = draw_module().draw_comparison(job, pictures);
+    } catch (const InputError& e) {  // no drawing module: the report is still worth having
+      error = e.what();
+    }
+    if (error.empty()) {
+      context.video = pictures.video;
+      context.contact_sheet = pictures.contact_sheet;
+      picture_warning = pictures.warning;
+    } else {
+      picture_warning = "pictures skipped: " + error;
+    }
+  }
+  const std::string warning = compare::write_report(folder, context, runs);
+  nlohmann::json summary = compare::summary_json(context, runs);
+  summary["report"] = folder + "/index.html";
+
+  if (o.json) {
+    fmt::print("{}\n", summary.dump(2));
+  } else {
+    fmt::print("{}: {} bodies, {}-D, dt = {:g} s, {:g} s ({} steps); motus integrator {}\n\n", scene.name,
+               context.bodies, context.dimensions, options.dt, options.duration,
+               fixed_step_count(options.duration, options.dt), integrator_name);
+    fmt::print("{:<8}{:>13}{:>13}{:>13}{:>13}{:>13}{:>13}{:>11}{:>12}\n", "engine", "energy drift", "max |dE|/E0",
+               "momentum", "penetration", "constraint", "from motus", "us/step", "time/motus");
+    for (const auto& e : summary["engines"]) {
+      if (!e["supported"].get<bool>()) {
+        for (const auto& u : e["unsupported"]) fmt::print("{:<8}{}\n", e["engine"].get<std::string>(), u.get<std::string>());
+        continue;
+      }
+      fmt::print("{:<8}{:>13}{:>13}{:>13}{:>13}{:>13}{:>13}{:>11}{:>12}\n", e["engine"].get<std::string>(),
+                 format_or_dash(e["energy_drift"], "{:+.2e}"), format_or_dash(e["max_energy_error"], "{:.2e}"),
+                 format_or_dash(e["momentum_drift"], "{:.2e}"), format_or_dash(e["max_penetration"], "{:.2e}"),
+                 format_or_dash(e["constraint_error"], "{:.2e}"), format_or_dash(e["max_distance_from_motus"], "{:.2e}"),
+                 format_or_dash(e["us_per_step"], "{:.2f}"), format_or_dash(e["time_relative_to_motus"], "{:.2f}x"));
+    }
+    for (const auto& e : summary["engines"])
+      for (const auto& n : e["notes"]) fmt::print("note ({}): {}\n", e["engine"].get<std::string>(), n.get<std::string>());
+    fmt::print("\nreport: {}\n", summary["report"].get<std::string>());
+  }
+  if (!warning.empty()) fmt::print(stderr, "motus: {}\n", warning);
+  if (!picture_warning.empty()) fmt::print(stderr, "motus: {}\n", picture_warning);
+  return 0;
+}
+
+}  // namespace motus::cli

@@ -1,0 +1,81 @@
+#pragma once
+// The boundary between `motus` and its drawing module, motus-draw.so.
+//
+// Drawing needs OpenGL, and OSMesa brings LLVM, libz3, ICU and libxml2 with it: ~35 ms of
+// dynamic loading before main(). Only `motus render` and `motus compare --render` draw, so
+// everything that touches OpenGL lives in a module that `motus` loads (dlopen) only for
+// them, and every other command starts without it (see docs/architecture.md).
+//
+// The boundary is plain data, and no exception crosses it: each call returns "" when it
+// worked, else one line saying what went wrong. The module is built from this tree with the
+// same compiler, so std:: types pass as they are; kApiVersion guards against a module left
+// over from another build.
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "motus/scene.hpp"
+
+namespace motus::draw {
+
+constexpr int kApiVersion = 1;
+// The function the module exports (extern "C", so dlsym finds it by this name).
+constexpr const char* kEntryPoint = "motus_draw_api";
+
+// One run's recorded states at increasing times: [x; v] for bodies, y for first-order systems.
+struct Frames {
+  std::vector<double> times;
+  std::vector<std::vector<double>> states;
+  std::vector<double> energies;  // total energy of each state (bodies only; may be empty)
+};
+
+// `motus render`: frame k shows frames->states[frame_index[k]].
+struct RenderJob {
+  const SceneDescription* scene = nullptr;
+  const Frames* frames = nullptr;
+  std::vector<size_t> frame_index;
+  int width = 640, height = 480, supersample = 2;
+  bool trails = false, arrows = false;
+  std::string note;    // the overlay's last line (integrator, --set overrides)
+  std::string folder;  // frame_00000.png, ... are written here (it exists)
+  std::function<void(long)> frame_done;  // after each frame is written (progress)
+};
+
+// `motus compare --render`: one panel per engine.
+struct Panel {
+  std::string engine;                    // "motus", "box2d", ... (the panel's overlay)
+  std::string label;                     // above the panel ("Box2D 2.4.1, float")
+  Frames frames;                         // empty when the engine could not run the scene
+  std::vector<std::string> unsupported;  // why not, one line each
+};
+
+struct ComparisonJob {
+  const SceneDescription* scene = nullptr;
+  std::vector<Panel> panels;
+  int width = 480, height = 360;  // each panel
+  double fps = 30;
+  std::string folder;             // frames/, comparison.mp4 and contact_sheet.png go here (it exists)
+  std::function<void(long done, long total)> progress;
+};
+
+struct ComparisonPictures {
+  long frames = 0;
+  std::string video;          // file name in the folder, or "" when ffmpeg is missing
+  std::string contact_sheet;  // file name in the folder
+  std::string warning;        // one line for the user, or ""
+};
+
+struct Api {
+  int version = kApiVersion;
+  // Whether a canvas of this size (and the overlay's font) can be had, before any work is done.
+  std::string (*check)(int width, int height, int supersample);
+  // The full path of `program` on $PATH, or "".
+  std::string (*find_program)(const std::string& program);
+  std::string (*render_frames)(const RenderJob& job);
+  // frame_pattern is printf-style ("DIR/frame_%05d.png"); format is "mp4" or "gif".
+  std::string (*encode_video)(const std::string& frame_pattern, double fps, const std::string& out,
+                              const std::string& format);
+  std::string (*draw_comparison)(const ComparisonJob& job, ComparisonPictures& pictures);
+};
+
+}  // namespace motus::draw

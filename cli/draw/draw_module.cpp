@@ -1,0 +1,152 @@
+// motus-draw.so: the drawing half of `motus render` and `motus compare --render`, loaded at
+// run time (see draw_api.hpp). It turns recorded states into PNG frames, videos and contact
+// sheets with render/ (OSMesa, libpng, FreeType, ffmpeg).
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <exception>
+#include <filesystem>
+
+#include "draw_api.hpp"
+#include "motus/render/canvas.hpp"
+#include "motus/render/compose.hpp"
+#include "motus/render/draw.hpp"
+#include "motus/render/text.hpp"
+#include "motus/render/video.hpp"
+
+namespace fs = std::filesystem;
+
+namespace motus::draw {
+namespace {
+
+render::Recording recording_of(const Frames& frames) {
+  render::Recording recording;
+  for (size_t k = 0; k < frames.times.size(); ++k)
+    recording.add(frames.times[k], frames.states[k],
+                  k < frames.energies.size() ? std::optional<double>(frames.energies[k]) : std::nullopt);
+  return recording;
+}
+
+// Runs `work`, turning any exception into its one-line message.
+template <class Work>
+std::string guarded(Work&& work) {
+  try {
+    work();
+    return "";
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+}
+
+std::string check(int width, int height, int supersample) {
+  return guarded([&] {
+    render::Canvas canvas(width, height, supersample);
+    render::Font::default_font();
+  });
+}
+
+std::string find_program(const std::string& program) { return render::find_program(program); }
+
+std::string render_frames(const RenderJob& job) {
+  return guarded([&] {
+    render::Canvas canvas(job.width, job.height, job.supersample);
+    const render::Recording recording = recording_of(*job.frames);
+    // One camera for the whole run, so nothing jumps.
+    const render::Viewport view = canvas.full();
+    const render::Camera camera = render::fit_camera(*job.scene, recording, view);
+    render::DrawOptions options;
+    options.trails = job.trails;
+    options.velocity_arrows = job.arrows;
+    render::fit_ground(*job.scene, recording, options);
+    render::Image image;
+    for (size_t k = 0; k < job.frame_index.size(); ++k) {
+      render::draw_frame(canvas, view, *job.scene, recording, job.frame_index[k], camera, options, job.note);
+      canvas.image(image);
+      render::write_png((fs::path(job.folder) / fmt::format("frame_{:05d}.png", k)).string(), image);
+      if (job.frame_done) job.frame_done(static_cast<long>(k) + 1);
+    }
+  });
+}
+
+std::string encode_video(const std::string& pattern, double fps, const std::string& out, const std::string& format) {
+  return guarded([&] {
+    const auto f = render::video_format_from_name(format);
+    if (!f) throw std::invalid_argument("unknown video format \"" + format + "\" (mp4 or gif)");
+    render::encode_video(pattern, fps, out, *f);
+  });
+}
+
+// The same instants of every engine as labelled panels side by side, each with the time and
+// its own energy drift, as PNG frames, a video (ffmpeg) and a contact sheet.
+std::string draw_comparison(const ComparisonJob& job, ComparisonPictures& pictures) {
+  return guarded([&] {
+    pictures = {};
+    render::Canvas canvas(job.width, job.height);
+    const render::Viewport view = canvas.full();
+    std::vector<render::Recording> recordings;
+    for (const auto& panel : job.panels) recordings.push_back(recording_of(panel.frames));
+    const render::Recording* reference = nullptr;  // the first engine that ran (motus, when asked for)
+    for (size_t e = 0; e < job.panels.size() && !reference; ++e)
+      if (job.panels[e].unsupported.empty()) reference = &recordings[e];
+    if (!reference || reference->size() == 0) return;
+    // One camera and one ground for every panel and every frame, so the panels compare.
+    const render::Camera camera = render::fit_camera(*job.scene, *reference, view);
+    render::DrawOptions options;
+    render::fit_ground(*job.scene, *reference, options);
+
+    std::vector<std::string> labels;
+    for (const auto& panel : job.panels) labels.push_back(panel.label.empty() ? panel.engine : panel.label);
+    const std::string frames_folder = job.folder + "/frames";
+    fs::create_directories(frames_folder);
+    const size_t frames = reference->size();
+    std::vector<render::Image> sheet;
+    const std::vector<size_t> sheet_frames = {0, frames / 2, frames - 1};
+    std::vector<std::string> sheet_labels;
+    render::Image panel_image;
+    for (size_t k = 0; k < frames; ++k) {
+      std::vector<render::Image> panels;
+      for (size_t e = 0; e < job.panels.size(); ++e) {
+        const Panel& panel = job.panels[e];
+        if (panel.unsupported.empty() && k < recordings[e].size()) {
+          render::draw_frame(canvas, view, *job.scene, recordings[e], k, camera, options, panel.engine);
+        } else {
+          canvas.clear(options.background);
+          int y = job.height / 2 - 10 * static_cast<int>(panel.unsupported.size());
+          for (const auto& line : panel.unsupported) {
+            canvas.text(12, y, line);
+            y += 22;
+          }
+        }
+        canvas.image(panel_image);
+        panels.push_back(panel_image);
+      }
+      const render::Image row = render::compose_side_by_side(panels, labels);
+      render::write_png(fmt::format("{}/frame_{:05d}.png", frames_folder, k), row);
+      if (std::find(sheet_frames.begin(), sheet_frames.end(), k) != sheet_frames.end()) {
+        sheet.push_back(row);
+        sheet_labels.push_back(fmt::format("t = {:.3g} s", reference->times[k]));
+      }
+      if (job.progress) job.progress(static_cast<long>(k) + 1, static_cast<long>(frames));
+    }
+    pictures.frames = static_cast<long>(frames);
+    pictures.contact_sheet = "contact_sheet.png";
+    render::write_png(job.folder + "/" + pictures.contact_sheet, render::contact_sheet(sheet, 1, sheet_labels));
+    if (render::find_program("ffmpeg").empty()) {
+      pictures.warning = "video skipped: ffmpeg not found on PATH (install the Debian package ffmpeg)";
+    } else {
+      pictures.video = "comparison.mp4";
+      render::encode_video(frames_folder + "/frame_%05d.png", job.fps, job.folder + "/" + pictures.video,
+                           render::VideoFormat::mp4);
+    }
+  });
+}
+
+}  // namespace
+}  // namespace motus::draw
+
+extern "C" __attribute__((visibility("default"))) const motus::draw::Api* motus_draw_api() {
+  static const motus::draw::Api api{motus::draw::kApiVersion,       motus::draw::check,
+                                    motus::draw::find_program,      motus::draw::render_frames,
+                                    motus::draw::encode_video,      motus::draw::draw_comparison};
+  return &api;
+}

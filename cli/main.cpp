@@ -1,0 +1,78 @@
+// motus: the command line of the coursework engine.
+//   motus run SCENE ...               integrate a scene, report energy and momentum
+//   motus list                        scenes, integrators, systems
+//   motus bench precision SCENE ...   run time against error
+//   motus render SCENE --out DIR ...  PNG frames (and a video) of a scene
+#include <fmt/format.h>
+
+#include <CLI/CLI.hpp>
+
+#include "bench_precision_command.hpp"
+#include "compare_command.hpp"
+#include "cli_common.hpp"
+#include "list_command.hpp"
+#include "render_command.hpp"
+#include "motus/scene_error.hpp"
+#include "run_command.hpp"
+#include "motus/scene_file/scene_file.hpp"
+
+int main(int argc, char** argv) {
+  using namespace motus::cli;
+  CLI::App app{
+      "motus: a game-physics engine for teaching that tells the truth about its numbers.\n"
+      "It integrates the scenes in scenes/ with the integrators of the course notes and reports\n"
+      "energy, momentum and accuracy. Exit status: 0 done, 1 the run failed, 2 bad input.",
+      "motus"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", "motus " MOTUS_VERSION);
+
+  RunOptions run_options;
+  auto* run = add_run_command(app, run_options);
+  CompareOptions compare_options;
+  auto* compare = add_compare_command(app, compare_options);
+  auto* list = add_list_command(app);
+  auto* bench = app.add_subcommand("bench", "Benchmarks: `motus bench precision SCENE` (run time against error)");
+  bench->require_subcommand(1);
+  BenchPrecisionOptions precision_options;
+  auto* precision = add_bench_precision_command(*bench, precision_options);
+  RenderOptions render_options;
+  auto* render = add_render_command(app, render_options);
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    fmt::print(stderr, "motus: error: {} (run `motus --help` or `motus SUBCOMMAND --help`)\n", e.what());
+    return kExitBadInput;
+  }
+
+  try {
+    if (*run) return run_command(run_options);
+    if (*compare) return compare_command(compare_options);
+    if (*list) return list_command();
+    if (*precision) return bench_precision_command(precision_options);
+    if (*render) return render_command(render_options);
+  } catch (const motus::SceneFileError& e) {
+    fmt::print(stderr, "motus: error: {}\n", e.what());
+    return kExitBadInput;
+  } catch (const motus::SceneError& e) {
+    // Raised while building the run (e.g. a symplectic integrator on a first-order system).
+    const std::string scene = resolve_scene_path(run->parsed()       ? run_options.scene
+                                                 : compare->parsed() ? compare_options.scene
+                                                                     : precision_options.scene);
+    fmt::print(stderr, "motus: error: {}: {}{}\n", scene, e.field().empty() ? "" : e.field() + ": ", e.what());
+    return kExitBadInput;
+  } catch (const InputError& e) {
+    fmt::print(stderr, "motus: error: {}\n", e.what());
+    return kExitBadInput;
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "motus: the run failed: {}\n", e.what());
+    return kExitFailure;
+  }
+  return 0;
+}

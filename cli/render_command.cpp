@@ -1,0 +1,155 @@
+#include "render_command.hpp"
+
+#include <fmt/format.h>
+
+#include <fmt/ranges.h>
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <regex>
+
+#include "cli_common.hpp"
+#include "draw_module.hpp"
+#include "motus/scene_error.hpp"
+#include "motus/simulation.hpp"
+#include "progress_bar.hpp"
+#include "motus/scene_file/scene_file.hpp"
+
+namespace fs = std::filesystem;
+
+namespace motus::cli {
+namespace {
+
+std::pair<int, int> parse_size(const std::string& text) {
+  static const std::regex pattern(R"((\d{1,6})[xX](\d{1,6}))");
+  std::smatch m;
+  if (!std::regex_match(text, m, pattern)) throw InputError("--size: expected WIDTHxHEIGHT, e.g. 640x480 (got \"" + text + "\")");
+  const int w = std::stoi(m[1]), h = std::stoi(m[2]);
+  if (w < 16 || h < 16) throw InputError("--size: each side must be at least 16 pixels (got " + text + ")");
+  return {w, h};
+}
+
+// The output folder: created, or (with --overwrite) emptied of earlier frames and videos.
+void prepare_folder(const std::string& out, bool overwrite) {
+  if (fs::exists(out)) {
+    if (!fs::is_directory(out)) throw InputError(out + ": exists and is not a folder; choose another --out");
+    if (!overwrite) throw InputError(out + ": already exists; choose another --out or pass --overwrite");
+    static const std::regex ours(R"(frame_\d+\.png|.+\.(mp4|gif))");
+    for (const auto& entry : fs::directory_iterator(out))
+      if (entry.is_regular_file() && std::regex_match(entry.path().filename().string(), ours)) fs::remove(entry.path());
+    return;
+  }
+  std::error_code error;
+  fs::create_directories(out, error);
+  if (error) throw InputError(out + ": cannot be created (" + error.message() + ")");
+}
+
+}  // namespace
+
+CLI::App* add_render_command(CLI::App& app, RenderOptions& o) {
+  auto* render = app.add_subcommand("render", "Simulate a scene and draw it as PNG frames (and optionally one MP4 or GIF)");
+  render->add_option("scene", o.scene, "Scene file, or the name of a shipped scene (see `motus list`)")->required();
+  render->add_option("--out", o.out, "Folder for frame_00000.png, ... (must not exist unless --overwrite)")->required();
+  render->add_option("--size", o.size, "Frame size in pixels")->type_name("WxH")->capture_default_str();
+  render->add_option("--fps", o.fps, "Frames per second of simulated time")->capture_default_str();
+  render->add_option("--duration", o.duration, "Simulated time to draw, s (default: the scene's)");
+  render->add_option("--integrator", o.integrator, "Integrator (default: the scene's); see `motus list`");
+  render->add_option("--set", o.sets, "Override a scene field, e.g. --set lattice.count=1000 (repeatable)")
+      ->type_name("PATH=VALUE");
+  render->add_option("--video", o.video, "Also assemble the frames into SCENE.mp4 or SCENE.gif with ffmpeg")
+      ->check(CLI::IsMember({"mp4", "gif"}));
+  render->add_flag("--overwrite", o.overwrite, "Reuse an existing --out folder (its frames and videos are replaced)");
+  render->add_flag("--trails", o.trails, "Draw each body's recent path (scenes with at most 64 bodies)");
+  render->add_flag("--arrows", o.arrows, "Draw velocity arrows (where each body will be in 0.25 s)");
+  render->add_option("--supersample", o.supersample, "Anti-aliasing: render N times larger and average (1-4)")
+      ->check(CLI::Range(1, 4))
+      ->capture_default_str();
+  return render;
+}
+
+int render_command(const RenderOptions& o) {
+  const std::string path = resolve_scene_path(o.scene);
+  SceneDescription scene = load_scene(path, o.sets);
+  const Integrator integrator = integrator_for(path, scene, o.integrator);
+  const std::string integrator_name = info(integrator).name;
+  const auto [width, height] = parse_size(o.size);
+  if (!(o.fps > 0) || !std::isfinite(o.fps) || o.fps > 10000) throw InputError("--fps: must be a number > 0 (and at most 10000)");
+  const double duration = o.duration.value_or(scene.duration);
+  if (!(duration >= 0) || !std::isfinite(duration)) throw InputError("--duration: must be a finite number >= 0");
+  const long frames = static_cast<long>(std::floor(duration * o.fps + 1e-9)) + 1;
+  if (frames > 100000) throw InputError(fmt::format("--duration/--fps: {} frames is too many (at most 100,000)", frames));
+  const draw::Api& drawing = draw_module();
+  if (!o.video.empty() && drawing.find_program("ffmpeg").empty())
+    throw InputError("ffmpeg not found on PATH: --video needs it (install the Debian package ffmpeg)");
+  // A canvas and a font, before any folder is made.
+  if (const std::string error = drawing.check(width, height, o.supersample); !error.empty()) throw InputError(error);
+
+  std::optional<Simulation> built;
+  try {
+    built.emplace(scene, integrator);
+  } catch (const SceneError& e) {  // building the run (e.g. a symplectic integrator on a first-order system)
+    throw InputError(path + ": " + (e.field().empty() ? "" : e.field() + ": ") + e.what());
+  }
+  Simulation& sim = *built;
+  prepare_folder(o.out, o.overwrite);
+
+  // Simulate: mechanical scenes keep one state per frame; first-order ones every step
+  // too (an attractor's curve is drawn through all of them).
+  const double t0 = sim.time(), dt = scene.dt;
+  const Tolerance tolerance{scene.atol, scene.rtol};
+  draw::Frames recording;
+  draw::RenderJob job;
+  auto record = [&](const Simulation& s) {
+    recording.times.push_back(s.time());
+    recording.states.emplace_back(s.state().data(), s.state().data() + s.state().size());
+    if (const auto e = s.energy()) recording.energies.push_back(e->total);
+  };
+  const bool every_step = !scene.is_mechanical();
+  const double min_gap = scene.output_interval > 0 ? scene.output_interval * 0.999 : 0;
+  ProgressBar progress(0, 2.0 * static_cast<double>(frames), scene.name, 1);
+  const auto began = std::chrono::steady_clock::now();
+  record(sim);
+  job.frame_index.push_back(0);
+  for (long k = 1; k < frames; ++k) {
+    const double target = t0 + static_cast<double>(k) / o.fps;
+    if (sim.time() < target - 1e-9 * std::max(1.0, std::abs(target))) {
+      sim.advance(target, dt, tolerance, [&](const Simulation& s) {
+        if (every_step && s.time() - recording.times.back() >= min_gap) record(s);
+      });
+      if (!every_step || recording.times.back() != sim.time()) record(sim);
+    }
+    job.frame_index.push_back(recording.times.size() - 1);
+    progress.update(static_cast<double>(k));
+  }
+
+  // Draw.
+  job.scene = &scene;
+  job.frames = &recording;
+  job.width = width;
+  job.height = height;
+  job.supersample = o.supersample;
+  job.trails = o.trails;
+  job.arrows = o.arrows;
+  job.note = integrator_name;  // and the --set overrides, but the integrator only once
+  for (const auto& set : o.sets)
+    if (set.rfind("integrator=", 0) != 0) job.note += fmt::format("  {}", set);
+  job.folder = o.out;
+  job.frame_done = [&](long k) { progress.update(static_cast<double>(frames + k)); };
+  if (const std::string error = drawing.render_frames(job); !error.empty()) throw InputError(error);
+  progress.finish();
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count();
+  fmt::print("{} frames of {}x{} at {:g} fps ({:g} s of {}) in {}/ ({:.1f} s)\n", frames, width, height, o.fps,
+             duration, scene.name, o.out, wall);
+  if (!o.video.empty()) {
+    const std::string file = (fs::path(o.out) / (scene.name + "." + o.video)).string();
+    if (const std::string error =
+            drawing.encode_video((fs::path(o.out) / "frame_%05d.png").string(), o.fps, file, o.video);
+        !error.empty())
+      throw std::runtime_error(error);
+    fmt::print("video        {}\n", file);
+  }
+  return 0;
+}
+
+}  // namespace motus::cli

@@ -1,0 +1,403 @@
+#include "motus/compare/backends/box2d_backend.hpp"
+
+#include <box2d/box2d.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <deque>
+#include <string>
+
+#include "motus/compare/backends/peer_forces.hpp"
+
+namespace motus::compare {
+namespace {
+
+// peers.md: the manual's recommended iterations.
+constexpr int kVelocityIterations = 8;
+constexpr int kPositionIterations = 3;
+// A point (radius 0) is a circle this small: Box2D needs a shape for a contact with a
+// wall; with the edges' skin of b2_polygonRadius its continuous collision still works.
+constexpr double kPointRadius = 1e-4;  // m
+// A plane is an edge this long on each side of the bodies' centroid.
+constexpr double kPlaneHalfLength = 1e4;  // m
+// Collision filter: balls meet walls and balls, points meet walls only (as in motus).
+constexpr std::uint16_t kWallBits = 0x1, kBallBits = 0x2, kPointBits = 0x4;
+
+template <class... A>
+std::string format(const char* pattern, A... args) {
+  char buffer[512];
+  std::snprintf(buffer, sizeof buffer, pattern, args...);
+  return buffer;
+}
+
+// Each fixture's e (a double owned by the world) hangs from its user data.
+double restitution_of(b2Fixture* fixture) {
+  return *reinterpret_cast<const double*>(fixture->GetUserData().pointer);
+}
+
+// motus mixes a contact's restitution as the product eA·eB (collide/impulse.hpp);
+// Box2D's default is max(eA, eB). PreSolve runs for every touching contact before the
+// solver reads the contact's restitution, in the discrete step and in the TOI sub-steps.
+class ProductRestitution final : public b2ContactListener {
+public:
+  void PreSolve(b2Contact* contact, const b2Manifold* /*old_manifold*/) override {
+    contact->SetRestitution(
+        static_cast<float>(restitution_of(contact->GetFixtureA()) * restitution_of(contact->GetFixtureB())));
+  }
+};
+
+}  // namespace
+
+struct Box2dBackend::World {
+  ProductRestitution listener;         // outlives `world`, which points to it
+  std::deque<double> restitution;      // every fixture's e (stable addresses)
+  std::unique_ptr<b2World> world;
+  std::vector<b2Body*> bodies;         // in the scene's order
+  std::vector<double> inverse_mass;    // 0 for pinned (static) bodies
+  std::unique_ptr<PeerForces> forces;  // null when the scene has no force but uniform gravity
+  double gravity[2] = {0, 0};
+  double dt = 0, t0 = 0;
+  long steps = 0;
+  std::vector<double> x, v, F;  // scratch: the state in double, the forces
+
+  // What the settings and notes report.
+  bool has_forces = false, has_sticks = false, has_pins = false, has_contacts = false, has_points = false,
+       has_segments = false;
+  double start_fastest = 0;  // the fastest body's speed·dt at the start, m
+  double farthest = 0;       // the largest |x| of a body at the start, m
+  double run_fastest = 0;    // the largest speed·dt after any step, m
+  long capped = 0;           // body-steps that ended at b2_maxTranslation
+  long first_capped_step = -1;
+  struct Stick {
+    size_t a, b;
+    double length;
+  };
+  std::vector<Stick> sticks;
+  double worst_stick = 0;  // the largest |length − rest| / rest after any step
+  long worst_stick_step = 0;
+
+  void read_state() {
+    const size_t n = bodies.size();
+    x.resize(2 * n);
+    v.resize(2 * n);
+    for (size_t i = 0; i < n; ++i) {
+      const b2Vec2& p = bodies[i]->GetPosition();
+      const b2Vec2& u = bodies[i]->GetLinearVelocity();
+      x[2 * i] = p.x;
+      x[2 * i + 1] = p.y;
+      v[2 * i] = u.x;
+      v[2 * i + 1] = u.y;
+    }
+  }
+
+  b2Fixture* add_fixture(b2Body* body, const b2Shape& shape, double e, std::uint16_t category, std::uint16_t mask) {
+    b2FixtureDef def;
+    def.shape = &shape;
+    def.density = 0;  // the mass is set exactly with SetMassData
+    def.friction = 0;  // motus has no friction
+    def.restitution = static_cast<float>(e);
+    def.restitutionThreshold = 0;  // peers.md: the default 1 m/s gives slower contacts no bounce
+    def.filter.categoryBits = category;
+    def.filter.maskBits = mask;
+    def.userData.pointer = reinterpret_cast<std::uintptr_t>(&restitution.emplace_back(e));
+    return body->CreateFixture(&def);
+  }
+
+  b2Body* add_static_body(double px, double py) {
+    b2BodyDef def;
+    def.type = b2_staticBody;
+    def.position.Set(static_cast<float>(px), static_cast<float>(py));
+    return world->CreateBody(&def);
+  }
+
+  void add_edge(b2Body* body, double ax, double ay, double bx, double by, double e) {
+    b2EdgeShape edge;  // two-sided; its m_radius is b2_polygonRadius
+    edge.SetTwoSided(b2Vec2(static_cast<float>(ax), static_cast<float>(ay)),
+                     b2Vec2(static_cast<float>(bx), static_cast<float>(by)));
+    add_fixture(body, edge, e, kWallBits, kBallBits | kPointBits);
+  }
+};
+
+Box2dBackend::Box2dBackend() = default;
+Box2dBackend::~Box2dBackend() = default;
+
+// Not from b2_version: Box2D 2.4.1's library still says 2.4.0 there (upstream never
+// bumped it; Debian's libbox2d.so.2.4.1 and box2dConfigVersion.cmake say 2.4.1).
+std::string Box2dBackend::version() const { return "Box2D 2.4.1, float"; }
+
+void Box2dBackend::build(const SceneDescription& scene, Integrator /*integrator*/, double dt) {
+  world_.reset();
+  if (!scene.mechanical) throw Unsupported("box2d", {"first-order systems (box2d runs point masses)"});
+  const MechanicalDescription& m = *scene.mechanical;
+  if (m.dimensions != 2) throw Unsupported("box2d", {std::to_string(m.dimensions) + "-D scenes"});
+
+  const size_t n = m.bodies.size();
+  std::vector<const PinConstraint*> pin_of(n, nullptr);
+  for (const auto& p : m.pins) pin_of[static_cast<size_t>(p.body)] = &p;  // the last pin of a body wins, as in motus
+  auto start_position = [&](size_t i, int k) {
+    return pin_of[i] ? pin_of[i]->position[static_cast<size_t>(k)] : m.bodies[i].position[static_cast<size_t>(k)];
+  };
+
+  // What Box2D cannot express faithfully: refuse rather than run another scene.
+  std::vector<std::string> unsupported;
+  for (size_t j = 0; j < m.colliders.planes.size(); ++j) {
+    const auto& p = m.colliders.planes[j];
+    for (size_t i = 0; i < n; ++i)
+      if (p.normal[0] * start_position(i, 0) + p.normal[1] * start_position(i, 1) < p.offset) {
+        unsupported.push_back(format("body %zu starting outside plane %zu (motus moves it onto the plane; a Box2D "
+                                     "edge would keep it on the wall's side)",
+                                     i, j));
+        break;
+      }
+  }
+  for (size_t j = 0; j < m.colliders.boxes.size(); ++j) {
+    const auto& b = m.colliders.boxes[j];
+    for (size_t i = 0; i < n; ++i) {
+      const double px = start_position(i, 0), py = start_position(i, 1);
+      if (px < b.min[0] || px > b.max[0] || py < b.min[1] || py > b.max[1]) {
+        unsupported.push_back(format("body %zu starting outside box %zu (motus moves it in; Box2D's edges would "
+                                     "keep it outside)",
+                                     i, j));
+        break;
+      }
+    }
+  }
+  for (size_t j = 0; j < m.sticks.size(); ++j)
+    if (m.sticks[j].length < b2_linearSlop)
+      unsupported.push_back(format("stick %zu of length %g m (b2DistanceJoint clamps lengths to at least "
+                                   "b2_linearSlop = %g m)",
+                                   j, m.sticks[j].length, static_cast<double>(b2_linearSlop)));
+  if (!unsupported.empty()) throw Unsupported("box2d", unsupported);
+
+  auto w = std::make_unique<World>();
+  w->dt = dt;
+  w->t0 = scene.start_time;
+  auto forces = std::make_unique<PeerForces>(m);
+  w->gravity[0] = forces->gravity()[0];
+  w->gravity[1] = forces->gravity()[1];
+  if (!forces->empty()) {
+    w->forces = std::move(forces);
+    w->has_forces = true;
+  }
+  w->world = std::make_unique<b2World>(b2Vec2(static_cast<float>(w->gravity[0]), static_cast<float>(w->gravity[1])));
+  w->world->SetAllowSleeping(false);
+  w->world->SetContactListener(&w->listener);
+  // Box2D's defaults, stated: warm starting and continuous physics on, sub-stepping off.
+  w->world->SetWarmStarting(true);
+  w->world->SetContinuousPhysics(true);
+  w->world->SetSubStepping(false);
+
+  // Bodies, in the scene's order.
+  int balls = 0;
+  double cx = 0, cy = 0;  // the bodies' centroid, where planes are centred
+  for (size_t i = 0; i < n; ++i) {
+    const BodyDescription& body = m.bodies[i];
+    const bool pinned = pin_of[i] != nullptr, ball = body.radius > 0;
+    b2BodyDef def;
+    def.type = pinned ? b2_staticBody : b2_dynamicBody;
+    def.position.Set(static_cast<float>(start_position(i, 0)), static_cast<float>(start_position(i, 1)));
+    if (!pinned) def.linearVelocity.Set(static_cast<float>(body.velocity[0]), static_cast<float>(body.velocity[1]));
+    def.fixedRotation = true;  // frictionless balls never spin
+    def.bullet = ball && !pinned;  // continuous collision against other moving balls too
+    def.allowSleep = false;
+    def.awake = true;
+    def.linearDamping = 0;
+    def.angularDamping = 0;
+    b2Body* b = w->world->CreateBody(&def);
+
+    b2CircleShape circle;
+    circle.m_radius = static_cast<float>(ball ? body.radius : kPointRadius);
+    if (ball)
+      w->add_fixture(b, circle, body.restitution, kBallBits, kWallBits | kBallBits);
+    else
+      w->add_fixture(b, circle, body.restitution, kPointBits, kWallBits);
+    if (!pinned) {
+      b2MassData mass;
+      mass.mass = static_cast<float>(body.mass);
+      mass.center.SetZero();
+      mass.I = 0;  // fixed rotation: no inertia
+      b->SetMassData(&mass);
+    }
+    w->bodies.push_back(b);
+    w->inverse_mass.push_back(pinned ? 0.0 : 1 / body.mass);
+    balls += ball ? 1 : 0;
+    w->has_points = w->has_points || !ball;
+    w->has_pins = w->has_pins || pinned;
+    cx += start_position(i, 0) / static_cast<double>(n);
+    cy += start_position(i, 1) / static_cast<double>(n);
+    w->farthest = std::max(w->farthest, std::hypot(start_position(i, 0), start_position(i, 1)));
+    if (!pinned) w->start_fastest = std::max(w->start_fastest, std::hypot(body.velocity[0], body.velocity[1]) * dt);
+  }
+
+  // Walls. Box2D's edges have a skin of b2_polygonRadius: planes and box faces are moved
+  // back by it, into the wall, so that their surface is where the scene puts it.
+  const double skin = b2_polygonRadius;
+  for (const auto& p : m.colliders.planes) {
+    const double length = std::hypot(p.normal[0], p.normal[1]);
+    const double nx = p.normal[0] / length, ny = p.normal[1] / length, offset = p.offset / length - skin;
+    // The edge's centre: the centroid projected onto the edge's line; its ends symmetric
+    // about it, so that float rounding keeps the line through that centre.
+    const double s = nx * cx + ny * cy - offset;
+    b2Body* wall = w->add_static_body(cx - s * nx, cy - s * ny);
+    const double tx = -ny * kPlaneHalfLength, ty = nx * kPlaneHalfLength;
+    w->add_edge(wall, -tx, -ty, tx, ty, p.restitution);
+  }
+  for (const auto& box : m.colliders.boxes) {
+    const double mx = (box.min[0] + box.max[0]) / 2, my = (box.min[1] + box.max[1]) / 2;
+    const double hx = (box.max[0] - box.min[0]) / 2 + skin, hy = (box.max[1] - box.min[1]) / 2 + skin;
+    b2Body* wall = w->add_static_body(mx, my);
+    w->add_edge(wall, -hx, -hy, hx, -hy, box.restitution);
+    w->add_edge(wall, hx, -hy, hx, hy, box.restitution);
+    w->add_edge(wall, hx, hy, -hx, hy, box.restitution);
+    w->add_edge(wall, -hx, hy, -hx, -hy, box.restitution);
+  }
+  for (const auto& seg : m.colliders.segments) {
+    // Two-sided: the skin cannot be moved back, so a segment is 2·b2_polygonRadius thick.
+    const double mx = (seg.a[0] + seg.b[0]) / 2, my = (seg.a[1] + seg.b[1]) / 2;
+    b2Body* wall = w->add_static_body(mx, my);
+    w->add_edge(wall, seg.a[0] - mx, seg.a[1] - my, seg.b[0] - mx, seg.b[1] - my, seg.restitution);
+  }
+  w->has_segments = !m.colliders.segments.empty();
+  w->has_contacts = !m.colliders.empty() || balls >= 2;
+
+  // Sticks: rigid distance joints (2.4.1: minLength == maxLength is the rigid constraint,
+  // stiffness 0 no spring). Joined balls still collide, as they do in motus.
+  for (const auto& stick : m.sticks) {
+    b2DistanceJointDef def;
+    def.bodyA = w->bodies[static_cast<size_t>(stick.a)];
+    def.bodyB = w->bodies[static_cast<size_t>(stick.b)];
+    def.localAnchorA.SetZero();
+    def.localAnchorB.SetZero();
+    def.length = def.minLength = def.maxLength = static_cast<float>(stick.length);
+    def.stiffness = 0;
+    def.damping = 0;
+    def.collideConnected = true;
+    w->world->CreateJoint(&def);
+    w->sticks.push_back({static_cast<size_t>(stick.a), static_cast<size_t>(stick.b), stick.length});
+  }
+  w->has_sticks = !m.sticks.empty();
+  world_ = std::move(w);
+}
+
+void Box2dBackend::step() {
+  World& w = *world_;
+  const double t = w.t0 + static_cast<double>(w.steps) * w.dt;
+  if (w.forces) {
+    // The scene's forces at the step's start, by motus's formulas: Box2D's kick is then
+    // v += dt·(g + F/m), symplectic Euler's.
+    w.read_state();
+    w.forces->compute(t, w.x, w.v, w.F);
+    for (size_t i = 0; i < w.bodies.size(); ++i)
+      if (w.inverse_mass[i] > 0)
+        w.bodies[i]->ApplyForceToCenter(b2Vec2(static_cast<float>(w.F[2 * i]), static_cast<float>(w.F[2 * i + 1])),
+                                        true);
+  }
+  w.world->Step(static_cast<float>(w.dt), kVelocityIterations, kPositionIterations);
+  ++w.steps;
+
+  // b2_maxTranslation: Box2D scales down a velocity that would carry a body farther than
+  // 2 m in the step, so a capped body ends the step at exactly that speed.
+  const double cap = b2_maxTranslation;
+  for (size_t i = 0; i < w.bodies.size(); ++i) {
+    if (w.inverse_mass[i] == 0) continue;
+    const b2Vec2& u = w.bodies[i]->GetLinearVelocity();
+    const double travel = std::hypot(static_cast<double>(u.x), static_cast<double>(u.y)) * w.dt;
+    w.run_fastest = std::max(w.run_fastest, travel);
+    if (travel >= cap * (1 - 1e-5)) {
+      ++w.capped;
+      if (w.first_capped_step < 0) w.first_capped_step = w.steps;
+    }
+  }
+  // The sticks' length error, which Box2D's iterative solver leaves.
+  for (const auto& stick : w.sticks) {
+    const b2Vec2 d = w.bodies[stick.a]->GetPosition() - w.bodies[stick.b]->GetPosition();
+    const double error =
+        std::abs(std::hypot(static_cast<double>(d.x), static_cast<double>(d.y)) - stick.length) / stick.length;
+    if (error > w.worst_stick) {
+      w.worst_stick = error;
+      w.worst_stick_step = w.steps;
+    }
+  }
+}
+
+void Box2dBackend::read(Snapshot& out) const {
+  const World& w = *world_;
+  const size_t n = w.bodies.size();
+  out.t = w.t0 + static_cast<double>(w.steps) * w.dt;
+  out.x.resize(2 * n);
+  out.v.resize(2 * n);
+  for (size_t i = 0; i < n; ++i) {
+    const b2Vec2& p = w.bodies[i]->GetPosition();
+    const b2Vec2& u = w.bodies[i]->GetLinearVelocity();
+    out.x[2 * i] = p.x;
+    out.x[2 * i + 1] = p.y;
+    out.v[2 * i] = u.x;
+    out.v[2 * i + 1] = u.y;
+  }
+}
+
+std::vector<std::string> Box2dBackend::settings() const {
+  std::vector<std::string> s = {
+      format("step: world.Step(dt, %d, %d): %d velocity and %d position iterations", kVelocityIterations,
+             kPositionIterations, kVelocityIterations, kPositionIterations),
+      "restitution: the product eA*eB (a PreSolve listener; Box2D's own mixing is max(eA, eB))",
+      "restitution threshold: 0 m/s on every fixture",
+      "friction: 0",
+      "sleep: off (allowSleep = false)",
+      "linear and angular damping: 0",
+      "rotation: fixed (frictionless balls)",
+      "continuous collision: on; balls are bullets; sub-stepping off; warm starting on",
+      "mass: SetMassData with each body's mass exactly",
+  };
+  if (!world_) return s;
+  const World& w = *world_;
+  s.push_back(format("gravity: world gravity (%g, %g) m/s^2", w.gravity[0], w.gravity[1]));
+  if (w.has_forces) s.push_back("other forces: motus's formulas, applied with ApplyForceToCenter before every step");
+  if (w.has_points) s.push_back(format("points (radius 0): circles of radius %g m that meet walls only", kPointRadius));
+  if (w.has_sticks) s.push_back("sticks: b2DistanceJoint, length = minLength = maxLength, stiffness 0 (rigid)");
+  if (w.has_pins) s.push_back("pins: the pinned body is a static body at the pin's position");
+  return s;
+}
+
+std::vector<std::string> Box2dBackend::notes() const {
+  std::vector<std::string> s;
+  if (!world_) return s;
+  const World& w = *world_;
+  s.push_back(format("Box2D is float: positions to ~1e-7 relative (about %.1g m at the farthest body's %.3g m "
+                     "from the origin), velocities likewise",
+                     std::max(w.farthest, 1.0) * 1.2e-7, w.farthest));
+  const double cap = b2_maxTranslation;
+  s.push_back(format("b2_maxTranslation (%g m per step): the fastest body moves %.3g m per step at the start "
+                     "(%.3g%% of it%s)",
+                     cap, w.start_fastest, 100 * w.start_fastest / cap,
+                     w.start_fastest > cap ? ": Box2D will slow it to the cap" : ""));
+  if (w.capped > 0)
+    s.push_back(format("b2_maxTranslation capped %ld body-steps (first at step %ld, t = %.6g s): those bodies moved "
+                       "only %g m in a step where the scene says farther",
+                       w.capped, w.first_capped_step, w.t0 + static_cast<double>(w.first_capped_step) * w.dt, cap));
+  else if (w.steps > 0)
+    s.push_back(format("b2_maxTranslation not reached in %ld steps (fastest %.3g m per step, %.3g%% of it)", w.steps,
+                       w.run_fastest, 100 * w.run_fastest / cap));
+  s.push_back("b2_maxRotation (0.5*pi per step) cannot bite: every body has fixed rotation");
+  if (w.has_contacts)
+    s.push_back(format("contacts: Box2D finds them at the start of each step (continuous collision within it), lets "
+                       "bodies overlap by up to b2_linearSlop = %g m and pushes overlaps apart with Baumgarte "
+                       "position correction (b2_baumgarte = %g)",
+                       static_cast<double>(b2_linearSlop), static_cast<double>(b2_baumgarte)));
+  if (w.has_segments)
+    s.push_back(format("segments keep Box2D's edge skin b2_polygonRadius = %g m: a ball's centre stays r + %g m "
+                       "from them (planes and box faces are moved back by the skin)",
+                       static_cast<double>(b2_polygonRadius), static_cast<double>(b2_polygonRadius)));
+  if (w.has_sticks) {
+    s.push_back("sticks are b2DistanceJoints solved by sequential impulses (8 velocity, 3 position iterations), "
+                "not projected as in motus: their lengths err as far as that solver leaves them");
+    if (w.steps > 0)
+      s.push_back(format("sticks: the worst length error so far is %.3g%% of the rest length (after step %ld)",
+                         100 * w.worst_stick, w.worst_stick_step));
+  }
+  return s;
+}
+
+}  // namespace motus::compare

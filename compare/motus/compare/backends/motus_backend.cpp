@@ -1,0 +1,39 @@
+#include "motus/compare/backends/motus_backend.hpp"
+
+#include <string>
+
+namespace motus::compare {
+
+std::string MotusBackend::version() const { return "motus 0.1.0, double"; }
+
+void MotusBackend::build(const SceneDescription& scene, Integrator integrator, double dt) {
+  if (!scene.mechanical) throw Unsupported("motus-compare", {"first-order systems (compare runs point masses)"});
+  sim_ = std::make_unique<Simulation>(scene, integrator);
+  dt_ = dt;
+  steps_ = 0;
+  t0_ = scene.start_time;
+}
+
+void MotusBackend::step() {
+  // Whole steps of dt from the start, like the peers' world.Step(dt).
+  ++steps_;
+  sim_->advance(t0_ + static_cast<double>(steps_) * dt_, dt_, {});
+}
+
+void MotusBackend::read(Snapshot& out) const {
+  const int n = sim_->mechanical_system()->size();
+  const Vector& y = sim_->state();
+  out.t = sim_->time();
+  out.x.assign(y.data(), y.data() + n);
+  out.v.assign(y.data() + n, y.data() + 2 * n);
+}
+
+std::vector<std::string> MotusBackend::settings() const {
+  std::vector<std::string> s = {std::string("integrator: ") + info(sim_->integrator()).name};
+  std::string passes;
+  for (const auto& p : sim_->world()->passes()) passes += (passes.empty() ? "" : ", ") + p;
+  s.push_back("passes: " + passes);
+  return s;
+}
+
+}  // namespace motus::compare

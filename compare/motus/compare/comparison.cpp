@@ -1,0 +1,140 @@
+#include "motus/compare/comparison.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "motus/simulation.hpp"
+#include "motus/systems/mechanical_system.hpp"
+
+namespace motus::compare {
+namespace {
+
+double relative(double change, double scale) { return scale != 0 ? change / std::abs(scale) : change; }
+
+}  // namespace
+
+double EngineRun::energy_drift() const { return relative(rows.back().total - rows.front().total, rows.front().total); }
+
+double EngineRun::max_energy_error() const {
+  double worst = 0;
+  for (const auto& r : rows) worst = std::max(worst, std::abs(relative(r.total - rows.front().total, rows.front().total)));
+  return worst;
+}
+
+double EngineRun::momentum_drift() const {
+  double change = 0, size = 0;
+  for (size_t k = 0; k < rows.front().momentum.size(); ++k) {
+    const double a = rows.front().momentum[k], b = rows.back().momentum[k];
+    change += (b - a) * (b - a);
+    size += a * a;
+  }
+  const double scale = std::max(std::sqrt(size), scale_of_momentum);
+  return scale > 0 ? std::sqrt(change) / scale : std::sqrt(change);
+}
+
+double EngineRun::max_penetration() const {
+  double worst = 0;
+  for (const auto& r : rows) worst = std::max(worst, r.penetration);
+  return worst;
+}
+
+double EngineRun::max_constraint_error() const {
+  double worst = 0;
+  for (const auto& r : rows) worst = std::max(worst, r.constraint_error);
+  return worst;
+}
+
+double EngineRun::max_from_motus() const {
+  double worst = 0;
+  for (const auto& r : rows) worst = std::max(worst, r.from_motus);
+  return worst;
+}
+
+double EngineRun::max_from_exact() const {
+  double worst = -1;
+  for (const auto& r : rows) worst = std::max(worst, r.from_exact);
+  return worst;
+}
+
+std::vector<EngineRun> run_comparison(const SceneDescription& scene, const ComparisonOptions& options,
+                                      const std::function<void(double)>& progress) {
+  const Metrics metrics(scene);
+  const long steps = fixed_step_count(options.duration, options.dt);
+  const long every = std::max(1L, steps / std::max(1L, options.samples));
+  double scale = 0;
+  for (const auto& b : scene.mechanical->bodies) {
+    double speed2 = 0;
+    for (double c : b.velocity) speed2 += c * c;
+    scale += b.mass * std::sqrt(speed2);
+  }
+
+  // motus runs first when asked for: its snapshots are the others' reference trajectory.
+  std::vector<std::string> order = options.engines;
+  std::stable_partition(order.begin(), order.end(), [](const std::string& e) { return e == "motus"; });
+  std::vector<Snapshot> reference;
+  std::vector<EngineRun> runs;
+  const double total_steps = static_cast<double>(steps * static_cast<long>(order.size()));
+  double done = 0;
+  for (const auto& name : order) {
+    EngineRun run;
+    run.engine = name;
+    run.scale_of_momentum = scale;
+    auto backend = make_backend(name);
+    run.version = backend->version();
+    try {
+      backend->build(scene, options.integrator, options.dt);
+    } catch (const Unsupported& e) {
+      run.supported = false;
+      for (const auto& element : e.elements()) run.unsupported.push_back("not supported by " + name + ": " + element);
+      runs.push_back(run);
+      done += static_cast<double>(steps);
+      continue;
+    }
+    run.settings = backend->settings();
+    Snapshot s;
+    backend->read(s);
+    const bool is_reference = name == "motus";
+    auto sample = [&](size_t index) {
+      const Snapshot* motus = !is_reference && index < reference.size() ? &reference[index] : nullptr;
+      run.rows.push_back(metrics.measure(s, is_reference ? &s : motus));
+      if (is_reference) reference.push_back(s);
+    };
+    sample(0);
+    const MechanicalSystem energy_of = [&] {
+      std::vector<double> masses;
+      for (const auto& b : scene.mechanical->bodies) masses.push_back(b.mass);
+      return MechanicalSystem(scene.mechanical->dimensions, masses, scene.mechanical->forces);
+    }();
+    auto keep_frame = [&] {  // the state and its energy, for a picture
+      run.frames.push_back(s);
+      const Eigen::Map<const Vector> x(s.x.data(), static_cast<Eigen::Index>(s.x.size()));
+      const Eigen::Map<const Vector> v(s.v.data(), static_cast<Eigen::Index>(s.v.size()));
+      run.frame_energies.push_back(energy_of.kinetic_energy(v) + energy_of.potential_energy(x));
+    };
+    if (options.frame_every > 0) keep_frame();
+    size_t index = 1;
+    for (long i = 0; i < steps;) {
+      // Time a batch of steps between two samples (or frames); the clock is read twice per batch.
+      long batch = std::min(every - i % every, steps - i);
+      if (options.frame_every > 0) batch = std::min(batch, options.frame_every - i % options.frame_every);
+      const auto began = std::chrono::steady_clock::now();
+      for (long b = 0; b < batch; ++b) backend->step();
+      run.step_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count();
+      i += batch;
+      backend->read(s);
+      if (i % every == 0 || i == steps) {
+        sample(index++);
+        if (progress) progress((done + static_cast<double>(i)) / total_steps);
+      }
+      if (options.frame_every > 0 && i % options.frame_every == 0) keep_frame();
+    }
+    run.steps = steps;
+    run.notes = backend->notes();  // after the run: limits that bit during it
+    done += static_cast<double>(steps);
+    runs.push_back(std::move(run));
+  }
+  return runs;
+}
+
+}  // namespace motus::compare

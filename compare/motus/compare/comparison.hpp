@@ -1,0 +1,50 @@
+#pragma once
+// Run one scene in several engines, in one process, with the same dt and duration,
+// and measure them all with the same Metrics: the data behind `motus compare`.
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "motus/compare/backends/backend.hpp"
+#include "motus/compare/metrics.hpp"
+
+namespace motus::compare {
+
+struct EngineRun {
+  std::string engine, version;
+  bool supported = true;
+  std::vector<std::string> unsupported;  // "not supported by box2d: 3-D scenes", ...
+  std::vector<std::string> settings, notes;
+  std::vector<MetricsRow> rows;          // at t0 and every sample time
+  std::vector<Snapshot> frames;          // at t0 and every frame_every steps (for --render)
+  std::vector<double> frame_energies;    // total energy of each frame
+  long steps = 0;
+  double step_seconds = 0;  // wall time inside step() only, not in the metrics
+
+  // Summaries (meaningful when supported and rows is not empty).
+  double energy_drift() const;       // (E_end − E_0)/|E_0|
+  double max_energy_error() const;   // max |E − E_0|/|E_0| over the samples
+  double momentum_drift() const;     // |p_end − p_0| / max(|p_0|, Σ m|v_0|)
+  double max_penetration() const;    // m
+  double max_constraint_error() const;
+  double max_from_motus() const;     // m
+  double max_from_exact() const;     // m; −1 when the scene has no analytic solution
+  double microseconds_per_step() const { return steps ? 1e6 * step_seconds / static_cast<double>(steps) : 0; }
+
+  double scale_of_momentum = 0;  // Σ m|v_0|, set by run_comparison
+};
+
+struct ComparisonOptions {
+  std::vector<std::string> engines = {"motus", "box2d", "bullet"};
+  Integrator integrator = Integrator::SymplecticEuler;  // motus's; the peers integrate their way
+  double dt = 0.01;
+  double duration = 1;
+  long samples = 200;  // metric rows over the run (at most one per step)
+  long frame_every = 0;  // keep the state every this many steps for pictures (0: none)
+};
+
+// progress(fraction of all engines' steps done) is called now and then.
+std::vector<EngineRun> run_comparison(const SceneDescription& scene, const ComparisonOptions& options,
+                                      const std::function<void(double)>& progress = {});
+
+}  // namespace motus::compare

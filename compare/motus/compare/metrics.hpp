@@ -1,0 +1,46 @@
+#pragma once
+// The yardstick: one implementation of every metric, applied to every engine's
+// snapshots alike — energies from motus's own force laws, momenta, the deepest
+// interpenetration, the worst stick, and the distance from motus's trajectory and from
+// the scene's analytic solution.
+#include <optional>
+#include <vector>
+
+#include "motus/compare/backends/backend.hpp"
+#include "motus/scene.hpp"
+#include "motus/systems/mechanical_system.hpp"
+
+namespace motus::compare {
+
+struct MetricsRow {
+  double t = 0;
+  double kinetic = 0, potential = 0, total = 0;
+  std::vector<double> momentum;          // d components
+  std::vector<double> angular_momentum;  // about the origin: 1 component in 2-D, 3 in 3-D, none in 1-D
+  double penetration = 0;       // the deepest overlap of two balls or of a ball and a wall, m
+  double constraint_error = 0;  // the largest relative stick-length error
+  double from_motus = 0;        // the largest distance of a body from where motus has it, m
+  double from_exact = -1;       // the same from the analytic solution; −1 when the scene has none
+};
+
+class Metrics {
+public:
+  explicit Metrics(const SceneDescription& scene);
+
+  // `motus` is motus's snapshot at the same time (nullptr: not known).
+  MetricsRow measure(const Snapshot& s, const Snapshot* motus) const;
+
+private:
+  double deepest_penetration(const std::vector<double>& x) const;
+
+  const SceneDescription& scene_;
+  MechanicalSystem system_;
+  int d_;
+  std::vector<double> radius_;
+  double max_radius_ = 0;
+  std::vector<int> balls_;
+  // A scratch grid for the penetration check (sorted once per measurement).
+  mutable std::vector<std::pair<long, int>> cells_;
+};
+
+}  // namespace motus::compare

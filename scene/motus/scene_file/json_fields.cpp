@@ -1,0 +1,162 @@
+#include "motus/scene_file/json_fields.hpp"
+
+#include <cctype>
+#include <cmath>
+
+namespace motus {
+
+std::string json_type_name(const nlohmann::json& value) {
+  switch (value.type()) {
+    case nlohmann::json::value_t::null: return "null";
+    case nlohmann::json::value_t::boolean: return "a boolean";
+    case nlohmann::json::value_t::string: return "a string";
+    case nlohmann::json::value_t::array: return "an array";
+    case nlohmann::json::value_t::object: return "an object";
+    default: return "a number";
+  }
+}
+
+JsonFields::JsonFields(const nlohmann::json& object, std::string path) : object_(object), path_(std::move(path)) {
+  if (!object_.is_object()) throw SceneError(path_, "must be an object, not " + json_type_name(object_));
+}
+
+std::string JsonFields::path_of(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
+
+void JsonFields::fail(const std::string& key, const std::string& message) const {
+  throw SceneError(path_of(key), message);
+}
+
+bool JsonFields::has(const std::string& key) const {
+  asked_.push_back(key);  // a key the reader looks for is a known one, for reject_unknown's list
+  return object_.contains(key);
+}
+
+const nlohmann::json* JsonFields::find(const std::string& key) {
+  asked_.push_back(key);
+  auto it = object_.find(key);
+  if (it == object_.end()) return nullptr;
+  used_.insert(key);
+  return &*it;
+}
+
+const nlohmann::json& JsonFields::at(const std::string& key) {
+  if (const auto* v = find(key)) return *v;
+  fail(key, "missing (required)");
+}
+
+double JsonFields::checked_number(const nlohmann::json& value, const std::string& key) const {
+  if (value.is_string()) {  // what --set makes of NaN, inf, ... (JSON itself has no such numbers)
+    std::string word = value.get<std::string>();
+    for (auto& c : word) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    if (word == "nan" || word == "inf" || word == "-inf" || word == "infinity" || word == "-infinity")
+      fail(key, "must be a finite number (got " + value.get<std::string>() + ")");
+  }
+  if (!value.is_number()) fail(key, "must be a number, not " + json_type_name(value));
+  const double x = value.get<double>();
+  if (!std::isfinite(x)) fail(key, "must be a finite number");
+  return x;
+}
+
+double JsonFields::number(const std::string& key) { return checked_number(at(key), key); }
+double JsonFields::number(const std::string& key, double fallback) {
+  const auto* v = find(key);
+  return v ? checked_number(*v, key) : fallback;
+}
+
+double JsonFields::positive(const std::string& key) {
+  const double x = number(key);
+  if (!(x > 0)) fail(key, "must be > 0 (got " + nlohmann::json(x).dump() + ")");
+  return x;
+}
+double JsonFields::positive(const std::string& key, double fallback) {
+  const double x = number(key, fallback);
+  if (!(x > 0)) fail(key, "must be > 0 (got " + nlohmann::json(x).dump() + ")");
+  return x;
+}
+double JsonFields::non_negative(const std::string& key) {
+  const double x = number(key);
+  if (!(x >= 0)) fail(key, "must be >= 0 (got " + nlohmann::json(x).dump() + ")");
+  return x;
+}
+double JsonFields::non_negative(const std::string& key, double fallback) {
+  const double x = number(key, fallback);
+  if (!(x >= 0)) fail(key, "must be >= 0 (got " + nlohmann::json(x).dump() + ")");
+  return x;
+}
+
+long JsonFields::integer(const std::string& key) {
+  const double x = number(key);
+  if (x != std::floor(x) || std::abs(x) > 1e15) fail(key, "must be a whole number (got " + nlohmann::json(x).dump() + ")");
+  return static_cast<long>(x);
+}
+long JsonFields::integer(const std::string& key, long fallback) {
+  return has(key) ? integer(key) : fallback;
+}
+
+bool JsonFields::boolean(const std::string& key, bool fallback) {
+  const auto* v = find(key);
+  if (!v) return fallback;
+  if (!v->is_boolean()) fail(key, "must be true or false, not " + json_type_name(*v));
+  return v->get<bool>();
+}
+
+std::string JsonFields::string(const std::string& key) {
+  const auto& v = at(key);
+  if (!v.is_string()) fail(key, "must be a string, not " + json_type_name(v));
+  return v.get<std::string>();
+}
+std::string JsonFields::string(const std::string& key, const std::string& fallback) {
+  return has(key) ? string(key) : fallback;
+}
+
+std::vector<double> JsonFields::numbers(const std::string& key, int size) {
+  const auto& v = at(key);
+  if (!v.is_array()) fail(key, "must be an array of numbers, not " + json_type_name(v));
+  if (size >= 0 && static_cast<int>(v.size()) != size)
+    fail(key, "must have " + std::to_string(size) + (size == 1 ? " number" : " numbers") + " (got " +
+                  std::to_string(v.size()) + ")");
+  std::vector<double> out;
+  for (size_t i = 0; i < v.size(); ++i) out.push_back(checked_number(v[i], key + "[" + std::to_string(i) + "]"));
+  return out;
+}
+std::vector<double> JsonFields::numbers(const std::string& key, int size, const std::vector<double>& fallback) {
+  return has(key) ? numbers(key, size) : fallback;
+}
+
+JsonFields JsonFields::object(const std::string& key) {
+  const auto& v = at(key);
+  if (!v.is_object()) fail(key, "must be an object, not " + json_type_name(v));
+  return JsonFields(v, path_of(key));
+}
+
+std::vector<JsonFields> JsonFields::objects(const std::string& key) {
+  std::vector<JsonFields> out;
+  const auto* v = find(key);
+  if (!v) return out;
+  if (!v->is_array()) fail(key, "must be an array, not " + json_type_name(*v));
+  for (size_t i = 0; i < v->size(); ++i) {
+    const std::string item = path_of(key) + "[" + std::to_string(i) + "]";
+    if (!(*v)[i].is_object()) throw SceneError(item, "must be an object, not " + json_type_name((*v)[i]));
+    out.emplace_back((*v)[i], item);
+  }
+  return out;
+}
+
+std::vector<std::string> JsonFields::keys() const {
+  std::vector<std::string> k;
+  for (auto it = object_.begin(); it != object_.end(); ++it) k.push_back(it.key());
+  return k;
+}
+
+void JsonFields::reject_unknown() const {
+  for (auto it = object_.begin(); it != object_.end(); ++it)
+    if (!used_.count(it.key())) {
+      std::string known;
+      std::set<std::string> seen;
+      for (const auto& k : asked_)
+        if (seen.insert(k).second) known += (known.empty() ? "" : ", ") + k;
+      fail(it.key(), "unknown field" + (known.empty() ? std::string() : " (expected one of: " + known + ")"));
+    }
+}
+
+}  // namespace motus
