@@ -3,8 +3,13 @@
 // temporary folder per test, the command's exit status, standard output and standard
 // error. MOTUS_BINARY and MOTUS_SCENES_DIR come from tests/CMakeLists.txt.
 #include <gtest/gtest.h>
+#include <fcntl.h>
+#include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
 
 #include <algorithm>
 #include <cstdlib>
@@ -56,46 +61,62 @@ private:
   fs::path path_;
 };
 
-std::string shell_quote(const std::string& s) {
-  std::string q = "'";
-  for (char c : s) {
-    if (c == '\'')
-      q += "'\\''";
-    else
-      q += c;
-  }
-  return q + "'";
-}
-
 struct Result {
-  int status = -1;
+  int status = -1;  // the exit status; 128 + N when killed by signal N
   std::string out, err;
 };
 
-// Runs `motus ARGS...` with standard output and error captured in files of `dir`.
-// `environment` ("" or "NAME=value ...") is put before the command.
-Result run_motus(const TempDir& dir, const std::vector<std::string>& args, const std::string& environment = "") {
-  std::string command = environment;
-  if (!command.empty()) command += ' ';
-  command += shell_quote(kMotus);
-  for (const auto& a : args) {
-    command += ' ';
-    command += shell_quote(a);
-  }
+// Runs PROGRAM ARGS... directly (no shell), with standard input from /dev/null and standard
+// output and error captured in files of `dir`. `environment` entries ("NAME=value") are set
+// on top of this process's environment.
+inline Result run_program(const TempDir& dir, const std::string& program, const std::vector<std::string>& args,
+                          const std::vector<std::string>& environment = {}) {
   const fs::path out = dir / "stdout.txt", err = dir / "stderr.txt";
-  command += " >";
-  command += shell_quote(out.string());
-  command += " 2>";
-  command += shell_quote(err.string());
-  command += " </dev/null";
-  const int raw = std::system(command.c_str());
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
+  posix_spawn_file_actions_addopen(&actions, 1, out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_addopen(&actions, 2, err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  std::vector<std::string> argv_strings = {program};
+  argv_strings.insert(argv_strings.end(), args.begin(), args.end());
+  std::vector<char*> argv;
+  for (auto& a : argv_strings) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  // This environment, with `environment` replacing (or adding) its names.
+  std::vector<std::string> env_strings;
+  for (char** e = environ; *e; ++e) {
+    const std::string entry = *e, name = entry.substr(0, entry.find('='));
+    const bool replaced = std::any_of(environment.begin(), environment.end(),
+                                      [&](const std::string& mine) { return mine.substr(0, mine.find('=')) == name; });
+    if (!replaced) env_strings.push_back(entry);
+  }
+  env_strings.insert(env_strings.end(), environment.begin(), environment.end());
+  std::vector<char*> envp;
+  for (auto& e : env_strings) envp.push_back(e.data());
+  envp.push_back(nullptr);
+  pid_t pid = 0;
+  const int spawned = posix_spawn(&pid, program.c_str(), &actions, nullptr, argv.data(), envp.data());
+  posix_spawn_file_actions_destroy(&actions);
   Result r;
-  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+  if (spawned != 0) {
+    r.err = program + ": cannot be started: " + std::strerror(spawned);
+    return r;
+  }
+  int raw = 0;
+  while (waitpid(pid, &raw, 0) < 0 && errno == EINTR) {
+  }
+  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : WIFSIGNALED(raw) ? 128 + WTERMSIG(raw) : -1;
   r.out = read_file(out);
   r.err = read_file(err);
   return r;
 }
 
-long count_lines(const std::string& s) { return std::count(s.begin(), s.end(), '\n'); }
+// Runs `motus ARGS...` as above.
+inline Result run_motus(const TempDir& dir, const std::vector<std::string>& args,
+                        const std::vector<std::string>& environment = {}) {
+  return run_program(dir, kMotus, args, environment);
+}
+
+inline long count_lines(const std::string& s) { return std::count(s.begin(), s.end(), '\n'); }
 
 }  // namespace motus_test

@@ -249,7 +249,7 @@ TEST(RenderCommand, ImpossibleSizeExits2WithOneLine) {
 
 TEST(RenderCommand, FailedContextExits2WithOneLine) {
   TempDir dir;
-  const auto r = run_motus(dir, {"render", "spring", "--out", (dir / "frames").string()}, "MOTUS_RENDER_FAIL_CONTEXT=1");
+  const auto r = run_motus(dir, {"render", "spring", "--out", (dir / "frames").string()}, {"MOTUS_RENDER_FAIL_CONTEXT=1"});
   EXPECT_EQ(r.status, 2);
   EXPECT_EQ(count_lines(r.err), 1) << r.err;
   EXPECT_NE(r.err.find("OSMesa could not create"), std::string::npos) << r.err;
@@ -259,7 +259,7 @@ TEST(RenderCommand, MissingFfmpegExits2WithOneLine) {
   TempDir dir;
   fs::create_directories(dir / "empty");
   const auto r = run_motus(dir, {"render", "spring", "--out", (dir / "frames").string(), "--video", "mp4"},
-                           "PATH=" + shell_quote((dir / "empty").string()));
+                           {"PATH=" + (dir / "empty").string()});
   EXPECT_EQ(r.status, 2);
   EXPECT_EQ(count_lines(r.err), 1) << r.err;
   EXPECT_NE(r.err.find("ffmpeg not found on PATH"), std::string::npos) << r.err;
@@ -267,7 +267,7 @@ TEST(RenderCommand, MissingFfmpegExits2WithOneLine) {
 
 TEST(RenderCommand, MissingFontExits2WithOneLine) {
   TempDir dir;
-  const auto r = run_motus(dir, {"render", "spring", "--out", (dir / "frames").string()}, "MOTUS_FONT=/nonexistent/font.ttf");
+  const auto r = run_motus(dir, {"render", "spring", "--out", (dir / "frames").string()}, {"MOTUS_FONT=/nonexistent/font.ttf"});
   EXPECT_EQ(r.status, 2);
   EXPECT_EQ(count_lines(r.err), 1) << r.err;
   EXPECT_NE(r.err.find("fonts-dejavu-core"), std::string::npos) << r.err;
@@ -282,4 +282,37 @@ TEST(RenderCommand, GifThroughFfmpeg) {
   const std::string gif = read_file(dir / "frames/newtons_cradle.gif");
   ASSERT_GT(gif.size(), 6u);
   EXPECT_EQ(gif.substr(0, 6), "GIF89a");
+}
+
+// Every shipped scene draws through the drawing module: its first frame has the size asked
+// for and is more than the background (DrawOptions' background colour, unchanged where
+// nothing is drawn).
+TEST(RenderCommand, DrawsTheFirstFrameOfEveryShippedScene) {
+  TempDir dir;
+  const Color background = DrawOptions{}.background;
+  for (const auto& entry : fs::directory_iterator(kScenes)) {
+    if (entry.path().extension() != ".json") continue;
+    const std::string name = entry.path().stem().string();
+    const fs::path out = dir / name;
+    const auto r = run_motus(dir, {"render", name, "--out", out.string(), "--size", "160x120", "--duration", "0"});
+    ASSERT_EQ(r.status, 0) << name << ": " << r.err;
+    const Image frame = read_png((out / "frame_00000.png").string());
+    EXPECT_EQ(frame.width, 160) << name;
+    EXPECT_EQ(frame.height, 120) << name;
+    long drawn = 0;
+    for (int y = 0; y < frame.height; ++y)
+      for (int x = 0; x < frame.width; ++x) drawn += frame.pixel(x, y) != background;
+    EXPECT_GT(drawn, 200) << name << ": the first frame is (almost) only background";
+  }
+}
+
+// Commands that draw nothing do not load OpenGL: the dynamic loader's list of what `motus`
+// loads (LD_TRACE_LOADED_OBJECTS, what ldd prints) has no libOSMesa and no libLLVM.
+TEST(RenderCommand, MotusItselfLoadsNoOpenGL) {
+  TempDir dir;
+  const auto r = run_motus(dir, {"--version"}, {"LD_TRACE_LOADED_OBJECTS=1"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("libstdc++"), std::string::npos) << r.out;  // it did list the libraries
+  EXPECT_EQ(r.out.find("OSMesa"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("LLVM"), std::string::npos) << r.out;
 }

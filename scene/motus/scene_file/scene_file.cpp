@@ -250,7 +250,7 @@ FirstOrderDescription read_first_order(JsonFields system) {
 SceneDescription read_scene(const nlohmann::json& document, const std::string& stem) {
   JsonFields f(document, "");
   SceneDescription scene;
-  f.string("$schema", "");  // editors may point at docs/scene.schema.json
+  f.string("$schema", "");  // editors may point at scene/scene.schema.json
   scene.name = f.string("name", stem);
   scene.description = f.string("description", "");
 

@@ -1,6 +1,6 @@
 #pragma once
 // Scene files: JSON in, a checked SceneDescription out. The format is documented in
-// docs/scene-format.md and docs/scene.schema.json.
+// docs/scene-format.md and scene/scene.schema.json.
 #include <stdexcept>
 #include <string>
 #include <vector>

@@ -1,0 +1,81 @@
+# The installed package works for a project of its own: install this build into an empty
+# prefix, configure and build examples/ against that prefix only, run the example and find
+# the course's spring table in what it prints (x = 20, 20, 10, −10, −35, −55 at t = 0 … 5,
+# explicit Euler with m = 10, k = 5, h = 1: tests/reference/README.md).
+#   cmake -DBUILD_DIR=... -DSOURCE_DIR=... -DWORK_DIR=... -P install_test.cmake
+foreach(var BUILD_DIR SOURCE_DIR WORK_DIR)
+  if(NOT DEFINED ${var})
+    message(FATAL_ERROR "install_test.cmake needs -D${var}=...")
+  endif()
+endforeach()
+file(REMOVE_RECURSE ${WORK_DIR})
+set(prefix ${WORK_DIR}/prefix)
+
+function(run what)
+  execute_process(COMMAND ${ARGN} RESULT_VARIABLE status OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT status EQUAL 0)
+    message(FATAL_ERROR "${what} failed (${status}):\n${out}\n${err}")
+  endif()
+  set(output "${out}" PARENT_SCOPE)
+endfunction()
+
+run("cmake --install" ${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${prefix})
+foreach(file bin/motus share/motus/scenes/spring.json share/motus/scene.schema.json
+             include/motus/simulation.hpp include/motus/scene_file/scene_file.hpp
+             include/motus/compare/comparison.hpp include/motus/render/draw.hpp)
+  if(NOT EXISTS ${prefix}/${file})
+    message(FATAL_ERROR "the install has no ${file}")
+  endif()
+endforeach()
+file(GLOB config ${prefix}/lib*/cmake/motus/motusConfig.cmake ${prefix}/lib/*/cmake/motus/motusConfig.cmake)
+file(GLOB version ${prefix}/lib*/cmake/motus/motusConfigVersion.cmake ${prefix}/lib/*/cmake/motus/motusConfigVersion.cmake)
+if(NOT config OR NOT version)
+  message(FATAL_ERROR "the install has no motusConfig.cmake / motusConfigVersion.cmake")
+endif()
+
+# The example sees only the prefix: not this build tree, not the source tree's headers.
+run("configuring examples/" ${CMAKE_COMMAND} -S ${SOURCE_DIR}/examples -B ${WORK_DIR}/examples
+    -DCMAKE_PREFIX_PATH=${prefix} -DCMAKE_BUILD_TYPE=Release -DCMAKE_FIND_USE_PACKAGE_REGISTRY=OFF)
+run("building examples/" ${CMAKE_COMMAND} --build ${WORK_DIR}/examples)
+run("spring_table" ${WORK_DIR}/examples/spring_table)
+message(STATUS "spring_table printed:\n${output}")
+
+# Rows "t x v a"; the course's table.
+set(expected_x 20 20 10 -10 -35 -55)
+set(expected_v 0 -10 -20 -25 -20 -2.5)
+string(REPLACE "\n" ";" lines "${output}")
+set(t 0)
+foreach(line IN LISTS lines)
+  string(STRIP "${line}" line)
+  if(line MATCHES "^([-0-9.e+]+) +([-0-9.e+]+) +([-0-9.e+]+) +([-0-9.e+]+)$")
+    list(GET expected_x ${t} x)
+    list(GET expected_v ${t} v)
+    if(NOT CMAKE_MATCH_1 STREQUAL "${t}" OR NOT CMAKE_MATCH_2 STREQUAL "${x}" OR NOT CMAKE_MATCH_3 STREQUAL "${v}")
+      message(FATAL_ERROR "row ${t}: expected t = ${t}, x = ${x}, v = ${v}; got \"${line}\"")
+    endif()
+    math(EXPR t "${t} + 1")
+  endif()
+endforeach()
+if(NOT t EQUAL 6)
+  message(FATAL_ERROR "expected the 6 rows t = 0 … 5, found ${t}")
+endif()
+
+# head_on (masses 1 and 3 at +1 and −1 m/s, e = 1) ends at the exact v = (−2, 0) in every
+# engine: motus to 1e-9, the peers to their float/double precision (README: all three exact).
+file(GLOB scenes_dir LIST_DIRECTORIES true ${prefix}/share/motus/scenes)
+run("head_on_in_three_engines" ${WORK_DIR}/examples/head_on_in_three_engines ${scenes_dir})
+message(STATUS "head_on_in_three_engines printed:\n${output}")
+foreach(engine motus box2d bullet)
+  if(NOT output MATCHES "${engine} +(-?[0-9.]+) +(-?[0-9.]+)")
+    message(FATAL_ERROR "no velocities for ${engine} in:\n${output}")
+  endif()
+  if(NOT CMAKE_MATCH_1 STREQUAL "-2.000000" OR NOT CMAKE_MATCH_2 MATCHES "^-?0.00000[0-9]$")
+    message(FATAL_ERROR "${engine}: expected v = (-2, 0), got (${CMAKE_MATCH_1}, ${CMAKE_MATCH_2})")
+  endif()
+endforeach()
+
+# The installed motus finds its installed scenes and drawing module, not this build's.
+run("installed motus run spring" ${prefix}/bin/motus run spring --json)
+if(NOT output MATCHES "share/motus/scenes/spring.json")
+  message(FATAL_ERROR "the installed motus did not use the installed scenes:\n${output}")
+endif()
