@@ -5,6 +5,7 @@
 #include <variant>
 
 #include "motus/integrate/euler.hpp"
+#include "motus/integrate/external_stepper.hpp"
 #include "motus/integrate/midpoint.hpp"
 #include "motus/integrate/rk4.hpp"
 #include "motus/integrate/rk45.hpp"
@@ -22,7 +23,7 @@ namespace motus {
 
 struct Simulation::Steppers {
   std::variant<Euler, Midpoint, Rk4, Rk4Doubling, Rk45, SymplecticEuler, SymplecticEulerX, Verlet, VelocityVerlet,
-               Yoshida4>
+               Yoshida4, ExternalFixedStep, ExternalAdaptiveStep, ExternalMechanicalStep>
       any;
 };
 
@@ -30,11 +31,12 @@ namespace {
 
 // The three calling shapes: step(f, t, h, y); try_step(f, t, h, y); step(s, t, h, x, v).
 template <class T>
-constexpr bool is_adaptive = std::is_same_v<T, Rk4Doubling> || std::is_same_v<T, Rk45>;
+constexpr bool is_adaptive =
+    std::is_same_v<T, Rk4Doubling> || std::is_same_v<T, Rk45> || std::is_same_v<T, ExternalAdaptiveStep>;
 template <class T>
 constexpr bool is_symplectic = std::is_same_v<T, SymplecticEuler> || std::is_same_v<T, SymplecticEulerX> ||
                                std::is_same_v<T, Verlet> || std::is_same_v<T, VelocityVerlet> ||
-                               std::is_same_v<T, Yoshida4>;
+                               std::is_same_v<T, Yoshida4> || std::is_same_v<T, ExternalMechanicalStep>;
 
 }  // namespace
 
@@ -45,8 +47,8 @@ long fixed_step_count(double duration, double dt) {
   return static_cast<long>(std::ceil(steps));
 }
 
-Simulation::Simulation(const SceneDescription& scene, Integrator integrator)
-    : scene_(scene), integrator_(integrator), stepper_(std::make_unique<Steppers>()), t_(scene.start_time) {
+Simulation::Simulation(const SceneDescription& scene, Method method, ExternalParts parts)
+    : scene_(scene), method_(std::move(method)), stepper_(std::make_unique<Steppers>()), t_(scene.start_time) {
   if (scene.mechanical) {
     const auto& m = *scene.mechanical;
     const int n = static_cast<int>(m.bodies.size()) * m.dimensions;
@@ -57,7 +59,7 @@ Simulation::Simulation(const SceneDescription& scene, Integrator integrator)
         y_[n + static_cast<Eigen::Index>(i) * m.dimensions + k] = m.bodies[i].velocity[k];
       }
     }
-    world_ = std::make_unique<World>(m, integrator);  // throws if the integrator cannot run its passes
+    world_ = std::make_unique<World>(m, method_, parts);  // throws if the integrator cannot run its passes
   } else if (scene.first_order) {
     const SystemInfo* info = find_first_order_system(scene.first_order->type);
     if (!info) throw SceneError("system.type", "unknown system \"" + scene.first_order->type + "\"");
@@ -71,24 +73,34 @@ Simulation::Simulation(const SceneDescription& scene, Integrator integrator)
     throw SceneError("", "a scene needs either \"bodies\" (mechanical) or \"system\" (first-order)");
   }
 
-  if (motus::info(integrator).needs_mechanical && !world_)
-    throw SceneError("integrator", std::string(motus::info(integrator).name) +
+  if (method_.needs_mechanical() && !world_)
+    throw SceneError("integrator", method_.name() +
                                        " is symplectic: it needs a mechanical scene (bodies), and this scene is the "
                                        "first-order system \"" + scene.first_order->type +
                                        "\"; use euler, midpoint, rk4, rk4-doubling or rk45");
 
   auto& any = stepper_->any;
-  switch (integrator) {
-    case Integrator::Euler: any.emplace<Euler>(); break;
-    case Integrator::Midpoint: any.emplace<Midpoint>(); break;
-    case Integrator::Rk4: any.emplace<Rk4>(); break;
-    case Integrator::Rk4Doubling: any.emplace<Rk4Doubling>(); break;
-    case Integrator::Rk45: any.emplace<Rk45>(); break;
-    case Integrator::SymplecticEuler: any.emplace<SymplecticEuler>(); break;
-    case Integrator::SymplecticEulerX: any.emplace<SymplecticEulerX>(); break;
-    case Integrator::Verlet: any.emplace<Verlet>(); break;
-    case Integrator::VelocityVerlet: any.emplace<VelocityVerlet>(); break;
-    case Integrator::Yoshida4: any.emplace<Yoshida4>(); break;
+  if (method_.is_external()) {
+    switch (method_.outside().kind) {
+      case kExternalFirstOrder: any.emplace<ExternalFixedStep>(method_.outside(), method_.name()); break;
+      case kExternalAdaptive: any.emplace<ExternalAdaptiveStep>(method_.outside(), method_.name()); break;
+      case kExternalMechanical:
+      case kExternalPositionVerlet: any.emplace<ExternalMechanicalStep>(method_.outside(), method_.name()); break;
+      default: throw SceneError("integrator", method_.name() + ": unknown kind of integrator");
+    }
+  } else {
+    switch (method_.builtin()) {
+      case Integrator::Euler: any.emplace<Euler>(); break;
+      case Integrator::Midpoint: any.emplace<Midpoint>(); break;
+      case Integrator::Rk4: any.emplace<Rk4>(); break;
+      case Integrator::Rk4Doubling: any.emplace<Rk4Doubling>(); break;
+      case Integrator::Rk45: any.emplace<Rk45>(); break;
+      case Integrator::SymplecticEuler: any.emplace<SymplecticEuler>(); break;
+      case Integrator::SymplecticEulerX: any.emplace<SymplecticEulerX>(); break;
+      case Integrator::Verlet: any.emplace<Verlet>(); break;
+      case Integrator::VelocityVerlet: any.emplace<VelocityVerlet>(); break;
+      case Integrator::Yoshida4: any.emplace<Yoshida4>(); break;
+    }
   }
   // Mechanical steppers work on x (or v): half the state. The rest work on all of it.
   const int n = static_cast<int>(y_.size());

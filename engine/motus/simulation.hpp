@@ -9,8 +9,9 @@
 #include <string>
 #include <vector>
 
+#include "motus/external/external_parts.hpp"
 #include "motus/integrate/step_size_control.hpp"
-#include "motus/integrator_name.hpp"
+#include "motus/method.hpp"
 #include "motus/scene.hpp"
 #include "motus/systems/first_order_system.hpp"
 #include "motus/systems/mechanical_system.hpp"
@@ -25,14 +26,16 @@ struct Energy {
 class Simulation {
 public:
   // Throws SceneError("integrator", ...) for a symplectic integrator on a first-order
-  // system, and SceneError for a scene the engine cannot build.
-  Simulation(const SceneDescription& scene, Integrator integrator);
+  // system, and SceneError for a scene the engine cannot build. `parts` replace the
+  // engine's collision response or constraint projection for this run (a plug-in's);
+  // what they point at must outlive the Simulation.
+  Simulation(const SceneDescription& scene, Method method, ExternalParts parts = {});
   ~Simulation();
   Simulation(const Simulation&) = delete;
   Simulation& operator=(const Simulation&) = delete;
 
   const SceneDescription& scene() const { return scene_; }
-  Integrator integrator() const { return integrator_; }
+  const Method& method() const { return method_; }
   bool is_mechanical() const { return world_ != nullptr; }
 
   double time() const { return t_; }
@@ -62,7 +65,8 @@ public:
   //   less than dt.
   //   Adaptive ones start from dt (or the step they last chose), pick their own steps
   //   within `tolerance`, and land exactly on end_time.
-  // after_step, if given, is called after every accepted step.
+  // after_step, if given, is called after every accepted step. A part from outside that
+  // fails throws ExternalError.
   void advance(double end_time, double dt, Tolerance tolerance,
                const std::function<void(const Simulation&)>& after_step = {});
 
@@ -73,7 +77,7 @@ public:
 private:
   struct Steppers;
   SceneDescription scene_;
-  Integrator integrator_;
+  Method method_;
   std::unique_ptr<FirstOrderSystem> first_order_;
   std::unique_ptr<World> world_;
   std::unique_ptr<Steppers> stepper_;

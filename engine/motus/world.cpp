@@ -13,8 +13,8 @@ MechanicalSystem make_system(const MechanicalDescription& scene) {
 
 }  // namespace
 
-World::World(const MechanicalDescription& scene, Integrator integrator)
-    : system_(make_system(scene)), integrator_(integrator), has_forces_(!scene.forces.empty()),
+World::World(const MechanicalDescription& scene, const Method& method, ExternalParts parts)
+    : system_(make_system(scene)), has_forces_(!scene.forces.empty()),
       has_sticks_(!scene.sticks.empty()) {
   const ForceSet& f = scene.forces;
   position_dependent_forces_ =
@@ -28,31 +28,73 @@ World::World(const MechanicalDescription& scene, Integrator integrator)
   }
   const bool contacts = !scene.colliders.empty() || balls >= 2;
   const bool constrained = !scene.sticks.empty() || !scene.pins.empty();
-  const char* name = info(integrator).name;
+  const std::string name = method.name();
+  const bool verlet = !method.is_external() && method.builtin() == Integrator::Verlet;
+  const bool symplectic_euler = !method.is_external() && method.builtin() == Integrator::SymplecticEuler;
 
-  if (constrained || (contacts && integrator == Integrator::Verlet)) {
-    if (integrator != Integrator::Verlet)
-      throw SceneError("integrator", std::string(name) +
+  if (constrained || (contacts && verlet)) {
+    if (!verlet)
+      throw SceneError("integrator", name +
                                          " cannot run sticks and pins: they are projected on velocityless Verlet; "
                                          "use verlet");
     Vector inverse_mass = system_.masses().cwiseInverse();
     constraints_ = std::make_unique<ConstraintProjection>(scene.dimensions, inverse_mass, radius, scene.sticks,
                                                           scene.pins, scene.colliders, scene.constraint_iterations);
     project_contacts_ = contacts;
+    if (parts.constraints) use_external_projection(scene, *parts.constraints);
     return;
   }
   if (contacts) {
-    if (integrator != Integrator::SymplecticEuler)
-      throw SceneError("integrator", std::string(name) +
+    if (!symplectic_euler)
+      throw SceneError("integrator", name +
                                          " cannot run collisions: contacts are resolved at their time of impact during "
                                          "symplectic Euler's drift (symplectic-euler) or projected (verlet)");
     const Vector inverse_mass = system_.masses().cwiseInverse();
     switch (scene.dimensions) {
-      case 1: collisions_.emplace<BallCollisions<1>>(inverse_mass, radius, restitution, scene.colliders); break;
-      case 2: collisions_.emplace<BallCollisions<2>>(inverse_mass, radius, restitution, scene.colliders); break;
-      default: collisions_.emplace<BallCollisions<3>>(inverse_mass, radius, restitution, scene.colliders); break;
+      case 1: collisions_.emplace<BallCollisions<1>>(inverse_mass, radius, restitution, scene.colliders, parts.collisions); break;
+      case 2: collisions_.emplace<BallCollisions<2>>(inverse_mass, radius, restitution, scene.colliders, parts.collisions); break;
+      default: collisions_.emplace<BallCollisions<3>>(inverse_mass, radius, restitution, scene.colliders, parts.collisions); break;
     }
   }
+}
+
+void World::use_external_projection(const MechanicalDescription& scene, const ExternalConstraintRules& rules) {
+  int balls = 0;
+  for (const auto& b : scene.bodies) balls += b.radius > 0;
+  if (balls >= 2)
+    throw SceneError("integrator", "a constraint projection from a plug-in moves sticks, pins and walls, not balls "
+                                   "against each other, and this scene has " + std::to_string(balls) +
+                                   " balls; run it without the plug-in");
+  if (!scene.colliders.segments.empty())
+    throw SceneError("colliders", "a constraint projection from a plug-in handles planes and boxes, not segments");
+  external_projection_ = &rules;
+  for (const auto& b : scene.bodies) {
+    external_inverse_mass_.push_back(1 / b.mass);
+    external_radius_.push_back(b.radius);
+  }
+  for (const auto& s : scene.sticks) external_sticks_.push_back({s.a, s.b, s.length});
+  for (const auto& p : scene.pins) external_pins_.push_back({p.body, {p.position[0], p.position[1], p.position[2]}});
+  for (const auto& w : constraints_->walls()) external_walls_.push_back({{w.normal[0], w.normal[1], w.normal[2]}, w.offset});
+  external_set_ = {scene.dimensions,
+                   static_cast<int>(scene.bodies.size()),
+                   external_inverse_mass_.data(),
+                   external_radius_.data(),
+                   static_cast<int>(external_sticks_.size()),
+                   external_sticks_.data(),
+                   static_cast<int>(external_pins_.size()),
+                   external_pins_.data(),
+                   static_cast<int>(external_walls_.size()),
+                   external_walls_.data(),
+                   scene.constraint_iterations};
+}
+
+void World::project(VectorRef x) {
+  if (!external_projection_) {
+    constraints_->project(x);
+    return;
+  }
+  check_external(external_projection_->project(external_projection_->self, &external_set_, x.data()),
+                 "constraint projection", external_projection_->error, external_projection_->self);
 }
 
 void World::drift_with_collisions(VectorRef x, VectorRef v, double h) {

@@ -19,9 +19,10 @@
 
 #include "motus/collide/ball_collisions.hpp"
 #include "motus/constrain/constraint_projection.hpp"
+#include "motus/external/external_parts.hpp"
 #include "motus/integrate/symplectic_euler.hpp"
 #include "motus/integrate/verlet.hpp"
-#include "motus/integrator_name.hpp"
+#include "motus/method.hpp"
 #include "motus/scene.hpp"
 #include "motus/systems/mechanical_system.hpp"
 
@@ -30,7 +31,8 @@ namespace motus {
 class World {
 public:
   // Throws SceneError("integrator", ...) when the integrator cannot run this scene's passes.
-  World(const MechanicalDescription& scene, Integrator integrator);
+  // `parts` replace the collision response or the constraint projection (a plug-in's).
+  World(const MechanicalDescription& scene, const Method& method, ExternalParts parts = {});
 
   MechanicalSystem& system() { return system_; }
   const MechanicalSystem& system() const { return system_; }
@@ -54,15 +56,25 @@ public:
 
 private:
   void drift_with_collisions(VectorRef x, VectorRef v, double h);
+  void project(VectorRef x);
+  void use_external_projection(const MechanicalDescription& scene, const ExternalConstraintRules& rules);
 
   MechanicalSystem system_;
-  Integrator integrator_;
   bool has_forces_;
   std::variant<std::monostate, BallCollisions<1>, BallCollisions<2>, BallCollisions<3>> collisions_;
   std::unique_ptr<ConstraintProjection> constraints_;
   bool project_contacts_ = false;  // verlet: walls and balls are projection constraints too
   bool has_sticks_ = false;
   bool position_dependent_forces_ = false;  // anything but uniform gravity and drag
+
+  // A projection from outside (ExternalParts::constraints): the rules and the set they are
+  // given, whose arrays live here for the whole run.
+  const ExternalConstraintRules* external_projection_ = nullptr;
+  ExternalConstraintSet external_set_{};
+  std::vector<double> external_inverse_mass_, external_radius_;
+  std::vector<ExternalStick> external_sticks_;
+  std::vector<ExternalPin> external_pins_;
+  std::vector<ExternalWall> external_walls_;
 };
 
 template <class Stepper>
@@ -77,7 +89,7 @@ inline void World::step(Stepper& stepper, double t, double h, VectorRef x, Vecto
   if constexpr (std::is_same_v<Stepper, Verlet>) {
     if (constraints_) {
       stepper.step(system_, t, h, x, v);
-      constraints_->project(x);
+      project(x);
       v = (x - stepper.previous_positions()) / h;
       // The acceleration Verlet keeps for its next step was taken before the projection
       // moved x; forces that depend on position must see where the bodies really are.

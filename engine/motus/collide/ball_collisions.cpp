@@ -25,8 +25,9 @@ constexpr double kOverlapSlack = 1e-12;
 
 template <int D>
 BallCollisions<D>::BallCollisions(const Vector& inverse_mass, std::vector<double> radius,
-                                  std::vector<double> restitution, const Colliders& colliders)
-    : n_(static_cast<int>(inverse_mass.size())), inverse_mass_(inverse_mass), radius_(std::move(radius)),
+                                  std::vector<double> restitution, const Colliders& colliders,
+                                  const ExternalCollisionRules* rules)
+    : n_(static_cast<int>(inverse_mass.size())), rules_(rules), inverse_mass_(inverse_mass), radius_(std::move(radius)),
       restitution_(std::move(restitution)) {
   for (int i = 0; i < n_; ++i) {
     max_radius_ = std::max(max_radius_, radius_[i]);
@@ -256,7 +257,9 @@ void BallCollisions<D>::test_pair(int i, int k, double t) {
   const Point dp = position_at(k, t) - position_at(i, t);
   const Point dv = velocity(k) - velocity(i);
   const double R = radius_[i] + radius_[k];
-  const double toi = sphere_sphere_impact(dp.squaredNorm(), dp.dot(dv), dv.squaredNorm(), R, h_ - t);
+  const double toi = rules_ ? outside_balls_impact(position_at(i, t), velocity(i), radius_[i], position_at(k, t),
+                                                   velocity(k), radius_[k], h_ - t)
+                            : sphere_sphere_impact(dp.squaredNorm(), dp.dot(dv), dv.squaredNorm(), R, h_ - t);
   if (toi != kNoImpact) push(t + toi, i, k);
 }
 
@@ -329,7 +332,8 @@ void BallCollisions<D>::find_initial_events() {
       const Point dv = Eigen::Map<const Point>(v + D * k) - v_i;
       const double dp_dv = dp.dot(dv);
       if (dp_dv >= 0) return;  // not approaching
-      const double toi = sphere_sphere_impact(dp_dp, dp_dv, dv.squaredNorm(), R, h_);
+      const double toi = rules_ ? outside_balls_impact(p_i, v_i, r_i, position(k), velocity(k), radius[k], h_)
+                                : sphere_sphere_impact(dp_dp, dp_dv, dv.squaredNorm(), R, h_);
       if (toi != kNoImpact) push(toi, i, k);
     };
     const int c = ball_cell_[i];
@@ -360,7 +364,7 @@ void BallCollisions<D>::initial_plane_event(int i, int w) {
   }
   const double closing = plane.axis >= 0 ? plane.sign * u[plane.axis] : plane.normal.dot(u);
   if (gap + closing * h_ > 0) return;  // does not reach it this step
-  const double toi = sphere_plane_impact(gap, closing, h_);
+  const double toi = rules_ ? outside_plane_impact(p, u, radius_[i], plane, h_) : sphere_plane_impact(gap, closing, h_);
   if (toi != kNoImpact) push(toi, i, -1 - w);
 }
 
@@ -406,7 +410,7 @@ void BallCollisions<D>::find_wall_events(int i, double t) {
       gap = plane.normal.dot(p) - plane.offset - r;
       closing = plane.normal.dot(u);
     }
-    const double toi = sphere_plane_impact(gap, closing, horizon);
+    const double toi = rules_ ? outside_plane_impact(p, u, r, plane, horizon) : sphere_plane_impact(gap, closing, horizon);
     if (toi != kNoImpact) push(t + toi, i, -1 - static_cast<int>(w));
   }
   for (size_t s = 0; s < segments_.size(); ++s) {
@@ -511,7 +515,7 @@ void BallCollisions<D>::resolve(const Event& e) {
       if (restitution < 1 &&
           (collisions_this_step_[i] >= kCollapseLimit || collisions_this_step_[k] >= kCollapseLimit))
         restitution = 0;
-      collide_balls(velocity(i), velocity(k), inverse_mass_[i], inverse_mass_[k], Point(d / distance), restitution);
+      collide(i, k, Point(d / distance), restitution);
     }
     ++collision_count_[i];
     ++collision_count_[k];
@@ -529,13 +533,52 @@ void BallCollisions<D>::resolve(const Event& e) {
                               : segments_[static_cast<size_t>(w) - planes_.size()].restitution;
     double restitution = restitution_[i] * wall_e;
     if (restitution < 1 && collisions_this_step_[i] >= kCollapseLimit) restitution = 0;
-    bounce_off_wall(velocity(i), wall_normal(i, w), restitution);
+    bounce(i, wall_normal(i, w), restitution);
     ++collision_count_[i];
     ++collisions_this_step_[i];
     ++counters_.wall_collisions;
     mark_fast_if_needed(i, e.t);
     find_events(i, e.t, -1);
   }
+}
+
+template <int D>
+double BallCollisions<D>::outside_balls_impact(const Point& p_a, const Point& v_a, double r_a, const Point& p_b,
+                                               const Point& v_b, double r_b, double horizon) {
+  double t = kNoImpact;
+  check_external(rules_->balls_impact(rules_->self, D, p_a.data(), v_a.data(), r_a, p_b.data(), v_b.data(), r_b, &t),
+                 "time of impact of two balls", rules_->error, rules_->self);
+  return t >= 0 && t <= horizon ? t : kNoImpact;  // negative or NaN: no impact
+}
+
+template <int D>
+double BallCollisions<D>::outside_plane_impact(const Point& p, const Point& v, double r, const Plane& plane,
+                                               double horizon) {
+  double t = kNoImpact;
+  check_external(rules_->plane_impact(rules_->self, D, p.data(), v.data(), r, plane.normal.data(), plane.offset, &t),
+                 "time of impact of a ball and a plane", rules_->error, rules_->self);
+  return t >= 0 && t <= horizon ? t : kNoImpact;
+}
+
+template <int D>
+void BallCollisions<D>::collide(int i, int k, const Point& n, double e) {
+  if (!rules_) {
+    collide_balls(velocity(i), velocity(k), inverse_mass_[i], inverse_mass_[k], n, e);
+    return;
+  }
+  check_external(rules_->collide_balls(rules_->self, D, v_ + D * i, v_ + D * k, 1 / inverse_mass_[i],
+                                       1 / inverse_mass_[k], n.data(), e),
+                 "impulse between two balls", rules_->error, rules_->self);
+}
+
+template <int D>
+void BallCollisions<D>::bounce(int i, const Point& n, double e) {
+  if (!rules_) {
+    bounce_off_wall(velocity(i), n, e);
+    return;
+  }
+  check_external(rules_->bounce_off_wall(rules_->self, D, v_ + D * i, n.data(), e), "bounce off a wall",
+                 rules_->error, rules_->self);
 }
 
 template class BallCollisions<1>;

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "motus/collide/colliders.hpp"
+#include "motus/external/external_parts.hpp"
 #include "motus/vector.hpp"
 
 namespace motus {
@@ -38,9 +39,11 @@ class BallCollisions {
 public:
   using Point = Eigen::Matrix<double, D, 1>;
 
-  // radius 0 makes a point: it meets walls but not other bodies.
+  // radius 0 makes a point: it meets walls but not other bodies. `rules`, when given (a
+  // plug-in's), replace the impulses and the times of impact of ball–ball and ball–plane
+  // contacts (segments keep the engine's time of impact, and use the rules' wall bounce).
   BallCollisions(const Vector& inverse_mass, std::vector<double> radius, std::vector<double> restitution,
-                 const Colliders& colliders);
+                 const Colliders& colliders, const ExternalCollisionRules* rules = nullptr);
 
   // Moves every body for time h on straight lines from x with velocities v, resolving
   // every contact at its time of impact. x and v hold N·D numbers.
@@ -90,10 +93,17 @@ private:
   double segment_impact(const Segment& s, const Point& p, const Point& u, double r, double horizon, Point* normal) const;
   Point wall_normal(int i, int wall);
   void push(double t, int i, int other);
+  // The rules from outside, in the engine's terms (times relative to now, +∞ for none).
+  double outside_balls_impact(const Point& p_a, const Point& v_a, double r_a, const Point& p_b, const Point& v_b,
+                              double r_b, double horizon);
+  double outside_plane_impact(const Point& p, const Point& v, double r, const Plane& plane, double horizon);
+  void collide(int i, int k, const Point& n, double e);
+  void bounce(int i, const Point& n, double e);
   void resolve(const Event& e);
   void mark_fast_if_needed(int i, double t);
 
   int n_;
+  const ExternalCollisionRules* rules_;
   Vector inverse_mass_;
   std::vector<double> radius_, restitution_;
   double max_radius_ = 0;

@@ -34,14 +34,17 @@ public:
 
   long broad_phase_queries() const { return broad_phase_queries_; }
 
-private:
-  // A point of the scene's d ≤ 3 dimensions, on the stack (no allocation).
-  using Point = Eigen::Matrix<double, Eigen::Dynamic, 1, Eigen::ColMajor, 3, 1>;
   // A wall in the one form the sweep needs: the free half-space n·x ≥ offset, |n| = 1.
   struct Wall {
     std::array<double, 3> normal{0, 0, 0};
     double offset = 0;
   };
+  // The scene's planes, and each box container's inward faces.
+  const std::vector<Wall>& walls() const { return walls_; }
+
+private:
+  // A point of the scene's d ≤ 3 dimensions, on the stack (no allocation).
+  using Point = Eigen::Matrix<double, Eigen::Dynamic, 1, Eigen::ColMajor, 3, 1>;
 
   void place_pins(VectorRef x) const;
   void project_sticks(VectorRef x) const;

@@ -29,7 +29,7 @@ void MotusBackend::read(Snapshot& out) const {
 }
 
 std::vector<std::string> MotusBackend::settings() const {
-  std::vector<std::string> s = {std::string("integrator: ") + info(sim_->integrator()).name};
+  std::vector<std::string> s = {"integrator: " + sim_->method().name()};
   std::string passes;
   for (const auto& p : sim_->world()->passes()) passes += (passes.empty() ? "" : ", ") + p;
   s.push_back("passes: " + passes);
