@@ -26,13 +26,13 @@ struct Measurement {
   double seconds = 0;
 };
 
-Measurement measure(const SceneDescription& scene, Integrator integrator, double dt, Tolerance tol, double end,
+Measurement measure(const SceneDescription& scene, const Method& method, double dt, Tolerance tol, double end,
                     int repeats) {
   Measurement m;
-  m.integrator = info(integrator).name;
+  m.integrator = method.name();
   m.seconds = INFINITY;
   for (int r = 0; r < repeats; ++r) {
-    Simulation sim(scene, integrator);
+    Simulation sim(scene, method);
     const auto began = std::chrono::steady_clock::now();
     sim.advance(end, dt, tol);
     m.seconds = std::min(m.seconds, std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count());
@@ -74,12 +74,14 @@ CLI::App* add_bench_precision_command(CLI::App& bench, BenchPrecisionOptions& o)
   p->add_option("--set", o.sets, "Override a scene field (repeatable)")->type_name("PATH=VALUE");
   p->add_option("--csv", o.csv, "Write the table here (default: a new file under runs/)");
   p->add_flag("--overwrite", o.overwrite, "Allow --csv to replace an existing file");
+  add_plugin_option(p, o.plugins);
   return p;
 }
 
 int bench_precision_command(const BenchPrecisionOptions& o) {
   const std::string path = resolve_scene_path(o.scene);
   const SceneDescription scene = load_scene(path, o.sets);
+  load_plugins(o.plugins);
   if (!has_exact_solution(scene))
     throw InputError(path + ": declares no \"exact\" solution or \"reference\" states to measure error against");
 
@@ -93,14 +95,15 @@ int bench_precision_command(const BenchPrecisionOptions& o) {
     end = best;
   }
 
-  std::vector<Integrator> chosen;
+  std::vector<Method> chosen;
   if (o.integrators.empty()) {
-    for (const auto& i : all_integrators()) chosen.push_back(i.id);
+    for (const auto& i : all_integrators()) chosen.emplace_back(i.id);
+    for (const auto& m : plugins().integrators()) chosen.push_back(m);
   } else {
     for (const auto& name : o.integrators) {
-      const auto id = integrator_from_name(name);
-      if (!id) throw InputError("--integrators: unknown integrator \"" + name + "\" (known: " + integrator_names() + ")");
-      chosen.push_back(*id);
+      if (const auto id = integrator_from_name(name)) chosen.emplace_back(*id);
+      else if (const auto m = plugins().integrator(name)) chosen.push_back(*m);
+      else throw InputError("--integrators: unknown integrator \"" + name + "\" (known: " + known_integrators() + ")");
     }
   }
 
@@ -116,21 +119,22 @@ int bench_precision_command(const BenchPrecisionOptions& o) {
   fmt::print("{:<20}{:>12}{:>12}{:>14}{:>14}{:>14}\n", "integrator", "h / tol", "steps", "evaluations", "error", "seconds");
   ProgressBar progress(0, static_cast<double>(chosen.size() * static_cast<size_t>(o.levels)), "bench precision", 1);
   double done = 0;
-  for (Integrator id : chosen) {
-    const auto& i = info(id);
-    if (i.needs_mechanical && !scene.is_mechanical()) {
-      fmt::print("{:<20}  cannot run this scene: symplectic, needs a mechanical scene (bodies)\n", i.name);
+  for (const Method& method : chosen) {
+    const std::string name = method.name();
+    const bool adaptive = method.adaptive();
+    if (method.needs_mechanical() && !scene.is_mechanical()) {
+      fmt::print("{:<20}  cannot run this scene: symplectic, needs a mechanical scene (bodies)\n", name);
       done += o.levels;
       continue;
     }
     for (int level = 0; level < o.levels; ++level) {
-      const double h = i.adaptive ? scene.dt : scene.dt / std::ldexp(1.0, level);
+      const double h = adaptive ? scene.dt : scene.dt / std::ldexp(1.0, level);
       const double tol = std::pow(10.0, -3 - level);
-      const Measurement m = measure(scene, id, h, Tolerance{tol, tol}, end, o.repeats);
-      fmt::print("{:<20}{:>12.3g}{:>12}{:>14}{:>14.3e}{:>14.3e}\n", i.name, i.adaptive ? tol : h, m.steps,
+      const Measurement m = measure(scene, method, h, Tolerance{tol, tol}, end, o.repeats);
+      fmt::print("{:<20}{:>12.3g}{:>12}{:>14}{:>14.3e}{:>14.3e}\n", name, adaptive ? tol : h, m.steps,
                  m.evaluations, m.error, m.seconds);
-      csv << fmt::format("{},{},{:.17g},{},{},{},{:.17g},{:.6e},{:.6e}\n", scene.name, i.name, h,
-                         i.adaptive ? fmt::format("{:g}", tol) : "", m.steps, m.evaluations, m.t_end, m.error, m.seconds);
+      csv << fmt::format("{},{},{:.17g},{},{},{},{:.17g},{:.6e},{:.6e}\n", scene.name, name, h,
+                         adaptive ? fmt::format("{:g}", tol) : "", m.steps, m.evaluations, m.t_end, m.error, m.seconds);
       progress.update(++done);
     }
   }

@@ -14,6 +14,7 @@ struct BenchPrecisionOptions {
   std::string scene;
   std::vector<std::string> integrators;
   std::vector<std::string> sets;
+  std::vector<std::string> plugins;  // --plugin
   int levels = 6;
   int repeats = 3;
   std::optional<double> duration;

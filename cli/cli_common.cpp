@@ -42,16 +42,47 @@ std::vector<std::string> shipped_scenes() {
   return files;
 }
 
-Integrator integrator_for(const std::string& path, const SceneDescription& scene,
-                          const std::optional<std::string>& requested) {
+PluginSet& plugins() {
+  static PluginSet set;
+  return set;
+}
+
+void add_plugin_option(CLI::App* command, std::vector<std::string>& files) {
+  command->add_option("--plugin", files,
+                      "Load a plug-in (FILE.so, a student's code): its integrators as PLUGIN:NAME, its collision "
+                      "response or constraint projection in place of motus's (repeatable; assignments/README.md)")
+      ->type_name("FILE.so");
+}
+
+void load_plugins(const std::vector<std::string>& files) {
+  try {
+    for (const auto& file : files) plugins().load(file);
+  } catch (const PluginError& e) {
+    throw InputError(e.what());
+  }
+  report_plugin_crashes(plugins());
+}
+
+std::string known_integrators() {
+  std::string names = integrator_names();
+  for (const auto& m : plugins().integrators()) names += ", " + m.name();
+  return names;
+}
+
+Method method_for(const std::string& path, const SceneDescription& scene, const std::optional<std::string>& requested) {
   const std::string name = requested.value_or(scene.integrator);
-  const auto integrator = integrator_from_name(name);
-  if (!integrator)
-    throw InputError(path + ": --integrator: unknown integrator \"" + name + "\" (known: " + integrator_names() + ")");
-  if (info(*integrator).needs_mechanical && !scene.is_mechanical())  // the file's own integrator was checked by the loader
+  std::optional<Method> method;
+  if (const auto builtin = integrator_from_name(name)) method = *builtin;
+  else method = plugins().integrator(name);
+  if (!method) {
+    const bool looks_like_plugin = name.find(':') != std::string::npos;
+    throw InputError(path + ": --integrator: unknown integrator \"" + name + "\" (known: " + known_integrators() + ")" +
+                     (looks_like_plugin && plugins().empty() ? "; load its plug-in with --plugin FILE.so" : ""));
+  }
+  if (method->needs_mechanical() && !scene.is_mechanical())  // the file's own integrator was checked by the loader
     throw InputError(path + ": --integrator: " + name + " is symplectic and needs a mechanical scene (bodies); " +
                      "use euler, midpoint, rk4, rk4-doubling or rk45");
-  return *integrator;
+  return *method;
 }
 
 void check_can_write(const std::string& path, bool overwrite) {

@@ -6,7 +6,10 @@
 #include <string>
 #include <vector>
 
-#include "motus/integrator_name.hpp"
+#include <CLI/CLI.hpp>
+
+#include "motus/method.hpp"
+#include "motus/plugin/plugin_set.hpp"
 #include "motus/scene.hpp"
 
 namespace motus::cli {
@@ -32,10 +35,21 @@ std::string resolve_scene_path(const std::string& argument);
 // Every shipped scene file, sorted.
 std::vector<std::string> shipped_scenes();
 
-// The integrator a subcommand runs: --integrator when given, else the scene's; one line
-// naming the file when it is unknown, or symplectic on a first-order scene.
-Integrator integrator_for(const std::string& path, const SceneDescription& scene,
-                          const std::optional<std::string>& requested);
+// The plug-ins of this process (--plugin FILE.so, repeatable on run, render, compare,
+// bench precision and list), loaded by load_plugins.
+PluginSet& plugins();
+// Adds --plugin to a subcommand.
+void add_plugin_option(CLI::App* command, std::vector<std::string>& files);
+// Loads them, in order, and from then on reports a crash in their code; a file that is not
+// a usable plug-in is an InputError (one line, exit 2).
+void load_plugins(const std::vector<std::string>& files);
+
+// The integrator a subcommand runs: --integrator when given (a built-in, or PLUGIN:NAME from
+// a loaded plug-in), else the scene's; one line naming the file when it is unknown, or
+// symplectic on a first-order scene.
+Method method_for(const std::string& path, const SceneDescription& scene, const std::optional<std::string>& requested);
+// "euler, midpoint, ..., student:euler, ..." for messages.
+std::string known_integrators();
 
 // Refuses to overwrite an existing file unless asked to (nothing the user wrote is
 // lost without being asked).

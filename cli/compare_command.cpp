@@ -42,7 +42,11 @@ CLI::App* add_compare_command(CLI::App& app, CompareOptions& o) {
                                "Run one scene in motus, Box2D 2.4 and Bullet 3 with the same dt and the same metrics; "
                                "print the table and write a report folder (metrics CSV/JSON, plots, index.html)");
   c->add_option("scene", o.scene, "Scene file, or the name of a shipped scene (see `motus list`)")->required();
-  c->add_option("--engines", o.engines, "Comma-separated engines (default: motus,box2d,bullet)")->delimiter(',');
+  c->add_option("--engines", o.engines,
+                "Comma-separated engines: motus, box2d, bullet, and a loaded plug-in's name (default: motus, the "
+                "plug-in, box2d, bullet)")
+      ->delimiter(',');
+  add_plugin_option(c, o.plugins);
   c->add_option("--integrator", o.integrator, "motus's integrator (default: the scene's); the peers integrate their own way");
   c->add_option("--dt", o.dt, "Step size, s (default: the scene's)");
   c->add_option("--duration", o.duration, "Time to run, s (default: the scene's)");
@@ -65,16 +69,42 @@ int compare_command(const CompareOptions& o) {
     throw InputError(path + ": is a first-order system (\"" + scene.first_order->type +
                      "\"); compare runs scenes of bodies, which the peer engines model");
 
+  load_plugins(o.plugins);
+
   compare::ComparisonOptions options;
-  const auto known = compare::backend_names();
+  // A plug-in is a column of its own: motus's world with the plug-in's parts.
+  const std::string plugin = plugins().empty() ? "" : plugins().parts_owner();
+  auto known = compare::backend_names();
+  if (!plugin.empty()) known.insert(known.begin() + 1, plugin);
+  std::string known_list;
+  for (const auto& e : known) known_list += (known_list.empty() ? "" : ", ") + e;
   options.engines.clear();
-  for (const auto& e : o.engines) {
+  for (const auto& e : o.engines.empty() ? known : o.engines) {
     if (std::find(known.begin(), known.end(), e) == known.end())
-      throw InputError("--engines: unknown engine \"" + e + "\" (known: motus, box2d, bullet)");
+      throw InputError("--engines: unknown engine \"" + e + "\" (known: " + known_list + ")" +
+                       (plugins().empty() && e != "motus" ? "; a plug-in's column needs --plugin FILE.so" : ""));
     if (std::find(options.engines.begin(), options.engines.end(), e) == options.engines.end()) options.engines.push_back(e);
   }
-  options.integrator = integrator_for(path, scene, o.integrator);
-  const std::string integrator_name = info(options.integrator).name;
+  // --integrator PLUGIN:NAME runs the plug-in's NAME in its column, and motus's own NAME (when
+  // motus has one) in motus's; any other integrator runs in both.
+  const Method requested = method_for(path, scene, o.integrator);
+  options.method = requested;
+  if (requested.is_external()) {
+    const std::string own = requested.name().substr(requested.name().find(':') + 1);
+    const auto builtin = integrator_from_name(own);
+    options.method = builtin ? Method(*builtin) : method_for(path, scene, std::nullopt);
+  }
+  if (!plugin.empty()) {
+    compare::PluginEngine engine;
+    engine.name = plugin;
+    for (const auto& p : plugins().plugins())
+      if (p.name == plugin) engine.version = p.name + " plug-in (" + p.file + ")";
+    engine.parts = plugins().parts();
+    if (requested.is_external()) engine.method = requested;
+    options.plugin = engine;
+  }
+  const std::string integrator_name =
+      requested.is_external() ? options.method.name() + " (" + requested.name() + " in " + plugin + ")" : requested.name();
   options.dt = o.dt.value_or(scene.dt);
   options.duration = o.duration.value_or(scene.duration);
   if (!(options.dt > 0) || !std::isfinite(options.dt)) throw InputError("--dt: must be a finite number > 0");
@@ -92,7 +122,9 @@ int compare_command(const CompareOptions& o) {
   }
   // Fail before any engine runs if motus cannot run this scene with this integrator.
   if (std::find(options.engines.begin(), options.engines.end(), "motus") != options.engines.end())
-    Simulation check(scene, options.integrator);
+    Simulation check(scene, options.method);
+  if (options.plugin && std::find(options.engines.begin(), options.engines.end(), plugin) != options.engines.end())
+    Simulation check(scene, options.plugin->method.value_or(options.method), options.plugin->parts);
 
   const std::string folder = o.out.empty() ? new_run_folder(scene.name) : o.out;
   if (fs::exists(folder)) throw InputError(folder + ": already exists; compare never overwrites a report (choose another --out)");

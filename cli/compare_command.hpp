@@ -11,10 +11,11 @@ namespace motus::cli {
 
 struct CompareOptions {
   std::string scene;
-  std::vector<std::string> engines = {"motus", "box2d", "bullet"};
+  std::vector<std::string> engines;  // none given: motus, each plug-in's column, box2d, bullet
   std::optional<std::string> integrator;
   std::optional<double> dt, duration;
   std::vector<std::string> sets;
+  std::vector<std::string> plugins;  // --plugin
   std::string out;
   long samples = 200;
   bool json = false;

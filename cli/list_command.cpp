@@ -1,6 +1,7 @@
 #include "list_command.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <filesystem>
 
@@ -11,11 +12,15 @@
 
 namespace motus::cli {
 
-CLI::App* add_list_command(CLI::App& app) {
-  return app.add_subcommand("list", "List the shipped scenes, the integrators and the first-order systems, one line each");
+CLI::App* add_list_command(CLI::App& app, std::vector<std::string>& plugin_files) {
+  auto* list = app.add_subcommand(
+      "list", "List the shipped scenes, the integrators and the first-order systems (and what --plugin brings), one line each");
+  add_plugin_option(list, plugin_files);
+  return list;
 }
 
-int list_command() {
+int list_command(const std::vector<std::string>& plugin_files) {
+  load_plugins(plugin_files);
   fmt::print("scenes (in {}):\n", scenes_directory());
   for (const auto& file : shipped_scenes()) {
     const std::string name = std::filesystem::path(file).stem().string();
@@ -30,6 +35,15 @@ int list_command() {
   for (const auto& i : all_integrators())
     fmt::print("  {:<20} order {}{}{}  {}\n", i.name, i.order, i.adaptive ? ", adaptive" : "",
                i.needs_mechanical ? ", mechanical scenes only" : "", i.description);
+  for (const Method& m : plugins().integrators())
+    fmt::print("  {:<20} order {}{}{}  {}\n", m.name(), m.order(), m.adaptive() ? ", adaptive" : "",
+               m.needs_mechanical() ? ", mechanical scenes only" : "", m.description());
+  for (const auto& p : plugins().plugins()) {
+    fmt::print("plug-in {} ({}): {}\n", p.name, p.file, p.description);
+    fmt::print("  integrators: {}\n", p.integrator_names.empty() ? "none" : fmt::format("{}", fmt::join(p.integrator_names, ", ")));
+    if (p.entry->collisions) fmt::print("  collision response: impulses and times of impact, in place of motus's\n");
+    if (p.entry->constraints) fmt::print("  constraint projection: sticks, pins and walls, in place of motus's\n");
+  }
   fmt::print("first-order systems (\"system\": {{\"type\": ...}}):\n");
   for (const auto& s : first_order_systems()) fmt::print("  {:<20} {}\n", s.type, s.description);
   return 0;

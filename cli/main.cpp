@@ -30,7 +30,8 @@ int main(int argc, char** argv) {
   auto* run = add_run_command(app, run_options);
   CompareOptions compare_options;
   auto* compare = add_compare_command(app, compare_options);
-  auto* list = add_list_command(app);
+  std::vector<std::string> list_plugins;
+  auto* list = add_list_command(app, list_plugins);
   auto* bench = app.add_subcommand("bench", "Benchmarks: `motus bench precision SCENE` (run time against error)");
   bench->require_subcommand(1);
   BenchPrecisionOptions precision_options;
@@ -54,7 +55,7 @@ int main(int argc, char** argv) {
   try {
     if (*run) return run_command(run_options);
     if (*compare) return compare_command(compare_options);
-    if (*list) return list_command();
+    if (*list) return list_command(list_plugins);
     if (*precision) return bench_precision_command(precision_options);
     if (*render) return render_command(render_options);
   } catch (const motus::SceneFileError& e) {
@@ -69,6 +70,12 @@ int main(int argc, char** argv) {
     return kExitBadInput;
   } catch (const InputError& e) {
     fmt::print(stderr, "motus: error: {}\n", e.what());
+    return kExitBadInput;
+  } catch (const motus::ExternalError& e) {
+    // A plug-in's function failed (it threw): the plug-in is bad input, not motus.
+    std::string files;
+    for (const auto& p : plugins().plugins()) files += (files.empty() ? "" : ", ") + p.file;
+    fmt::print(stderr, "motus: error: {}: {}\n", files.empty() ? "plug-in" : files, e.what());
     return kExitBadInput;
   } catch (const std::exception& e) {
     fmt::print(stderr, "motus: the run failed: {}\n", e.what());

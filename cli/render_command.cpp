@@ -62,6 +62,7 @@ CLI::App* add_render_command(CLI::App& app, RenderOptions& o) {
   render->add_flag("--overwrite", o.overwrite, "Reuse an existing --out folder (its frames and videos are replaced)");
   render->add_flag("--trails", o.trails, "Draw each body's recent path (scenes with at most 64 bodies)");
   render->add_flag("--arrows", o.arrows, "Draw velocity arrows (where each body will be in 0.25 s)");
+  add_plugin_option(render, o.plugins);
   render->add_option("--supersample", o.supersample, "Anti-aliasing: render N times larger and average (1-4)")
       ->check(CLI::Range(1, 4))
       ->capture_default_str();
@@ -71,8 +72,9 @@ CLI::App* add_render_command(CLI::App& app, RenderOptions& o) {
 int render_command(const RenderOptions& o) {
   const std::string path = resolve_scene_path(o.scene);
   SceneDescription scene = load_scene(path, o.sets);
-  const Integrator integrator = integrator_for(path, scene, o.integrator);
-  const std::string integrator_name = info(integrator).name;
+  load_plugins(o.plugins);
+  const Method method = method_for(path, scene, o.integrator);
+  const std::string integrator_name = method.name();
   const auto [width, height] = parse_size(o.size);
   if (!(o.fps > 0) || !std::isfinite(o.fps) || o.fps > 10000) throw InputError("--fps: must be a number > 0 (and at most 10000)");
   const double duration = o.duration.value_or(scene.duration);
@@ -87,7 +89,7 @@ int render_command(const RenderOptions& o) {
 
   std::optional<Simulation> built;
   try {
-    built.emplace(scene, integrator);
+    built.emplace(scene, method, plugins().parts());
   } catch (const SceneError& e) {  // building the run (e.g. a symplectic integrator on a first-order system)
     throw InputError(path + ": " + (e.field().empty() ? "" : e.field() + ": ") + e.what());
   }

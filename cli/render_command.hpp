@@ -16,6 +16,7 @@ struct RenderOptions {
   std::optional<double> duration;
   std::optional<std::string> integrator;
   std::vector<std::string> sets;
+  std::vector<std::string> plugins;  // --plugin
   std::string video;  // "", "mp4" or "gif"
   bool overwrite = false;
   bool trails = false;

@@ -107,15 +107,17 @@ CLI::App* add_run_command(CLI::App& app, RunOptions& o) {
   run->add_option("--trajectory", o.trajectory, "Write t, state and energies per output time to this CSV file");
   run->add_flag("--overwrite", o.overwrite, "Allow --trajectory to replace an existing file");
   run->add_flag("--json", o.json, "Print one JSON object instead of the summary (see docs/cli.md)");
+  add_plugin_option(run, o.plugins);
   return run;
 }
 
 int run_command(const RunOptions& o) {
   const std::string path = resolve_scene_path(o.scene);
   SceneDescription scene = load_scene(path, o.sets);
+  load_plugins(o.plugins);
 
-  const Integrator integrator = integrator_for(path, scene, o.integrator);
-  const std::string integrator_name = info(integrator).name;
+  const Method method = method_for(path, scene, o.integrator);
+  const std::string integrator_name = method.name();
   const double dt = o.dt.value_or(scene.dt);
   if (!(dt > 0) || !std::isfinite(dt)) throw InputError("--dt: must be a finite number > 0");
   if (o.steps && *o.steps <= 0) throw InputError("--steps: must be > 0");
@@ -124,7 +126,7 @@ int run_command(const RunOptions& o) {
   const Tolerance tolerance{o.atol.value_or(scene.atol), o.rtol.value_or(scene.rtol)};
   if (!(tolerance.atol > 0) || !(tolerance.rtol > 0)) throw InputError("--atol/--rtol: must be > 0");
 
-  Simulation sim(scene, integrator);  // SceneError: e.g. a symplectic integrator on a first-order system
+  Simulation sim(scene, method, plugins().parts());  // SceneError: e.g. a symplectic integrator on a first-order system
   const auto energy0 = sim.energy();
   const Vector momentum0 = sim.momentum(), angular0 = sim.angular_momentum();
   const Vector state0 = sim.state();
@@ -148,7 +150,7 @@ int run_command(const RunOptions& o) {
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count();
   progress.finish();
   if (trajectory) trajectory->finish(sim);
-  const bool adaptive = info(integrator).adaptive;
+  const bool adaptive = method.adaptive();
   const World* world = sim.world();
   const CollisionCounters collisions = world ? world->collision_counters() : CollisionCounters{};
   const bool finite = sim.state().allFinite();

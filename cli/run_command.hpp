@@ -15,6 +15,7 @@ struct RunOptions {
   std::optional<double> dt, duration, rtol, atol;
   std::optional<long> steps;
   std::vector<std::string> sets;
+  std::vector<std::string> plugins;  // --plugin
   std::string trajectory;
   bool overwrite = false;
   bool json = false;

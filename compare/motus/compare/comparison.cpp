@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "motus/compare/backends/motus_backend.hpp"
 #include "motus/simulation.hpp"
 #include "motus/systems/mechanical_system.hpp"
 
@@ -80,10 +81,12 @@ std::vector<EngineRun> run_comparison(const SceneDescription& scene, const Compa
     EngineRun run;
     run.engine = name;
     run.scale_of_momentum = scale;
-    auto backend = make_backend(name);
+    const bool plugin = options.plugin && name == options.plugin->name;
+    std::unique_ptr<Backend> backend =
+        plugin ? std::make_unique<MotusBackend>(name, options.plugin->version, options.plugin->parts) : make_backend(name);
     run.version = backend->version();
     try {
-      backend->build(scene, options.integrator, options.dt);
+      backend->build(scene, plugin ? options.plugin->method.value_or(options.method) : options.method, options.dt);
     } catch (const Unsupported& e) {
       run.supported = false;
       for (const auto& element : e.elements()) run.unsupported.push_back("not supported by " + name + ": " + element);

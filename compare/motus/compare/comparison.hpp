@@ -2,6 +2,7 @@
 // Run one scene in several engines, in one process, with the same dt and duration,
 // and measure them all with the same Metrics: the data behind `motus compare`.
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -34,9 +35,19 @@ struct EngineRun {
   double scale_of_momentum = 0;  // Σ m|v_0|, set by run_comparison
 };
 
+// A plug-in's column: motus's world with the plug-in's parts, and its integrator when it
+// brings the one asked for.
+struct PluginEngine {
+  std::string name;     // the plug-in's name, as in `engines`
+  std::string version;  // a line for the table and the report ("student plug-in, build/student.so")
+  ExternalParts parts;
+  std::optional<Method> method;  // else the run's
+};
+
 struct ComparisonOptions {
   std::vector<std::string> engines = {"motus", "box2d", "bullet"};
-  Integrator integrator = Integrator::SymplecticEuler;  // motus's; the peers integrate their way
+  Method method = Integrator::SymplecticEuler;  // motus's; the peers integrate their way
+  std::optional<PluginEngine> plugin;
   double dt = 0.01;
   double duration = 1;
   long samples = 200;  // metric rows over the run (at most one per step)

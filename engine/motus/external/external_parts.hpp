@@ -54,10 +54,12 @@ struct ExternalIntegrator {
   int (*try_step)(void* self, const ExternalFirstOrder* f, double t, double* h, double* y, double atol, double rtol,
                   int* accepted);
   int (*step_mechanical)(void* self, const ExternalMechanical* s, double t, double h, double* x, double* v);
-  // x_{−1} from x_0 and v_0; then one step moves (x_n, x_{n−1}) to (x_{n+1}, x_n).
+  // x_{−1} from x_0 and v_0; then one step moves (x_n, x_{n−1}) to (x_{n+1}, x_n). v is the
+  // velocity last reported (for forces that depend on it); the method itself keeps none.
   int (*verlet_start)(void* self, const ExternalMechanical* s, double t, double h, const double* x, const double* v,
                       double* x_previous);
-  int (*verlet_step)(void* self, const ExternalMechanical* s, double t, double h, double* x, double* x_previous);
+  int (*verlet_step)(void* self, const ExternalMechanical* s, double t, double h, double* x, double* x_previous,
+                     const double* v);
   const char* (*error)(void* self);
 };
 

@@ -53,7 +53,7 @@ public:
       check(integrator_.verlet_start(integrator_.self, &view, t, h, x.data(), v.data(), x_previous_.data()));
       started_ = true;
     }
-    check(integrator_.verlet_step(integrator_.self, &view, t, h, x.data(), x_previous_.data()));
+    check(integrator_.verlet_step(integrator_.self, &view, t, h, x.data(), x_previous_.data(), v.data()));
     // A velocityless method reports the central difference, as motus's own Verlet does:
     // v_{n+1} = (x_{n+1} − x_n)/h + ½ a_{n+1} h (one more force evaluation per step).
     if (a_.size() != x.size()) a_.resize(x.size());

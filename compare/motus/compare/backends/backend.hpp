@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "motus/integrator_name.hpp"
+#include "motus/method.hpp"
 #include "motus/scene.hpp"
 
 namespace motus::compare {
@@ -39,15 +39,15 @@ class Backend {
 public:
   virtual ~Backend() = default;
 
-  // "motus", "box2d" or "bullet".
+  // "motus", "box2d", "bullet", or a plug-in's name (motus with the plug-in's parts).
   virtual std::string name() const = 0;
   // A line saying which version and precision ("Box2D 2.4.1, float").
   virtual std::string version() const = 0;
 
-  // Builds the world for `scene`, to be stepped with `dt`. motus uses `integrator`; the
+  // Builds the world for `scene`, to be stepped with `dt`. motus uses `method`; the
   // peers integrate the way they do (semi-implicit Euler) and ignore it. Throws
   // Unsupported listing every element this engine cannot express.
-  virtual void build(const SceneDescription& scene, Integrator integrator, double dt) = 0;
+  virtual void build(const SceneDescription& scene, const Method& method, double dt) = 0;
 
   // One step of dt (the peers apply the scene's forces through their force API first).
   virtual void step() = 0;

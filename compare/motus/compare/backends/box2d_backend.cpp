@@ -127,7 +127,7 @@ Box2dBackend::~Box2dBackend() = default;
 // bumped it; Debian's libbox2d.so.2.4.1 and box2dConfigVersion.cmake say 2.4.1).
 std::string Box2dBackend::version() const { return "Box2D 2.4.1, float"; }
 
-void Box2dBackend::build(const SceneDescription& scene, Integrator /*integrator*/, double dt) {
+void Box2dBackend::build(const SceneDescription& scene, const Method& /*method*/, double dt) {
   world_.reset();
   if (!scene.mechanical) throw Unsupported("box2d", {"first-order systems (box2d runs point masses)"});
   const MechanicalDescription& m = *scene.mechanical;

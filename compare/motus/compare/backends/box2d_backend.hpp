@@ -27,7 +27,7 @@ public:
   ~Box2dBackend() override;
   std::string name() const override { return "box2d"; }
   std::string version() const override;
-  void build(const SceneDescription& scene, Integrator integrator, double dt) override;
+  void build(const SceneDescription& scene, const Method& method, double dt) override;
   void step() override;
   void read(Snapshot& out) const override;
   std::vector<std::string> settings() const override;

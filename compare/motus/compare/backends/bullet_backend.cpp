@@ -149,7 +149,7 @@ BulletBackend::~BulletBackend() = default;
 
 std::string BulletBackend::version() const { return "Bullet 3.24, double"; }
 
-void BulletBackend::build(const SceneDescription& scene, Integrator /*integrator*/, double dt) {
+void BulletBackend::build(const SceneDescription& scene, const Method& /*method*/, double dt) {
   if (!scene.mechanical) throw Unsupported("bullet", {"first-order systems (compare runs point masses)"});
   const MechanicalDescription& m = *scene.mechanical;
 

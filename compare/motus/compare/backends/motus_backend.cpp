@@ -4,11 +4,11 @@
 
 namespace motus::compare {
 
-std::string MotusBackend::version() const { return "motus 0.1.0, double"; }
+std::string MotusBackend::version() const { return version_.empty() ? "motus 0.1.0, double" : version_; }
 
-void MotusBackend::build(const SceneDescription& scene, Integrator integrator, double dt) {
-  if (!scene.mechanical) throw Unsupported("motus-compare", {"first-order systems (compare runs point masses)"});
-  sim_ = std::make_unique<Simulation>(scene, integrator);
+void MotusBackend::build(const SceneDescription& scene, const Method& method, double dt) {
+  if (!scene.mechanical) throw Unsupported(name_, {"first-order systems (compare runs point masses)"});
+  sim_ = std::make_unique<Simulation>(scene, method, parts_);
   dt_ = dt;
   steps_ = 0;
   t0_ = scene.start_time;
@@ -33,6 +33,8 @@ std::vector<std::string> MotusBackend::settings() const {
   std::string passes;
   for (const auto& p : sim_->world()->passes()) passes += (passes.empty() ? "" : ", ") + p;
   s.push_back("passes: " + passes);
+  if (parts_.collisions) s.push_back("collision response: the plug-in's (impulses and times of impact)");
+  if (parts_.constraints) s.push_back("constraint projection: the plug-in's");
   return s;
 }
 
