@@ -1,8 +1,8 @@
-// bench_collisions: the ball gas of issue 3 and ../shared/reference/peers.md — balls of
+// bench_collisions: the ball gas of issue 3 and docs/peers.md — balls of
 // radius 0.5 on a square lattice of spacing 2, velocities uniform in [−1, 1]², no
 // gravity, e = 1 with each other and the walls, dt = 1/60 — at N = 1,000, 10,000 and
 // 100,000: ns per ball-step, and the relative energy change after 600 steps.
-// Also: the notes' spring stepped through the full world (motus::Simulation) against
+// Also: the course's spring stepped through the full world (motus::Simulation) against
 // the bare symplectic-Euler loop on the same system (target: within 1.10x).
 //
 //   build/bench/bench_collisions [--benchmark_filter=BallGas]
@@ -54,7 +54,7 @@ void BallGas(benchmark::State& state, int dimensions) {
 BENCHMARK_CAPTURE(BallGas, 2d, 2)->Arg(1000)->Arg(10000)->Arg(100000)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BallGas, 3d, 3)->Arg(1000)->Arg(10000)->Unit(benchmark::kMillisecond);
 
-// The notes' spring (m = 10, k = 5) with symplectic Euler: the bare integrator on the
+// The course's spring (m = 10, k = 5) with symplectic Euler: the bare integrator on the
 // system, and the same steps through Simulation and its World (which adds no pass).
 SceneDescription notes_spring() {
   SceneDescription scene;

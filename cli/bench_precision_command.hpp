@@ -1,5 +1,5 @@
 #pragma once
-// `motus bench precision SCENE`: the notes' "run time against error". For each
+// `motus bench precision SCENE`: the course's "run time against error" (docs/course.md, section 5). For each
 // integrator, sweep the step (fixed-step methods) or the tolerance (adaptive ones) and
 // measure the final-time error against the scene's exact or reference solution, the
 // derivative evaluations and the run time (the minimum of several runs).

@@ -20,7 +20,7 @@ int main(int argc, char** argv) {
   using namespace motus::cli;
   CLI::App app{
       "motus: a game-physics engine for teaching that tells the truth about its numbers.\n"
-      "It integrates the scenes in scenes/ with the integrators of the course notes and reports\n"
+      "It integrates the scenes in scenes/ with the integrators of the course (docs/course.md) and reports\n"
       "energy, momentum and accuracy. Exit status: 0 done, 1 the run failed, 2 bad input.",
       "motus"};
   app.require_subcommand(1);

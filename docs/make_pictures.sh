@@ -29,7 +29,7 @@ png() {
   echo "$OUT/$name.png  $(wc -c <"$OUT/$name.png") bytes"
 }
 
-# The notes' spring (m = 10, k = 5), one period (2 pi sqrt(2) = 8.9 s) with velocity Verlet at dt = 0.02
+# The course's spring (m = 10, k = 5), one period (2 pi sqrt(2) = 8.9 s) with velocity Verlet at dt = 0.02
 # (the scene's own explicit Euler at h = 1 gains energy every step: `motus run spring` shows the table).
 gif spring spring --size 320x160 --fps 10 --duration 8.9 --set integrator=velocity-verlet --set dt=0.02
 gif bouncing_balls bouncing_balls --size 240x240 --fps 10 --duration 5

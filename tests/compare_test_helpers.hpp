@@ -1,7 +1,7 @@
 #pragma once
 // What the peer-engine tests (test_compare_box2d.cpp, test_compare_bullet.cpp) share:
 // loading shipped scenes, building an engine through the Backend interface, stepping it,
-// and the one-body scenes of shared/reference/peers.md. MOTUS_SCENES_DIR comes from
+// and the one-body scenes of tests/reference/peers.md. MOTUS_SCENES_DIR comes from
 // tests/CMakeLists.txt.
 #include <memory>
 #include <string>

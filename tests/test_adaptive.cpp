@@ -1,5 +1,5 @@
 // The adaptive integrators (rk45 = Dormand–Prince 5(4), rk4-doubling = RK4 by step
-// doubling) on Kepler (integrators.md: μ = 1, q0 = (0.4, 0), p0 = (0, 2), e = 0.6,
+// doubling) on Kepler (tests/reference/integrators.md: μ = 1, q0 = (0.4, 0), p0 = (0, 2), e = 0.6,
 // period 2π; exact solution motus::kepler_orbit) over one orbit, rtol = atol = tol,
 // tol = 1e-6 … 1e-10, first step 0.01.
 //

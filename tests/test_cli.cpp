@@ -2,7 +2,7 @@
 //   Bad input (docs/scene-format.md "Errors", docs/cli.md): exit status 2 and exactly one line on standard error,
 //   "motus: error: FILE: FIELD: MESSAGE", naming the file, the field path and what is wrong.
 //   Good input: every shipped scene runs and `--json` prints the fields docs/cli.md documents.
-//   Numbers: the notes' Euler table for the spring (shared/reference/integrators.md: m = 10, k = 5, x0 = 20,
+//   Numbers: the course's Euler table for the spring (tests/reference/integrators.md: m = 10, k = 5, x0 = 20,
 //   h = 1 gives x = 20, 20, 10, -10, -35, -55 and v = 0, -10, -20, -25, -20, -2.5 at t = 0..5).
 #include <gtest/gtest.h>
 #include <sys/wait.h>
@@ -240,7 +240,7 @@ TEST(CliRun, EveryShippedSceneRunsAndPrintsTheDocumentedJson) {
   }
 }
 
-// The notes' table (shared/reference/integrators.md): explicit Euler, h = 1, t = 5: x = −55, v = −2.5.
+// The course's table (tests/reference/integrators.md): explicit Euler, h = 1, t = 5: x = −55, v = −2.5.
 TEST(CliRun, SpringJsonMatchesTheNotesEulerTableAtFive) {
   TempDir dir;
   const Result r = run_motus(dir, {"run", scene("spring"), "--json"});
@@ -283,7 +283,7 @@ TEST(CliRun, TrajectoryRefusesToOverwriteUnlessAsked) {
 
   r = run_motus(dir, {"run", scene("spring"), "--trajectory", csv, "--overwrite"});
   ASSERT_EQ(r.status, 0) << r.err;
-  // Header, then one row per step of the notes' table (output_interval 0: every step).
+  // Header, then one row per step of the course's table (output_interval 0: every step).
   EXPECT_EQ(read_file(csv),
             "t,x0,vx0,kinetic,potential,total\n"
             "0,20,0,0,1000,1000\n"

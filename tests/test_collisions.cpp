@@ -1,7 +1,7 @@
 // Bodies that touch (issue 3): true elastic collisions, bouncing balls, continuous
 // collision, and a world that runs only what its scene needs. Every number is checked
-// against the collision formulas (impulse.hpp; Wikipedia, "Elastic collision"), a
-// conservation law, or the scene's own geometry.
+// against the collision formulas (docs/course.md, section 9; impulse.hpp; Wikipedia,
+// "Elastic collision"), a conservation law, or the scene's own geometry.
 #include <gtest/gtest.h>
 
 #include <cmath>

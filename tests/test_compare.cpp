@@ -1,7 +1,7 @@
 // `motus compare` as a user runs it (docs/cli.md): the side-by-side table, the --json
 // summary, the report folder, "not supported" for what a peer cannot run, and a report
 // never written over an existing folder. The peers' numbers themselves are held in
-// test_compare_box2d.cpp and test_compare_bullet.cpp.
+// test_compare_box2d.cpp and test_compare_bullet.cpp (sources: tests/reference/peers.md).
 #include <nlohmann/json.hpp>
 
 #include "cli_harness.hpp"
@@ -36,7 +36,7 @@ TEST(Compare, HeadOnInThreeEnginesWritesTheReport) {
   // motus against itself: no distance, and the time ratio 1.
   EXPECT_EQ(engine(j, "motus")->at("max_distance_from_motus"), 0.0);
   EXPECT_EQ(engine(j, "motus")->at("time_relative_to_motus"), 1.0);
-  // e = 1 head-on: momentum kept by all three (peers.md: both peers give the exact result).
+  // e = 1 head-on: momentum kept by all three (tests/reference/peers.md: both peers give the exact result).
   for (const char* name : {"motus", "box2d", "bullet"}) EXPECT_LT(engine(j, name)->at("momentum_drift").get<double>(), 1e-6) << name;
   for (const char* file : {"index.html", "metrics.csv", "summary.json", "plot.py"})
     EXPECT_TRUE(fs::exists(out / file)) << file;

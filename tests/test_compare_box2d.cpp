@@ -1,7 +1,7 @@
 // Box2D 2.4.1 behind the backend interface (issue 4). Both engines run through
 // Backend (make_backend("motus"), make_backend("box2d")) with the same dt.
-//  - Without contacts, Box2D integrates as symplectic Euler does (shared/reference/
-//    peers.md: v += h(g + F/m), then x += h v), so motus with symplectic-euler must
+//  - Without contacts, Box2D integrates as symplectic Euler does (tests/reference/
+//    peers.md, docs/peers.md: v += h(g + F/m), then x += h v), so motus with symplectic-euler must
 //    reproduce it to float precision.
 //  - With contacts, Box2D's sequential-impulse solver differs from motus's exact
 //    impulses at the time of impact: its deviations are measured here and asserted in a
@@ -220,8 +220,8 @@ TEST(Box2dContacts, BallGasEnergyDriftIsMeasuredAndMotusKeepsIt) {
   // step (202), when ball 380, against the left wall, is hit by ball 361: the three-way
   // contact (wall, 380, 361) is solved as one system by sequential impulses, each contact
   // aiming at −e times its own approach speed, which over-restitutes (361 leaves at
-  // 1.90 m/s). +4.79317e-3 after 600 steps. (peers.md's ~1e-7 for 1,000 and 10,000 balls
-  // is a different run: a single wall-and-ball pile-up like this one dominates.)
+  // 1.90 m/s). +4.79317e-3 after 600 steps. (peers.md's −7.5e-7 and −2.1e-6 for 1,000 and 10,000 balls
+  // are a different run: a single wall-and-ball pile-up like this one dominates.)
   const SceneDescription scene = load("ball_gas");
   ASSERT_EQ(scene.mechanical->bodies.size(), 400u);
   double drift[2];

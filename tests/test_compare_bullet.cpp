@@ -1,7 +1,7 @@
 // Bullet 3.24 (double) behind the backend interface (issue 4). Both engines run through
 // Backend (make_backend("motus"), make_backend("bullet")) with the same dt.
-//  - Without contacts, Bullet integrates as symplectic Euler does (shared/reference/
-//    peers.md: v += h(g + F/m), then x += h v), and both are double: motus with
+//  - Without contacts, Bullet integrates as symplectic Euler does (tests/reference/
+//    peers.md, docs/peers.md: v += h(g + F/m), then x += h v), and both are double: motus with
 //    symplectic-euler must reproduce it to 1e-12.
 //  - With contacts, Bullet's sequential-impulse solver differs from motus's exact
 //    impulses at the time of impact: its deviations are measured here and asserted in a
@@ -107,7 +107,7 @@ TEST(CompareBullet, SpringAsAForceIsSymplecticEuler) {
   spring.damping = 0.3;
   scene.mechanical->forces.springs.push_back(spring);
   expect_same_trajectory(scene, 1.0 / 60, 600);
-  // The notes' 1-D spring scene (m = 10, k = 5, x0 = 20) at h = 0.1 for 20 s.
+  // The course's 1-D spring scene (m = 10, k = 5, x0 = 20) at h = 0.1 for 20 s.
   expect_same_trajectory(load("spring"), 0.1, 200);
 }
 

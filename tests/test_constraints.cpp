@@ -1,7 +1,8 @@
 // Verlet sticks, pins and projected contacts (constrain/constraint_projection.hpp), on the
 // scenes shipped in scenes/ — cloth.json, rope.json, ragdoll.json, stick_pendulum.json —
 // built here in C++ with the same numbers (the scene generators are the engine's, the
-// JSON loader is not part of the engine). Each number says where it comes from.
+// JSON loader is not part of the engine). Each number says where it comes from; the method
+// is docs/course.md, section 10.
 #include <gtest/gtest.h>
 
 #include "motus/scene_file/scene_file.hpp"
@@ -21,7 +22,7 @@
 #include "motus/simulation.hpp"
 
 // Every heap allocation in this program is counted, so that a test can check that a
-// projection allocates nothing (DESIGN.md: "A step allocates nothing").
+// projection allocates nothing (docs/architecture.md: "a step allocates nothing").
 namespace {
 std::atomic<long> g_allocations{0};
 }  // namespace

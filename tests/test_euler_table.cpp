@@ -1,6 +1,6 @@
-// Explicit Euler on the notes' spring reproduces the notes' table exactly.
-// Source: shared/notes/game-physics-notes-02.md ("Sample Calculations") and
-// shared/reference/integrators.md ("Notes' spring"): m = 10, k = 5, x0 = 20, v0 = 0,
+// Explicit Euler on the course's spring reproduces the course's table exactly.
+// Source: tests/reference/integrators.md ("The course's spring"; docs/course.md,
+// section 2): m = 10, k = 5, x0 = 20, v0 = 0,
 // h = 1; t = 0…5: x = 20, 20, 10, −10, −35, −55; v = 0, −10, −20, −25, −20, −2.5;
 // a = −10, −10, −5, 5, 17.5, 27.5. Every one of these is exact in binary floating point.
 #include <gtest/gtest.h>
@@ -12,7 +12,7 @@
 namespace {
 
 TEST(EulerTable, ReproducesTheNotesSpringTableExactly) {
-  // integrators.md, "Notes' spring" (the notes print a(4), a(5) and v(5) rounded).
+  // integrators.md, "The course's spring" (the course prints a(4), a(5) and v(5) rounded).
   const std::vector<double> x_expected = {20, 20, 10, -10, -35, -55};
   const std::vector<double> v_expected = {0, -10, -20, -25, -20, -2.5};
   const std::vector<double> a_expected = {-10, -10, -5, 5, 17.5, 27.5};

@@ -1,5 +1,5 @@
 // Kepler (μ = 1, q0 = (0.4, 0), p0 = (0, 2), H0 = −0.5, period 2π) over 1000 orbits.
-// Source: shared/reference/integrators.md, "Test problems — Kepler": over 200 periods
+// Source: tests/reference/integrators.md, "Test problems — Kepler": over 200 periods
 // max |ΔH| is about 1.5e-2 (h = 0.01) for symplectic Euler and 3.7e-4 (h = 0.01) for
 // velocity Verlet, and stays bounded; RK4's grows linearly in time; explicit Euler's
 // orbit escapes.

@@ -1,5 +1,5 @@
 // Lorenz (σ = 10, ρ = 28, β = 8/3) from (1, 1, 1) against the high-precision states of
-// tests/reference/lorenz.json (a verbatim copy of shared/reference/lorenz.json).
+// tests/reference/lorenz.json (quad-precision states; their source: tests/reference/README.md).
 // The tolerances: max-norm of the state difference within 1e-8 at t = 1 and
 // within 1e-6 at t = 10, for rk45 at rtol = atol = 1e-12 and for rk4 at h = 1e-4.
 #include <gtest/gtest.h>

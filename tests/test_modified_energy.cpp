@@ -1,5 +1,5 @@
 // The quantities symplectic methods keep exactly on x'' = −ω²x, from
-// shared/reference/integrators.md ("Quantities symplectic methods keep exactly"):
+// tests/reference/integrators.md ("Quantities symplectic methods keep exactly"):
 //   symplectic Euler, velocity first (v += a(x) h; x += v h):  ½(v² + ω²x² − ω²h x v)
 //   velocity Verlet:                                         ½(v² + ω²(1 − (ωh)²/4) x²)
 // must stay constant to 1e-12 relative (the issue) over 10⁶ steps.

@@ -1,6 +1,6 @@
 // Measured global order at a fixed end time, halving h three times (four step sizes,
 // three measured orders per method), on the oscillator x'' = −ω²x and on Kepler.
-// Source of the expected orders: shared/reference/integrators.md, "Orders" table:
+// Source of the expected orders: tests/reference/integrators.md, "Orders" table:
 // euler 1, symplectic-euler 1, symplectic-euler-x 1, midpoint 2, verlet 2 (Taylor
 // start), velocity-verlet 2, rk4 4, yoshida4 4. Each measured order must be within
 // ±0.15 of it (the tolerance).

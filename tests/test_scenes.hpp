@@ -36,7 +36,7 @@ inline motus::SceneDescription oscillator(double omega, double x0 = 1, double v0
   return spring(1, omega * omega, x0, v0);
 }
 
-// Kepler's problem of integrators.md: μ = 1, q0 = (0.4, 0), p0 = (0, 2); e = 0.6,
+// Kepler's problem of tests/reference/integrators.md: μ = 1, q0 = (0.4, 0), p0 = (0, 2); e = 0.6,
 // H0 = −0.5, L0 = 0.8, period 2π.
 inline motus::SceneDescription kepler() {
   motus::SceneDescription scene;

@@ -1,4 +1,4 @@
-// Measured stability on x'' = −ω²x against shared/reference/integrators.md,
+// Measured stability on x'' = −ω²x against tests/reference/integrators.md,
 // "Stability on x'' = −ω² x, with z = ω h":
 //   explicit Euler: never bounded, energy × (1 + z²) per step
 //   midpoint: never bounded, |R|² = 1 + z⁴/4 per step

@@ -1,4 +1,4 @@
-// World2's standard run against shared/reference/world2.md, "Standard run, explicit
+// World2's standard run against tests/reference/world2.md, "Standard run, explicit
 // Euler, dt = 0.2 yr": P, NR, CI, POL, CIAF at 1950, 2000, 2050, 2100 to 1e-9 relative
 // (the table prints 11 significant digits), and QL (from World2::auxiliaries(), entry
 // 0) to the 6 decimals printed (half a unit of the last digit). Also the remark that

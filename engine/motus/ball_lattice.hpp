@@ -1,5 +1,5 @@
 #pragma once
-// The ball gas of the benchmarks and peers.md: N balls on a square (cubic) lattice,
+// The ball gas of the benchmarks and docs/peers.md: N balls on a square (cubic) lattice,
 // velocities uniform in [−speed, speed]^d, inside a box container that fits the lattice.
 // The random numbers come from SplitMix64 (Steele, Lea & Flood 2014) so that a seed
 // gives the same balls on every machine and in every engine.

@@ -37,7 +37,7 @@ struct FirstOrderDescription {
   std::vector<double> initial;
 };
 
-// A state known to high accuracy at time t (e.g. ../shared/reference/lorenz.json).
+// A state known to high accuracy at time t (e.g. tests/reference/lorenz.json).
 struct ReferenceState {
   double t = 0;
   std::vector<double> state;

@@ -1,6 +1,6 @@
 #pragma once
 // Scene generators: the many bodies and sticks of a cloth or a rope, appended to a
-// mechanical scene (the notes' fabric-and-ragdoll demo). A scene file names them as
+// mechanical scene (the course's fabric-and-ragdoll demo). A scene file names them as
 // "cloth": {...} and "rope": {...} objects with exactly these fields.
 #include <array>
 #include <string>

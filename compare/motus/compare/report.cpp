@@ -211,7 +211,8 @@ std::string write_report(const std::string& folder, const ReportContext& c, cons
     }
   }
   html << "<p>Data: <a href=\"metrics.csv\">metrics.csv</a> (every sample), <a href=\"summary.json\">summary.json</a>. "
-          "Fair settings: <code>shared/reference/peers.md</code>.</p>\n</body></html>\n";
+          "Fair settings, and how the peers integrate and collide: <code>docs/peers.md</code> in the motus sources.</p>\n"
+          "</body></html>\n";
   return warning;
 }
 

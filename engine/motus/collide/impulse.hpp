@@ -1,6 +1,6 @@
 #pragma once
 // The collision of two balls, "true elastic collisions" generalised to a coefficient of
-// restitution e (the notes; Wikipedia's elastic collision for unequal masses):
+// restitution e (docs/course.md, section 9; Wikipedia's elastic collision for unequal masses):
 // along the contact normal n (from a to b), with closing speed u = (v_b − v_a)·n < 0,
 // the impulse
 //   J = −(1 + e) u / (1/m_a + 1/m_b)

@@ -7,7 +7,7 @@
 
 #include "motus/scene_error.hpp"
 
-// Jakobsen's relaxation ("Advanced Character Physics", 2001), as the notes' fabric and
+// Jakobsen's relaxation ("Advanced Character Physics", 2001), as the course's fabric and
 // ragdoll demo runs it. Each constraint on its own is easy: a stick that is too long
 // moves its two ends towards each other until it has its length; a body inside a wall
 // moves to the wall's surface. Satisfying one breaks its neighbours a little, so we

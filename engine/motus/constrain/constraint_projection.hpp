@@ -1,6 +1,6 @@
 #pragma once
 // Position-based constraints on velocityless Verlet (Jakobsen, "Advanced Character
-// Physics"; the notes' fabric-and-ragdoll demo): after the Verlet step moves every
+// Physics"; the course's fabric-and-ragdoll demo, docs/course.md section 10): after the Verlet step moves every
 // body, positions are projected back onto the constraints, a fixed number of sweeps:
 //   each stick:  move its two ends along the stick, in proportion to their inverse
 //                masses, until it has its rest length;

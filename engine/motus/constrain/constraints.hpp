@@ -1,6 +1,6 @@
 #pragma once
-// Verlet constraints, as in Jakobsen's "Advanced Character Physics" and the notes'
-// fabric-and-ragdoll demo: sticks keep two bodies at a fixed distance, pins hold a body
+// Verlet constraints, as in Jakobsen's "Advanced Character Physics" and the course's
+// fabric-and-ragdoll demo (docs/course.md, section 10): sticks keep two bodies at a fixed distance, pins hold a body
 // at a fixed point.
 #include <array>
 

@@ -2,7 +2,7 @@
 // A Hooke spring between body a and body b, or between body a and a fixed anchor.
 //   d = x_a − x_b,  F_a = −k (|d| − L) d̂ − c ((v_a − v_b)·d̂) d̂,  F_b = −F_a
 // A zero-length spring (L = 0) is F_a = −k d − c (v_a − v_b): the same law without
-// the direction, which also makes sense when d = 0 (the notes' f = −kx).
+// the direction, which also makes sense when d = 0 (the course's f = −kx).
 // Potential U = ½ k (|d| − L)².
 #include <array>
 #include <cmath>

@@ -1,7 +1,9 @@
 #pragma once
-// Explicit Euler — the notes' update():   a = F/m;  v += a dt;  p += v dt
-// For a first-order system y' = f(t, y):
+// Explicit Euler (docs/course.md, sections 2 and 4). For a first-order system y' = f(t, y):
 //   y_{n+1} = y_n + Δt f(t_n, y_n)
+// For a body, y = [x; v]: x += v Δt and v += a Δt, both with the values at the start of
+// the step — the course's spring table. (Updating v first and moving x with the new v
+// is symplectic Euler, symplectic_euler.hpp.)
 // Global error O(Δt); on x'' = −ω²x the energy grows by (1 + ω²Δt²) every step.
 // (The Runge–Kutta family is written with plain loops over i: on the course's small
 // systems they beat Eigen's vectorized expressions, which pay set-up costs on three

@@ -1,5 +1,5 @@
 #pragma once
-// The midpoint method (second-order Runge–Kutta), as on the notes' slide:
+// The midpoint method (second-order Runge–Kutta), as docs/course.md (section 4) writes it:
 //   k1 = d(x_n) Δt
 //   k2 = d(x_n + ½ k1) Δt
 //   x_{n+1} = x_n + k2

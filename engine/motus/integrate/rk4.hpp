@@ -1,5 +1,5 @@
 #pragma once
-// Classic fourth-order Runge–Kutta, as on the notes' slide:
+// Classic fourth-order Runge–Kutta, as docs/course.md (section 4) writes it:
 //   k1 = d(x_n) Δt
 //   k2 = d(x_n + ½ k1) Δt
 //   k3 = d(x_n + ½ k2) Δt

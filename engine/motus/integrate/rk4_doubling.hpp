@@ -1,6 +1,6 @@
 #pragma once
-// Adaptive RK4 by step doubling — the notes' "change Δt as you go along, depending
-// on how much things are changing":
+// Adaptive RK4 by step doubling — the course's "change Δt as you go along, depending
+// on how much things are changing" (docs/course.md, section 5):
 //   take one RK4 step of h, and two of h/2, from the same point;
 //   their difference / 15 estimates the error of the two half steps;
 //   keep the step if that error is within tolerance, and then use the extrapolated

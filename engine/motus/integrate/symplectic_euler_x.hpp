@@ -1,5 +1,5 @@
 #pragma once
-// Symplectic Euler, the notes' second form — position first:
+// Symplectic Euler, the course's second form — position first (docs/course.md, section 4):
 //   p_{n+1} = p_n + v_n Δt
 //   v_{n+1} = v_n + a_{n+1} Δt
 #include "motus/systems/mechanical_system.hpp"

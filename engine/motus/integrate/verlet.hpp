@@ -1,7 +1,7 @@
 #pragma once
-// Velocityless (Störmer) Verlet, as the notes derive it:
+// Velocityless (Störmer) Verlet, as docs/course.md (section 4) derives it:
 //   p_{n+1} = 2 p_n − p_{n−1} + a_n Δt²
-// It needs p_{n−1} to start. The notes' v_n Δt ≈ p_n − p_{n−1} would give
+// It needs p_{n−1} to start. The derivation's v_n Δt ≈ p_n − p_{n−1} would give
 // p_{−1} = p_0 − v_0 Δt, which makes the method first order; the Taylor start
 //   p_{−1} = p_0 − v_0 Δt + ½ a_0 Δt²
 // keeps it second order.

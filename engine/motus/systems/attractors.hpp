@@ -1,7 +1,7 @@
 #pragma once
-// The strange attractors of the notes ("Run: strange??.py"): three-variable
+// The strange attractors of the course (docs/course.md, section 7): three-variable
 // first-order systems whose trajectories never settle and never repeat.
-// Parameters and starting points: ../shared/reference/integrators.md.
+// Parameters: docs/course.md and tests/reference/integrators.md; starting points: scenes/.
 #include <cmath>
 
 #include "motus/systems/first_order_system.hpp"

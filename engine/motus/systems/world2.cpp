@@ -5,7 +5,7 @@
 namespace motus {
 namespace {
 
-// The table functions of ../shared/reference/world2.md (x points, then y points).
+// The table functions of World2, as docs/course.md (section 8) lists them (x points, then y points).
 const TableFunction BRMM({0, 1, 2, 3, 4, 5}, {1.2, 1.0, 0.85, 0.75, 0.7, 0.7});
 const TableFunction NREM({0, 0.25, 0.5, 0.75, 1}, {0, 0.15, 0.5, 0.85, 1});
 const TableFunction DRMM({0, 0.5, 1, 1.5, 2, 2.5, 3, 3.5, 4, 4.5, 5}, {3, 1.8, 1, 0.8, 0.7, 0.6, 0.53, 0.5, 0.5, 0.5, 0.5});

@@ -1,7 +1,8 @@
 #pragma once
 // Forrester's World2 (World Dynamics, 1971), the smallest of the Limits to Growth
 // models: five stocks driven by rates that are products of table functions.
-// Equations, constants and tables exactly as ../shared/reference/world2.md gives them.
+// Equations, constants and tables as docs/course.md (section 8) restates them; the standard
+// run they give is tests/reference/world2.md.
 // State: P (people), NR (resource units), CI (capital units), POL (pollution units),
 // CIAF (fraction); time in years (the standard run goes from 1900 to 2100).
 #include <map>

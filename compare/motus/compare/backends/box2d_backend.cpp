@@ -14,7 +14,7 @@
 namespace motus::compare {
 namespace {
 
-// peers.md: the manual's recommended iterations.
+// docs/peers.md: the manual's recommended iterations.
 constexpr int kVelocityIterations = 8;
 constexpr int kPositionIterations = 3;
 // A point (radius 0) is a circle this small: Box2D needs a shape for a contact with a
@@ -98,7 +98,7 @@ struct Box2dBackend::World {
     def.density = 0;  // the mass is set exactly with SetMassData
     def.friction = 0;  // motus has no friction
     def.restitution = static_cast<float>(e);
-    def.restitutionThreshold = 0;  // peers.md: the default 1 m/s gives slower contacts no bounce
+    def.restitutionThreshold = 0;  // docs/peers.md: the default 1 m/s gives slower contacts no bounce
     def.filter.categoryBits = category;
     def.filter.maskBits = mask;
     def.userData.pointer = reinterpret_cast<std::uintptr_t>(&restitution.emplace_back(e));

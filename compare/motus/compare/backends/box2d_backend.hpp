@@ -1,6 +1,6 @@
 #pragma once
 // Box2D 2.4.1 (float, 2-D) behind the backend interface, with the fair settings of
-// shared/reference/peers.md: world.Step(dt, 8, 3), restitution threshold 0, no sleep,
+// docs/peers.md: world.Step(dt, 8, 3), restitution threshold 0, no sleep,
 // no damping, no friction, fixed rotation, continuous collision for balls.
 //
 // The scene is built as it is in motus:

@@ -27,7 +27,7 @@ constexpr double kPointRadius = 1e-3;  // m
 
 // The solver settings this backend changes from Bullet's defaults (see settings()).
 // motus has no restitution threshold (every approaching contact bounces with e), like
-// Box2D's restitutionThreshold = 0 in peers.md's fair settings.
+// Box2D's restitutionThreshold = 0 in the fair settings of docs/peers.md.
 constexpr double kRestitutionVelocityThreshold = 0;  // m/s; Bullet's default 0.2
 
 // A stick: one bilateral constraint row on the distance between the two centres,
