@@ -8,10 +8,34 @@ namespace fs = std::filesystem;
 
 namespace motus::cli {
 
-std::string executable_directory() {
+std::string executable_path() {
   std::error_code error;
   const fs::path self = fs::read_symlink("/proc/self/exe", error);
-  return error ? std::string(".") : self.parent_path().string();
+  return error ? std::string("motus") : self.string();
+}
+
+std::string executable_directory() { return fs::path(executable_path()).parent_path().string(); }
+
+std::string assignments_directory() {
+  if (const char* env = std::getenv("MOTUS_ASSIGNMENTS"); env && *env) return env;
+  const fs::path installed = (fs::path(executable_directory()) / MOTUS_SCENES_INSTALLED / ".." / "assignments").lexically_normal();
+  std::error_code error;
+  if (fs::is_directory(installed, error)) return installed.string();
+  return (fs::path(MOTUS_SOURCE_DIR) / "assignments").string();
+}
+
+std::string student_api_directory(const std::string& which) {
+  const fs::path installed =
+      (fs::path(executable_directory()) / MOTUS_INCLUDE_INSTALLED / "motus" / which).lexically_normal();
+  std::error_code error;
+  if (fs::is_directory(installed, error)) return installed.string();
+  const fs::path source(MOTUS_SOURCE_DIR);
+  return (which == "external" ? source / "engine/motus/external" : source / "plugin/motus" / which).string();
+}
+
+std::string source_directory() {
+  std::error_code error;
+  return fs::is_regular_file(fs::path(MOTUS_SOURCE_DIR) / "CMakeLists.txt", error) ? MOTUS_SOURCE_DIR : "";
 }
 
 std::string scenes_directory() {

@@ -24,8 +24,17 @@ public:
   using std::runtime_error::runtime_error;
 };
 
-// The folder this executable is in (from /proc/self/exe).
+// This executable, and the folder it is in (from /proc/self/exe).
+std::string executable_path();
 std::string executable_directory();
+// The folder of shipped assignments: $MOTUS_ASSIGNMENTS; else, for an installed motus,
+// PREFIX/share/motus/assignments; else the source tree's assignments/.
+std::string assignments_directory();
+// Where the headers a student's plug-in is compiled against are: `which` is "student",
+// "plugin" or "external" (…/motus/WHICH), installed beside this motus or in the source tree.
+std::string student_api_directory(const std::string& which);
+// The source tree motus was built from ("" when it is gone).
+std::string source_directory();
 // The folder of shipped scenes: $MOTUS_SCENES; else, for an installed motus, the scenes
 // installed beside it (PREFIX/share/motus/scenes); else the source tree's scenes/.
 std::string scenes_directory();

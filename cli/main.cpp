@@ -13,7 +13,9 @@
 #include "list_command.hpp"
 #include "render_command.hpp"
 #include "motus/scene_error.hpp"
+#include "grade_command.hpp"
 #include "run_command.hpp"
+#include "serve_command.hpp"
 #include "motus/scene_file/scene_file.hpp"
 
 int main(int argc, char** argv) {
@@ -38,6 +40,10 @@ int main(int argc, char** argv) {
   auto* precision = add_bench_precision_command(*bench, precision_options);
   RenderOptions render_options;
   auto* render = add_render_command(app, render_options);
+  GradeCommandOptions grade_options;
+  auto* grade = add_grade_command(app, grade_options);
+  ServeOptions serve_options;
+  auto* serve = add_serve_command(app, serve_options);
 
   try {
     app.parse(argc, argv);
@@ -58,6 +64,8 @@ int main(int argc, char** argv) {
     if (*list) return list_command(list_plugins);
     if (*precision) return bench_precision_command(precision_options);
     if (*render) return render_command(render_options);
+    if (*grade) return grade_command(grade_options);
+    if (*serve) return serve_command(serve_options);
   } catch (const motus::SceneFileError& e) {
     fmt::print(stderr, "motus: error: {}\n", e.what());
     return kExitBadInput;

@@ -12,7 +12,10 @@
 // and this header turns them into the one entry point motus loads (motus/plugin/plugin_abi.hpp).
 // Every call from motus goes through a small function here that hands the student plain
 // vectors and turns anything the student's code throws into a one-line error for motus.
+#include <cxxabi.h>
+
 #include <cmath>
+#include <cstdlib>
 #include <deque>
 #include <exception>
 #include <new>
@@ -50,6 +53,15 @@ inline std::string& last_error() {
 }
 inline const char* error(void*) { return last_error().c_str(); }
 
+// "std::out_of_range", not "St12out_of_range".
+inline std::string type_name(const std::type_info& type) {
+  int status = 0;
+  char* readable = abi::__cxa_demangle(type.name(), nullptr, nullptr, &status);
+  std::string name = status == 0 && readable ? readable : type.name();
+  std::free(readable);
+  return name;
+}
+
 // Runs the student's code: 0 when it returned, 1 (and the message) when it threw.
 template <class Work>
 int guarded(Work&& work) noexcept {
@@ -59,7 +71,7 @@ int guarded(Work&& work) noexcept {
   } catch (const std::bad_alloc&) {
     last_error() = "ran out of memory (std::bad_alloc)";
   } catch (const std::exception& e) {
-    last_error() = std::string("threw ") + typeid(e).name() + ": " + e.what();
+    last_error() = "threw " + type_name(typeid(e)) + ": " + e.what();
   } catch (...) {
     last_error() = "threw something that is not a std::exception";
   }

@@ -41,6 +41,9 @@ public:
   void reject_unknown() const;
 
   const std::string& path() const { return path_; }
+  // The object itself, for a field read by hand; use(key) then marks that field as read.
+  const nlohmann::json& raw() const { return object_; }
+  void use(const std::string& key) { find(key); }
   std::string path_of(const std::string& key) const;
   [[noreturn]] void fail(const std::string& key, const std::string& message) const;
 

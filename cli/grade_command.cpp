@@ -1,0 +1,234 @@
+#include "grade_command.hpp"
+
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <ctime>
+#include <filesystem>
+#include <fstream>
+#include <mutex>
+#include <thread>
+
+#include "cli_common.hpp"
+#include "gradescope_package.hpp"
+#include "motus/grade/grader.hpp"
+#include "progress_bar.hpp"
+
+namespace fs = std::filesystem;
+
+namespace motus::cli {
+namespace {
+
+// ASSIGNMENT: a folder with an assignment.json, or the name of one under the assignments folder.
+std::string assignment_folder(const std::string& argument) {
+  if (fs::is_regular_file(fs::path(argument) / "assignment.json")) return argument;
+  if (argument.find('/') == std::string::npos) {
+    const fs::path shipped = fs::path(assignments_directory()) / argument;
+    if (fs::is_regular_file(shipped / "assignment.json")) return shipped.string();
+  }
+  std::string known;
+  std::error_code error;
+  std::vector<std::string> names;
+  for (const auto& e : fs::directory_iterator(assignments_directory(), error))
+    if (fs::is_regular_file(e.path() / "assignment.json")) names.push_back(e.path().filename().string());
+  std::sort(names.begin(), names.end());
+  for (const auto& n : names) known += (known.empty() ? "" : ", ") + n;
+  throw InputError(argument + ": no such assignment (a folder with an assignment.json; shipped: " + known + ")");
+}
+
+grade::GradeOptions grade_options(const GradeCommandOptions& o) {
+  grade::GradeOptions g;
+  g.motus = executable_path();
+  g.headers = {student_api_directory("student"), student_api_directory("plugin"), student_api_directory("external")};
+  g.limits.cpu_seconds = o.time_limit;
+  g.limits.memory_mb = o.memory_limit;
+  g.isolate = !o.no_sandbox;
+  return g;
+}
+
+// Writes text to `path` whole, or fails with one line (a half-written results file is worse than none).
+void write_file(const std::string& path, const std::string& text) {
+  const std::string temporary = path + ".partial";
+  {
+    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
+    out << text;
+    out.flush();
+    if (!out) {
+      std::error_code ignored;
+      fs::remove(temporary, ignored);
+      throw std::runtime_error(path + ": cannot be written");
+    }
+  }
+  std::error_code error;
+  fs::rename(temporary, path, error);
+  if (error) throw std::runtime_error(path + ": cannot be written (" + error.message() + ")");
+}
+
+grade::Assignment load(const GradeCommandOptions& o, const std::string& folder) {
+  if (o.hidden && !fs::is_directory(*o.hidden)) throw InputError(*o.hidden + ": --hidden: no such folder");
+  grade::SceneSource scenes;
+  scenes.shipped = [](const std::string& name) { return resolve_scene_path(name); };
+  try {
+    return grade::load_assignment(folder, o.hidden, scenes);
+  } catch (const grade::AssignmentError& e) {
+    throw InputError(e.what());
+  }
+}
+
+void check_limits(const GradeCommandOptions& o) {
+  if (!(o.time_limit > 0) || o.time_limit > 600) throw InputError("--time-limit: must be from 0 to 600 s");
+  if (o.memory_limit < 64 || o.memory_limit > 65536) throw InputError("--memory-limit: must be from 64 to 65536 MB");
+  if (o.jobs < 1 || o.jobs > 64) throw InputError("--jobs: must be from 1 to 64");
+  if (!o.no_sandbox)
+    if (const auto why = grade::sandbox_unavailable()) throw InputError(*why);
+}
+
+std::string new_folder(const std::string& prefix) {
+  const std::time_t now = std::time(nullptr);
+  char stamp[32];
+  std::strftime(stamp, sizeof stamp, "%Y%m%d-%H%M%S", std::localtime(&now));
+  std::string path = fmt::format("runs/{}-{}", prefix, stamp);
+  for (int i = 2; fs::exists(path); ++i) path = fmt::format("runs/{}-{}-{}", prefix, stamp, i);
+  return path;
+}
+
+int grade_one(const GradeCommandOptions& o, const std::string& folder) {
+  if (!fs::is_directory(o.submission)) throw InputError(o.submission + ": no such submission folder");
+  if (!o.results.empty()) check_can_write(o.results, o.overwrite);
+  if (!o.plugin_out.empty()) check_can_write(o.plugin_out, o.overwrite);
+  const grade::Assignment assignment = load(o, folder);
+  check_limits(o);
+  grade::GradeOptions options = grade_options(o);
+  options.plugin_out = o.plugin_out;
+  grade::GradeResult result;
+  try {
+    result = grade::grade_submission(assignment, o.submission, options);
+  } catch (const std::exception& e) {
+    // Even now, a valid results.json that says what happened.
+    if (!o.results.empty()) write_file(o.results, grade::failed_json(assignment.name, e.what()).dump(2) + "\n");
+    throw;
+  }
+  const std::string json = grade::gradescope_json(result).dump(2) + "\n";
+  if (!o.results.empty()) write_file(o.results, json);
+  if (o.format == "gradescope")
+    fmt::print("{}", json);
+  else
+    fmt::print("{}", grade::text_summary(result));
+  return 0;
+}
+
+int grade_batch(const GradeCommandOptions& o, const std::string& folder) {
+  if (!fs::is_directory(o.batch)) throw InputError(o.batch + ": --batch: no such folder");
+  const std::string out = o.out.empty() ? new_folder("grade-" + fs::path(folder).filename().string()) : o.out;
+  if (fs::exists(out)) throw InputError(out + ": --out: already exists; grading never writes over earlier results");
+  const grade::Assignment assignment = load(o, folder);
+  check_limits(o);
+  std::vector<fs::path> submissions;
+  for (const auto& e : fs::directory_iterator(o.batch))
+    if (e.is_directory()) submissions.push_back(e.path());
+  std::sort(submissions.begin(), submissions.end());
+  if (submissions.empty()) throw InputError(o.batch + ": --batch: has no submission folders");
+  std::error_code error;
+  fs::create_directories(out, error);
+  if (error) throw InputError(out + ": --out: cannot be created (" + error.message() + ")");
+
+  struct Row {
+    double score = 0, max_score = 0, seconds = 0;
+    std::string status;
+  };
+  std::vector<Row> rows(submissions.size());
+  std::atomic<size_t> next{0}, done{0};
+  std::mutex failures_lock;
+  std::vector<std::string> failures;
+  ProgressBar progress(0, static_cast<double>(submissions.size()), "grade " + assignment.name, 1);
+  const auto began = std::chrono::steady_clock::now();
+  auto worker = [&](int slot) {
+    grade::GradeOptions options = grade_options(o);
+    options.slot = slot;  // each job its own sandbox user
+    for (size_t i = next++; i < submissions.size(); i = next++) {
+      const std::string name = submissions[i].filename().string();
+      const std::string results = (fs::path(out) / (name + ".json")).string();
+      try {
+        const auto result = grade::grade_submission(assignment, submissions[i].string(), options);
+        write_file(results, grade::gradescope_json(result).dump(2) + "\n");
+        rows[i] = {result.score, result.max_score, result.seconds,
+                   !result.tests[0].passed ? "missing files" : !result.compiled ? "does not compile" : "graded"};
+      } catch (const std::exception& e) {
+        std::lock_guard<std::mutex> lock(failures_lock);
+        failures.push_back(name + ": " + e.what());
+        rows[i] = {0, assignment.max_score(), 0, "grader failed"};
+        try {
+          write_file(results, grade::failed_json(assignment.name, e.what()).dump(2) + "\n");
+        } catch (...) {
+        }
+      }
+      ++done;
+    }
+  };
+  std::vector<std::thread> threads;
+  for (int j = 0; j < std::min<int>(o.jobs, static_cast<int>(submissions.size())); ++j) threads.emplace_back(worker, j);
+  while (done < submissions.size()) {
+    progress.update(static_cast<double>(done));
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  for (auto& t : threads) t.join();
+  progress.finish();
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count();
+
+  std::string csv = "submission,score,max_score,seconds,status\n";
+  for (size_t i = 0; i < submissions.size(); ++i)
+    csv += fmt::format("{},{},{},{:.2f},{}\n", submissions[i].filename().string(), rows[i].score, rows[i].max_score,
+                       rows[i].seconds, rows[i].status);
+  write_file((fs::path(out) / "scores.csv").string(), csv);
+  fmt::print("{}", csv);
+  fmt::print(stderr, "motus: graded {} submissions of {} in {:.1f} s with {} jobs; results in {}/\n", submissions.size(),
+             assignment.name, wall, o.jobs, out);
+  for (const auto& f : failures) fmt::print(stderr, "motus: the grader failed on {}\n", f);
+  return failures.empty() ? 0 : kExitFailure;
+}
+
+}  // namespace
+
+CLI::App* add_grade_command(CLI::App& app, GradeCommandOptions& o) {
+  auto* g = app.add_subcommand("grade",
+                               "Grade a submission of an assignment in a sandbox: Gradescope's results.json and a "
+                               "readable summary (see docs/grading.md)");
+  g->add_option("assignment", o.assignment, "An assignment: a folder under assignments/ (integrators, collisions, cloth) or a path")
+      ->required();
+  g->add_option("submission", o.submission, "The submission's folder (the files the handout names)");
+  g->add_option("--results", o.results, "Write Gradescope's results.json here");
+  g->add_option("--format", o.format, "What standard output shows: text (a summary) or gradescope (the JSON)")
+      ->check(CLI::IsMember({"text", "gradescope"}))
+      ->capture_default_str();
+  g->add_option("--hidden", o.hidden, "The folder of hidden tests (the instructor's; not given: only the public tests run)");
+  g->add_option("--time-limit", o.time_limit, "Seconds each test may take (CPU and wall clock)")->capture_default_str();
+  g->add_option("--memory-limit", o.memory_limit, "Megabytes of address space the student's code may use")->capture_default_str();
+  g->add_flag("--no-sandbox", o.no_sandbox,
+              "Grade without bubblewrap (limits and another user only): for machines without user namespaces, knowingly");
+  g->add_option("--plugin-out", o.plugin_out, "Also keep the plug-in built from the submission here (for motus run --plugin)");
+  g->add_flag("--overwrite", o.overwrite, "Allow --results and --plugin-out to replace existing files");
+  g->add_option("--batch", o.batch, "Grade every subfolder of this folder, one submission each");
+  g->add_option("--jobs", o.jobs, "With --batch: submissions graded at once")->capture_default_str();
+  g->add_option("--out", o.out, "With --batch: the results folder (default: a new folder under runs/); with --package: the zip");
+  g->add_option("--package", o.package, "Write the autograder zip for this platform instead of grading")
+      ->check(CLI::IsMember({"gradescope"}));
+  return g;
+}
+
+int grade_command(const GradeCommandOptions& o) {
+  const std::string folder = assignment_folder(o.assignment);
+  const int modes = !o.submission.empty() + !o.batch.empty() + !o.package.empty();
+  if (modes != 1) throw InputError("grade: give a SUBMISSION_DIR, or --batch DIR, or --package gradescope --out FILE.zip");
+  if (!o.package.empty()) {
+    if (o.out.empty()) throw InputError("--package: needs --out FILE.zip");
+    const grade::Assignment assignment = load(o, folder);  // checked before it is packed
+    return write_gradescope_package(folder, assignment.name, o.hidden, o.out, o.no_sandbox, o.time_limit,
+                                    o.memory_limit, o.overwrite);
+  }
+  if (!o.batch.empty()) return grade_batch(o, folder);
+  return grade_one(o, folder);
+}
+
+}  // namespace motus::cli

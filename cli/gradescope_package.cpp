@@ -1,0 +1,154 @@
+#include "gradescope_package.hpp"
+
+#include <fcntl.h>
+#include <fmt/format.h>
+#include <spawn.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+
+#include "cli_common.hpp"
+
+extern char** environ;
+
+namespace fs = std::filesystem;
+
+namespace motus::cli {
+namespace {
+
+// What of motus's source tree it takes to build `motus` on Gradescope's machine.
+const char* const kSourceParts[] = {"CMakeLists.txt", "cmake",  "engine", "scene",       "compare",
+                                    "render",         "plugin", "grade",  "cli",         "assignments",
+                                    "scenes",         "examples", "debian-packages.txt"};
+
+void write_script(const fs::path& path, const std::string& text) {
+  std::ofstream out(path, std::ios::binary);
+  out << text;
+  out.flush();
+  if (!out) throw std::runtime_error(path.string() + ": cannot be written");
+  out.close();
+  fs::permissions(path, fs::perms::owner_all | fs::perms::group_read | fs::perms::group_exec | fs::perms::others_read |
+                            fs::perms::others_exec);
+}
+
+std::string find_on_path(const std::string& program) {
+  const char* path = std::getenv("PATH");
+  std::string dirs = path ? path : "/usr/bin:/bin";
+  size_t start = 0;
+  while (start <= dirs.size()) {
+    const size_t end = dirs.find(':', start);
+    const std::string dir = dirs.substr(start, end == std::string::npos ? std::string::npos : end - start);
+    const fs::path candidate = fs::path(dir.empty() ? "." : dir) / program;
+    if (::access(candidate.c_str(), X_OK) == 0) return candidate.string();
+    if (end == std::string::npos) break;
+    start = end + 1;
+  }
+  return "";
+}
+
+// zip -q -r -X ZIP . in `folder`, started directly (no shell).
+void zip_folder(const fs::path& folder, const fs::path& zip) {
+  const std::string program = find_on_path("zip");
+  if (program.empty()) throw InputError("--package: the program zip was not found on PATH (apt-get install zip)");
+  std::vector<std::string> args = {program, "-q", "-r", "-X", zip.string(), "."};
+  std::vector<char*> argv;
+  for (auto& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addchdir_np(&actions, folder.c_str());
+  posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
+  pid_t pid = 0;
+  const int spawned = posix_spawn(&pid, program.c_str(), &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  if (spawned != 0) throw std::runtime_error("zip cannot be started: " + std::string(std::strerror(spawned)));
+  int status = 0;
+  while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) throw std::runtime_error("zip failed on " + zip.string());
+}
+
+std::string quoted(const std::string& s) {  // for a shell script's double quotes
+  std::string q;
+  for (char c : s) {
+    if (c == '"' || c == '\\' || c == '$' || c == '`') q += '\\';
+    q += c;
+  }
+  return q;
+}
+
+}  // namespace
+
+int write_gradescope_package(const std::string& assignment_folder, const std::string& assignment_name,
+                             const std::optional<std::string>& hidden, const std::string& zip, bool no_sandbox,
+                             double time_limit, long memory_limit, bool overwrite) {
+  check_can_write(zip, overwrite);
+  const std::string source = source_directory();
+  if (source.empty()) throw InputError("--package: needs the source tree motus was built from (it goes into the zip)");
+  std::string pattern = (fs::temp_directory_path() / "motus-package-XXXXXX").string();
+  if (!::mkdtemp(pattern.data())) throw std::runtime_error("cannot make a temporary folder");
+  const fs::path staging(pattern);
+  struct Cleanup {
+    fs::path path;
+    ~Cleanup() {
+      std::error_code ignored;
+      fs::remove_all(path, ignored);
+    }
+  } cleanup{staging};
+
+  const fs::path motus = staging / "motus";
+  fs::create_directories(motus);
+  for (const char* part : kSourceParts) {
+    const fs::path from = fs::path(source) / part;
+    if (fs::exists(from)) fs::copy(from, motus / part, fs::copy_options::recursive);
+  }
+  // The assignment graded (it may live outside the source tree) and its hidden tests.
+  fs::copy(assignment_folder, staging / "assignment", fs::copy_options::recursive);
+  if (hidden) fs::copy(*hidden, staging / "hidden", fs::copy_options::recursive);
+
+  write_script(staging / "setup.sh", R"SH(#!/usr/bin/env bash
+# Gradescope runs this once, as root, when it builds the autograder's image: the Debian
+# packages motus needs, then motus itself (the tests and benchmarks are not built).
+set -euo pipefail
+cd "$(dirname "$0")"
+apt-get update
+DEBIAN_FRONTEND=noninteractive xargs -a motus/debian-packages.txt apt-get install -y --no-install-recommends
+cmake -S motus -B motus/build -DCMAKE_BUILD_TYPE=Release -DBUILD_TESTING=OFF -DMOTUS_BUILD_BENCH=OFF
+cmake --build motus/build -j"$(nproc)" --target motus
+)SH");
+  write_script(staging / "run_autograder",
+               fmt::format(R"SH(#!/usr/bin/env bash
+# Gradescope runs this for every submission: grade /autograder/submission into
+# /autograder/results/results.json ($AUTOGRADER_ROOT moves /autograder, $MOTUS_BINARY the motus
+# that grades — for a test of this zip). Written by motus grade --package gradescope.
+set -uo pipefail
+ROOT="${{AUTOGRADER_ROOT:-/autograder}}"
+SOURCE="$ROOT/source"
+MOTUS="${{MOTUS_BINARY:-$SOURCE/motus/build/motus}}"
+mkdir -p "$ROOT/results"
+exec "$MOTUS" grade "$SOURCE/assignment" "$ROOT/submission" {}--results "$ROOT/results/results.json" --overwrite \
+  --time-limit {} --memory-limit {}{}
+)SH",
+                           hidden ? "--hidden \"$SOURCE/hidden\" " : "", time_limit, memory_limit,
+                           no_sandbox ? " --no-sandbox" : ""));
+  write_script(staging / "README.txt",
+               fmt::format("The Gradescope autograder for the motus assignment \"{}\", written by `motus grade {} "
+                           "--package gradescope`.\nUpload this zip as the autograder; setup.sh builds motus, "
+                           "run_autograder grades each submission.\n",
+                           quoted(assignment_name), quoted(assignment_name)));
+  const fs::path partial = fs::path(zip).string() + ".partial";
+  std::error_code ignored;
+  fs::remove(partial, ignored);
+  zip_folder(staging, fs::absolute(partial));
+  fs::rename(partial, zip);
+  fmt::print("autograder  {} (setup.sh, run_autograder; motus's sources, the assignment{})\n", zip,
+             hidden ? " and its hidden tests" : "");
+  return 0;
+}
+
+}  // namespace motus::cli

@@ -1,0 +1,192 @@
+#include "serve_command.hpp"
+
+#include <unistd.h>
+
+#include <cstdio>
+#include <iostream>
+#include <nlohmann/json.hpp>
+
+#include "cli_common.hpp"
+#include "motus/grade/wire.hpp"
+#include "motus/scene_file/scene_file.hpp"
+#include "motus/simulation.hpp"
+
+namespace motus::cli {
+namespace {
+
+using nlohmann::json;
+namespace wire = grade::wire;
+
+std::vector<double> point(const json& request, const char* key, int d) {
+  std::vector<double> p = wire::numbers(request.at(key));
+  if (static_cast<int>(p.size()) != d)
+    throw std::invalid_argument(std::string(key) + ": needs " + std::to_string(d) + " numbers");
+  return p;
+}
+
+json run(const json& r) {
+  const std::string file = r.value("file", std::string("scene"));
+  const SceneDescription scene = parse_scene(r.at("scene").get<std::string>(), file, r.value("set", std::vector<std::string>{}));
+  const Method method = method_for(file, scene, r.value("integrator", scene.integrator));
+  Simulation sim(scene, method, plugins().parts());
+  const double dt = r.value("dt", scene.dt);
+  const long every = std::max(1L, r.value("every", 1L));
+  const double end = r.contains("until") ? wire::number(r.at("until"))
+                                          : sim.time() + static_cast<double>(r.value("steps", 1L)) * dt;
+  const Tolerance tolerance{r.value("atol", scene.atol), r.value("rtol", scene.rtol)};
+  json t = json::array(), y = json::array();
+  auto row = [&](const Simulation& s) {
+    t.push_back(wire::number(s.time()));
+    y.push_back(wire::numbers(s.state()));
+  };
+  row(sim);
+  long last_row = 0;
+  sim.advance(end, dt, tolerance, [&](const Simulation& s) {
+    if (s.steps() % every == 0) {
+      row(s);
+      last_row = s.steps();
+    }
+  });
+  if (last_row != sim.steps()) row(sim);
+  return {{"t", t}, {"y", y}, {"steps", sim.steps()}, {"rejected", sim.rejected()}, {"evaluations", sim.evaluations()}};
+}
+
+const ExternalCollisionRules& collisions() {
+  const ExternalCollisionRules* rules = plugins().parts().collisions;
+  if (!rules) throw std::invalid_argument("the plug-in brings no collision response");
+  return *rules;
+}
+
+json collide_balls(const json& r) {
+  const auto& rules = collisions();
+  const int d = static_cast<int>(r.at("v_a").size());
+  std::vector<double> v_a = point(r, "v_a", d), v_b = point(r, "v_b", d);
+  const std::vector<double> n = point(r, "n", d);
+  check_external(rules.collide_balls(rules.self, d, v_a.data(), v_b.data(), wire::number(r.at("m_a")),
+                                     wire::number(r.at("m_b")), n.data(), wire::number(r.at("e"))),
+                 "collide_balls", rules.error, rules.self);
+  return {{"v_a", wire::numbers(v_a)}, {"v_b", wire::numbers(v_b)}};
+}
+
+json bounce_off_wall(const json& r) {
+  const auto& rules = collisions();
+  const int d = static_cast<int>(r.at("v").size());
+  std::vector<double> v = point(r, "v", d);
+  const std::vector<double> n = point(r, "n", d);
+  check_external(rules.bounce_off_wall(rules.self, d, v.data(), n.data(), wire::number(r.at("e"))), "bounce_off_wall",
+                 rules.error, rules.self);
+  return {{"v", wire::numbers(v)}};
+}
+
+json balls_impact(const json& r) {
+  const auto& rules = collisions();
+  const int d = static_cast<int>(r.at("p_a").size());
+  const auto p_a = point(r, "p_a", d), v_a = point(r, "v_a", d), p_b = point(r, "p_b", d), v_b = point(r, "v_b", d);
+  double t = 0;
+  check_external(rules.balls_impact(rules.self, d, p_a.data(), v_a.data(), wire::number(r.at("r_a")), p_b.data(),
+                                    v_b.data(), wire::number(r.at("r_b")), &t),
+                 "time_of_impact", rules.error, rules.self);
+  return {{"t", wire::number(t)}};
+}
+
+json plane_impact(const json& r) {
+  const auto& rules = collisions();
+  const int d = static_cast<int>(r.at("p").size());
+  const auto p = point(r, "p", d), v = point(r, "v", d), n = point(r, "n", d);
+  double t = 0;
+  check_external(rules.plane_impact(rules.self, d, p.data(), v.data(), wire::number(r.at("r")), n.data(),
+                                    wire::number(r.at("offset")), &t),
+                 "time_of_impact_with_plane", rules.error, rules.self);
+  return {{"t", wire::number(t)}};
+}
+
+json project(const json& r) {
+  const ExternalConstraintRules* rules = plugins().parts().constraints;
+  if (!rules) throw std::invalid_argument("the plug-in brings no constraint projection");
+  const int d = r.at("dimensions").get<int>();
+  std::vector<double> inverse_mass = wire::numbers(r.at("inverse_mass")), radius = wire::numbers(r.at("radius"));
+  const int n = static_cast<int>(inverse_mass.size());
+  std::vector<double> x = wire::numbers(r.at("x"));
+  if (static_cast<int>(radius.size()) != n || static_cast<int>(x.size()) != n * d)
+    throw std::invalid_argument("project: inverse_mass, radius and x do not agree on the number of bodies");
+  std::vector<ExternalStick> sticks;
+  for (const auto& s : r.at("sticks")) sticks.push_back({s.at(0).get<int>(), s.at(1).get<int>(), wire::number(s.at(2))});
+  std::vector<ExternalPin> pins;
+  for (const auto& p : r.at("pins")) {
+    ExternalPin pin{p.at(0).get<int>(), {0, 0, 0}};
+    const auto at = wire::numbers(p.at(1));
+    for (int k = 0; k < d && k < static_cast<int>(at.size()); ++k) pin.position[k] = at[static_cast<size_t>(k)];
+    pins.push_back(pin);
+  }
+  std::vector<ExternalWall> walls;
+  for (const auto& w : r.at("walls")) {
+    ExternalWall wall{{0, 0, 0}, wire::number(w.at(1))};
+    const auto normal = wire::numbers(w.at(0));
+    for (int k = 0; k < d && k < static_cast<int>(normal.size()); ++k) wall.normal[k] = normal[static_cast<size_t>(k)];
+    walls.push_back(wall);
+  }
+  for (const auto& s : sticks)
+    if (s.a < 0 || s.a >= n || s.b < 0 || s.b >= n) throw std::invalid_argument("project: a stick names no body");
+  for (const auto& p : pins)
+    if (p.body < 0 || p.body >= n) throw std::invalid_argument("project: a pin names no body");
+  const ExternalConstraintSet set{d,
+                                  n,
+                                  inverse_mass.data(),
+                                  radius.data(),
+                                  static_cast<int>(sticks.size()),
+                                  sticks.data(),
+                                  static_cast<int>(pins.size()),
+                                  pins.data(),
+                                  static_cast<int>(walls.size()),
+                                  walls.data(),
+                                  r.value("iterations", 1)};
+  check_external(rules->project(rules->self, &set, x.data()), "satisfy_constraints", rules->error, rules->self);
+  return {{"x", wire::numbers(x)}};
+}
+
+json handle(const json& request) {
+  const std::string op = request.at("op").get<std::string>();
+  if (op == "run") return run(request);
+  if (op == "collide_balls") return collide_balls(request);
+  if (op == "bounce_off_wall") return bounce_off_wall(request);
+  if (op == "balls_impact") return balls_impact(request);
+  if (op == "plane_impact") return plane_impact(request);
+  if (op == "project") return project(request);
+  throw std::invalid_argument("unknown op \"" + op + "\"");
+}
+
+}  // namespace
+
+CLI::App* add_serve_command(CLI::App& app, ServeOptions& o) {
+  auto* serve = app.add_subcommand("serve",
+                                   "The student's side of `motus grade` (run inside its sandbox): answers one request "
+                                   "per line on standard input with raw outputs, one line each");
+  serve->add_option("--plugin", o.plugins, "The student's plug-in")->required()->type_name("FILE.so");
+  serve->group("");  // not for users: `motus grade` starts it
+  return serve;
+}
+
+int serve_command(const ServeOptions& o) {
+  // The answers go to the original standard output; anything else this process prints —
+  // the student's own std::cout included — goes to standard error, so it cannot forge one.
+  const int protocol = ::dup(STDOUT_FILENO);
+  ::dup2(STDERR_FILENO, STDOUT_FILENO);
+  std::FILE* out = ::fdopen(protocol, "w");
+  if (!out) return kExitFailure;
+  load_plugins(o.plugins);
+  std::string line;
+  while (std::getline(std::cin, line)) {
+    json reply;
+    try {
+      reply = handle(json::parse(line));
+      reply["ok"] = true;
+    } catch (const std::exception& e) {
+      reply = {{"ok", false}, {"error", e.what()}};
+    }
+    const std::string text = reply.dump(-1, ' ', false, json::error_handler_t::replace) + "\n";
+    if (std::fputs(text.c_str(), out) == EOF || std::fflush(out) != 0) return kExitFailure;
+  }
+  return 0;
+}
+
+}  // namespace motus::cli

@@ -1,0 +1,53 @@
+#pragma once
+// An assignment as the grader reads it from its folder (assignments/README.md, "For
+// instructors"):
+//   assignment.json  name, title, the files a student hands in ("files"), the assignment's own
+//                    files compiled with them ("provided": the header, plugin.cpp), extra
+//                    compiler flags, and the tests an untouched starter passes
+//   rubric.json      every test's name, points and visibility (Gradescope's: visible,
+//                    after_due_date, after_published, hidden)
+//   tests/*.json     the public tests; hidden/*.json (or --hidden DIR) the instructor's others
+// Each test: {"name", "title", "kind", "hint", "catches": [mistakes], ...its kind's fields}.
+#include <memory>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "motus/grade/check.hpp"
+
+namespace motus::grade {
+
+// An assignment folder that cannot be used: "FILE: FIELD: MESSAGE".
+class AssignmentError : public std::runtime_error {
+public:
+  using std::runtime_error::runtime_error;
+};
+
+struct TestCase {
+  std::string name, title, hint;
+  std::vector<std::string> catches;  // the mistakes it is there to catch (seeded-bug tests check them)
+  std::string file;                  // the definitions file it came from
+  bool hidden = false;               // from the hidden tests
+  double points = 0;
+  std::string visibility = "visible";
+  std::unique_ptr<Check> check;
+};
+
+struct Assignment {
+  std::string name, title, folder;
+  std::vector<std::string> files;     // handed in, as the handout names them
+  std::vector<std::string> provided;  // the assignment's own, compiled with them
+  std::vector<std::string> flags;     // extra compiler flags
+  std::vector<std::string> starter_passes;  // tests an untouched starter passes (by design)
+  std::vector<TestCase> tests;        // in rubric order; only those whose definitions were given
+  long hidden_not_given = 0;          // rubric entries skipped because no hidden tests were given
+  double max_score() const;
+};
+
+// Reads the folder; `hidden` is the folder of hidden tests (none: only the public ones run).
+// Throws AssignmentError.
+Assignment load_assignment(const std::string& folder, const std::optional<std::string>& hidden,
+                           const SceneSource& scenes);
+
+}  // namespace motus::grade

@@ -1,0 +1,83 @@
+#include "motus/grade/build.hpp"
+
+#include <chrono>
+#include <filesystem>
+
+namespace fs = std::filesystem;
+
+namespace motus::grade {
+
+std::string cut(const std::string& text, size_t lines, size_t bytes) {
+  size_t end = 0, count = 0;
+  while (end < text.size() && count < lines && end < bytes) {
+    const size_t next = text.find('\n', end);
+    end = next == std::string::npos ? text.size() : next + 1;
+    ++count;
+  }
+  end = std::min(end, bytes);
+  if (end >= text.size()) return text;
+  size_t left = 0;
+  for (size_t i = end; i < text.size(); ++i) left += text[i] == '\n';
+  return text.substr(0, end) + "… (" + std::to_string(left) + " more lines left out)\n";
+}
+
+BuildResult build_plugin(const Assignment& a, const std::string& staged, const std::string& out,
+                         const ApiHeaders& headers, bool isolate, int slot) {
+  const auto began = std::chrono::steady_clock::now();
+  SandboxSpec spec;
+  spec.isolate = isolate;
+  spec.slot = slot;
+  // Inside: the headers at /motus/include, the assignment's files at /assignment, the
+  // submission at /submission, and /out for the plug-in. Without the sandbox, the same
+  // files where they are.
+  const std::string include = isolate ? "/motus/include" : "";
+  const std::string assignment_dir = isolate ? "/assignment" : a.folder;
+  const std::string submission_dir = isolate ? "/submission" : staged;
+  const std::string out_dir = isolate ? "/out" : out;
+  std::vector<std::string> argv = {"/usr/bin/g++", "-std=c++20", "-O2", "-shared", "-fPIC", "-fvisibility=hidden",
+                                   "-fvisibility-inlines-hidden", "-fdiagnostics-color=never", "-I" + assignment_dir};
+  if (isolate) {
+    spec.mounts = {{headers.student, "/motus/include/motus/student", false},
+                   {headers.plugin, "/motus/include/motus/plugin", false},
+                   {headers.external, "/motus/include/motus/external", false},
+                   {staged, "/submission", false},
+                   {out, "/out", true}};
+    for (const auto& f : a.provided) spec.mounts.push_back({(fs::path(a.folder) / f).string(), "/assignment/" + f, false});
+    argv.push_back("-I" + include);
+  } else {
+    argv.push_back("-I" + fs::path(headers.student).parent_path().parent_path().string());
+    argv.push_back("-I" + fs::path(headers.external).parent_path().parent_path().string());
+  }
+  argv.insert(argv.end(), {"-isystem", "/usr/include/eigen3"});
+  argv.insert(argv.end(), a.flags.begin(), a.flags.end());
+  for (const auto& f : a.files)
+    if (fs::path(f).extension() == ".cpp" || fs::path(f).extension() == ".cc") argv.push_back(submission_dir + "/" + f);
+  for (const auto& f : a.provided)
+    if (fs::path(f).extension() == ".cpp" || fs::path(f).extension() == ".cc") argv.push_back(assignment_dir + "/" + f);
+  argv.insert(argv.end(), {"-o", out_dir + "/student.so"});
+  spec.argv = argv;
+  spec.workdir = "/tmp";
+
+  Limits limits;
+  limits.cpu_seconds = 60;
+  limits.memory_mb = 2048;
+  limits.file_mb = 64;
+  limits.processes = 64;
+  limits.tmpfs_mb = 256;
+  BuildResult result;
+  try {
+    SandboxProcess compiler(spec, limits);
+    const Ending ending = compiler.finish(std::chrono::steady_clock::now() + std::chrono::seconds(90));
+    result.output = cut(compiler.errors(), 40, 6000);
+    result.ok = ending.exited && ending.status == 0 && fs::is_regular_file(fs::path(out) / "student.so");
+    if (!ending.exited || ending.status != 0)
+      result.output += "(the compiler " + ending.describe(limits, 90) + ")\n";
+  } catch (const std::exception& e) {
+    result.output = std::string("the compiler could not be started: ") + e.what();
+  }
+  result.plugin = (fs::path(out) / "student.so").string();
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count();
+  return result;
+}
+
+}  // namespace motus::grade

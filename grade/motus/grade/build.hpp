@@ -1,0 +1,36 @@
+#pragma once
+// Compiling a submission into a plug-in, in the sandbox: the files the student handed in,
+// with the assignment's own (its header and plugin.cpp), against the student API headers
+// only — nothing else of motus, and never the solution or the hidden tests.
+#include <string>
+#include <vector>
+
+#include "motus/grade/assignment.hpp"
+#include "motus/grade/sandbox.hpp"
+
+namespace motus::grade {
+
+// Where the headers a plug-in is compiled against are (motus/student, motus/plugin and
+// motus/external): the source tree's folders, or an installed include folder for all three.
+struct ApiHeaders {
+  std::string student;   // …/motus/student
+  std::string plugin;    // …/motus/plugin
+  std::string external;  // …/motus/external
+};
+
+struct BuildResult {
+  bool ok = false;
+  std::string plugin;  // the built plug-in, on the host
+  std::string output;  // the compiler's messages, cut to a readable length
+  double seconds = 0;
+};
+
+// `staged` holds copies of the handed-in files; `out` is an empty folder the sandbox may write.
+BuildResult build_plugin(const Assignment& assignment, const std::string& staged, const std::string& out,
+                         const ApiHeaders& headers, bool isolate, int slot);
+
+// The first `lines` lines of `text` (and at most `bytes` bytes), with a line saying how much
+// was left out.
+std::string cut(const std::string& text, size_t lines, size_t bytes);
+
+}  // namespace motus::grade

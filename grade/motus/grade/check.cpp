@@ -1,0 +1,812 @@
+#include "motus/grade/check.hpp"
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "motus/exact/exact_solution.hpp"
+#include "motus/grade/wire.hpp"
+#include "motus/scene_file/scene_file.hpp"
+#include "motus/scene_error.hpp"
+#include "motus/simulation.hpp"
+#include "motus/systems/mechanical_system.hpp"
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace motus::grade {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// ---- Words and numbers for the messages -------------------------------------------------------
+
+std::string num(double x) {
+  if (std::isnan(x)) return "NaN";
+  if (std::isinf(x)) return x > 0 ? "∞" : "−∞";
+  return fmt::format("{:.6g}", x);
+}
+
+std::string nums(const std::vector<double>& xs) {
+  std::vector<std::string> parts;
+  for (double x : xs) parts.push_back(num(x));
+  return xs.size() == 1 ? parts.front() : "(" + fmt::format("{}", fmt::join(parts, ", ")) + ")";
+}
+
+CheckResult pass(std::string measured) { return {true, "Measured: " + measured + "."}; }
+
+CheckResult fail(const std::string& measured, const std::string& expected, const std::string& hint) {
+  std::string out = "Measured: " + measured + ".\nExpected: " + expected + ".";
+  if (!hint.empty()) out += "\nThis usually means: " + hint;
+  return {false, out};
+}
+
+// |a − b| within tolerance, scaled by the size of what was expected (at least 1).
+bool close(double measured, double expected, double tolerance) {
+  if (std::isinf(expected)) return measured == expected;
+  return std::abs(measured - expected) <= tolerance * std::max(1.0, std::abs(expected));
+}
+
+bool all_close(const std::vector<double>& measured, const std::vector<double>& expected, double tolerance) {
+  if (measured.size() != expected.size()) return false;
+  for (size_t i = 0; i < measured.size(); ++i)
+    if (!close(measured[i], expected[i], tolerance)) return false;
+  return true;
+}
+
+// ---- Scenes and runs ------------------------------------------------------------------------------
+
+std::string read_text(const std::string& file) {
+  std::ifstream in(file, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// "set": ["dt=1", ...], read by hand: JsonFields has no array-of-strings reader.
+std::vector<std::string> read_sets(const json& test, const std::string& path) {
+  std::vector<std::string> sets;
+  if (!test.contains("set")) return sets;
+  const json& s = test.at("set");
+  if (!s.is_array()) throw SceneError(path + ".set", "must be an array of \"PATH=VALUE\" strings");
+  for (size_t i = 0; i < s.size(); ++i) {
+    if (!s[i].is_string()) throw SceneError(path + ".set[" + std::to_string(i) + "]", "must be a string PATH=VALUE");
+    sets.push_back(s[i].get<std::string>());
+  }
+  return sets;
+}
+
+CheckScene load_check_scene(JsonFields& f, const json& test, const SceneSource& source) {
+  CheckScene scene;
+  if (f.has("scene_file")) {
+    scene.file = (fs::path(source.tests_folder) / f.string("scene_file")).string();
+  } else {
+    scene.file = source.shipped(f.string("scene"));
+  }
+  f.use("set");  // read by hand below
+  scene.sets = read_sets(test, f.path());
+  scene.text = read_text(scene.file);
+  scene.description = parse_scene(scene.text, scene.file, scene.sets);
+  return scene;
+}
+
+struct RunOutput {
+  std::vector<double> t;
+  std::vector<Vector> y;
+  long steps = 0, rejected = 0, evaluations = 0;
+};
+
+struct RunRequest {
+  std::string integrator;
+  double dt = 0;
+  long steps = 0;       // fixed number of steps, or
+  double until = NAN;   // an end time (adaptive runs)
+  long every = 1;
+  double atol = NAN, rtol = NAN;
+};
+
+RunOutput run(Probe& probe, const CheckScene& scene, const RunRequest& r, Clock::time_point deadline) {
+  json request = {{"op", "run"}, {"scene", scene.text}, {"file", fs::path(scene.file).filename().string()},
+                  {"set", scene.sets}, {"integrator", r.integrator}, {"dt", r.dt}, {"every", r.every}};
+  if (std::isnan(r.until))
+    request["steps"] = r.steps;
+  else
+    request["until"] = r.until;
+  if (!std::isnan(r.atol)) request["atol"] = r.atol;
+  if (!std::isnan(r.rtol)) request["rtol"] = r.rtol;
+  const json reply = probe.ask(request, deadline);
+  RunOutput out;
+  for (const auto& t : reply.at("t")) out.t.push_back(wire::number(t));
+  for (const auto& row : reply.at("y")) {
+    const auto values = wire::numbers(row);
+    out.y.push_back(Eigen::Map<const Vector>(values.data(), static_cast<Eigen::Index>(values.size())));
+  }
+  out.steps = reply.value("steps", 0L);
+  out.rejected = reply.value("rejected", 0L);
+  out.evaluations = reply.value("evaluations", 0L);
+  if (out.y.empty()) throw ProbeFailure("the run returned no states");
+  return out;
+}
+
+// The scene's bodies as motus measures them (energies, momenta), whatever engine moved them.
+MechanicalSystem measuring_system(const SceneDescription& scene) {
+  std::vector<double> masses;
+  for (const auto& b : scene.mechanical->bodies) masses.push_back(b.mass);
+  return MechanicalSystem(scene.mechanical->dimensions, masses, scene.mechanical->forces);
+}
+
+double energy(const MechanicalSystem& system, const Vector& y) {
+  const Eigen::Index n = system.size();
+  return system.kinetic_energy(y.tail(n)) + system.potential_energy(y.head(n));
+}
+
+std::string integrator_field(JsonFields& f, const SceneDescription& scene) {
+  return f.string("integrator", scene.integrator);
+}
+
+// The part of a state a check compares: x (positions), v, or all of it.
+Vector part(const Vector& y, const std::string& which) {
+  const Eigen::Index half = y.size() / 2;
+  if (which == "x") return y.head(half);
+  if (which == "v") return y.tail(half);
+  return y;
+}
+
+std::string read_part(JsonFields& f, const SceneDescription& scene) {
+  const std::string which = f.string("compare", scene.mechanical ? "x" : "state");
+  if (which != "x" && which != "v" && which != "state") f.fail("compare", "must be \"x\", \"v\" or \"state\"");
+  if (which != "state" && !scene.mechanical) f.fail("compare", "\"x\" and \"v\" are for scenes of bodies");
+  return which;
+}
+
+std::vector<double> to_std(const Vector& v) { return {v.data(), v.data() + v.size()}; }
+
+// ---- trajectory ---------------------------------------------------------------------------------
+
+class TrajectoryCheck final : public Check {
+public:
+  TrajectoryCheck(JsonFields& f, const json& test, const SceneSource& source, std::string hint)
+      : scene_(load_check_scene(f, test, source)), hint_(std::move(hint)) {
+    request_.integrator = integrator_field(f, scene_.description);
+    request_.dt = f.positive("dt", scene_.description.dt);
+    tolerance_ = f.positive("tolerance", 1e-9);
+    for (auto& e : f.objects("expect")) {
+      Row row;
+      row.step = e.integer("step");
+      if (row.step < 0) e.fail("step", "must be ≥ 0");
+      if (e.has("x")) row.x = e.numbers("x", -1);
+      if (e.has("v")) row.v = e.numbers("v", -1);
+      if (e.has("y")) row.y = e.numbers("y", -1);
+      if (row.x.empty() && row.v.empty() && row.y.empty()) e.fail("", "needs x, v or y");
+      e.reject_unknown();
+      request_.steps = std::max(request_.steps, row.step);
+      rows_.push_back(row);
+    }
+    if (rows_.empty()) f.fail("expect", "needs at least one row");
+    request_.steps = std::max(1L, request_.steps);
+  }
+
+  CheckResult run(Probe& probe, Clock::time_point deadline) const override {
+    const RunOutput out = grade::run(probe, scene_, request_, deadline);
+    std::string measured, expected;
+    bool ok = true;
+    for (const auto& row : rows_) {
+      if (row.step >= static_cast<long>(out.y.size())) throw ProbeFailure("the run stopped before step " + std::to_string(row.step));
+      const Vector& y = out.y[static_cast<size_t>(row.step)];
+      const Eigen::Index half = y.size() / 2;
+      std::string m = "at t = " + num(out.t[static_cast<size_t>(row.step)]) + ":", e = m;
+      auto compare = [&](const char* name, const std::vector<double>& want, const Vector& got) {
+        if (want.empty()) return;
+        ok = ok && all_close(to_std(got), want, tolerance_);
+        m += fmt::format(" {} = {}", name, nums(to_std(got)));
+        e += fmt::format(" {} = {}", name, nums(want));
+      };
+      compare("x", row.x, y.head(half));
+      compare("v", row.v, y.tail(half));
+      compare("y", row.y, y);
+      measured += (measured.empty() ? "" : "; ") + m;
+      expected += (expected.empty() ? "" : "; ") + e;
+    }
+    expected += fmt::format(" (each to {} relative)", num(tolerance_));
+    return ok ? pass(measured) : fail(measured, expected, hint_);
+  }
+
+private:
+  struct Row {
+    long step = 0;
+    std::vector<double> x, v, y;
+  };
+  CheckScene scene_;
+  RunRequest request_;
+  std::vector<Row> rows_;
+  double tolerance_ = 1e-9;
+  std::string hint_;
+};
+
+// ---- order ----------------------------------------------------------------------------------------
+
+class OrderCheck final : public Check {
+public:
+  OrderCheck(JsonFields& f, const json& test, const SceneSource& source, std::string hint)
+      : scene_(load_check_scene(f, test, source)), hint_(std::move(hint)) {
+    if (!has_exact_solution(scene_.description))
+      throw SceneError(f.path_of("scene"), "an order check needs a scene with an exact solution or reference states");
+    integrator_ = integrator_field(f, scene_.description);
+    dt_ = f.positive("dt", scene_.description.dt);
+    duration_ = f.positive("duration", scene_.description.duration);
+    halvings_ = static_cast<int>(f.integer("halvings", 4));
+    if (halvings_ < 1 || halvings_ > 16) f.fail("halvings", "must be from 1 to 16");
+    which_ = read_part(f, scene_.description);
+    expected_ = f.positive("expect");
+    tolerance_ = f.positive("tolerance", 0.2);
+  }
+
+  CheckResult run(Probe& probe, Clock::time_point deadline) const override {
+    std::vector<double> hs, errors;
+    for (int k = 0; k <= halvings_; ++k) {
+      const double h = dt_ / std::ldexp(1.0, k);
+      RunRequest r;
+      r.integrator = integrator_;
+      r.dt = h;
+      r.steps = fixed_step_count(duration_, h);
+      r.every = r.steps;
+      const RunOutput out = grade::run(probe, scene_, r, deadline);
+      const auto exact = exact_state(scene_.description, out.t.back());
+      if (!exact) throw std::runtime_error("no exact state at t = " + num(out.t.back()));
+      const Vector diff = part(out.y.back(), which_) - part(*exact, which_);
+      const double error = diff.allFinite() ? diff.cwiseAbs().maxCoeff() : INFINITY;
+      hs.push_back(h);
+      errors.push_back(error);
+    }
+    // The order of the finest pair whose errors stand above rounding.
+    double order = NAN;
+    for (size_t k = errors.size() - 1; k >= 1 && std::isnan(order); --k)
+      if (errors[k] > 1e-12 && std::isfinite(errors[k - 1])) order = std::log2(errors[k - 1] / errors[k]);
+    std::vector<std::string> table;
+    for (size_t k = 0; k < hs.size(); ++k) table.push_back(fmt::format("h = {}: error {}", num(hs[k]), num(errors[k])));
+    const std::string measured =
+        fmt::format("global order {} from the errors at the end ({})", num(order), fmt::join(table, "; "));
+    const std::string expected = fmt::format("order {} ± {}", num(expected_), num(tolerance_));
+    return std::abs(order - expected_) <= tolerance_ ? pass(measured) : fail(measured, expected, hint_);
+  }
+
+private:
+  CheckScene scene_;
+  std::string integrator_, which_;
+  double dt_, duration_, expected_, tolerance_;
+  int halvings_;
+  std::string hint_;
+};
+
+// ---- stability ----------------------------------------------------------------------------------
+
+class StabilityCheck final : public Check {
+public:
+  StabilityCheck(JsonFields& f, const json& test, const SceneSource& source, std::string hint)
+      : scene_(load_check_scene(f, test, source)), hint_(std::move(hint)) {
+    const auto& m = scene_.description.mechanical;
+    if (!m || m->dimensions != 1 || m->bodies.size() != 1)
+      throw SceneError(f.path_of("scene"), "a stability check runs one body in 1-D (an oscillator)");
+    integrator_ = integrator_field(f, scene_.description);
+    omega_ = f.positive("omega", 1);
+    steps_ = f.integer("steps", 10000);
+    if (steps_ < 100 || steps_ > 10'000'000) f.fail("steps", "must be from 100 to 10,000,000");
+    limit_ = f.positive("expect");
+    tolerance_ = f.positive("tolerance", 0.01);
+  }
+
+  CheckResult run(Probe& probe, Clock::time_point deadline) const override {
+    double lo = 0.5 * limit_, hi = 1.5 * limit_;
+    const bool low_ok = bounded(probe, lo, deadline), high_ok = bounded(probe, hi, deadline);
+    if (!low_ok || high_ok)
+      return fail(fmt::format("at ωh = {} the run {}, at ωh = {} it {}", num(lo), low_ok ? "stays bounded" : "blows up",
+                              num(hi), high_ok ? "stays bounded" : "blows up"),
+                  fmt::format("bounded below ωh = {} and blown up above it", num(limit_)), hint_);
+    for (int i = 0; i < 12; ++i) {
+      const double mid = 0.5 * (lo + hi);
+      (bounded(probe, mid, deadline) ? lo : hi) = mid;
+    }
+    const double measured = 0.5 * (lo + hi);
+    const std::string text = fmt::format("largest stable step ωh = {} (bisection over {} steps each)", num(measured), steps_);
+    const std::string expected = fmt::format("ωh = {} within {}%", num(limit_), num(100 * tolerance_));
+    return std::abs(measured - limit_) <= tolerance_ * limit_ ? pass(text) : fail(text, expected, hint_);
+  }
+
+private:
+  // Whether steps_ steps of h = z/ω keep the amplitude √(x² + (v/ω)²) within 1000× its start.
+  bool bounded(Probe& probe, double z, Clock::time_point deadline) const {
+    RunRequest r;
+    r.integrator = integrator_;
+    r.dt = z / omega_;
+    r.steps = steps_;
+    r.every = std::max(1L, steps_ / 100);
+    const RunOutput out = grade::run(probe, scene_, r, deadline);
+    auto amplitude = [&](const Vector& y) { return std::hypot(y[0], y[1] / omega_); };
+    const double start = amplitude(out.y.front());
+    for (const auto& y : out.y)
+      if (!(amplitude(y) <= 1000 * start)) return false;  // NaN and ∞ count as blown up
+    return true;
+  }
+
+  CheckScene scene_;
+  std::string integrator_;
+  double omega_, limit_, tolerance_;
+  long steps_;
+  std::string hint_;
+};
+
+// ---- energy ----------------------------------------------------------------------------------------
+
+class EnergyCheck final : public Check {
+public:
+  EnergyCheck(JsonFields& f, const json& test, const SceneSource& source, std::string hint)
+      : scene_(load_check_scene(f, test, source)), hint_(std::move(hint)) {
+    if (!scene_.description.mechanical) throw SceneError(f.path_of("scene"), "an energy check needs a scene of bodies");
+    integrator_ = integrator_field(f, scene_.description);
+    dt_ = f.positive("dt", scene_.description.dt);
+    steps_ = f.integer("steps");
+    if (steps_ < 1 || steps_ > 10'000'000) f.fail("steps", "must be from 1 to 10,000,000");
+    auto e = f.object("expect");
+    if (e.has("bounded")) bounded_ = e.positive("bounded");
+    if (e.has("growth_per_step")) growth_ = e.positive("growth_per_step");
+    tolerance_ = e.positive("tolerance", 1e-9);
+    e.reject_unknown();
+    if (std::isnan(bounded_) == std::isnan(growth_)) f.fail("expect", "needs exactly one of bounded, growth_per_step");
+  }
+
+  CheckResult run(Probe& probe, Clock::time_point deadline) const override {
+    RunRequest r;
+    r.integrator = integrator_;
+    r.dt = dt_;
+    r.steps = steps_;
+    r.every = std::max(1L, steps_ / 200);
+    const RunOutput out = grade::run(probe, scene_, r, deadline);
+    const MechanicalSystem system = measuring_system(scene_.description);
+    const double e0 = energy(system, out.y.front());
+    if (!std::isnan(growth_)) {
+      const double ratio = energy(system, out.y.back()) / e0;
+      const double expected = std::pow(growth_, static_cast<double>(out.steps));
+      const std::string measured = fmt::format("energy × {} after {} steps", num(ratio), out.steps);
+      const std::string want = fmt::format("× {} = {}^{} (to {} relative)", num(expected), num(growth_), out.steps, num(tolerance_));
+      return std::abs(ratio / expected - 1) <= tolerance_ ? pass(measured) : fail(measured, want, hint_);
+    }
+    // Bounded: small, and no larger in the second half of the run than in the first — for a
+    // run that moves at all (a method that leaves the state alone keeps every energy).
+    double moved = 0;
+    for (const auto& y : out.y) moved = std::max(moved, (y - out.y.front()).norm() / std::max(out.y.front().norm(), 1e-300));
+    if (!(moved > 0.01))
+      return fail(fmt::format("the state changed by at most {} of its size over {} steps", num(moved), out.steps),
+                  "a run that moves (and keeps its energy within " + num(bounded_) + ")", hint_);
+    double first = 0, second = 0;
+    for (size_t k = 0; k < out.y.size(); ++k) {
+      const double error = std::abs(energy(system, out.y[k]) - e0) / std::abs(e0);
+      double& half = 2 * k < out.y.size() ? first : second;
+      half = std::isfinite(error) ? std::max(half, error) : INFINITY;
+    }
+    const std::string measured =
+        fmt::format("largest |E − E₀|/|E₀| {} in the first half of {} steps, {} in the second", num(first), out.steps, num(second));
+    const bool ok = first <= bounded_ && second <= bounded_ && second <= 1.5 * first + 1e-12;
+    return ok ? pass(measured)
+              : fail(measured, fmt::format("at most {}, and not growing (the second half ≤ 1.5 × the first)", num(bounded_)),
+                     hint_);
+  }
+
+private:
+  CheckScene scene_;
+  std::string integrator_;
+  double dt_;
+  long steps_;
+  double bounded_ = NAN, growth_ = NAN, tolerance_ = 1e-9;
+  std::string hint_;
+};
+
+// ---- adaptive ------------------------------------------------------------------------------------
+
+class AdaptiveCheck final : public Check {
+public:
+  AdaptiveCheck(JsonFields& f, const json& test, const SceneSource& source, std::string hint)
+      : scene_(load_check_scene(f, test, source)), hint_(std::move(hint)) {
+    if (!has_exact_solution(scene_.description))
+      throw SceneError(f.path_of("scene"), "an adaptive check needs a scene with an exact solution");
+    integrator_ = integrator_field(f, scene_.description);
+    tolerance_ = f.positive("tolerance");
+    first_step_ = f.positive("first_step", scene_.description.dt);
+    duration_ = f.positive("duration", scene_.description.duration);
+    max_error_ = f.positive("max_error");
+  }
+
+  CheckResult run(Probe& probe, Clock::time_point deadline) const override {
+    RunRequest r;
+    r.integrator = integrator_;
+    r.dt = first_step_;
+    r.until = scene_.description.start_time + duration_;
+    r.every = 1'000'000'000;
+    r.atol = r.rtol = tolerance_;
+    const RunOutput out = grade::run(probe, scene_, r, deadline);
+    const double error = error_at_end(out.y.back(), out.t.back());
+    // motus's own fixed-step RK4, halving h until it is as accurate — or until it has spent
+    // more evaluations than the student's run, which settles the comparison.
+    long rk4_evaluations = -1;
+    bool rk4_needs_more = false;
+    for (int k = 0; k < 30 && std::isfinite(error); ++k) {
+      Simulation sim(scene_.description, Integrator::Rk4);
+      const double h = first_step_ / std::ldexp(1.0, k);
+      if (fixed_step_count(r.until - sim.time(), h) * 4 > std::max(out.evaluations, 1L) * 2) {
+        rk4_needs_more = true;
+        break;
+      }
+      sim.advance(r.until, h, Tolerance{});
+      if (error_at_end(sim.state(), sim.time()) <= error) {
+        rk4_evaluations = sim.evaluations();
+        break;
+      }
+    }
+    const std::string measured = fmt::format(
+        "at tolerance {}: error {} at t = {} after {} steps ({} rejected) and {} evaluations; motus's fixed-step rk4 "
+        "needs {} evaluations for that error",
+        num(tolerance_), num(error), num(out.t.back()), out.steps, out.rejected, out.evaluations,
+        rk4_needs_more ? "more than " + std::to_string(out.evaluations) : std::to_string(rk4_evaluations));
+    const bool lands = std::abs(out.t.back() - r.until) <= 1e-9 * std::max(1.0, std::abs(r.until));
+    const bool fewer = rk4_needs_more || (rk4_evaluations > 0 && out.evaluations < rk4_evaluations);
+    const bool ok = lands && error <= max_error_ && fewer;
+    return ok ? pass(measured)
+              : fail(measured,
+                     fmt::format("the run lands on t = {}, its error is at most {}, and it needs fewer evaluations "
+                                 "than fixed-step RK4 at the same error",
+                                 num(r.until), num(max_error_)),
+                     hint_);
+  }
+
+private:
+  double error_at_end(const Vector& y, double t) const {
+    const auto exact = exact_state(scene_.description, t);
+    if (!exact) return INFINITY;
+    const Vector diff = y - *exact;
+    return diff.allFinite() ? diff.cwiseAbs().maxCoeff() : INFINITY;
+  }
+  CheckScene scene_;
+  std::string integrator_;
+  double tolerance_, first_step_, duration_, max_error_;
+  std::string hint_;
+};
+
+// ---- call ------------------------------------------------------------------------------------------
+
+class CallCheck final : public Check {
+public:
+  CallCheck(JsonFields& f, const json& test, std::string hint) : hint_(std::move(hint)) {
+    op_ = f.string("op");
+    static const std::vector<std::string> ops = {"collide_balls", "bounce_off_wall", "balls_impact", "plane_impact"};
+    if (std::find(ops.begin(), ops.end(), op_) == ops.end())
+      f.fail("op", "must be one of collide_balls, bounce_off_wall, balls_impact, plane_impact");
+    f.use("args");
+    f.use("expect");
+    if (!test.contains("args") || !test.at("args").is_object()) f.fail("args", "must be an object of the call's arguments");
+    if (!test.contains("expect") || !test.at("expect").is_object() || test.at("expect").empty())
+      f.fail("expect", "must be an object of the outputs expected");
+    args_ = test.at("args");
+    expect_ = test.at("expect");
+    tolerance_ = f.positive("tolerance", 1e-9);
+  }
+
+  CheckResult run(Probe& probe, Clock::time_point deadline) const override {
+    json request = args_;
+    request["op"] = op_;
+    const json reply = probe.ask(request, deadline);
+    std::string measured, expected;
+    bool ok = true;
+    for (const auto& [key, want] : expect_.items()) {
+      if (!reply.contains(key)) throw ProbeFailure("the call returned no " + key);
+      const auto got = want.is_array() ? wire::numbers(reply.at(key)) : std::vector<double>{wire::number(reply.at(key))};
+      const auto wanted = want.is_array() ? wire::numbers(want) : std::vector<double>{wire::number(want)};
+      ok = ok && all_close(got, wanted, tolerance_);
+      measured += fmt::format("{}{} = {}", measured.empty() ? "" : ", ", key, nums(got));
+      expected += fmt::format("{}{} = {}", expected.empty() ? "" : ", ", key, nums(wanted));
+    }
+    return ok ? pass(measured) : fail(measured, expected + fmt::format(" (to {})", num(tolerance_)), hint_);
+  }
+
+private:
+  std::string op_;
+  json args_, expect_;
+  double tolerance_;
+  std::string hint_;
+};
+
+// ---- scene -----------------------------------------------------------------------------------------
+
+class SceneCheck final : public Check {
+public:
+  SceneCheck(JsonFields& f, const json& test, const SceneSource& source, std::string hint)
+      : scene_(load_check_scene(f, test, source)), hint_(std::move(hint)) {
+    if (!scene_.description.mechanical) throw SceneError(f.path_of("scene"), "a scene check needs a scene of bodies");
+    request_.integrator = integrator_field(f, scene_.description);
+    request_.dt = f.positive("dt", scene_.description.dt);
+    const double duration = f.positive("duration", scene_.description.duration);
+    request_.steps = f.integer("steps", fixed_step_count(duration, request_.dt));
+    if (request_.steps < 1 || request_.steps > 10'000'000) f.fail("steps", "must be from 1 to 10,000,000");
+    request_.every = f.integer("every", 1);
+    if (request_.every < 1) f.fail("every", "must be ≥ 1");
+    for (auto& m : f.objects("measure")) {
+      Measure measure;
+      measure.kind = m.string("kind");
+      if (measure.kind == "final_velocities" || measure.kind == "final_positions") {
+        measure.values = m.numbers("expect", -1);
+        measure.tolerance = m.positive("tolerance", 1e-9);
+      } else if (measure.kind == "energy" || measure.kind == "momentum" || measure.kind == "stick_error" ||
+                 measure.kind == "pins" || measure.kind == "inside_walls" || measure.kind == "no_overlap") {
+        measure.tolerance = m.non_negative("max");
+      } else if (measure.kind == "bounce_ratio") {
+        measure.body = static_cast<int>(m.integer("body", 0));
+        measure.expected = m.positive("expect");
+        measure.tolerance = m.positive("tolerance", 1e-3);
+        measure.bounces = static_cast<int>(m.integer("bounces", 3));
+      } else {
+        m.fail("kind",
+               "must be final_velocities, final_positions, energy, momentum, stick_error, pins, inside_walls, "
+               "no_overlap or bounce_ratio");
+      }
+      m.reject_unknown();
+      measures_.push_back(measure);
+    }
+    if (measures_.empty()) f.fail("measure", "needs at least one measure");
+  }
+
+  CheckResult run(Probe& probe, Clock::time_point deadline) const override {
+    const RunOutput out = grade::run(probe, scene_, request_, deadline);
+    bool ok = true;
+    std::string measured, expected;
+    for (const auto& m : measures_) {
+      auto [good, got, want] = judge(m, out);
+      ok = ok && good;
+      measured += (measured.empty() ? "" : "; ") + got;
+      expected += (expected.empty() ? "" : "; ") + want;
+    }
+    return ok ? pass(measured) : fail(measured, expected, hint_);
+  }
+
+private:
+  struct Measure {
+    std::string kind;
+    std::vector<double> values;
+    double tolerance = 0, expected = 0;
+    int body = 0, bounces = 3;
+  };
+
+  std::tuple<bool, std::string, std::string> judge(const Measure& m, const RunOutput& out) const {
+    const auto& scene = *scene_.description.mechanical;
+    const int d = scene.dimensions, n = static_cast<int>(scene.bodies.size());
+    const Eigen::Index half = n * d;
+    const MechanicalSystem system = measuring_system(scene_.description);
+    const Vector& last = out.y.back();
+    if (m.kind == "final_velocities" || m.kind == "final_positions") {
+      const bool velocities = m.kind == "final_velocities";
+      const Vector got = velocities ? last.tail(half) : last.head(half);
+      const bool good = all_close(to_std(got), m.values, m.tolerance);
+      return {good, fmt::format("{} at t = {}: {}", velocities ? "velocities" : "positions", num(out.t.back()), nums(to_std(got))),
+              fmt::format("{} (to {})", nums(m.values), num(m.tolerance))};
+    }
+    if (m.kind == "energy") {
+      const double e0 = energy(system, out.y.front());
+      double worst = 0;
+      for (const auto& y : out.y) {
+        const double e = std::abs(energy(system, y) - e0) / std::max(std::abs(e0), 1e-300);
+        worst = std::isfinite(e) ? std::max(worst, e) : INFINITY;
+      }
+      return {worst <= m.tolerance, "largest |E − E₀|/|E₀| " + num(worst), "at most " + num(m.tolerance)};
+    }
+    if (m.kind == "momentum") {
+      double scale = 0;
+      for (int i = 0; i < n; ++i) scale += scene.bodies[static_cast<size_t>(i)].mass * out.y.front().segment(half + i * d, d).norm();
+      const Vector p0 = system.momentum(out.y.front().tail(half));
+      double worst = 0;
+      for (const auto& y : out.y) {
+        const double change = (system.momentum(y.tail(half)) - p0).norm() / std::max(scale, 1e-300);
+        worst = std::isfinite(change) ? std::max(worst, change) : INFINITY;
+      }
+      return {worst <= m.tolerance, "largest |p − p₀| / Σ m|v₀| " + num(worst), "at most " + num(m.tolerance)};
+    }
+    if (m.kind == "stick_error") {
+      double worst = 0;
+      for (const auto& y : out.y)
+        for (const auto& s : scene.sticks) {
+          const double length = (y.segment(s.a * d, d) - y.segment(s.b * d, d)).norm();
+          const double e = std::abs(length - s.length) / s.length;
+          worst = std::isfinite(e) ? std::max(worst, e) : INFINITY;
+        }
+      return {worst <= m.tolerance, "largest relative stick-length error " + num(worst), "at most " + num(m.tolerance)};
+    }
+    if (m.kind == "pins") {
+      double worst = 0;
+      for (const auto& y : out.y)
+        for (const auto& p : scene.pins) {
+          double distance = 0;
+          for (int k = 0; k < d; ++k) distance += std::pow(y[p.body * d + k] - p.position[static_cast<size_t>(k)], 2);
+          distance = std::sqrt(distance);
+          worst = std::isfinite(distance) ? std::max(worst, distance) : INFINITY;
+        }
+      return {worst <= m.tolerance, "pinned bodies moved up to " + num(worst) + " m from their pins",
+              "at most " + num(m.tolerance) + " m"};
+    }
+    if (m.kind == "inside_walls") {
+      // How far any body got into a wall (plane or box face), as a fraction of its radius (or in m for a point).
+      double worst = 0;
+      for (const auto& y : out.y)
+        for (int i = 0; i < n; ++i) {
+          const double r = scene.bodies[static_cast<size_t>(i)].radius;
+          auto depth_into = [&](const double* normal, double offset) {
+            double height = -offset - r;
+            for (int k = 0; k < d; ++k) height += normal[k] * y[i * d + k];
+            return -height / std::max(r, 1.0);
+          };
+          for (const auto& p : scene.colliders.planes) {
+            double length = 0;
+            for (int k = 0; k < d; ++k) length += p.normal[static_cast<size_t>(k)] * p.normal[static_cast<size_t>(k)];
+            length = std::sqrt(length);
+            double normal[3] = {p.normal[0] / length, p.normal[1] / length, p.normal[2] / length};
+            worst = std::max(worst, depth_into(normal, p.offset / length));
+          }
+          for (const auto& b : scene.colliders.boxes)
+            for (int k = 0; k < d; ++k) {
+              double low[3] = {0, 0, 0}, high[3] = {0, 0, 0};
+              low[k] = 1;
+              high[k] = -1;
+              worst = std::max({worst, depth_into(low, b.min[static_cast<size_t>(k)]), depth_into(high, -b.max[static_cast<size_t>(k)])});
+            }
+          if (!y.segment(i * d, d).allFinite()) worst = INFINITY;
+        }
+      return {worst <= m.tolerance, "the deepest any body got into a wall: " + num(worst) + " of its radius",
+              "at most " + num(m.tolerance) + " of its radius (nothing tunnels)"};
+    }
+    if (m.kind == "no_overlap") {
+      double worst = 0;
+      for (const auto& y : out.y)
+        for (int i = 0; i < n; ++i)
+          for (int k = i + 1; k < n; ++k) {
+            const double R = scene.bodies[static_cast<size_t>(i)].radius + scene.bodies[static_cast<size_t>(k)].radius;
+            if (R <= 0) continue;
+            const double overlap = (R - (y.segment(i * d, d) - y.segment(k * d, d)).norm()) / R;
+            worst = std::isfinite(overlap) ? std::max(worst, overlap) : INFINITY;
+          }
+      return {worst <= m.tolerance, "the deepest overlap of two balls: " + num(worst) + " of their radii",
+              "at most " + num(m.tolerance) + " of their radii"};
+    }
+    // bounce_ratio: the heights of successive tops of body m.body's flight above the ground
+    // plane (the lowest upward plane), and their ratios.
+    double ground = -INFINITY;
+    for (const auto& p : scene.colliders.planes)
+      if (p.normal[1] > 0.99) ground = std::max(ground, p.offset / p.normal[1]);
+    const double r = scene.bodies[static_cast<size_t>(m.body)].radius;
+    std::vector<double> tops;
+    for (size_t k = 1; k + 1 < out.y.size(); ++k) {
+      const double y0 = out.y[k - 1][m.body * d + 1], y1 = out.y[k][m.body * d + 1], y2 = out.y[k + 1][m.body * d + 1];
+      if (y1 > y0 && y1 >= y2) tops.push_back(y1 - ground - r);
+    }
+    std::vector<double> ratios;
+    bool good = tops.size() >= static_cast<size_t>(m.bounces) + 1;
+    for (size_t k = 1; k < tops.size() && k <= static_cast<size_t>(m.bounces); ++k) {
+      ratios.push_back(tops[k] / tops[k - 1]);
+      good = good && std::abs(ratios.back() - m.expected) <= m.tolerance;
+    }
+    return {good, fmt::format("{} tops, each over the one before: {}", tops.size(), nums(ratios)),
+            fmt::format("at least {} bounces, each top {} of the one before (to {})", m.bounces, num(m.expected),
+                        num(m.tolerance))};
+  }
+
+  CheckScene scene_;
+  RunRequest request_;
+  std::vector<Measure> measures_;
+  std::string hint_;
+};
+
+// ---- project -----------------------------------------------------------------------------------------
+
+class ProjectCheck final : public Check {
+public:
+  ProjectCheck(JsonFields& f, const json& test, std::string hint) : hint_(std::move(hint)) {
+    for (const char* key : {"sticks", "pins", "walls"}) f.use(key);  // read by hand below
+    d_ = static_cast<int>(f.integer("dimensions"));
+    if (d_ < 1 || d_ > 3) f.fail("dimensions", "must be 1, 2 or 3");
+    x_ = f.numbers("x", -1);
+    inverse_mass_ = f.numbers("inverse_mass", -1);
+    const int n = static_cast<int>(inverse_mass_.size());
+    if (static_cast<int>(x_.size()) != n * d_) f.fail("x", "needs dimensions × bodies numbers");
+    radius_ = f.numbers("radius", n, std::vector<double>(static_cast<size_t>(n), 0.0));
+    iterations_ = static_cast<int>(f.integer("iterations", 1));
+    request_ = {{"op", "project"}, {"dimensions", d_}, {"x", x_}, {"inverse_mass", inverse_mass_}, {"radius", radius_},
+                {"sticks", test.value("sticks", json::array())}, {"pins", test.value("pins", json::array())},
+                {"walls", test.value("walls", json::array())}, {"iterations", iterations_}};
+    for (const auto& s : request_["sticks"]) sticks_.push_back({s.at(0).get<int>(), s.at(1).get<int>(), s.at(2).get<double>()});
+    for (const auto& p : request_["pins"]) pins_.push_back({p.at(0).get<int>(), p.at(1).get<std::vector<double>>()});
+    auto e = f.object("expect");
+    if (e.has("x")) expect_x_ = e.numbers("x", n * d_);
+    if (e.has("stick_error")) stick_error_ = e.non_negative("stick_error");
+    if (e.has("pins")) pins_max_ = e.non_negative("pins");
+    if (e.has("centre_of_mass")) centre_max_ = e.non_negative("centre_of_mass");
+    tolerance_ = e.positive("tolerance", 1e-9);
+    e.reject_unknown();
+  }
+
+  CheckResult run(Probe& probe, Clock::time_point deadline) const override {
+    const json reply = probe.ask(request_, deadline);
+    const std::vector<double> x = wire::numbers(reply.at("x"));
+    if (x.size() != x_.size()) throw ProbeFailure("the projection returned " + std::to_string(x.size()) + " numbers");
+    bool ok = true;
+    std::string measured, expected;
+    auto add = [&](bool good, const std::string& m, const std::string& e) {
+      ok = ok && good;
+      measured += (measured.empty() ? "" : "; ") + m;
+      expected += (expected.empty() ? "" : "; ") + e;
+    };
+    auto at = [&](const std::vector<double>& p, int i) {
+      return Eigen::Map<const Vector>(p.data() + i * d_, d_);
+    };
+    if (!expect_x_.empty())
+      add(all_close(x, expect_x_, tolerance_), "positions " + nums(x), "positions " + nums(expect_x_));
+    if (!std::isnan(stick_error_)) {
+      double worst = 0;
+      for (const auto& s : sticks_) worst = std::max(worst, std::abs((at(x, s.a) - at(x, s.b)).norm() - s.length) / s.length);
+      if (!std::all_of(x.begin(), x.end(), [](double v) { return std::isfinite(v); })) worst = INFINITY;
+      add(worst <= stick_error_, "largest relative stick-length error " + num(worst), "at most " + num(stick_error_));
+    }
+    if (!std::isnan(pins_max_)) {
+      double worst = 0;
+      for (const auto& p : pins_) worst = std::max(worst, (at(x, p.body) - Eigen::Map<const Vector>(p.position.data(), d_)).norm());
+      add(worst <= pins_max_, "pinned bodies off their pins by up to " + num(worst) + " m", "at most " + num(pins_max_) + " m");
+    }
+    if (!std::isnan(centre_max_)) {
+      // Σ x_i / w_i: the centre of mass, which sticks between free bodies must not move.
+      Vector before = Vector::Zero(d_), after = Vector::Zero(d_);
+      double mass = 0;
+      for (size_t i = 0; i < inverse_mass_.size(); ++i) {
+        const double m = 1 / inverse_mass_[i];
+        before += m * at(x_, static_cast<int>(i));
+        after += m * at(x, static_cast<int>(i));
+        mass += m;
+      }
+      const double moved = ((after - before) / mass).norm();
+      add(moved <= centre_max_, "the centre of mass moved " + num(moved) + " m", "at most " + num(centre_max_) + " m");
+    }
+    return ok ? pass(measured) : fail(measured, expected, hint_);
+  }
+
+private:
+  struct Stick {
+    int a, b;
+    double length;
+  };
+  struct Pin {
+    int body;
+    std::vector<double> position;
+  };
+  int d_ = 2, iterations_ = 1;
+  std::vector<double> x_, inverse_mass_, radius_, expect_x_;
+  std::vector<Stick> sticks_;
+  std::vector<Pin> pins_;
+  double stick_error_ = NAN, pins_max_ = NAN, centre_max_ = NAN, tolerance_ = 1e-9;
+  json request_;
+  std::string hint_;
+};
+
+}  // namespace
+
+std::unique_ptr<Check> make_check(JsonFields& test, const SceneSource& scenes, const std::string& hint) {
+  const std::string kind = test.string("kind");
+  const json& raw = test.raw();
+  if (kind == "trajectory") return std::make_unique<TrajectoryCheck>(test, raw, scenes, hint);
+  if (kind == "order") return std::make_unique<OrderCheck>(test, raw, scenes, hint);
+  if (kind == "stability") return std::make_unique<StabilityCheck>(test, raw, scenes, hint);
+  if (kind == "energy") return std::make_unique<EnergyCheck>(test, raw, scenes, hint);
+  if (kind == "adaptive") return std::make_unique<AdaptiveCheck>(test, raw, scenes, hint);
+  if (kind == "call") return std::make_unique<CallCheck>(test, raw, hint);
+  if (kind == "scene") return std::make_unique<SceneCheck>(test, raw, scenes, hint);
+  if (kind == "project") return std::make_unique<ProjectCheck>(test, raw, hint);
+  test.fail("kind", "must be trajectory, order, stability, energy, adaptive, call, scene or project");
+}
+
+}  // namespace motus::grade

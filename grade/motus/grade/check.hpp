@@ -1,0 +1,61 @@
+#pragma once
+// What a test of an assignment checks, and how: each kind reads its definition (a test's
+// JSON object, every field checked when the assignment is loaded), asks the student's code
+// for raw outputs through the Probe, and judges them here, outside the sandbox, against
+// numbers that come from somewhere — the course's table, theory (orders, stability limits,
+// conserved quantities), the analytic solution of the scene, or motus's own built-in
+// method run in the same check.
+//
+// Kinds (docs: assignments/README.md, "Writing a test"):
+//   trajectory  a run's states at given steps, against given values
+//   order       the global order measured by halving the step, against the exact solution
+//   stability   the largest stable step, found by bisection, against theory
+//   energy      energy over a long run: bounded, or growing by a given factor per step
+//   adaptive    an adaptive run: its error at the end, and fewer evaluations than fixed RK4
+//   call        one of the student's functions with given arguments, against given outputs
+//   scene       a scene run with the student's parts: velocities, energy, momentum, no
+//               tunnelling, stick lengths, pins, bounce heights
+//   project     the student's constraint projection on given positions
+#include <functional>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "motus/grade/probe.hpp"
+#include "motus/scene.hpp"
+#include "motus/scene_file/json_fields.hpp"
+
+namespace motus::grade {
+
+struct CheckResult {
+  bool passed = false;
+  std::string output;  // what was measured, what was expected, and what that usually means
+};
+
+// Where a test's scene files are: a shipped scene's name, or a path relative to the test file.
+struct SceneSource {
+  std::function<std::string(const std::string& name)> shipped;  // name → file
+  std::string tests_folder;
+};
+
+// A scene a check runs: its JSON text (sent to the student's side) and its description
+// (for the grader's own measurements).
+struct CheckScene {
+  std::string file, text;
+  std::vector<std::string> sets;
+  SceneDescription description;
+};
+
+class Check {
+public:
+  virtual ~Check() = default;
+  // Runs the check; a ProbeFailure (the student's code failed) escapes to the grader.
+  virtual CheckResult run(Probe& probe, std::chrono::steady_clock::time_point deadline) const = 0;
+};
+
+// The check a test's definition asks for. Throws SceneError (field path within the test) or
+// SceneFileError (a scene it names) when the definition cannot be used.
+std::unique_ptr<Check> make_check(JsonFields& test, const SceneSource& scenes, const std::string& hint);
+
+}  // namespace motus::grade

@@ -1,0 +1,200 @@
+#include "motus/grade/grader.hpp"
+
+#include <fmt/format.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdlib>
+#include <filesystem>
+
+#include "motus/grade/probe.hpp"
+
+namespace fs = std::filesystem;
+
+namespace motus::grade {
+namespace {
+
+constexpr std::uintmax_t kMaxFileBytes = 1 << 20;  // a handed-in file larger than 1 MB is not source code
+
+// A fresh folder of our own for one grading, removed when done.
+class WorkFolder {
+public:
+  explicit WorkFolder(const std::string& root) {
+    std::string pattern = (fs::path(root.empty() ? fs::temp_directory_path().string() : root) / "motus-grade-XXXXXX").string();
+    if (!::mkdtemp(pattern.data())) throw std::runtime_error("cannot make a temporary folder in " + root);
+    path_ = pattern;
+    ::chmod(path_.c_str(), 0711);  // the sandbox's user may enter, not list
+  }
+  ~WorkFolder() {
+    std::error_code ignored;
+    fs::remove_all(path_, ignored);
+  }
+  const fs::path& path() const { return path_; }
+
+private:
+  fs::path path_;
+};
+
+TestResult gate(const std::string& name, const std::string& number, const std::string& title) {
+  TestResult t;
+  t.name = name;
+  t.number = number;
+  t.title = title;
+  return t;
+}
+
+}  // namespace
+
+GradeResult grade_submission(const Assignment& a, const std::string& submission, const GradeOptions& o) {
+  const auto began = std::chrono::steady_clock::now();
+  GradeResult result;
+  result.assignment = a.name;
+  result.submission = submission;
+  result.max_score = a.max_score();
+  WorkFolder work(o.work_root);
+  const fs::path staged = work.path() / "submission", out = work.path() / "out";
+  fs::create_directories(staged);
+  fs::create_directories(out);
+  ::chmod(staged.c_str(), 0755);
+  if (::geteuid() == 0) {
+    const uid_t uid = sandbox_uid(o.slot);
+    if (::chown(out.c_str(), uid, uid) != 0) throw std::runtime_error("cannot hand the build folder to the sandbox's user");
+  }
+  ::chmod(out.c_str(), 0700);
+
+  // 1. The files the handout names, and only those, as regular files of a sensible size.
+  TestResult files = gate("files", "0.1", "The handed-in files: " + fmt::format("{}", fmt::join(a.files, ", ")));
+  std::string missing;
+  for (const auto& name : a.files) {
+    const fs::path from = fs::path(submission) / name;
+    std::error_code error;
+    const auto status = fs::symlink_status(from, error);
+    if (error || !fs::exists(status)) {
+      missing += "  " + name + ": missing\n";
+    } else if (!fs::is_regular_file(status)) {
+      missing += "  " + name + ": not a regular file (a folder or a link is not taken)\n";
+    } else if (fs::file_size(from) > kMaxFileBytes) {
+      missing += "  " + name + ": larger than 1 MB\n";
+    } else {
+      fs::copy_file(from, staged / name, fs::copy_options::overwrite_existing);
+      ::chmod((staged / name).c_str(), 0644);
+    }
+  }
+  files.passed = missing.empty();
+  files.output = files.passed ? "Every file the handout names is there."
+                              : "Not graded: these files are missing or cannot be taken (the handout names them; "
+                                "put them at the top of the submission):\n" + missing;
+  result.tests.push_back(files);
+
+  // 2. The build.
+  TestResult build = gate("build", "0.2", "The submission compiles into a plug-in");
+  BuildResult built;
+  if (files.passed) {
+    built = build_plugin(a, staged.string(), out.string(), o.headers, o.isolate, o.slot);
+    build.passed = built.ok;
+    build.output = built.ok ? fmt::format("Compiled in {:.1f} s.", built.seconds)
+                            : "Not graded: the submission does not compile. The compiler said:\n" + built.output;
+  } else {
+    build.output = "Not built: a file is missing (see \"files\").";
+  }
+  result.tests.push_back(build);
+  result.compiled = build.passed;
+
+  // 3. Every test of the rubric, each against its own deadline.
+  Limits limits = o.limits;
+  ProbeSetup setup{o.motus, built.plugin, limits, o.isolate, o.slot};
+  Probe probe(setup);
+  int number = 0;
+  for (const auto& t : a.tests) {
+    TestResult r;
+    r.name = t.name;
+    r.number = std::to_string(++number);
+    r.title = t.title;
+    r.max_score = t.points;
+    r.visibility = t.visibility;
+    if (!build.passed) {
+      r.output = files.passed ? "Not run: the submission does not compile (see \"build\")."
+                              : "Not run: a file is missing (see \"files\").";
+    } else {
+      const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                                                    std::chrono::duration<double>(limits.cpu_seconds));
+      try {
+        const CheckResult c = t.check->run(probe, deadline);
+        r.passed = c.passed;
+        r.output = c.output;
+      } catch (const ProbeFailure& e) {
+        r.output = std::string(1, static_cast<char>(std::toupper(e.what()[0]))) + (e.what() + 1) + ".";
+        if (!t.hint.empty()) r.output += "\nThis usually means: " + t.hint;
+      }
+    }
+    r.score = r.passed ? r.max_score : 0;
+    result.score += r.score;
+    result.tests.push_back(r);
+  }
+  probe.stop();
+  if (built.ok && !o.plugin_out.empty()) fs::copy_file(built.plugin, o.plugin_out, fs::copy_options::overwrite_existing);
+
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count();
+  long passed = 0;
+  for (size_t i = 2; i < result.tests.size(); ++i) passed += result.tests[i].passed;
+  result.output = fmt::format("{}: {} of {} points; {} of {} tests passed{}.", a.title, result.score, result.max_score,
+                              passed, a.tests.size(),
+                              a.hidden_not_given ? fmt::format(" ({} hidden tests not run here)", a.hidden_not_given) : "");
+  if (!files.passed) result.output += " A handed-in file is missing: see \"files\".";
+  else if (!build.passed) result.output += " The submission does not compile: see \"build\".";
+  return result;
+}
+
+nlohmann::json gradescope_json(const GradeResult& r) {
+  nlohmann::json tests = nlohmann::json::array();
+  for (const auto& t : r.tests)
+    tests.push_back({{"name", t.name + ": " + t.title},
+                     {"number", t.number},
+                     {"score", t.score},
+                     {"max_score", t.max_score},
+                     {"status", t.passed ? "passed" : "failed"},
+                     {"output", t.output},
+                     {"visibility", t.visibility}});
+  return {{"score", r.score},
+          {"max_score", r.max_score},
+          {"execution_time", std::round(r.seconds * 1000) / 1000},
+          {"output", r.output},
+          {"visibility", "visible"},
+          {"stdout_visibility", "hidden"},
+          {"extra_data", {{"compiled", r.compiled}, {"assignment", r.assignment}}},
+          {"tests", tests}};
+}
+
+std::string text_summary(const GradeResult& r) {
+  std::string text = r.output + fmt::format(" ({:.1f} s)\n\n", r.seconds);
+  for (const auto& t : r.tests) {
+    text += fmt::format("{:<5} {:<4} {:>5}/{:<5} {}: {}\n", t.passed ? "PASS" : "FAIL", t.number, t.score, t.max_score,
+                        t.name, t.title);
+    if (!t.passed) {
+      std::string indented;
+      size_t start = 0;
+      while (start < t.output.size()) {
+        const size_t end = t.output.find('\n', start);
+        indented += "             " + t.output.substr(start, end == std::string::npos ? std::string::npos : end - start) + "\n";
+        if (end == std::string::npos) break;
+        start = end + 1;
+      }
+      text += indented;
+    }
+  }
+  return text;
+}
+
+nlohmann::json failed_json(const std::string& assignment, const std::string& why) {
+  return {{"score", 0},
+          {"max_score", 0},
+          {"execution_time", 0},
+          {"output", "motus grade could not finish grading " + assignment + ": " + why +
+                         ". This is a fault of the grader, not of the submission: tell your instructor."},
+          {"visibility", "visible"},
+          {"extra_data", {{"internal_error", true}}},
+          {"tests", nlohmann::json::array()}};
+}
+
+}  // namespace motus::grade

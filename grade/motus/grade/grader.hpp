@@ -1,0 +1,49 @@
+#pragma once
+// Grading one submission: take the files the handout names, build them into a plug-in in a
+// sandbox, run every test's check against the plug-in served from another sandbox, and
+// write the result as Gradescope's results.json and as a readable summary.
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "motus/grade/assignment.hpp"
+#include "motus/grade/build.hpp"
+#include "motus/grade/sandbox.hpp"
+
+namespace motus::grade {
+
+struct GradeOptions {
+  std::string motus;      // this motus executable (the sandboxed server is `motus serve`)
+  ApiHeaders headers;
+  Limits limits;          // per test: cpu_seconds is also its wall-clock limit
+  bool isolate = true;    // false: --no-sandbox
+  int slot = 0;           // concurrent gradings each get their own
+  std::string plugin_out; // also keep the built plug-in here ("" : no)
+  std::string work_root;  // where the temporary folders go ("": the system's temporary folder)
+};
+
+struct TestResult {
+  std::string name, number, title;
+  double score = 0, max_score = 0;
+  bool passed = false;
+  std::string output, visibility = "visible";
+};
+
+struct GradeResult {
+  std::string assignment, submission;
+  std::vector<TestResult> tests;
+  double score = 0, max_score = 0, seconds = 0;
+  bool compiled = false;
+  std::string output;  // the overall message
+};
+
+GradeResult grade_submission(const Assignment& assignment, const std::string& submission, const GradeOptions& options);
+
+// Gradescope's results.json (gradescope-autograders.readthedocs.io, "specs").
+nlohmann::json gradescope_json(const GradeResult& result);
+// The same as a person reads it.
+std::string text_summary(const GradeResult& result);
+// The results.json of a grading that could not finish (an internal failure): valid, and says so.
+nlohmann::json failed_json(const std::string& assignment, const std::string& why);
+
+}  // namespace motus::grade

@@ -1,0 +1,66 @@
+#include "motus/grade/probe.hpp"
+
+namespace motus::grade {
+
+Probe::Probe(ProbeSetup setup) : setup_(std::move(setup)) {}
+
+Probe::~Probe() { stop(); }
+
+void Probe::start() {
+  SandboxSpec spec;
+  spec.isolate = setup_.isolate;
+  spec.slot = setup_.slot;
+  if (setup_.isolate) {
+    spec.mounts = {{setup_.motus, "/motus/motus", false}, {setup_.plugin, "/box/student.so", false}};
+    spec.argv = {"/motus/motus", "serve", "--plugin", "/box/student.so"};
+  } else {
+    spec.argv = {setup_.motus, "serve", "--plugin", setup_.plugin};
+  }
+  server_ = std::make_unique<SandboxProcess>(spec, setup_.limits);
+  started_ = std::chrono::steady_clock::now();
+}
+
+void Probe::stop() {
+  if (server_) server_->kill();
+  server_.reset();
+}
+
+void Probe::died(const std::string& while_doing) {
+  const Ending ending = server_->timed_out() ? server_->kill()
+                                             : server_->finish(std::chrono::steady_clock::now() + std::chrono::seconds(2));
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count();
+  std::string what = "your code " + ending.describe(setup_.limits, server_->timed_out() ? setup_.limits.cpu_seconds : wall);
+  if (!while_doing.empty()) what += " while " + while_doing;
+  // The last lines it wrote on standard error (and standard output, which goes there too).
+  std::string errors = server_->errors();
+  if (!errors.empty()) {
+    if (errors.size() > 1200) errors = "…" + errors.substr(errors.size() - 1200);
+    what += "; its last output:\n" + errors;
+  }
+  server_.reset();  // the next request starts a new one
+  throw ProbeFailure(what);
+}
+
+nlohmann::json Probe::ask(nlohmann::json request, std::chrono::steady_clock::time_point deadline) {
+  if (!server_) start();
+  const std::string op = request.value("op", std::string("?"));
+  if (!server_->write_line(request.dump())) died(op);
+  const auto line = server_->read_line(deadline);
+  if (!line) died(op);
+  nlohmann::json reply;
+  try {
+    reply = nlohmann::json::parse(*line);
+  } catch (const std::exception&) {
+    died(op);
+  }
+  if (!reply.value("ok", false)) {
+    std::string error = reply.value("error", std::string("failed"));
+    // The memory limit shows up as a failed allocation in the student's code.
+    if (error.find("std::bad_alloc") != std::string::npos)
+      error = "ran out of its " + std::to_string(setup_.limits.memory_mb) + " MB (" + error + ")";
+    throw ProbeFailure("your code " + error);
+  }
+  return reply;
+}
+
+}  // namespace motus::grade

@@ -1,0 +1,50 @@
+#pragma once
+// The grader's side of the probe protocol (wire.hpp): a student's plug-in served by
+// `motus serve` in a sandbox. A check asks it for raw outputs; when the student's code fails
+// (it threw, crashed, looped or ran out of memory) the request throws ProbeFailure saying
+// what happened, and a dead server is started again for the next check.
+#include <chrono>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <stdexcept>
+#include <string>
+
+#include "motus/grade/sandbox.hpp"
+
+namespace motus::grade {
+
+class ProbeFailure : public std::runtime_error {
+public:
+  using std::runtime_error::runtime_error;
+};
+
+struct ProbeSetup {
+  std::string motus;   // the motus executable (this one), mounted read-only
+  std::string plugin;  // the student's plug-in, mounted read-only
+  Limits limits;
+  bool isolate = true;
+  int slot = 0;
+};
+
+class Probe {
+public:
+  explicit Probe(ProbeSetup setup);
+  ~Probe();
+
+  // One request and its reply; throws ProbeFailure. The deadline is the check's.
+  nlohmann::json ask(nlohmann::json request, std::chrono::steady_clock::time_point deadline);
+  // How long the current check may take.
+  double seconds_per_check() const { return setup_.limits.cpu_seconds; }
+  // Stops the server (and everything it started).
+  void stop();
+
+private:
+  void start();
+  [[noreturn]] void died(const std::string& while_doing);
+
+  ProbeSetup setup_;
+  std::unique_ptr<SandboxProcess> server_;
+  std::chrono::steady_clock::time_point started_;
+};
+
+}  // namespace motus::grade

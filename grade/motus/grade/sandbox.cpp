@@ -1,0 +1,299 @@
+#include "motus/grade/sandbox.hpp"
+
+#include <fcntl.h>
+#include <grp.h>
+#include <poll.h>
+#include <signal.h>
+#include <sys/prctl.h>
+#include <sys/resource.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <stdexcept>
+
+namespace fs = std::filesystem;
+
+namespace motus::grade {
+namespace {
+
+// The processes this user has now (RLIMIT_NPROC counts them all, not only the sandbox's).
+long processes_of(uid_t uid) {
+  long count = 0;
+  std::error_code error;
+  for (const auto& entry : fs::directory_iterator("/proc", error)) {
+    const std::string name = entry.path().filename().string();
+    if (name.empty() || !std::all_of(name.begin(), name.end(), ::isdigit)) continue;
+    struct stat info {};
+    if (::stat(entry.path().c_str(), &info) == 0 && info.st_uid == uid) ++count;
+  }
+  return count;
+}
+
+std::vector<char*> pointers(std::vector<std::string>& strings) {
+  std::vector<char*> p;
+  for (auto& s : strings) p.push_back(s.data());
+  p.push_back(nullptr);
+  return p;
+}
+
+const char* signal_name(int signal) {
+  switch (signal) {
+    case SIGSEGV: return "SIGSEGV";
+    case SIGABRT: return "SIGABRT";
+    case SIGBUS: return "SIGBUS";
+    case SIGFPE: return "SIGFPE";
+    case SIGILL: return "SIGILL";
+    case SIGKILL: return "SIGKILL";
+    case SIGXCPU: return "SIGXCPU";
+    case SIGXFSZ: return "SIGXFSZ";
+    case SIGTERM: return "SIGTERM";
+    case SIGPIPE: return "SIGPIPE";
+    default: return nullptr;
+  }
+}
+
+std::string format_seconds(double s) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", std::round(s * 10) / 10);
+  return text;
+}
+
+}  // namespace
+
+uid_t sandbox_uid(int slot) {
+  return ::geteuid() == 0 ? kFirstUid + static_cast<uid_t>(slot) : ::geteuid();
+}
+
+std::string bubblewrap_program() {
+  for (const char* candidate : {"/usr/bin/bwrap", "/bin/bwrap", "/usr/local/bin/bwrap"})
+    if (::access(candidate, X_OK) == 0) return candidate;
+  return "";
+}
+
+std::string Ending::describe(const Limits& limits, double wall_seconds) const {
+  if (timed_out) return "timed out after " + format_seconds(wall_seconds) + " s";
+  if (signal == SIGXCPU || (signal == SIGKILL && !timed_out && limits.cpu_seconds > 0 && wall_seconds >= limits.cpu_seconds))
+    return "used up its " + format_seconds(limits.cpu_seconds) + " s of CPU";
+  if (signal == SIGXFSZ) return "wrote more than its " + std::to_string(limits.file_mb) + " MB to a file";
+  if (signal) {
+    const char* name = signal_name(signal);
+    return std::string("killed by ") + (name ? name : "signal " + std::to_string(signal));
+  }
+  return "exited with status " + std::to_string(status);
+}
+
+SandboxProcess::SandboxProcess(const SandboxSpec& spec, const Limits& limits) : error_cap_(limits.output_bytes) {
+  if (spec.argv.empty()) throw std::invalid_argument("a sandbox needs a program to run");
+  std::vector<std::string> args;
+  if (spec.isolate) {
+    const std::string bwrap = bubblewrap_program();
+    if (bwrap.empty()) throw std::runtime_error("bubblewrap (bwrap) is not installed: apt-get install bubblewrap");
+    args = {bwrap, "--unshare-all", "--die-with-parent", "--new-session",
+            "--ro-bind", "/usr", "/usr", "--symlink", "usr/lib", "/lib", "--symlink", "usr/lib64", "/lib64",
+            "--symlink", "usr/bin", "/bin", "--symlink", "usr/sbin", "/sbin",
+            "--proc", "/proc", "--dev", "/dev",
+            "--size", std::to_string(limits.tmpfs_mb << 20), "--tmpfs", "/tmp"};
+    for (const auto& m : spec.mounts) {
+      args.push_back(m.writable ? "--bind" : "--ro-bind");
+      args.push_back(m.host);
+      args.push_back(m.inside);
+    }
+    for (const char* e : {"--chdir", spec.workdir.c_str(), "--clearenv", "--setenv", "PATH", "/usr/bin:/bin",
+                          "--setenv", "TMPDIR", "/tmp", "--setenv", "HOME", "/tmp", "--setenv", "LANG", "C.UTF-8", "--"})
+      args.emplace_back(e);
+  }
+  args.insert(args.end(), spec.argv.begin(), spec.argv.end());
+  std::vector<std::string> environment = {"PATH=/usr/bin:/bin", "TMPDIR=/tmp", "HOME=/tmp", "LANG=C.UTF-8"};
+  auto argv = pointers(args);
+  auto envp = pointers(environment);
+  // Everything the child needs is computed here: between fork and exec it only makes system calls.
+  const uid_t uid = sandbox_uid(spec.slot);
+  const bool drop = ::geteuid() == 0;
+  const rlim_t cpu = static_cast<rlim_t>(std::ceil(limits.cpu_seconds));
+  const rlim_t memory = static_cast<rlim_t>(limits.memory_mb) << 20;
+  const rlim_t file = static_cast<rlim_t>(limits.file_mb) << 20;
+  const rlim_t processes = static_cast<rlim_t>(limits.processes + (drop ? 0 : processes_of(uid)));
+  const std::string workdir = spec.isolate ? "/" : spec.workdir;
+
+  int in[2], out[2], err[2];
+  if (::pipe2(in, O_CLOEXEC) || ::pipe2(out, O_CLOEXEC) || ::pipe2(err, O_CLOEXEC))
+    throw std::runtime_error(std::string("cannot make pipes: ") + std::strerror(errno));
+  pid_ = ::fork();
+  if (pid_ < 0) throw std::runtime_error(std::string("cannot start a process: ") + std::strerror(errno));
+  if (pid_ == 0) {
+    ::setpgid(0, 0);
+    ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+    ::dup2(in[0], 0);
+    ::dup2(out[1], 1);
+    ::dup2(err[1], 2);
+    ::close_range(3, ~0U, 0);
+    const rlimit cpu_limit{cpu, cpu + 1}, memory_limit{memory, memory}, file_limit{file, file}, no_core{0, 0},
+        process_limit{processes, processes};
+    ::setrlimit(RLIMIT_CPU, &cpu_limit);
+    ::setrlimit(RLIMIT_AS, &memory_limit);
+    ::setrlimit(RLIMIT_FSIZE, &file_limit);
+    ::setrlimit(RLIMIT_CORE, &no_core);
+    if (drop) {
+      if (::setgroups(0, nullptr) || ::setresgid(uid, uid, uid) || ::setresuid(uid, uid, uid)) ::_exit(126);
+    }
+    ::setrlimit(RLIMIT_NPROC, &process_limit);
+    ::prctl(PR_SET_NO_NEW_PRIVS, 1, 0, 0, 0);
+    if (::chdir(workdir.c_str()) != 0) ::_exit(126);
+    ::execve(argv[0], argv.data(), envp.data());
+    ::_exit(127);
+  }
+  ::close(in[0]);
+  ::close(out[1]);
+  ::close(err[1]);
+  in_ = in[1];
+  out_ = out[0];
+  err_ = err[0];
+  ::signal(SIGPIPE, SIG_IGN);  // a sandbox that closed its input must not kill the grader
+}
+
+SandboxProcess::~SandboxProcess() {
+  if (!ending_) kill();
+  for (int fd : {in_, out_, err_})
+    if (fd >= 0) ::close(fd);
+}
+
+bool SandboxProcess::write_line(const std::string& line) {
+  if (in_ < 0) return false;
+  std::string text = line + "\n";
+  const char* p = text.data();
+  size_t left = text.size();
+  while (left > 0) {
+    const ssize_t n = ::write(in_, p, left);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) return false;
+    p += n;
+    left -= static_cast<size_t>(n);
+  }
+  return true;
+}
+
+void SandboxProcess::pump(std::chrono::steady_clock::time_point deadline, bool want_line) {
+  char buffer[65536];
+  while (out_ >= 0 || err_ >= 0) {
+    if (want_line && out_buffer_.find('\n') != std::string::npos) return;
+    const auto now = std::chrono::steady_clock::now();
+    if (now >= deadline) {
+      timed_out_ = true;
+      return;
+    }
+    const int wait_ms = static_cast<int>(
+        std::min<long long>(std::chrono::duration_cast<std::chrono::milliseconds>(deadline - now).count() + 1, 1000));
+    pollfd fds[2] = {{out_, POLLIN, 0}, {err_, POLLIN, 0}};
+    const int ready = ::poll(fds, 2, wait_ms);
+    if (ready < 0 && errno != EINTR) return;
+    if (ready <= 0) continue;
+    if (fds[1].fd >= 0 && (fds[1].revents & (POLLIN | POLLHUP | POLLERR))) {
+      const ssize_t n = ::read(err_, buffer, sizeof buffer);
+      if (n <= 0) {
+        ::close(err_);
+        err_ = -1;
+      } else if (errors_.size() < error_cap_) {
+        errors_.append(buffer, std::min(static_cast<size_t>(n), error_cap_ - errors_.size()));
+        if (errors_.size() >= error_cap_) errors_cut_ = true;
+      } else {
+        errors_cut_ = true;  // read and dropped: a flood must not block the sandbox or fill memory
+      }
+    }
+    if (fds[0].fd >= 0 && (fds[0].revents & (POLLIN | POLLHUP | POLLERR))) {
+      const ssize_t n = ::read(out_, buffer, sizeof buffer);
+      if (n <= 0) {
+        ::close(out_);
+        out_ = -1;
+        if (want_line) return;
+      } else {
+        out_buffer_.append(buffer, static_cast<size_t>(n));
+        if (out_buffer_.size() > (64u << 20)) {  // a line longer than any answer: stop reading it
+          ::close(out_);
+          out_ = -1;
+          return;
+        }
+      }
+    }
+  }
+}
+
+std::optional<std::string> SandboxProcess::read_line(std::chrono::steady_clock::time_point deadline) {
+  pump(deadline, true);
+  const size_t end = out_buffer_.find('\n');
+  if (end == std::string::npos) return std::nullopt;
+  std::string line = out_buffer_.substr(0, end);
+  out_buffer_.erase(0, end + 1);
+  return line;
+}
+
+Ending SandboxProcess::reap(bool killed) {
+  int raw = 0;
+  while (::waitpid(pid_, &raw, 0) < 0 && errno == EINTR) {
+  }
+  Ending e;
+  e.timed_out = killed && timed_out_;
+  if (WIFSIGNALED(raw)) {
+    e.signal = WTERMSIG(raw);
+  } else if (WIFEXITED(raw)) {
+    e.exited = true;
+    e.status = WEXITSTATUS(raw);
+    // bubblewrap reports a child killed by signal N as exit status 128 + N.
+    const int n = e.status - 128;
+    if (n > 0 && n < 32 && signal_name(n)) {
+      e.exited = false;
+      e.signal = n;
+    }
+  }
+  if (killed && e.signal == SIGKILL && timed_out_) e.timed_out = true;
+  if (errors_cut_) errors_ += "…";
+  errors_cut_ = false;
+  ending_ = e;
+  return e;
+}
+
+Ending SandboxProcess::finish(std::chrono::steady_clock::time_point deadline) {
+  if (ending_) return *ending_;
+  if (in_ >= 0) {
+    ::close(in_);
+    in_ = -1;
+  }
+  pump(deadline, false);
+  if (timed_out_) return kill();
+  return reap(false);
+}
+
+Ending SandboxProcess::kill() {
+  if (ending_) return *ending_;
+  ::kill(-pid_, SIGKILL);  // its process group (without bubblewrap, what it started)
+  ::kill(pid_, SIGKILL);   // and bubblewrap, whose namespace ends with it
+  return reap(true);
+}
+
+std::optional<std::string> sandbox_unavailable() {
+  if (bubblewrap_program().empty())
+    return "bubblewrap is not installed (apt-get install bubblewrap); pass --no-sandbox to grade without a sandbox, "
+           "knowingly";
+  SandboxSpec spec;
+  spec.argv = {"/usr/bin/true"};
+  Limits limits;
+  try {
+    SandboxProcess probe(spec, limits);
+    const Ending e = probe.finish(std::chrono::steady_clock::now() + std::chrono::seconds(10));
+    if (e.exited && e.status == 0) return std::nullopt;
+    std::string why = probe.errors();
+    while (!why.empty() && (why.back() == '\n' || why.back() == ' ')) why.pop_back();
+    if (why.find('\n') != std::string::npos) why = why.substr(why.rfind('\n') + 1);
+    return "cannot make a sandbox here (bubblewrap: " + (why.empty() ? e.describe(limits, 0) : why) +
+           "; user namespaces may be off); pass --no-sandbox to grade without one, knowingly";
+  } catch (const std::exception& e) {
+    return std::string("cannot make a sandbox here: ") + e.what();
+  }
+}
+
+}  // namespace motus::grade

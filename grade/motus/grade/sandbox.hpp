@@ -1,0 +1,99 @@
+#pragma once
+// Running a student's code where it can do no harm: in its own process, as an unprivileged
+// user, inside bubblewrap (no network, a read-only system, only the files it is given, a
+// small size-limited tmpfs), with limits on CPU time, address space, processes and file
+// size, no core files, and a wall-clock kill. Its standard error (where its standard output
+// goes too, in the probe server) is kept up to a cap.
+//
+// On Debian 12 without cgroup v2 these are the tools there are: bubblewrap for namespaces and
+// mounts, setrlimit for the limits, setresuid for the user (the grader does the last two
+// itself, in the child, before it starts bwrap — no shell, no prlimit or setpriv programs).
+#include <sys/types.h>
+
+#include <chrono>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace motus::grade {
+
+struct Limits {
+  double cpu_seconds = 10;   // RLIMIT_CPU (the wall clock is the caller's deadline)
+  long memory_mb = 512;      // RLIMIT_AS
+  long file_mb = 64;         // RLIMIT_FSIZE
+  int processes = 64;        // RLIMIT_NPROC, for this sandbox's own user
+  long tmpfs_mb = 64;        // the writable /tmp
+  size_t output_bytes = 64 * 1024;  // standard error kept (the rest is read and dropped)
+};
+
+struct Mount {
+  std::string host, inside;
+  bool writable = false;
+};
+
+struct SandboxSpec {
+  std::vector<std::string> argv;  // argv[0]: a path inside the sandbox
+  std::vector<Mount> mounts;      // besides /usr (read-only), /proc, /dev and /tmp
+  std::string workdir = "/tmp";
+  bool isolate = true;            // false: --no-sandbox (limits and user only, no bubblewrap)
+  int slot = 0;                   // concurrent sandboxes each get their own user: kFirstUid + slot
+};
+
+// The first of the unprivileged users sandboxes run as, when the grader runs as root.
+constexpr uid_t kFirstUid = 61000;
+// The user a sandbox of this slot runs as (the grader's own when it is not root).
+uid_t sandbox_uid(int slot);
+
+// How a sandboxed process ended.
+struct Ending {
+  bool exited = false;
+  int status = 0;       // exit status, when it exited
+  int signal = 0;       // the signal that killed it, else 0
+  bool timed_out = false;  // killed by us at its deadline
+  // One phrase: "exited with status 3", "killed by SIGSEGV", "timed out after 10 s",
+  // "used up its 10 s of CPU", "ran out of its 512 MB".
+  std::string describe(const Limits& limits, double wall_seconds) const;
+};
+
+class SandboxProcess {
+public:
+  // Starts it. Throws std::runtime_error when it cannot be started at all.
+  SandboxProcess(const SandboxSpec& spec, const Limits& limits);
+  ~SandboxProcess();  // kills it if it still runs
+  SandboxProcess(const SandboxProcess&) = delete;
+  SandboxProcess& operator=(const SandboxProcess&) = delete;
+
+  // One line to its standard input; false when it is gone.
+  bool write_line(const std::string& line);
+  // Its next line of standard output, waiting until `deadline`; nullopt at end of file or
+  // at the deadline (then timed_out() is true).
+  std::optional<std::string> read_line(std::chrono::steady_clock::time_point deadline);
+  bool timed_out() const { return timed_out_; }
+  // Waits for it to end by itself until `deadline`, then kills it; every process it made
+  // ends with it.
+  Ending finish(std::chrono::steady_clock::time_point deadline);
+  // Kills it now.
+  Ending kill();
+  // What it wrote on standard error, up to the cap ("…" marks a cut).
+  const std::string& errors() const { return errors_; }
+
+private:
+  void pump(std::chrono::steady_clock::time_point deadline, bool want_line);
+  Ending reap(bool killed);
+
+  pid_t pid_ = -1;
+  int in_ = -1, out_ = -1, err_ = -1;
+  std::string out_buffer_, errors_;
+  size_t error_cap_;
+  bool errors_cut_ = false;
+  bool timed_out_ = false;
+  std::optional<Ending> ending_;
+};
+
+// Whether a sandbox can be made here, and if not the one line that says why.
+std::optional<std::string> sandbox_unavailable();
+
+// The bubblewrap program, or "" when it is not installed.
+std::string bubblewrap_program();
+
+}  // namespace motus::grade
