@@ -9,9 +9,6 @@ namespace student {
 
 // ---- Any system y' = f(t, y): call f.derivative(t, y) for f(t, y) ----------------------
 
-// Explicit Euler: y ← y + h f(t, y).
-void euler_step(const FirstOrderSystem& f, double t, double h, VectorInOut y);
-
 // The midpoint method: k1 = f(t, y); k2 = f(t + h/2, y + (h/2) k1); y ← y + h k2.
 void midpoint_step(const FirstOrderSystem& f, double t, double h, VectorInOut y);
 
@@ -29,6 +26,10 @@ Vector rk4_doubling_step(const FirstOrderSystem& f, double t, double h, VectorIn
 double next_step_size(double h, double error_ratio);
 
 // ---- Point masses: x'' = a(t, x, v); call s.acceleration(t, x, v) for a -------------------
+
+// Explicit Euler, the course's spring table: a = a(t, x, v); x ← x + h v; v ← v + h a —
+// both from the values at the start of the step.
+void euler_step(const MechanicalSystem& s, double t, double h, VectorInOut x, VectorInOut v);
 
 // Symplectic Euler, velocity first: v ← v + h a(t, x, v); then x ← x + h v (the new v).
 void symplectic_euler_step(const MechanicalSystem& s, double t, double h, VectorInOut x, VectorInOut v);

@@ -5,7 +5,8 @@
 #include "motus/student/plugin.hpp"
 
 MOTUS_PLUGIN("student", "the integrators assignment (integrators.cpp)") {
-  plugin.first_order("euler", 1, "explicit Euler: y += h f(t, y)", student::euler_step);
+  plugin.mechanical("euler", 1, "explicit Euler: x += h v; v += h a (both from the start of the step)",
+                    student::euler_step);
   plugin.first_order("midpoint", 2, "midpoint (RK2)", student::midpoint_step);
   plugin.first_order("rk4", 4, "classic fourth-order Runge-Kutta", student::rk4_step);
   plugin.adaptive("rk4-doubling", 5, "adaptive RK4 by step doubling", student::rk4_doubling_step,

@@ -7,8 +7,6 @@
 
 namespace student {
 
-void euler_step(const FirstOrderSystem& f, double t, double h, VectorInOut y) { y += h * f.derivative(t, y); }
-
 void midpoint_step(const FirstOrderSystem& f, double t, double h, VectorInOut y) {
   const Vector k1 = f.derivative(t, y);
   const Vector k2 = f.derivative(t + h / 2, y + (h / 2) * k1);
@@ -36,6 +34,12 @@ Vector rk4_doubling_step(const FirstOrderSystem& f, double t, double h, VectorIn
 double next_step_size(double h, double error_ratio) {
   if (error_ratio == 0) return 5 * h;
   return h * std::clamp(0.9 * std::pow(error_ratio, -1.0 / 5), 0.2, 5.0);
+}
+
+void euler_step(const MechanicalSystem& s, double t, double h, VectorInOut x, VectorInOut v) {
+  const Vector a = s.acceleration(t, x, v);
+  x += h * v;
+  v += h * a;
 }
 
 void symplectic_euler_step(const MechanicalSystem& s, double t, double h, VectorInOut x, VectorInOut v) {

@@ -9,11 +9,6 @@
 
 namespace student {
 
-void euler_step(const FirstOrderSystem& f, double t, double h, VectorInOut y) {
-  // TODO: y ← y + h f(t, y)
-  (void)f, (void)t, (void)h, (void)y;
-}
-
 void midpoint_step(const FirstOrderSystem& f, double t, double h, VectorInOut y) {
   // TODO: k1 = f(t, y); k2 = f(t + h/2, y + (h/2) k1); y ← y + h k2
   (void)f, (void)t, (void)h, (void)y;
@@ -36,6 +31,11 @@ double next_step_size(double h, double error_ratio) {
   // TODO: h · 0.9 · error_ratio^(−1/5), kept between h/5 and 5 h
   (void)error_ratio;
   return h;
+}
+
+void euler_step(const MechanicalSystem& s, double t, double h, VectorInOut x, VectorInOut v) {
+  // TODO: a = s.acceleration(t, x, v); then x ← x + h v and v ← v + h a (the values from the start)
+  (void)s, (void)t, (void)h, (void)x, (void)v;
 }
 
 void symplectic_euler_step(const MechanicalSystem& s, double t, double h, VectorInOut x, VectorInOut v) {

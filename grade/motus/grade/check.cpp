@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "motus/exact/exact_solution.hpp"
+#include "motus/integrator_name.hpp"
 #include "motus/grade/wire.hpp"
 #include "motus/scene_file/scene_file.hpp"
 #include "motus/scene_error.hpp"
@@ -418,6 +419,14 @@ public:
     first_step_ = f.positive("first_step", scene_.description.dt);
     duration_ = f.positive("duration", scene_.description.duration);
     max_error_ = f.positive("max_error");
+    // motus's own adaptive method at the same tolerance, run in the same check: the student's
+    // error may be at most `factor` times its error.
+    if (f.has("compare_with")) {
+      const auto builtin = integrator_from_name(f.string("compare_with"));
+      if (!builtin || !info(*builtin).adaptive) f.fail("compare_with", "must name one of motus's adaptive integrators");
+      compare_with_ = *builtin;
+      factor_ = f.positive("factor", 2);
+    }
   }
 
   CheckResult run(Probe& probe, Clock::time_point deadline) const override {
@@ -446,19 +455,31 @@ public:
         break;
       }
     }
+    double peer_error = NAN;
+    std::string peer;
+    if (compare_with_) {
+      Simulation sim(scene_.description, *compare_with_);
+      sim.advance(r.until, first_step_, Tolerance{tolerance_, tolerance_});
+      peer_error = error_at_end(sim.state(), sim.time());
+      peer = fmt::format("; motus's {} at the same tolerance: error {}", info(*compare_with_).name, num(peer_error));
+    }
     const std::string measured = fmt::format(
         "at tolerance {}: error {} at t = {} after {} steps ({} rejected) and {} evaluations; motus's fixed-step rk4 "
         "needs {} evaluations for that error",
         num(tolerance_), num(error), num(out.t.back()), out.steps, out.rejected, out.evaluations,
-        rk4_needs_more ? "more than " + std::to_string(out.evaluations) : std::to_string(rk4_evaluations));
+        rk4_needs_more ? "more than " + std::to_string(out.evaluations) : std::to_string(rk4_evaluations)) + peer;
     const bool lands = std::abs(out.t.back() - r.until) <= 1e-9 * std::max(1.0, std::abs(r.until));
     const bool fewer = rk4_needs_more || (rk4_evaluations > 0 && out.evaluations < rk4_evaluations);
-    const bool ok = lands && error <= max_error_ && fewer;
+    const bool as_good = !compare_with_ || error <= factor_ * peer_error;
+    const bool ok = lands && error <= max_error_ && fewer && as_good;
     return ok ? pass(measured)
               : fail(measured,
-                     fmt::format("the run lands on t = {}, its error is at most {}, and it needs fewer evaluations "
+                     fmt::format("the run lands on t = {}, its error is at most {}{}, and it needs fewer evaluations "
                                  "than fixed-step RK4 at the same error",
-                                 num(r.until), num(max_error_)),
+                                 num(r.until), num(max_error_),
+                                 compare_with_ ? fmt::format(" and at most {} × motus's {}", num(factor_),
+                                                             info(*compare_with_).name)
+                                               : ""),
                      hint_);
   }
 
@@ -472,6 +493,8 @@ private:
   CheckScene scene_;
   std::string integrator_;
   double tolerance_, first_step_, duration_, max_error_;
+  std::optional<Integrator> compare_with_;
+  double factor_ = 2;
   std::string hint_;
 };
 
