@@ -129,7 +129,9 @@ json project(const json& r) {
     if (s.a < 0 || s.a >= n || s.b < 0 || s.b >= n) throw std::invalid_argument("project: a stick names no body");
   for (const auto& p : pins)
     if (p.body < 0 || p.body >= n) throw std::invalid_argument("project: a pin names no body");
-  const ExternalConstraintSet set{d,
+  static long requests = 0;  // each request is a run of its own (ExternalConstraintSet::id)
+  const ExternalConstraintSet set{-(++requests),
+                                  d,
                                   n,
                                   inverse_mass.data(),
                                   radius.data(),

@@ -1,5 +1,7 @@
 #include "motus/world.hpp"
 
+#include <atomic>
+
 #include "motus/scene_error.hpp"
 
 namespace motus {
@@ -59,12 +61,6 @@ World::World(const MechanicalDescription& scene, const Method& method, ExternalP
 }
 
 void World::use_external_projection(const MechanicalDescription& scene, const ExternalConstraintRules& rules) {
-  int balls = 0;
-  for (const auto& b : scene.bodies) balls += b.radius > 0;
-  if (balls >= 2)
-    throw SceneError("integrator", "a constraint projection from a plug-in moves sticks, pins and walls, not balls "
-                                   "against each other, and this scene has " + std::to_string(balls) +
-                                   " balls; run it without the plug-in");
   if (!scene.colliders.segments.empty())
     throw SceneError("colliders", "a constraint projection from a plug-in handles planes and boxes, not segments");
   external_projection_ = &rules;
@@ -75,7 +71,9 @@ void World::use_external_projection(const MechanicalDescription& scene, const Ex
   for (const auto& s : scene.sticks) external_sticks_.push_back({s.a, s.b, s.length});
   for (const auto& p : scene.pins) external_pins_.push_back({p.body, {p.position[0], p.position[1], p.position[2]}});
   for (const auto& w : constraints_->walls()) external_walls_.push_back({{w.normal[0], w.normal[1], w.normal[2]}, w.offset});
-  external_set_ = {scene.dimensions,
+  static std::atomic<long> runs{0};
+  external_set_ = {++runs,
+                   scene.dimensions,
                    static_cast<int>(scene.bodies.size()),
                    external_inverse_mass_.data(),
                    external_radius_.data(),
@@ -93,6 +91,9 @@ void World::project(VectorRef x) {
     constraints_->project(x);
     return;
   }
+  // Balls against each other are motus's to keep apart (the outside projection does not see
+  // them), first, so that the outside projection's walls and pins have the last word.
+  constraints_->push_balls_apart(x);
   check_external(external_projection_->project(external_projection_->self, &external_set_, x.data()),
                  "constraint projection", external_projection_->error, external_projection_->self);
 }

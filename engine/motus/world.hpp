@@ -68,7 +68,8 @@ private:
   bool position_dependent_forces_ = false;  // anything but uniform gravity and drag
 
   // A projection from outside (ExternalParts::constraints): the rules and the set they are
-  // given, whose arrays live here for the whole run.
+  // given, whose arrays live here for the whole run. It moves sticks, pins and walls; motus
+  // still pushes balls apart, before it.
   const ExternalConstraintRules* external_projection_ = nullptr;
   ExternalConstraintSet external_set_{};
   std::vector<double> external_inverse_mass_, external_radius_;

@@ -126,6 +126,12 @@ void ConstraintProjection::project(VectorRef x) {
   remember_segment_sides(x);
 }
 
+void ConstraintProjection::push_balls_apart(VectorRef x) {
+  if (balls_.size() < 2) return;
+  find_ball_pairs(x);
+  for (int sweep = 0; sweep < iterations_; ++sweep) project_ball_pairs(x);
+}
+
 void ConstraintProjection::place_pins(VectorRef x) const {
   for (const auto& p : pins_)
     for (int k = 0; k < d_; ++k) x[p.body * d_ + k] = p.position[k];

@@ -98,8 +98,10 @@ struct ExternalWall {  // the free side is n·x ≥ offset, |n| = 1
   double offset;
 };
 
-// A run's constraints; the arrays stay valid (at the same addresses) for the whole run.
+// A run's constraints; the arrays stay valid (at the same addresses) for the whole run, and
+// `id` is the run's own (no two sets share one), so a projection may prepare once per id.
 struct ExternalConstraintSet {
+  long id;
   int dimensions, bodies;
   const double* inverse_mass;  // each body's 1/m (pinned bodies too: holding them is the projection's job)
   const double* radius;        // 0 for a point

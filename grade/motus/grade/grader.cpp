@@ -124,7 +124,8 @@ GradeResult grade_submission(const Assignment& a, const std::string& submission,
         r.passed = c.passed;
         r.output = c.output;
       } catch (const ProbeFailure& e) {
-        r.output = std::string(1, static_cast<char>(std::toupper(e.what()[0]))) + (e.what() + 1) + ".";
+        r.output = std::string(1, static_cast<char>(std::toupper(e.what()[0]))) + (e.what() + 1);
+        if (r.output.back() != '.' && r.output.find('\n') == std::string::npos) r.output += ".";
         if (!t.hint.empty()) r.output += "\nThis usually means: " + t.hint;
       }
     }

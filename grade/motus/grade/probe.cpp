@@ -30,12 +30,13 @@ void Probe::died(const std::string& while_doing) {
                                              : server_->finish(std::chrono::steady_clock::now() + std::chrono::seconds(2));
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count();
   std::string what = "your code " + ending.describe(setup_.limits, server_->timed_out() ? setup_.limits.cpu_seconds : wall);
-  if (!while_doing.empty()) what += " while " + while_doing;
+  if (!while_doing.empty()) what += " while running " + while_doing;
   // The last lines it wrote on standard error (and standard output, which goes there too).
   std::string errors = server_->errors();
   if (!errors.empty()) {
     if (errors.size() > 1200) errors = "…" + errors.substr(errors.size() - 1200);
-    what += "; its last output:\n" + errors;
+    while (!errors.empty() && (errors.back() == '\n' || errors.back() == ' ')) errors.pop_back();
+    what += ". Its last output:\n" + errors;
   }
   server_.reset();  // the next request starts a new one
   throw ProbeFailure(what);

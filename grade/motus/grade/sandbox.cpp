@@ -83,7 +83,7 @@ std::string Ending::describe(const Limits& limits, double wall_seconds) const {
   if (signal == SIGXFSZ) return "wrote more than its " + std::to_string(limits.file_mb) + " MB to a file";
   if (signal) {
     const char* name = signal_name(signal);
-    return std::string("killed by ") + (name ? name : "signal " + std::to_string(signal));
+    return std::string("was killed by ") + (name ? name : "signal " + std::to_string(signal));
   }
   return "exited with status " + std::to_string(status);
 }

@@ -227,8 +227,8 @@ private:
   static int project(void* self, const motus::ExternalConstraintSet* set, double* x) {
     auto& plugin = *static_cast<Plugin*>(self);
     return detail::guarded([&] {
-      if (plugin.constraint_set_ != set) {
-        plugin.constraint_set_ = set;
+      if (plugin.constraint_run_ != set->id) {
+        plugin.constraint_run_ = set->id;
         const int d = set->dimensions;
         Constraints c;
         for (int i = 0; i < set->stick_count; ++i) c.sticks.push_back({set->sticks[i].a, set->sticks[i].b, set->sticks[i].length});
@@ -253,7 +253,7 @@ private:
   motus::ExternalCollisionRules collisions_{};
   SatisfyConstraints satisfy_ = nullptr;
   motus::ExternalConstraintRules constraints_{};
-  const motus::ExternalConstraintSet* constraint_set_ = nullptr;
+  long constraint_run_ = 0;  // the ExternalConstraintSet::id constraint_values_ were made for
   Constraints constraint_values_;
   motus::PluginEntry entry_{};
 };
