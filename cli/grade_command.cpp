@@ -144,9 +144,8 @@ int grade_batch(const GradeCommandOptions& o, const std::string& folder) {
   std::vector<std::string> failures;
   ProgressBar progress(0, static_cast<double>(submissions.size()), "grade " + assignment.name, 1);
   const auto began = std::chrono::steady_clock::now();
-  auto worker = [&](int slot) {
-    grade::GradeOptions options = grade_options(o);
-    options.slot = slot;  // each job its own sandbox user
+  auto worker = [&] {
+    const grade::GradeOptions options = grade_options(o);  // (each grading takes a sandbox user of its own)
     for (size_t i = next++; i < submissions.size(); i = next++) {
       const std::string name = submissions[i].filename().string();
       const std::string results = (fs::path(out) / (name + ".json")).string();
@@ -168,7 +167,7 @@ int grade_batch(const GradeCommandOptions& o, const std::string& folder) {
     }
   };
   std::vector<std::thread> threads;
-  for (int j = 0; j < std::min<int>(o.jobs, static_cast<int>(submissions.size())); ++j) threads.emplace_back(worker, j);
+  for (int j = 0; j < std::min<int>(o.jobs, static_cast<int>(submissions.size())); ++j) threads.emplace_back(worker);
   while (done < submissions.size()) {
     progress.update(static_cast<double>(done));
     std::this_thread::sleep_for(std::chrono::milliseconds(100));

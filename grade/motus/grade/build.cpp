@@ -22,11 +22,11 @@ std::string cut(const std::string& text, size_t lines, size_t bytes) {
 }
 
 BuildResult build_plugin(const Assignment& a, const std::string& staged, const std::string& out,
-                         const ApiHeaders& headers, bool isolate, int slot) {
+                         const ApiHeaders& headers, bool isolate, uid_t uid) {
   const auto began = std::chrono::steady_clock::now();
   SandboxSpec spec;
   spec.isolate = isolate;
-  spec.slot = slot;
+  spec.uid = uid;
   // Inside: the headers at /motus/include, the assignment's files at /assignment, the
   // submission at /submission, and /out for the plug-in. Without the sandbox, the same
   // files where they are.
@@ -67,11 +67,13 @@ BuildResult build_plugin(const Assignment& a, const std::string& staged, const s
   BuildResult result;
   try {
     SandboxProcess compiler(spec, limits);
-    const Ending ending = compiler.finish(std::chrono::steady_clock::now() + std::chrono::seconds(90));
+    const auto started = std::chrono::steady_clock::now();
+    const Ending ending = compiler.finish(started + std::chrono::seconds(90));
+    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     result.output = cut(compiler.errors(), 40, 6000);
     result.ok = ending.exited && ending.status == 0 && fs::is_regular_file(fs::path(out) / "student.so");
     if (!ending.exited || ending.status != 0)
-      result.output += "(the compiler " + ending.describe(limits, 90) + ")\n";
+      result.output += "(the compiler " + ending.describe(limits, wall) + ")\n";
   } catch (const std::exception& e) {
     result.output = std::string("the compiler could not be started: ") + e.what();
   }

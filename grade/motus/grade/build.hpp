@@ -27,7 +27,7 @@ struct BuildResult {
 
 // `staged` holds copies of the handed-in files; `out` is an empty folder the sandbox may write.
 BuildResult build_plugin(const Assignment& assignment, const std::string& staged, const std::string& out,
-                         const ApiHeaders& headers, bool isolate, int slot);
+                         const ApiHeaders& headers, bool isolate, uid_t uid);
 
 // The first `lines` lines of `text` (and at most `bytes` bytes), with a line saying how much
 // was left out.

@@ -17,7 +17,6 @@ struct GradeOptions {
   ApiHeaders headers;
   Limits limits;          // per test: cpu_seconds is also its wall-clock limit
   bool isolate = true;    // false: --no-sandbox
-  int slot = 0;           // concurrent gradings each get their own
   std::string plugin_out; // also keep the built plug-in here ("" : no)
   std::string work_root;  // where the temporary folders go ("": the system's temporary folder)
 };

@@ -9,7 +9,7 @@ Probe::~Probe() { stop(); }
 void Probe::start() {
   SandboxSpec spec;
   spec.isolate = setup_.isolate;
-  spec.slot = setup_.slot;
+  spec.uid = setup_.uid;
   if (setup_.isolate) {
     spec.mounts = {{setup_.motus, "/motus/motus", false}, {setup_.plugin, "/box/student.so", false}};
     spec.argv = {"/motus/motus", "serve", "--plugin", "/box/student.so"};
@@ -21,7 +21,9 @@ void Probe::start() {
 }
 
 void Probe::stop() {
-  if (server_) server_->kill();
+  // Its input closed, the server ends by itself (and bubblewrap with it); only one that does
+  // not is killed.
+  if (server_) server_->finish(std::chrono::steady_clock::now() + std::chrono::seconds(1));
   server_.reset();
 }
 
@@ -30,7 +32,7 @@ void Probe::died(const std::string& while_doing) {
                                              : server_->finish(std::chrono::steady_clock::now() + std::chrono::seconds(2));
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count();
   std::string what = "your code " + ending.describe(setup_.limits, server_->timed_out() ? setup_.limits.cpu_seconds : wall);
-  if (!while_doing.empty()) what += " while running " + while_doing;
+  if (!while_doing.empty()) what += " during " + while_doing;
   // The last lines it wrote on standard error (and standard output, which goes there too).
   std::string errors = server_->errors();
   if (!errors.empty()) {
@@ -45,14 +47,15 @@ void Probe::died(const std::string& while_doing) {
 nlohmann::json Probe::ask(nlohmann::json request, std::chrono::steady_clock::time_point deadline) {
   if (!server_) start();
   const std::string op = request.value("op", std::string("?"));
-  if (!server_->write_line(request.dump())) died(op);
+  const std::string doing = op == "run" ? "a run of the scene" : op == "project" ? "satisfy_constraints" : op;
+  if (!server_->write_line(request.dump())) died(doing);
   const auto line = server_->read_line(deadline);
-  if (!line) died(op);
+  if (!line) died(doing);
   nlohmann::json reply;
   try {
     reply = nlohmann::json::parse(*line);
   } catch (const std::exception&) {
-    died(op);
+    died(doing);
   }
   if (!reply.value("ok", false)) {
     std::string error = reply.value("error", std::string("failed"));

@@ -23,7 +23,7 @@ struct ProbeSetup {
   std::string plugin;  // the student's plug-in, mounted read-only
   Limits limits;
   bool isolate = true;
-  int slot = 0;
+  uid_t uid = 0;  // the sandbox's user
 };
 
 class Probe {

@@ -5,6 +5,7 @@
 #include <poll.h>
 #include <signal.h>
 #include <sys/prctl.h>
+#include <sys/file.h>
 #include <sys/resource.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
@@ -33,6 +34,22 @@ long processes_of(uid_t uid) {
     if (::stat(entry.path().c_str(), &info) == 0 && info.st_uid == uid) ++count;
   }
   return count;
+}
+
+// Ends every process of a sandbox's user (when the grader is root and the user is the
+// sandbox's own): a fork bomb's children may outlive the namespace they were made in for a
+// moment, and until they are gone they count against the next sandbox's process limit.
+void clear_user(uid_t uid) {
+  if (::geteuid() != 0 || uid < kFirstUid) return;
+  const pid_t sweeper = ::fork();
+  if (sweeper == 0) {
+    if (::setresgid(uid, uid, uid) == 0 && ::setresuid(uid, uid, uid) == 0) ::kill(-1, SIGKILL);  // all of this user's
+    ::_exit(0);
+  }
+  if (sweeper > 0)
+    while (::waitpid(sweeper, nullptr, 0) < 0 && errno == EINTR) {
+    }
+  // What is left are zombies for the system to reap; the next sandbox's process limit counts them in.
 }
 
 std::vector<char*> pointers(std::vector<std::string>& strings) {
@@ -66,11 +83,32 @@ std::string format_seconds(double s) {
 
 }  // namespace
 
-uid_t sandbox_uid(int slot) {
-  return ::geteuid() == 0 ? kFirstUid + static_cast<uid_t>(slot) : ::geteuid();
+SandboxUser::SandboxUser() : uid_(::geteuid()) {
+  if (::geteuid() != 0) return;
+  const std::string folder = "/run/motus-grade-users";
+  ::mkdir(folder.c_str(), 0700);
+  for (uid_t u = kFirstUid; u < kFirstUid + kUsers; ++u) {
+    const std::string file = folder + "/" + std::to_string(u) + ".lock";
+    const int fd = ::open(file.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0600);
+    if (fd < 0) continue;
+    if (::flock(fd, LOCK_EX | LOCK_NB) == 0) {
+      uid_ = u;
+      lock_ = fd;
+      return;
+    }
+    ::close(fd);
+  }
+  throw std::runtime_error("every sandbox user (" + std::to_string(kFirstUid) + " to " +
+                           std::to_string(kFirstUid + kUsers - 1) + ") is busy with another grading");
+}
+
+SandboxUser::~SandboxUser() {
+  if (lock_ >= 0) ::close(lock_);  // and the lock with it
 }
 
 std::string bubblewrap_program() {
+  if (const char* override_path = std::getenv("MOTUS_BWRAP"); override_path && *override_path)  // for tests
+    return ::access(override_path, X_OK) == 0 ? override_path : "";
   for (const char* candidate : {"/usr/bin/bwrap", "/bin/bwrap", "/usr/local/bin/bwrap"})
     if (::access(candidate, X_OK) == 0) return candidate;
   return "";
@@ -113,12 +151,15 @@ SandboxProcess::SandboxProcess(const SandboxSpec& spec, const Limits& limits) : 
   auto argv = pointers(args);
   auto envp = pointers(environment);
   // Everything the child needs is computed here: between fork and exec it only makes system calls.
-  const uid_t uid = sandbox_uid(spec.slot);
+  const uid_t uid = spec.uid;
+  uid_ = uid;
   const bool drop = ::geteuid() == 0;
   const rlim_t cpu = static_cast<rlim_t>(std::ceil(limits.cpu_seconds));
   const rlim_t memory = static_cast<rlim_t>(limits.memory_mb) << 20;
   const rlim_t file = static_cast<rlim_t>(limits.file_mb) << 20;
-  const rlim_t processes = static_cast<rlim_t>(limits.processes + (drop ? 0 : processes_of(uid)));
+  // RLIMIT_NPROC counts every process of the user: those it has now (the grader's own, without
+  // root; a killed sandbox's zombies not reaped yet) plus the sandbox's allowance.
+  const rlim_t processes = static_cast<rlim_t>(limits.processes + processes_of(uid));
   const std::string workdir = spec.isolate ? "/" : spec.workdir;
 
   int in[2], out[2], err[2];
@@ -251,6 +292,7 @@ Ending SandboxProcess::reap(bool killed) {
     }
   }
   if (killed && e.signal == SIGKILL && timed_out_) e.timed_out = true;
+  clear_user(uid_);
   if (errors_cut_) errors_ += "…";
   errors_cut_ = false;
   ending_ = e;
@@ -279,8 +321,10 @@ std::optional<std::string> sandbox_unavailable() {
   if (bubblewrap_program().empty())
     return "bubblewrap is not installed (apt-get install bubblewrap); pass --no-sandbox to grade without a sandbox, "
            "knowingly";
+  SandboxUser user;
   SandboxSpec spec;
   spec.argv = {"/usr/bin/true"};
+  spec.uid = user.uid();
   Limits limits;
   try {
     SandboxProcess probe(spec, limits);

@@ -36,13 +36,27 @@ struct SandboxSpec {
   std::vector<Mount> mounts;      // besides /usr (read-only), /proc, /dev and /tmp
   std::string workdir = "/tmp";
   bool isolate = true;            // false: --no-sandbox (limits and user only, no bubblewrap)
-  int slot = 0;                   // concurrent sandboxes each get their own user: kFirstUid + slot
+  uid_t uid = 0;                  // the user it runs as (a SandboxUser's)
 };
 
-// The first of the unprivileged users sandboxes run as, when the grader runs as root.
-constexpr uid_t kFirstUid = 61000;
-// The user a sandbox of this slot runs as (the grader's own when it is not root).
-uid_t sandbox_uid(int slot);
+// The unprivileged users sandboxes run as, when the grader runs as root.
+constexpr uid_t kFirstUid = 61000, kUsers = 256;
+
+// A user for the sandboxes of one grading, which no other grading on this machine has at the
+// same time (a lock file per user): RLIMIT_NPROC counts per user, and the grader ends every
+// process of its sandboxes' user when one is done. Without root it is the grader's own user.
+class SandboxUser {
+public:
+  SandboxUser();  // throws std::runtime_error when every user is taken
+  ~SandboxUser();
+  SandboxUser(const SandboxUser&) = delete;
+  SandboxUser& operator=(const SandboxUser&) = delete;
+  uid_t uid() const { return uid_; }
+
+private:
+  uid_t uid_;
+  int lock_ = -1;
+};
 
 // How a sandboxed process ended.
 struct Ending {
@@ -82,6 +96,7 @@ private:
   Ending reap(bool killed);
 
   pid_t pid_ = -1;
+  uid_t uid_ = 0;
   int in_ = -1, out_ = -1, err_ = -1;
   std::string out_buffer_, errors_;
   size_t error_cap_;
@@ -93,7 +108,7 @@ private:
 // Whether a sandbox can be made here, and if not the one line that says why.
 std::optional<std::string> sandbox_unavailable();
 
-// The bubblewrap program, or "" when it is not installed.
+// The bubblewrap program ($MOTUS_BWRAP, else where Debian puts it), or "" when it is not there.
 std::string bubblewrap_program();
 
 }  // namespace motus::grade

@@ -1,0 +1,311 @@
+// `motus grade` and students' plug-ins, as an instructor and a student meet them
+// (assignments/README.md, docs/grading.md). The numbers come from the assignments themselves:
+// each test's points in its rubric.json, the mistakes it names in "catches", the tests an
+// untouched starter passes in assignment.json — and the seeded mistakes of
+// tests/grading/seeded_bugs.json, each made from the reference solution by one replacement.
+//
+// Grading needs user namespaces for bubblewrap; where the machine has none, the tests that
+// grade in the sandbox say so and skip (this machine has them).
+#include "grade_harness.hpp"
+
+namespace {
+
+using namespace motus_test;
+using nlohmann::json;
+
+// ---------------------------------------------------------------------------------------------------
+// The reference solutions and the starters
+
+TEST(Grade, EveryReferenceSolutionScoresFullMarks) {
+  NEEDS_SANDBOX();
+  for (const auto& a : kAll) {
+    TempDir dir;
+    const auto r = run_motus(dir, {"grade", a, (fs::path(kAssignments) / a / "solution").string(), "--hidden", hidden(a),
+                                   "--results", (dir / "results.json").string()});
+    ASSERT_EQ(r.status, 0) << a << ": " << r.err;
+    const json result = read_json(dir / "results.json");
+    expect_valid_gradescope(result);
+    double max = 0;
+    for (const auto& [name, p] : points(a)) max += p;
+    EXPECT_EQ(result["max_score"].get<double>(), max) << a;
+    EXPECT_EQ(result["score"].get<double>(), max) << a << ": failed " << ::testing::PrintToString(failed(result)) << "\n"
+                                                  << r.out;
+    EXPECT_EQ(result["tests"].size(), points(a).size() + 2) << a;  // and "files", "build"
+  }
+}
+
+TEST(Grade, EveryStarterScoresOnlyTheTestsItCannotFail) {
+  NEEDS_SANDBOX();
+  for (const auto& a : kAll) {
+    TempDir dir;
+    const auto r = run_motus(dir, {"grade", a, (fs::path(kAssignments) / a / "starter").string(), "--hidden", hidden(a),
+                                   "--results", (dir / "results.json").string()});
+    ASSERT_EQ(r.status, 0) << a << ": " << r.err;
+    const json result = read_json(dir / "results.json");
+    expect_valid_gradescope(result);
+    const json manifest = read_json(fs::path(kAssignments) / a / "assignment.json");
+    std::set<std::string> may_pass = {"files", "build"};
+    double expected = 0;
+    const auto p = points(a);
+    for (const auto& name : manifest["starter_passes"]) {
+      may_pass.insert(name.get<std::string>());
+      if (p.count(name.get<std::string>())) expected += p.at(name.get<std::string>());
+    }
+    EXPECT_EQ(result["score"].get<double>(), expected) << a;
+    for (const auto& t : result["tests"]) {
+      const std::string name = t["name"].get<std::string>().substr(0, t["name"].get<std::string>().find(':'));
+      EXPECT_EQ(t["status"] == "passed", may_pass.count(name) > 0) << a << ": " << name << ": " << t["output"];
+      if (t["status"] == "failed") {  // a failed test says what was measured and what was expected
+        const std::string output = t["output"].get<std::string>();
+        EXPECT_TRUE(output.find("Measured:") != std::string::npos || output.find("Your code") != std::string::npos) << output;
+      }
+    }
+  }
+}
+
+// The handout's first message: what one Euler step of the course's spring gives, and what it should.
+TEST(Grade, AStarterFailureTeachesWithTheCourseNumbers) {
+  NEEDS_SANDBOX();
+  TempDir dir;
+  const auto r = run_motus(dir, {"grade", "integrators", (fs::path(kAssignments) / "integrators/starter").string()});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("Expected: at t = 1: x = 20 v = -10"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("moved x with the new velocity"), std::string::npos) << r.out;
+}
+
+// ---------------------------------------------------------------------------------------------------
+// Seeded mistakes: each loses exactly the tests that name it, and keeps every other
+
+class SeededBugs : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(SeededBugs, EachLosesExactlyTheTestsThatNameIt) {
+  NEEDS_SANDBOX();
+  const std::string assignment = GetParam();
+  TempDir dir;
+  const fs::path batch = dir / "submissions";
+  std::map<std::string, std::string> mistakes;  // submission folder → mistake
+  const json seeded = read_json(MOTUS_SEEDED_BUGS);
+  for (const auto& bug : seeded["bugs"]) {
+    if (bug["assignment"] != assignment) continue;
+    const std::string mistake = bug["mistake"].get<std::string>();
+    const fs::path folder = copy_solution(dir, assignment, "submissions/" + mistake);
+    const fs::path file = folder / bug["file"].get<std::string>();
+    std::string source = read_file(file);
+    for (const auto& pair : bug["replace"]) {
+      const std::string find = pair[0].get<std::string>(), replace = pair[1].get<std::string>();
+      const size_t at = source.find(find);
+      ASSERT_NE(at, std::string::npos) << mistake << ": the solution no longer has " << find;
+      ASSERT_EQ(source.find(find, at + 1), std::string::npos) << mistake << ": " << find << " is not unique";
+      source.replace(at, find.size(), replace);
+    }
+    write_file(file, source);
+    mistakes[mistake] = mistake;
+  }
+  ASSERT_GE(mistakes.size(), 2u) << assignment;
+  const auto r = run_motus(dir, {"grade", assignment, "--batch", batch.string(), "--jobs", "2", "--hidden",
+                                 hidden(assignment), "--out", (dir / "results").string()});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto defs = definitions(assignment);
+  const auto p = points(assignment);
+  double max = 0;
+  for (const auto& [name, pts] : p) max += pts;
+  for (const auto& [folder, mistake] : mistakes) {
+    const json result = read_json(dir / "results" / (folder + ".json"));
+    expect_valid_gradescope(result);
+    std::set<std::string> naming;
+    double lost = 0;
+    for (const auto& [name, t] : defs)
+      if (t.contains("catches") &&
+          std::find(t["catches"].begin(), t["catches"].end(), json(mistake)) != t["catches"].end()) {
+        naming.insert(name);
+        lost += p.at(name);
+      }
+    EXPECT_FALSE(naming.empty()) << mistake << ": no test names it";
+    EXPECT_EQ(failed(result), naming) << assignment << ": " << mistake;
+    EXPECT_EQ(result["score"].get<double>(), max - lost) << assignment << ": " << mistake;
+  }
+  // The scores as a CSV, one row per submission.
+  EXPECT_NE(r.out.find("submission,score,max_score,seconds,status"), std::string::npos) << r.out;
+  EXPECT_EQ(count_lines(r.out), static_cast<long>(mistakes.size()) + 1) << r.out;
+}
+
+INSTANTIATE_TEST_SUITE_P(Assignments, SeededBugs, ::testing::Values("integrators", "collisions", "cloth"));
+
+// ---------------------------------------------------------------------------------------------------
+// What a student does with their code in motus (the handouts' commands)
+
+TEST(Plugins, TheSolutionAsAPluginReproducesTheCourseTableInMotusRun) {
+  NEEDS_SANDBOX();
+  TempDir dir;
+  const fs::path plugin = dir / "integrators.so";
+  auto r = run_motus(dir, {"grade", "integrators", (fs::path(kAssignments) / "integrators/solution").string(),
+                           "--plugin-out", plugin.string()});
+  ASSERT_EQ(r.status, 0) << r.err;
+  ASSERT_TRUE(fs::exists(plugin));
+  r = run_motus(dir, {"run", "spring", "--plugin", plugin.string(), "--integrator", "student:euler", "--trajectory",
+                      (dir / "spring.csv").string()});
+  ASSERT_EQ(r.status, 0) << r.err;
+  // tests/reference/integrators.md, the course's spring: x = 20, 20, 10, −10, −35, −55; v = 0, −10, −20, −25, −20, −2.5.
+  const std::string csv = read_file(dir / "spring.csv");
+  for (const char* row : {"\n0,20,0,", "\n1,20,-10,", "\n2,10,-20,", "\n3,-10,-25,", "\n4,-35,-20,", "\n5,-55,-2.5,"})
+    EXPECT_NE(csv.find(row), std::string::npos) << row << " in\n" << csv;
+}
+
+TEST(Plugins, AStudentsCollisionsAreAnEngineColumnInCompare) {
+  TempDir dir;
+  const auto r = run_motus(dir, {"compare", "newtons_cradle", "--plugin", kAssignmentPlugins + "/collisions-solution.so",
+                                 "--json", "--out", (dir / "report").string()});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const json summary = json::parse(r.out);
+  std::vector<std::string> engines;
+  for (const auto& e : summary["engines"]) engines.push_back(e["engine"].get<std::string>());
+  EXPECT_EQ(engines, (std::vector<std::string>{"motus", "student", "box2d", "bullet"}));
+  for (const auto& e : summary["engines"])
+    if (e["engine"] == "student") {
+      // The reference solution is motus's formula: the last ball leaves at 1 m/s, the same as motus to rounding.
+      EXPECT_LT(e["max_distance_from_motus"].get<double>(), 1e-9);
+      EXPECT_EQ(e["momentum"]["final"][0].get<double>(), 1.0);
+    }
+}
+
+TEST(Plugins, AStudentsIntegratorRunsInBenchPrecisionAndRender) {
+  TempDir dir;
+  const std::string plugin = kAssignmentPlugins + "/integrators-solution.so";
+  auto r = run_motus(dir, {"bench", "precision", "kepler", "--plugin", plugin, "--integrators", "rk4,student:rk4",
+                           "--levels", "2", "--repeats", "1", "--csv", (dir / "p.csv").string()});
+  ASSERT_EQ(r.status, 0) << r.err;
+  // The same method in both: the same errors, digit for digit in the table's 4 digits.
+  const std::string csv = read_file(dir / "p.csv");
+  std::vector<std::string> errors[2];
+  std::stringstream lines(csv);
+  std::string line;
+  while (std::getline(lines, line)) {
+    std::vector<std::string> cells;
+    std::stringstream s(line);
+    std::string cell;
+    while (std::getline(s, cell, ',')) cells.push_back(cell);
+    if (cells.size() > 7 && (cells[1] == "rk4" || cells[1] == "student:rk4")) errors[cells[1] == "rk4" ? 0 : 1].push_back(cells[7]);
+  }
+  ASSERT_EQ(errors[0].size(), 2u) << csv;
+  for (size_t i = 0; i < 2; ++i) EXPECT_NEAR(std::stod(errors[0][i]), std::stod(errors[1][i]), 1e-12 + 1e-9 * std::stod(errors[0][i]));
+  r = run_motus(dir, {"render", "cloth", "--plugin", kAssignmentPlugins + "/cloth-solution.so", "--out",
+                      (dir / "frames").string(), "--duration", "0.1", "--size", "160x120", "--fps", "10"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_TRUE(fs::exists(dir / "frames/frame_00001.png"));
+}
+
+// ---------------------------------------------------------------------------------------------------
+// A plug-in that cannot be used: one line, exit 2
+
+TEST(Plugins, FaultsAreOneLineAndExitTwo) {
+  TempDir dir;
+  write_file(dir / "notes.so", "these are my notes, not a shared library\n");
+  const std::string solution = kAssignmentPlugins + "/integrators-solution.so";
+  struct Case {
+    std::vector<std::string> args;
+    std::string says;
+  };
+  const std::vector<Case> cases = {
+      {{"run", "spring", "--plugin", (dir / "missing.so").string()}, "no such file"},
+      {{"run", "spring", "--plugin", (dir / "notes.so").string()}, "not a plug-in motus can load"},
+      {{"run", "spring", "--plugin", kPlugins + "/no_entry.so"}, "no entry point motus_plugin"},
+      {{"run", "spring", "--plugin", kPlugins + "/old_version.so"}, "built for plug-in interface 1"},
+      {{"run", "spring", "--plugin", solution, "--plugin", solution}, "clashes with"},
+      {{"run", "lorenz", "--plugin", kPlugins + "/misbehaving.so", "--integrator", "bad:throws"},
+       "bad:throws: threw std::runtime_error: thrown on purpose"},
+      {{"run", "spring", "--integrator", "student:euler"}, "load its plug-in with --plugin"},
+  };
+  for (const auto& c : cases) {
+    const auto r = run_motus(dir, c.args);
+    EXPECT_EQ(r.status, 2) << c.says << ": " << r.err;
+    EXPECT_EQ(count_lines(r.err), 1) << r.err;
+    EXPECT_NE(r.err.find(c.says), std::string::npos) << r.err;
+  }
+}
+
+TEST(Plugins, ACrashNamesThePluginThatWasRunning) {
+  TempDir dir;
+  const auto r = run_motus(dir, {"run", "lorenz", "--plugin", kPlugins + "/misbehaving.so", "--integrator", "bad:crashes"});
+  EXPECT_EQ(r.status, 128 + SIGSEGV) << r.err;  // it cannot be saved: it dies of the signal
+  EXPECT_NE(r.err.find("the plug-in " + kPlugins + "/misbehaving.so (bad) crashed the process in its own code (SIGSEGV)"),
+            std::string::npos)
+      << r.err;
+}
+
+// ---------------------------------------------------------------------------------------------------
+// motus grade itself: bad input, internal failures, no sandbox, the Gradescope zip
+
+TEST(Grade, BadInputIsOneLineAndExitTwo) {
+  TempDir dir;
+  write_file(dir / "results.json", "{}");
+  const std::string solution = (fs::path(kAssignments) / "integrators/solution").string();
+  const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
+      {{"grade", "nonsense", solution}, "no such assignment"},
+      {{"grade", "integrators", (dir / "nowhere").string()}, "no such submission folder"},
+      {{"grade", "integrators", solution, "--results", (dir / "results.json").string()}, "--overwrite"},
+      {{"grade", "integrators", solution, "--hidden", (dir / "nowhere").string()}, "--hidden: no such folder"},
+      {{"grade", "integrators"}, "give a SUBMISSION_DIR"},
+  };
+  for (const auto& [args, says] : cases) {
+    const auto r = run_motus(dir, args);
+    EXPECT_EQ(r.status, 2) << says << ": " << r.err;
+    EXPECT_EQ(count_lines(r.err), 1) << r.err;
+    EXPECT_NE(r.err.find(says), std::string::npos) << r.err;
+  }
+  EXPECT_EQ(read_file(dir / "results.json"), "{}");  // nothing the user had is overwritten
+}
+
+TEST(Grade, WithoutASandboxItRefusesUnlessToldAndThenStillGrades) {
+  TempDir dir;
+  const std::string solution = (fs::path(kAssignments) / "integrators/solution").string();
+  auto r = run_motus(dir, {"grade", "integrators", solution}, {"MOTUS_BWRAP=/nonexistent/bwrap"});
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_EQ(count_lines(r.err), 1) << r.err;
+  EXPECT_NE(r.err.find("--no-sandbox"), std::string::npos) << r.err;
+  r = run_motus(dir, {"grade", "integrators", solution, "--no-sandbox", "--results", (dir / "r.json").string()},
+                {"MOTUS_BWRAP=/nonexistent/bwrap"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const json result = read_json(dir / "r.json");
+  EXPECT_EQ(result["score"], result["max_score"]) << r.out;
+}
+
+TEST(Grade, AnInternalFailureStillLeavesAValidResultThatSaysSo) {
+  NEEDS_SANDBOX();
+  TempDir dir;
+  const auto r = run_motus(dir, {"grade", "integrators", (fs::path(kAssignments) / "integrators/solution").string(),
+                                 "--results", (dir / "results.json").string()},
+                           {"MOTUS_GRADE_FAIL=1"});
+  EXPECT_EQ(r.status, 1) << r.err;
+  const json result = read_json(dir / "results.json");
+  expect_valid_gradescope(result);
+  EXPECT_NE(result["output"].get<std::string>().find("could not finish"), std::string::npos);
+}
+
+TEST(Grade, TheGradescopeZipGradesTheSolutionToFullMarks) {
+  NEEDS_SANDBOX();
+  TempDir dir;
+  auto r = run_motus(dir, {"grade", "integrators", "--package", "gradescope", "--out", (dir / "autograder.zip").string(),
+                           "--hidden", hidden("integrators")});
+  ASSERT_EQ(r.status, 0) << r.err;
+  // Gradescope's layout, in a temporary root: the zip in source/, the submission in submission/.
+  const fs::path root = dir / "autograder";
+  fs::create_directories(root / "source");
+  r = run_program(dir, "/usr/bin/unzip", {"-q", (dir / "autograder.zip").string(), "-d", (root / "source").string()});
+  ASSERT_EQ(r.status, 0) << r.err;
+  for (const char* f : {"setup.sh", "run_autograder", "motus/CMakeLists.txt", "motus/debian-packages.txt",
+                        "assignment/rubric.json", "hidden/hidden.json"})
+    EXPECT_TRUE(fs::exists(root / "source" / f)) << f;
+  EXPECT_NE(read_file(root / "source/setup.sh").find("debian-packages.txt"), std::string::npos);
+  fs::create_directories(root / "submission");
+  fs::copy_file(fs::path(kAssignments) / "integrators/solution/integrators.cpp", root / "submission/integrators.cpp");
+  r = run_program(dir, (root / "source/run_autograder").string(), {},
+                  {"AUTOGRADER_ROOT=" + root.string(), std::string("MOTUS_BINARY=") + kMotus});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const json result = read_json(root / "results/results.json");
+  expect_valid_gradescope(result);
+  double max = 0;
+  for (const auto& [name, pts] : points("integrators")) max += pts;
+  EXPECT_EQ(result["score"].get<double>(), max);
+}
+
+}  // namespace

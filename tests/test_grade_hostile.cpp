@@ -1,0 +1,136 @@
+// Hostile submissions to `motus grade` (docs/grading.md, "The sandbox"): code that loops,
+// crashes, aborts, throws, eats memory, forks without end, floods its output, writes outside
+// its folder, reads the hidden tests and the solution, or reaches for the network — and a
+// submission that does not compile and an empty one. Each ends within its limits with a valid
+// result; only the tests that call the hostile function lose, with a message naming what
+// happened; nothing is left running and nothing outside the sandbox changes.
+// It runs alone (RUN_SERIAL): "nothing left running" looks at every sandbox user's processes.
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include "grade_harness.hpp"
+
+namespace {
+
+using namespace motus_test;
+using nlohmann::json;
+
+// ---------------------------------------------------------------------------------------------------
+// Hostile submissions: the integrators' solution with euler_step doing harm first
+
+struct Hostile {
+  std::string name, includes, body;
+  std::string message;  // what the affected tests' output says ("" : they pass)
+};
+
+TEST(Grade, HostileSubmissionsEndWithinTheirLimitsAndHarmNothing) {
+  NEEDS_SANDBOX();
+  TempDir dir;
+  const fs::path marker = dir / "written-by-the-student";
+  const std::string solution = (fs::path(kAssignments) / "integrators/solution/integrators.cpp").string();
+  const std::string hidden_file = (fs::path(kAssignments) / "integrators/hidden/hidden.json").string();
+  // A port this process listens on, for the attempt to reach the network.
+  const int listener = ::socket(AF_INET, SOCK_STREAM, 0);
+  sockaddr_in address{};
+  address.sin_family = AF_INET;
+  address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  ASSERT_EQ(::bind(listener, reinterpret_cast<sockaddr*>(&address), sizeof address), 0);
+  ASSERT_EQ(::listen(listener, 4), 0);
+  socklen_t length = sizeof address;
+  ::getsockname(listener, reinterpret_cast<sockaddr*>(&address), &length);
+  const int port = ntohs(address.sin_port);
+
+  const std::vector<Hostile> cases = {
+      {"loop", "", "for (volatile long i = 0;; i = i + 1) {}", "timed out after 2 s"},
+      {"segfault", "", "*static_cast<volatile int*>(nullptr) = 1;", "killed by SIGSEGV"},
+      {"abort", "#include <cstdlib>\n", "std::abort();", "killed by SIGABRT"},
+      {"exception", "#include <stdexcept>\n", "throw std::out_of_range(\"deliberately\");",
+       "threw std::out_of_range: deliberately"},
+      {"memory", "#include <vector>\n",
+       "std::vector<double> big(size_t(10) << 27); big[12345] = 1; if (big[12345] > 2) return;", "ran out of its 512 MB"},
+      {"fork-bomb", "#include <unistd.h>\n", "for (;;) ::fork();", "timed out after 2 s"},
+      {"flood", "#include <iostream>\n#include <string>\n",
+       "static const std::string junk(1 << 20, 'x'); for (int i = 0; i < 1024; ++i) std::cout << junk;", ""},
+      {"write-outside", "#include <fstream>\n", "std::ofstream(\"" + marker.string() + "\") << \"escaped\";", ""},
+      {"read-hidden", "#include <fstream>\n#include <stdexcept>\n",
+       "for (const char* f : {\"" + hidden_file + "\", \"" + solution +
+           "\"}) if (std::ifstream(f)) throw std::runtime_error(\"READ THE ANSWERS\");",
+       ""},
+      {"network", "#include <sys/socket.h>\n#include <netinet/in.h>\n#include <stdexcept>\n",
+       "{ int fd = ::socket(AF_INET, SOCK_STREAM, 0); sockaddr_in to{}; to.sin_family = AF_INET; to.sin_port = htons(" +
+           std::to_string(port) +
+           "); to.sin_addr.s_addr = htonl(0x7f000001); if (fd >= 0 && ::connect(fd, (sockaddr*)&to, sizeof to) == 0) "
+           "throw std::runtime_error(\"CONNECTED\"); }",
+       ""},
+  };
+  const std::string anchor = "void euler_step(const MechanicalSystem& s, double t, double h, VectorInOut x, VectorInOut v) {\n";
+  const std::string original = read_file(solution);
+  ASSERT_NE(original.find(anchor), std::string::npos);
+  for (const auto& c : cases) {
+    std::string source = original;
+    source.replace(source.find(anchor), anchor.size(), anchor + "  " + c.body + "\n");
+    fs::create_directories(dir / "batch" / c.name);
+    write_file(dir / "batch" / c.name / "integrators.cpp", c.includes + source);
+  }
+  fs::create_directories(dir / "batch/does-not-compile");
+  write_file(dir / "batch/does-not-compile/integrators.cpp", "#include \"integrators.hpp\"\nthis is not C++;\n" + original);
+  fs::create_directories(dir / "batch/empty");
+
+  const auto began = std::chrono::steady_clock::now();
+  const auto r = run_motus(dir, {"grade", "integrators", "--batch", (dir / "batch").string(), "--jobs", "2",
+                                 "--time-limit", "2", "--out", (dir / "results").string()});
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count();
+  ::close(listener);
+  ASSERT_EQ(r.status, 0) << r.err;
+  // 12 submissions, 2 at a time, each test at most 2 s: well within the 10 minutes Gradescope allows one.
+  EXPECT_LT(seconds, 240) << r.err;
+
+  double public_max = 0;
+  const auto defs = definitions("integrators");
+  const auto p = points("integrators");
+  for (const auto& [name, pts] : p)
+    if (defs.count(name) && read_file(fs::path(kAssignments) / "integrators/tests/public.json").find("\"" + name + "\"") != std::string::npos)
+      public_max += pts;
+  const std::set<std::string> euler_tests = {"euler.table", "euler.order"};
+  for (const auto& c : cases) {
+    const json result = read_json(dir / "results" / (c.name + ".json"));
+    expect_valid_gradescope(result);
+    const std::set<std::string> lost = failed(result);
+    if (c.message.empty()) {
+      EXPECT_TRUE(lost.empty() || (c.name == "flood" && lost.size() <= 2 && std::includes(euler_tests.begin(), euler_tests.end(), lost.begin(), lost.end())))
+          << c.name << ": " << ::testing::PrintToString(lost);
+    } else {
+      EXPECT_EQ(lost, euler_tests) << c.name;  // only the tests that call euler_step; the others are graded
+      for (const auto& name : euler_tests) {
+        const json* t = test_named(result, name);
+        ASSERT_NE(t, nullptr);
+        EXPECT_NE((*t)["output"].get<std::string>().find(c.message), std::string::npos) << c.name << ": " << (*t)["output"];
+      }
+    }
+    EXPECT_GE(result["score"].get<double>(), public_max - p.at("euler.table") - p.at("euler.order")) << c.name;
+    // Output is kept up to its cap.
+    for (const auto& t : result["tests"]) EXPECT_LT(t["output"].get<std::string>().size(), 8000u) << c.name;
+  }
+  EXPECT_FALSE(fs::exists(marker)) << "a file written by the submission appeared outside its sandbox";
+  EXPECT_TRUE(sandbox_processes_left().empty()) << ::testing::PrintToString(sandbox_processes_left());
+
+  const json broken = read_json(dir / "results/does-not-compile.json");
+  expect_valid_gradescope(broken);
+  EXPECT_EQ(broken["score"].get<double>(), 0);
+  const json* build = test_named(broken, "build");
+  ASSERT_NE(build, nullptr);
+  const std::string errors = (*build)["output"].get<std::string>();
+  EXPECT_NE(errors.find("error:"), std::string::npos) << errors;  // the compiler's own words
+  EXPECT_LE(count_lines(errors), 45) << errors;                   // cut to a readable length
+
+  const json empty = read_json(dir / "results/empty.json");
+  expect_valid_gradescope(empty);
+  EXPECT_EQ(empty["score"].get<double>(), 0);
+  const json* files = test_named(empty, "files");
+  ASSERT_NE(files, nullptr);
+  EXPECT_EQ((*files)["status"], "failed");
+  EXPECT_NE((*files)["output"].get<std::string>().find("integrators.cpp: missing"), std::string::npos);
+}
+
+}  // namespace
