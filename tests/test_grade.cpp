@@ -13,6 +13,12 @@ namespace {
 using namespace motus_test;
 using nlohmann::json;
 
+std::string fmt_points(double p) {
+  std::ostringstream s;
+  s << p;
+  return s.str();
+}
+
 // ---------------------------------------------------------------------------------------------------
 // The reference solutions and the starters
 
@@ -71,6 +77,23 @@ TEST(Grade, AStarterFailureTeachesWithTheCourseNumbers) {
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_NE(r.out.find("Expected: at t = 1: x = 20 v = -10"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("moved x with the new velocity"), std::string::npos) << r.out;
+}
+
+// Each handout's table lists every public test with its rubric points (the handout stays true).
+TEST(Grade, EveryHandoutListsItsPublicTestsWithTheirPoints) {
+  for (const auto& a : kAll) {
+    const std::string handout = read_file(fs::path(kAssignments) / a / "README.md");
+    const json tests = read_json(fs::path(kAssignments) / a / "tests/public.json");
+    const auto p = points(a);
+    double total = 0;
+    for (const auto& t : tests["tests"]) {
+      const std::string name = t["name"].get<std::string>();
+      const std::string row = "| `" + name + "` | " + fmt_points(p.at(name)) + " |";
+      EXPECT_NE(handout.find(row), std::string::npos) << a << ": the handout has no row " << row;
+      total += p.at(name);
+    }
+    EXPECT_NE(handout.find("(you run them; " + fmt_points(total) + " points)"), std::string::npos) << a;
+  }
 }
 
 // ---------------------------------------------------------------------------------------------------
