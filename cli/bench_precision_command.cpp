@@ -54,8 +54,9 @@ std::string default_csv_path(const std::string& scene_name) {
   const std::time_t now = std::time(nullptr);
   char stamp[32];
   std::strftime(stamp, sizeof stamp, "%Y%m%d-%H%M%S", std::localtime(&now));
-  std::string path = fmt::format("runs/precision-{}-{}.csv", scene_name, stamp);
-  for (int i = 2; std::filesystem::exists(path); ++i) path = fmt::format("runs/precision-{}-{}-{}.csv", scene_name, stamp, i);
+  const std::string name = safe_file_name(scene_name);  // a name is not a path
+  std::string path = fmt::format("runs/precision-{}-{}.csv", name, stamp);
+  for (int i = 2; std::filesystem::exists(path); ++i) path = fmt::format("runs/precision-{}-{}-{}.csv", name, stamp, i);
   return path;
 }
 
@@ -139,6 +140,8 @@ int bench_precision_command(const BenchPrecisionOptions& o) {
     }
   }
   progress.finish();
+  csv.flush();
+  if (!csv) throw std::runtime_error(csv_path + ": could not be written (disk full?)");
   fmt::print("\ntable written to {}\n", csv_path);
   return 0;
 }

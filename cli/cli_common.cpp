@@ -2,7 +2,16 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
 #include <filesystem>
+
+#include <fmt/format.h>
+
+#include "motus/simulation.hpp"
 
 namespace fs = std::filesystem;
 
@@ -47,12 +56,14 @@ std::string scenes_directory() {
 }
 
 std::string resolve_scene_path(const std::string& argument) {
-  if (fs::exists(argument)) return argument;
+  std::error_code error;  // (a link that loops is the loader's to report, in one line)
+  const auto status = fs::symlink_status(argument, error);
+  if (fs::exists(status) || (error && error != std::errc::no_such_file_or_directory)) return argument;
   const bool plain_name = argument.find('/') == std::string::npos;
   if (plain_name) {
     fs::path shipped = fs::path(scenes_directory()) / argument;
     if (shipped.extension() != ".json") shipped += ".json";
-    if (fs::exists(shipped)) return shipped.string();
+    if (fs::exists(shipped, error)) return shipped.string();
   }
   return argument;  // the loader says "no such file"
 }
@@ -107,6 +118,66 @@ Method method_for(const std::string& path, const SceneDescription& scene, const 
     throw InputError(path + ": --integrator: " + name + " is symplectic and needs a mechanical scene (bodies); " +
                      "use euler, midpoint, rk4, rk4-doubling or rk45");
   return *method;
+}
+
+std::string safe_file_name(const std::string& name) {
+  std::string safe;
+  for (char c : name) {
+    const bool keep = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '.' ||
+                      c == '-' || c == '_';
+    safe += keep ? c : '_';
+  }
+  while (!safe.empty() && (safe.front() == '.' || safe.front() == '_')) safe.erase(safe.begin());
+  if (safe.size() > 64) safe.resize(64);
+  while (!safe.empty() && (safe.back() == '.' || safe.back() == '_')) safe.pop_back();
+  return safe.empty() ? "scene" : safe;
+}
+
+std::string one_line(const std::string& text, size_t limit) {
+  std::string line = text;
+  for (char& c : line)
+    if (c == '\n' || c == '\r') c = ' ';
+  if (line.size() <= limit) return line;
+  auto boundary = [&](size_t i) {  // not inside a UTF-8 sequence
+    while (i > 0 && i < line.size() && (static_cast<unsigned char>(line[i]) & 0xC0) == 0x80) --i;
+    return i;
+  };
+  return line.substr(0, boundary(limit / 2)) + "…" + line.substr(boundary(line.size() - limit / 2 + 3));
+}
+
+long checked_step_count(double duration, double dt, const std::string& what) {
+  const double steps = duration / dt;
+  if (!(steps <= kMaxSteps))
+    throw InputError(what + ": " + fmt::format("{:g}", steps) + " steps of " + fmt::format("{:g}", dt) +
+                     " is more than a run can take (at most " + fmt::format("{:g}", kMaxSteps) + ")");
+  return fixed_step_count(duration, dt);
+}
+
+PartialFolder::PartialFolder(const std::string& final_path) : final_(final_path) {
+  const fs::path target(final_path);
+  const fs::path parent = target.parent_path().empty() ? fs::path(".") : target.parent_path();
+  std::error_code error;
+  fs::create_directories(parent, error);
+  if (error) throw InputError(final_path + ": cannot be created (" + error.message() + ")");
+  std::string pattern = (parent / ("." + target.filename().string() + ".partial-XXXXXX")).string();
+  if (!::mkdtemp(pattern.data()))
+    throw InputError(final_path + ": cannot be created (" + std::string(std::strerror(errno)) + ")");
+  ::chmod(pattern.c_str(), 0755);  // as a folder made by create_directories would be (mkdtemp makes 0700)
+  partial_ = pattern;
+}
+
+PartialFolder::~PartialFolder() {
+  if (done_) return;
+  std::error_code ignored;
+  fs::remove_all(partial_, ignored);
+}
+
+void PartialFolder::complete() {
+  if (fs::exists(final_)) throw std::runtime_error(final_ + ": appeared while the report was written; it is in " + partial_);
+  std::error_code error;
+  fs::rename(partial_, final_, error);
+  if (error) throw std::runtime_error(final_ + ": the finished report could not be moved there (" + error.message() + ")");
+  done_ = true;
 }
 
 void check_can_write(const std::string& path, bool overwrite) {

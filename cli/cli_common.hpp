@@ -60,6 +60,39 @@ Method method_for(const std::string& path, const SceneDescription& scene, const 
 // "euler, midpoint, ..., student:euler, ..." for messages.
 std::string known_integrators();
 
+// A name (a scene's, say) made safe as one file name: letters, digits, '.', '-' and '_' are
+// kept, anything else becomes '_', no leading dot, at most 64 characters; "scene" if nothing is
+// left. A scene named "../victim" writes "victim", inside the folder it was given.
+std::string safe_file_name(const std::string& name);
+
+// An error message as one line of at most `limit` bytes (shortened in the middle): messages
+// echo what the user gave, which may be long or have line breaks.
+std::string one_line(const std::string& text, size_t limit = 400);
+
+// The most fixed steps a run may take: beyond this a step count is not a number to count in
+// (and t0 + i·dt is no longer exact in double precision).
+constexpr double kMaxSteps = 1e15;
+// The number of fixed steps of dt that `duration` takes; InputError naming `what` when it is
+// not a number of steps one could count.
+long checked_step_count(double duration, double dt, const std::string& what);
+
+// A folder written under a temporary name and renamed to `final_path` only when complete()
+// is called; otherwise the destructor removes it and everything in it. Throws InputError
+// when it cannot be made.
+class PartialFolder {
+public:
+  explicit PartialFolder(const std::string& final_path);
+  ~PartialFolder();
+  PartialFolder(const PartialFolder&) = delete;
+  PartialFolder& operator=(const PartialFolder&) = delete;
+  const std::string& path() const { return partial_; }
+  void complete();  // throws std::runtime_error when the rename fails (e.g. the name was taken meanwhile)
+
+private:
+  std::string final_, partial_;
+  bool done_ = false;
+};
+
 // Refuses to overwrite an existing file unless asked to (nothing the user wrote is
 // lost without being asked).
 void check_can_write(const std::string& path, bool overwrite);

@@ -11,6 +11,7 @@
 #include "cli_common.hpp"
 #include "motus/compare/comparison.hpp"
 #include "draw_module.hpp"
+#include "interrupt.hpp"
 #include "motus/simulation.hpp"
 #include "progress_bar.hpp"
 #include "motus/compare/report.hpp"
@@ -26,8 +27,9 @@ std::string new_run_folder(const std::string& scene_name) {
   const std::time_t now = std::time(nullptr);
   char stamp[32];
   std::strftime(stamp, sizeof stamp, "%Y%m%d-%H%M%S", std::localtime(&now));
-  std::string path = fmt::format("runs/compare-{}-{}", scene_name, stamp);
-  for (int i = 2; fs::exists(path); ++i) path = fmt::format("runs/compare-{}-{}-{}", scene_name, stamp, i);
+  const std::string name = safe_file_name(scene_name);  // a name is not a path
+  std::string path = fmt::format("runs/compare-{}-{}", name, stamp);
+  for (int i = 2; fs::exists(path); ++i) path = fmt::format("runs/compare-{}-{}-{}", name, stamp, i);
   return path;
 }
 
@@ -110,6 +112,7 @@ int compare_command(const CompareOptions& o) {
   if (!(options.dt > 0) || !std::isfinite(options.dt)) throw InputError("--dt: must be a finite number > 0");
   if (!(options.duration > 0) || !std::isfinite(options.duration)) throw InputError("--duration: must be a finite number > 0");
   options.samples = o.samples;
+  checked_step_count(options.duration, options.dt, o.duration ? "--duration" : o.dt ? "--dt" : "dt/duration");
   int panel_width = 0, panel_height = 0;
   if (o.render) {
     char x = 0;
@@ -128,12 +131,16 @@ int compare_command(const CompareOptions& o) {
 
   const std::string folder = o.out.empty() ? new_run_folder(scene.name) : o.out;
   if (fs::exists(folder)) throw InputError(folder + ": already exists; compare never overwrites a report (choose another --out)");
+  // The report is written into a folder beside the final one and renamed when it is whole:
+  // a run that fails or is interrupted leaves no folder that looks complete. Made now, so a
+  // folder that cannot be made is refused before any engine runs.
+  PartialFolder partial(folder);
+  const std::string work = partial.path();
 
   ProgressBar progress(0, 1, "compare " + scene.name, 1);
   const auto runs = compare::run_comparison(scene, options, [&](double f) { progress.update(f); });
   progress.finish();
 
-  fs::create_directories(folder);
   compare::ReportContext context;
   context.scene_name = scene.name;
   context.scene_file = path;
@@ -150,7 +157,7 @@ int compare_command(const CompareOptions& o) {
     job.width = panel_width;
     job.height = panel_height;
     job.fps = 1 / (static_cast<double>(options.frame_every) * options.dt);
-    job.folder = folder;
+    job.folder = work;
     for (const auto& run : runs) {
       draw::Panel panel{run.engine, run.version, {}, run.unsupported};
       for (size_t k = 0; k < run.frames.size(); ++k) {
@@ -178,7 +185,9 @@ int compare_command(const CompareOptions& o) {
       picture_warning = "pictures skipped: " + error;
     }
   }
-  const std::string warning = compare::write_report(folder, context, runs);
+  const std::string warning = compare::write_report(work, context, runs);
+  stop_if_interrupted();  // (a plot that died of the same Ctrl-C is no reason to finish the report)
+  partial.complete();
   nlohmann::json summary = compare::summary_json(context, runs);
   summary["report"] = folder + "/index.html";
 

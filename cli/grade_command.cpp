@@ -121,7 +121,7 @@ int grade_one(const GradeCommandOptions& o, const std::string& folder) {
 
 int grade_batch(const GradeCommandOptions& o, const std::string& folder) {
   if (!fs::is_directory(o.batch)) throw InputError(o.batch + ": --batch: no such folder");
-  const std::string out = o.out.empty() ? new_folder("grade-" + fs::path(folder).filename().string()) : o.out;
+  const std::string out = o.out.empty() ? new_folder("grade-" + safe_file_name(fs::path(folder).filename().string())) : o.out;
   if (fs::exists(out)) throw InputError(out + ": --out: already exists; grading never writes over earlier results");
   const grade::Assignment assignment = load(o, folder);
   check_limits(o);

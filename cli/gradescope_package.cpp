@@ -1,20 +1,13 @@
 #include "gradescope_package.hpp"
 
-#include <fcntl.h>
 #include <fmt/format.h>
-#include <spawn.h>
-#include <sys/stat.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
-#include <cerrno>
-#include <cstring>
 #include <filesystem>
 #include <fstream>
 
 #include "cli_common.hpp"
-
-extern char** environ;
+#include "motus/process/run_program.hpp"
 
 namespace fs = std::filesystem;
 
@@ -36,41 +29,12 @@ void write_script(const fs::path& path, const std::string& text) {
                             fs::perms::others_exec);
 }
 
-std::string find_on_path(const std::string& program) {
-  const char* path = std::getenv("PATH");
-  std::string dirs = path ? path : "/usr/bin:/bin";
-  size_t start = 0;
-  while (start <= dirs.size()) {
-    const size_t end = dirs.find(':', start);
-    const std::string dir = dirs.substr(start, end == std::string::npos ? std::string::npos : end - start);
-    const fs::path candidate = fs::path(dir.empty() ? "." : dir) / program;
-    if (::access(candidate.c_str(), X_OK) == 0) return candidate.string();
-    if (end == std::string::npos) break;
-    start = end + 1;
-  }
-  return "";
-}
-
 // zip -q -r -X ZIP . in `folder`, started directly (no shell).
 void zip_folder(const fs::path& folder, const fs::path& zip) {
-  const std::string program = find_on_path("zip");
+  const std::string program = process::find_program("zip");
   if (program.empty()) throw InputError("--package: the program zip was not found on PATH (apt-get install zip)");
-  std::vector<std::string> args = {program, "-q", "-r", "-X", zip.string(), "."};
-  std::vector<char*> argv;
-  for (auto& a : args) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addchdir_np(&actions, folder.c_str());
-  posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
-  pid_t pid = 0;
-  const int spawned = posix_spawn(&pid, program.c_str(), &actions, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  if (spawned != 0) throw std::runtime_error("zip cannot be started: " + std::string(std::strerror(spawned)));
-  int status = 0;
-  while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
-  }
-  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) throw std::runtime_error("zip failed on " + zip.string());
+  if (!process::run_program({program, "-q", "-r", "-X", zip.string(), "."}, folder.string()).ok())
+    throw std::runtime_error("zip failed on " + zip.string());
 }
 
 std::string quoted(const std::string& s) {  // for a shell script's double quotes

@@ -5,6 +5,10 @@
 //   motus render SCENE --out DIR ...  PNG frames (and a video) of a scene
 #include <fmt/format.h>
 
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+
 #include <CLI/CLI.hpp>
 
 #include "bench_precision_command.hpp"
@@ -14,6 +18,7 @@
 #include "render_command.hpp"
 #include "motus/scene_error.hpp"
 #include "grade_command.hpp"
+#include "interrupt.hpp"
 #include "run_command.hpp"
 #include "serve_command.hpp"
 #include "motus/scene_file/scene_file.hpp"
@@ -54,18 +59,30 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    fmt::print(stderr, "motus: error: {} (run `motus --help` or `motus SUBCOMMAND --help`)\n", e.what());
+    fmt::print(stderr, "motus: error: {} (run `motus --help` or `motus SUBCOMMAND --help`)\n", one_line(e.what()));
     return kExitBadInput;
   }
 
+  catch_interrupts();
+  int status = 0;
   try {
-    if (*run) return run_command(run_options);
-    if (*compare) return compare_command(compare_options);
-    if (*list) return list_command(list_plugins);
-    if (*precision) return bench_precision_command(precision_options);
-    if (*render) return render_command(render_options);
-    if (*grade) return grade_command(grade_options);
-    if (*serve) return serve_command(serve_options);
+    if (*run) status = run_command(run_options);
+    else if (*compare) status = compare_command(compare_options);
+    else if (*list) status = list_command(list_plugins);
+    else if (*precision) status = bench_precision_command(precision_options);
+    else if (*render) status = render_command(render_options);
+    else if (*grade) status = grade_command(grade_options);
+    else if (*serve) status = serve_command(serve_options);
+    // Whatever went to standard output must have got there (a full disk is a failure, not 0).
+    if (std::fflush(stdout) != 0 || std::ferror(stdout)) {
+      fmt::print(stderr, "motus: the run failed: standard output could not be written ({})\n", std::strerror(errno));
+      return kExitFailure;
+    }
+    stop_if_interrupted();
+    return status;
+  } catch (const Interrupted&) {
+    fmt::print(stderr, "motus: interrupted; nothing half-written was left behind\n");
+    return kExitInterrupted;
   } catch (const motus::SceneFileError& e) {
     fmt::print(stderr, "motus: error: {}\n", e.what());
     return kExitBadInput;
@@ -74,20 +91,23 @@ int main(int argc, char** argv) {
     const std::string scene = resolve_scene_path(run->parsed()       ? run_options.scene
                                                  : compare->parsed() ? compare_options.scene
                                                                      : precision_options.scene);
-    fmt::print(stderr, "motus: error: {}: {}{}\n", scene, e.field().empty() ? "" : e.field() + ": ", e.what());
+    fmt::print(stderr, "motus: error: {}\n", one_line(scene + ": " + (e.field().empty() ? "" : e.field() + ": ") + e.what()));
     return kExitBadInput;
   } catch (const InputError& e) {
-    fmt::print(stderr, "motus: error: {}\n", e.what());
+    fmt::print(stderr, "motus: error: {}\n", one_line(e.what()));
     return kExitBadInput;
   } catch (const motus::ExternalError& e) {
     // A plug-in's function failed (it threw): the plug-in is bad input, not motus.
     std::string files;
     for (const auto& p : plugins().plugins()) files += (files.empty() ? "" : ", ") + p.file;
-    fmt::print(stderr, "motus: error: {}: {}\n", files.empty() ? "plug-in" : files, e.what());
+    fmt::print(stderr, "motus: error: {}\n", one_line((files.empty() ? "plug-in" : files) + ": " + e.what()));
     return kExitBadInput;
   } catch (const std::exception& e) {
-    fmt::print(stderr, "motus: the run failed: {}\n", e.what());
+    if (interrupted()) {  // a program motus waited for died of the same Ctrl-C
+      fmt::print(stderr, "motus: interrupted; nothing half-written was left behind\n");
+      return kExitInterrupted;
+    }
+    fmt::print(stderr, "motus: the run failed: {}\n", one_line(e.what()));
     return kExitFailure;
   }
-  return 0;
 }

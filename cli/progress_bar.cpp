@@ -1,5 +1,7 @@
 #include "progress_bar.hpp"
 
+#include "interrupt.hpp"
+
 #include <unistd.h>
 
 #include <algorithm>
@@ -14,7 +16,9 @@ ProgressBar::ProgressBar(double start, double end, std::string label, unsigned c
 ProgressBar::~ProgressBar() { finish(); }
 
 void ProgressBar::update(double now) {
-  if (!enabled_ || (++calls_ & check_mask_) != 0) return;
+  if ((++calls_ & check_mask_) != 0) return;
+  cli::stop_if_interrupted();  // every long loop reports its progress here: a safe point to stop at
+  if (!enabled_) return;
   const auto clock = std::chrono::steady_clock::now();
   const double elapsed = std::chrono::duration<double>(clock - began_).count();
   if (elapsed < 2.0) return;

@@ -7,10 +7,12 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <regex>
 
 #include "cli_common.hpp"
 #include "draw_module.hpp"
+#include "motus/process/run_program.hpp"
 #include "motus/scene_error.hpp"
 #include "motus/simulation.hpp"
 #include "progress_bar.hpp"
@@ -30,19 +32,38 @@ std::pair<int, int> parse_size(const std::string& text) {
   return {w, h};
 }
 
-// The output folder: created, or (with --overwrite) emptied of earlier frames and videos.
+// What a render wrote into its folder, one file name a line: all that --overwrite removes
+// (never a file of the user's that happens to be there).
+constexpr const char* kManifest = ".motus-render";
+
+// The output folder: created, or (with --overwrite) cleared of what an earlier render wrote.
 void prepare_folder(const std::string& out, bool overwrite) {
   if (fs::exists(out)) {
     if (!fs::is_directory(out)) throw InputError(out + ": exists and is not a folder; choose another --out");
     if (!overwrite) throw InputError(out + ": already exists; choose another --out or pass --overwrite");
-    static const std::regex ours(R"(frame_\d+\.png|.+\.(mp4|gif))");
-    for (const auto& entry : fs::directory_iterator(out))
-      if (entry.is_regular_file() && std::regex_match(entry.path().filename().string(), ours)) fs::remove(entry.path());
+    std::ifstream manifest(fs::path(out) / kManifest);
+    std::string name;
+    while (std::getline(manifest, name)) {
+      if (name.empty() || name.find('/') != std::string::npos || name[0] == '.') continue;  // only our own plain names
+      const fs::path file = fs::path(out) / name;
+      std::error_code ignored;
+      if (fs::is_regular_file(fs::symlink_status(file, ignored))) fs::remove(file, ignored);
+    }
+    std::error_code ignored;
+    fs::remove(fs::path(out) / kManifest, ignored);
     return;
   }
   std::error_code error;
   fs::create_directories(out, error);
   if (error) throw InputError(out + ": cannot be created (" + error.message() + ")");
+}
+
+void write_manifest(const std::string& out, long frames, const std::string& video) {
+  std::ofstream manifest(fs::path(out) / kManifest);
+  for (long k = 0; k < frames; ++k) manifest << fmt::format("frame_{:05d}.png\n", k);
+  if (!video.empty()) manifest << video << '\n';
+  manifest.flush();
+  if (!manifest) throw std::runtime_error((fs::path(out) / kManifest).string() + ": cannot be written");
 }
 
 }  // namespace
@@ -82,7 +103,7 @@ int render_command(const RenderOptions& o) {
   const long frames = static_cast<long>(std::floor(duration * o.fps + 1e-9)) + 1;
   if (frames > 100000) throw InputError(fmt::format("--duration/--fps: {} frames is too many (at most 100,000)", frames));
   const draw::Api& drawing = draw_module();
-  if (!o.video.empty() && drawing.find_program("ffmpeg").empty())
+  if (!o.video.empty() && process::find_program("ffmpeg").empty())
     throw InputError("ffmpeg not found on PATH: --video needs it (install the Debian package ffmpeg)");
   // A canvas and a font, before any folder is made.
   if (const std::string error = drawing.check(width, height, o.supersample); !error.empty()) throw InputError(error);
@@ -138,13 +159,15 @@ int render_command(const RenderOptions& o) {
     if (set.rfind("integrator=", 0) != 0) job.note += fmt::format("  {}", set);
   job.folder = o.out;
   job.frame_done = [&](long k) { progress.update(static_cast<double>(frames + k)); };
+  const std::string video_name = o.video.empty() ? "" : safe_file_name(scene.name) + "." + o.video;  // a name is not a path
+  write_manifest(o.out, frames, video_name);  // first: what is written is listed even if the run stops
   if (const std::string error = drawing.render_frames(job); !error.empty()) throw InputError(error);
   progress.finish();
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count();
   fmt::print("{} frames of {}x{} at {:g} fps ({:g} s of {}) in {}/ ({:.1f} s)\n", frames, width, height, o.fps,
              duration, scene.name, o.out, wall);
   if (!o.video.empty()) {
-    const std::string file = (fs::path(o.out) / (scene.name + "." + o.video)).string();
+    const std::string file = (fs::path(o.out) / video_name).string();
     if (const std::string error =
             drawing.encode_video((fs::path(o.out) / "frame_%05d.png").string(), o.fps, file, o.video);
         !error.empty())

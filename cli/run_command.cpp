@@ -26,7 +26,8 @@ nlohmann::json energy_json(const std::optional<Energy>& e) {
 // Writes the trajectory CSV: a header, then one row per output time.
 class TrajectoryWriter {
 public:
-  TrajectoryWriter(const std::string& path, const Simulation& sim, double interval) : out_(path), interval_(interval) {
+  TrajectoryWriter(const std::string& path, const Simulation& sim, double interval)
+      : path_(path), out_(path), interval_(interval) {
     if (!out_) throw InputError(path + ": cannot be written");
     out_ << "t";
     for (const auto& n : sim.state_names()) out_ << ',' << n;
@@ -44,9 +45,12 @@ public:
   void after_step(const Simulation& sim) {
     if (sim.time() + 1e-9 * std::max(1.0, std::abs(sim.time())) >= next_) row(sim);
   }
-  // The end of the run gets a row even when it is not an output time.
+  // The end of the run gets a row even when it is not an output time. A write that failed
+  // (a full disk) is an error naming the file, not a run that went well.
   void finish(const Simulation& sim) {
     if (sim.time() > last_) row(sim);
+    out_.flush();
+    if (!out_) throw std::runtime_error(path_ + ": could not be written (disk full?)");
   }
 
 private:
@@ -70,6 +74,7 @@ private:
     }
   }
 
+  std::string path_;
   std::ofstream out_;
   double interval_;
   double next_ = 0;
@@ -123,6 +128,7 @@ int run_command(const RunOptions& o) {
   if (o.steps && *o.steps <= 0) throw InputError("--steps: must be > 0");
   const double duration = o.steps ? static_cast<double>(*o.steps) * dt : o.duration.value_or(scene.duration);
   if (!(duration > 0) || !std::isfinite(duration)) throw InputError("--duration: must be a finite number > 0");
+  if (!method.adaptive()) checked_step_count(duration, dt, o.steps ? "--steps" : o.duration ? "--duration" : o.dt ? "--dt" : "dt/duration");
   const Tolerance tolerance{o.atol.value_or(scene.atol), o.rtol.value_or(scene.rtol)};
   if (!(tolerance.atol > 0) || !(tolerance.rtol > 0)) throw InputError("--atol/--rtol: must be > 0");
 

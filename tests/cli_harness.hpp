@@ -56,6 +56,7 @@ public:
     fs::remove_all(path_, ignored);
   }
   fs::path operator/(const std::string& file) const { return path_ / file; }
+  const fs::path& path() const { return path_; }
 
 private:
   fs::path path_;

@@ -18,7 +18,7 @@
 
 namespace motus::draw {
 
-constexpr int kApiVersion = 1;
+constexpr int kApiVersion = 2;
 // The function the module exports (extern "C", so dlsym finds it by this name).
 constexpr const char* kEntryPoint = "motus_draw_api";
 
@@ -69,8 +69,6 @@ struct Api {
   int version = kApiVersion;
   // Whether a canvas of this size (and the overlay's font) can be had, before any work is done.
   std::string (*check)(int width, int height, int supersample);
-  // The full path of `program` on $PATH, or "".
-  std::string (*find_program)(const std::string& program);
   std::string (*render_frames)(const RenderJob& job);
   // frame_pattern is printf-style ("DIR/frame_%05d.png"); format is "mp4" or "gif".
   std::string (*encode_video)(const std::string& frame_pattern, double fps, const std::string& out,

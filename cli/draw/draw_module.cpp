@@ -8,6 +8,7 @@
 #include <filesystem>
 
 #include "draw_api.hpp"
+#include "motus/process/run_program.hpp"
 #include "motus/render/canvas.hpp"
 #include "motus/render/compose.hpp"
 #include "motus/render/draw.hpp"
@@ -44,8 +45,6 @@ std::string check(int width, int height, int supersample) {
     render::Font::default_font();
   });
 }
-
-std::string find_program(const std::string& program) { return render::find_program(program); }
 
 std::string render_frames(const RenderJob& job) {
   return guarded([&] {
@@ -131,7 +130,7 @@ std::string draw_comparison(const ComparisonJob& job, ComparisonPictures& pictur
     pictures.frames = static_cast<long>(frames);
     pictures.contact_sheet = "contact_sheet.png";
     render::write_png(job.folder + "/" + pictures.contact_sheet, render::contact_sheet(sheet, 1, sheet_labels));
-    if (render::find_program("ffmpeg").empty()) {
+    if (process::find_program("ffmpeg").empty()) {
       pictures.warning = "video skipped: ffmpeg not found on PATH (install the Debian package ffmpeg)";
     } else {
       pictures.video = "comparison.mp4";
@@ -145,8 +144,7 @@ std::string draw_comparison(const ComparisonJob& job, ComparisonPictures& pictur
 }  // namespace motus::draw
 
 extern "C" __attribute__((visibility("default"))) const motus::draw::Api* motus_draw_api() {
-  static const motus::draw::Api api{motus::draw::kApiVersion,       motus::draw::check,
-                                    motus::draw::find_program,      motus::draw::render_frames,
-                                    motus::draw::encode_video,      motus::draw::draw_comparison};
+  static const motus::draw::Api api{motus::draw::kApiVersion, motus::draw::check, motus::draw::render_frames,
+                                    motus::draw::encode_video, motus::draw::draw_comparison};
   return &api;
 }

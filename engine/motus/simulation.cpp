@@ -42,6 +42,11 @@ constexpr bool is_symplectic = std::is_same_v<T, SymplecticEuler> || std::is_sam
 
 long fixed_step_count(double duration, double dt) {
   const double steps = duration / dt;
+  // Beyond 2^62 a count is not a long, and long before that t0 + i·dt is not exact: refuse
+  // rather than convert an oversized double (undefined behaviour) into a wrong count.
+  if (!(steps >= 0) || !(steps < 4.6e18))
+    throw std::overflow_error("a duration of " + std::to_string(duration) + " at dt = " + std::to_string(dt) +
+                              " is more steps than can be counted");
   const double nearest = std::round(steps);
   if (std::abs(nearest - steps) <= 1e-9 * std::max(1.0, steps)) return static_cast<long>(nearest);
   return static_cast<long>(std::ceil(steps));

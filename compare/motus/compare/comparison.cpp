@@ -75,7 +75,7 @@ std::vector<EngineRun> run_comparison(const SceneDescription& scene, const Compa
   std::stable_partition(order.begin(), order.end(), [](const std::string& e) { return e == "motus"; });
   std::vector<Snapshot> reference;
   std::vector<EngineRun> runs;
-  const double total_steps = static_cast<double>(steps * static_cast<long>(order.size()));
+  const double total_steps = static_cast<double>(steps) * static_cast<double>(order.size());  // (in double: no overflow)
   double done = 0;
   for (const auto& name : order) {
     EngineRun run;

@@ -6,6 +6,8 @@
 #include <cstdlib>
 #include <fstream>
 
+#include "motus/process/run_program.hpp"
+
 namespace motus::compare {
 namespace {
 
@@ -27,6 +29,18 @@ const EngineRun* find_motus(const std::vector<EngineRun>& runs) {
   for (const auto& r : runs)
     if (r.engine == "motus" && r.supported) return &r;
   return nullptr;
+}
+
+// A report file that could not be written whole (a full disk) is an error naming it.
+void check_written(std::ofstream& out, const std::string& path) {
+  out.flush();
+  if (!out) throw std::runtime_error(path + ": could not be written (disk full?)");
+}
+
+void write_text(const std::string& path, const std::string& text) {
+  std::ofstream out(path, std::ios::binary);
+  out << text;
+  check_written(out, path);
 }
 
 nlohmann::json number_or_null(double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); }
@@ -67,10 +81,9 @@ for name, column, label in [("energy.png", "energy_error", "(E - E0) / |E0|"),
 }  // namespace
 
 std::string python_with_matplotlib() {
-  for (const char* candidate : {"/usr/bin/python3", "python3"}) {
-    const std::string probe = std::string(candidate) + " -c 'import matplotlib' > /dev/null 2>&1";
-    if (std::system(probe.c_str()) == 0) return candidate;
-  }
+  for (const std::string& candidate : {std::string("/usr/bin/python3"), process::find_program("python3")})
+    if (!candidate.empty() && process::run_program({candidate, "-c", "import matplotlib"}, "", "/dev/null").ok())
+      return candidate;
   return "";
 }
 
@@ -138,18 +151,20 @@ std::string write_report(const std::string& folder, const ReportContext& c, cons
                            row.from_exact >= 0 ? fmt::format("{:.6e}", row.from_exact) : "");
       }
     }
+    check_written(csv, folder + "/metrics.csv");
   }
   const nlohmann::json summary = summary_json(c, runs);
-  std::ofstream(folder + "/summary.json") << summary.dump(2) << '\n';
-  std::ofstream(folder + "/plot.py") << kPlotScript;
+  write_text(folder + "/summary.json", summary.dump(2) + "\n");
+  write_text(folder + "/plot.py", kPlotScript);
 
   std::string warning;
   const std::string python = python_with_matplotlib();
   if (python.empty()) {
     warning = "plots skipped: no python3 with matplotlib found (apt-get install python3-matplotlib)";
   } else {
-    const std::string command = "cd '" + folder + "' && " + python + " plot.py '" + c.scene_name + "' > plot.log 2>&1";
-    if (std::system(command.c_str()) != 0) warning = "plots failed: see " + folder + "/plot.log";
+    // The scene's name is one argument of the script, never part of a command line.
+    if (!process::run_program({python, "plot.py", c.scene_name}, folder, folder + "/plot.log").ok())
+      warning = "plots failed: see " + folder + "/plot.log";
   }
 
   // index.html
@@ -213,6 +228,7 @@ std::string write_report(const std::string& folder, const ReportContext& c, cons
   html << "<p>Data: <a href=\"metrics.csv\">metrics.csv</a> (every sample), <a href=\"summary.json\">summary.json</a>. "
           "Fair settings, and how the peers integrate and collide: <code>docs/peers.md</code> in the motus sources.</p>\n"
           "</body></html>\n";
+  check_written(html, folder + "/index.html");
   return warning;
 }
 

@@ -138,6 +138,9 @@ void BallCollisions<D>::build_grid() {
   const long slow = static_cast<long>(balls_.size() - fast_.size());
   if (slow == 0) grid_low_ = grid_high_ = Point::Zero();
   const Point low = grid_low_, high = grid_high_;
+  // A position at infinity (or NaN) has no cell: without this the sizing below never ends.
+  if (!low.allFinite() || !high.allFinite() || !std::isfinite(cell_size_))
+    throw std::runtime_error("a body's position is no longer finite: the collision grid cannot place it");
   // Dense cells over the balls' extent, but never many more cells than balls (a sparse
   // scene gets bigger cells instead).
   const double budget = 4.0 * static_cast<double>(slow) + 64;
@@ -460,10 +463,22 @@ double BallCollisions<D>::segment_impact(const Segment& s, const Point& p, const
 template <int D>
 typename BallCollisions<D>::Point BallCollisions<D>::wall_normal(int i, int wall) {
   if (wall < static_cast<int>(planes_.size())) return planes_[static_cast<size_t>(wall)].normal;
-  Point normal = Point::Zero();
-  segment_impact(segments_[static_cast<size_t>(wall) - planes_.size()], position(i), velocity(i), radius_[i], 0,
-                 &normal);
-  return normal;
+  // A segment, at the moment of contact: the normal points from the nearest point of the
+  // segment — on a flat side or a round end — to the ball's centre. (Found from the geometry,
+  // not by searching for an impact again: at the contact itself rounding can put the ball a
+  // hair short of the end cap, and the search would then fall back to the flat side.)
+  const Segment& s = segments_[static_cast<size_t>(wall) - planes_.size()];
+  const Point along = s.b - s.a;
+  const double reach = std::clamp(along.dot(position(i) - s.a) / along.squaredNorm(), 0.0, 1.0);
+  const Point away = position(i) - (s.a + reach * along);
+  const double distance = away.norm();
+  if (distance > 0) return away / distance;
+  Point side = Point::Zero();  // on the segment itself: the side it comes from
+  if constexpr (D == 2) {
+    side = Point(-along[1], along[0]).normalized();
+    if (side.dot(velocity(i)) > 0) side = -side;
+  }
+  return side;
 }
 
 template <int D>

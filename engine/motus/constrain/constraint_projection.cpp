@@ -310,13 +310,15 @@ void ConstraintProjection::project_ball_pairs(VectorRef x) const {
     const double touching = radius_[i] + radius_[k];
     const double distance2 = delta.squaredNorm();
     if (distance2 >= touching * touching) continue;
-    double distance = std::sqrt(distance2);
-    if (distance == 0) {  // coincident centres: any direction will do
+    const double distance = std::sqrt(distance2);
+    // Move along delta by depth·delta, so that they end touching. Coincident centres have no
+    // direction of their own: any will do, and then the whole contact distance is the depth.
+    double depth = (touching - distance) / distance;
+    if (distance == 0) {
       delta = Point::Zero(d_);
       delta[0] = 1;
-      distance = 1;
+      depth = touching;
     }
-    const double depth = (touching - distance) / distance;
     xi -= (depth * wi / w) * delta;
     xk += (depth * wk / w) * delta;
   }

@@ -1,19 +1,11 @@
 #include "motus/render/video.hpp"
 
-#include <spawn.h>
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include <cstdio>
-#include <cstdlib>
-#include <filesystem>
-#include <sstream>
 #include <stdexcept>
 #include <vector>
 
+#include "motus/process/run_program.hpp"
 #include "motus/render/image.hpp"
-
-extern char** environ;
 
 namespace motus::render {
 
@@ -23,23 +15,8 @@ std::optional<VideoFormat> video_format_from_name(const std::string& name) {
   return std::nullopt;
 }
 
-std::string find_program(const std::string& program) {
-  const char* path = std::getenv("PATH");
-  if (!path) return "";
-  std::stringstream dirs(path);
-  std::string dir;
-  while (std::getline(dirs, dir, ':')) {
-    if (dir.empty()) dir.assign(1, '.');  // (not = ".": GCC 12 warns falsely, PR105651)
-    const std::filesystem::path candidate = std::filesystem::path(dir) / program;
-    std::error_code error;
-    if (std::filesystem::is_regular_file(candidate, error) && ::access(candidate.c_str(), X_OK) == 0)
-      return candidate.string();
-  }
-  return "";
-}
-
 void encode_video(const std::string& frame_pattern, double fps, const std::string& out_path, VideoFormat format) {
-  const std::string ffmpeg = find_program("ffmpeg");
+  const std::string ffmpeg = process::find_program("ffmpeg");
   if (ffmpeg.empty())
     throw RenderError("ffmpeg not found on PATH: --video needs it (install the Debian package ffmpeg)");
   char rate[32];
@@ -53,17 +30,12 @@ void encode_video(const std::string& frame_pattern, double fps, const std::strin
                              "-loop", "0"});
   }
   args.push_back(out_path);
-  std::vector<char*> argv;
-  for (auto& a : args) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  pid_t pid = 0;
-  if (const int error = posix_spawn(&pid, ffmpeg.c_str(), nullptr, nullptr, argv.data(), environ); error != 0)
-    throw RenderError("ffmpeg (" + ffmpeg + ") could not be started");
-  int status = 0;
-  if (waitpid(pid, &status, 0) < 0) throw std::runtime_error("waiting for ffmpeg failed");
-  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
-    throw std::runtime_error("ffmpeg failed to write " + out_path + " (exit status " +
-                             std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : -1) + ")");
+  const process::Outcome ffmpeg_run = process::run_program(args);
+  if (!ffmpeg_run.started) throw RenderError("ffmpeg (" + ffmpeg + ") could not be started");
+  if (!ffmpeg_run.ok())
+    throw std::runtime_error("ffmpeg failed to write " + out_path + " (" +
+                             (ffmpeg_run.signal ? "signal " + std::to_string(ffmpeg_run.signal)
+                                                : "exit status " + std::to_string(ffmpeg_run.status)) + ")");
 }
 
 }  // namespace motus::render

@@ -11,9 +11,6 @@ enum class VideoFormat { mp4, gif };
 // "mp4" / "gif" → the format; nullopt for anything else.
 std::optional<VideoFormat> video_format_from_name(const std::string& name);
 
-// The full path of `program` found on $PATH, or "" when there is none.
-std::string find_program(const std::string& program);
-
 // Runs ffmpeg on frames named by a printf pattern ("out/frame_%05d.png", numbered from 0)
 // at `fps` frames per second into out_path (replaced if it exists).
 // Throws RenderError when ffmpeg is not on $PATH (install the Debian package ffmpeg), and

@@ -4,7 +4,9 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <set>
 #include <sstream>
+#include <algorithm>
 
 #include "motus/scene_file/json_fields.hpp"
 #include "motus/ball_lattice.hpp"
@@ -86,10 +88,21 @@ double restitution(JsonFields& f, const std::string& key) {
   return e;
 }
 
+// Generated bodies are checked like written ones: a spacing or size that overflows gives
+// positions at infinity, which no step could use.
+void check_generated(JsonFields& f, const MechanicalDescription& m, size_t first, const std::string& key) {
+  for (size_t i = first; i < m.bodies.size(); ++i)
+    for (size_t k = 0; k < m.bodies[i].position.size(); ++k)
+      if (!std::isfinite(m.bodies[i].position[k]) || !std::isfinite(m.bodies[i].velocity[k]))
+        f.fail(key, "the generated body " + std::to_string(i) + " is not at a finite position (" + key +
+                        " is too large for double precision)");
+}
+
 void read_lattice(JsonFields f, MechanicalDescription& m) {
   BallLattice lattice;
   lattice.count = f.integer("count");
-  if (lattice.count < 1 || lattice.count > 10'000'000) f.fail("count", "must be from 1 to 10,000,000");
+  if (lattice.count < 1 || lattice.count > kMaxBodies)
+    f.fail("count", "must be from 1 to " + std::to_string(kMaxBodies) + " (the limit of a scene's bodies)");
   lattice.spacing = f.positive("spacing", lattice.spacing);
   lattice.radius = f.positive("radius", lattice.radius);
   if (2 * lattice.radius > lattice.spacing) f.fail("radius", "balls of this radius overlap at this spacing");
@@ -102,7 +115,9 @@ void read_lattice(JsonFields f, MechanicalDescription& m) {
   lattice.origin = padded(f.numbers("origin", m.dimensions, std::vector<double>(static_cast<size_t>(m.dimensions), 0.0)));
   lattice.container = f.boolean("container", true);
   f.reject_unknown();
+  const size_t first = m.bodies.size();
   add_ball_lattice(m, lattice);
+  check_generated(f, m, first, "spacing");
 }
 
 int small_count(JsonFields& f, const std::string& key, long fallback, long max) {
@@ -115,6 +130,9 @@ void read_cloth(JsonFields f, MechanicalDescription& m) {
   ClothGenerator cloth;
   cloth.rows = small_count(f, "rows", cloth.rows, 1000);
   cloth.columns = small_count(f, "columns", cloth.columns, 1000);
+  if (static_cast<long>(cloth.rows) * cloth.columns > kMaxClothParticles)
+    f.fail("columns", std::to_string(cloth.rows) + " x " + std::to_string(cloth.columns) + " particles is more than " +
+                          std::to_string(kMaxClothParticles) + " (500 x 500), the limit of a cloth");
   cloth.spacing = f.positive("spacing", cloth.spacing);
   cloth.mass = f.positive("mass", cloth.mass);
   cloth.origin = padded(f.numbers("origin", m.dimensions, std::vector<double>(static_cast<size_t>(m.dimensions), 0.0)));
@@ -122,7 +140,9 @@ void read_cloth(JsonFields f, MechanicalDescription& m) {
   cloth.pin = f.string("pin", cloth.pin);
   cloth.plane = f.string("plane", cloth.plane);
   f.reject_unknown();
+  const size_t first = m.bodies.size();
   add_cloth(m, cloth);  // SceneError("cloth.pin", ...) for values it cannot build
+  check_generated(f, m, first, "spacing");
 }
 
 void read_rope(JsonFields f, MechanicalDescription& m) {
@@ -137,7 +157,9 @@ void read_rope(JsonFields f, MechanicalDescription& m) {
   rope.direction = padded(f.numbers("direction", m.dimensions, along));
   rope.pin_first = f.boolean("pin_first", rope.pin_first);
   f.reject_unknown();
+  const size_t first = m.bodies.size();
   add_rope(m, rope);
+  check_generated(f, m, first, "segment_length");
 }
 
 void read_collider(JsonFields& f, int d, Colliders& colliders) {
@@ -180,6 +202,25 @@ double distance(const BodyDescription& a, const BodyDescription& b) {
   return std::sqrt(s);
 }
 
+// Unsoftened mutual gravity between two bodies at one point is infinite: refuse the scene
+// (naming both) rather than let the first step fail and blame the step size.
+void check_coincident_under_gravity(const MechanicalDescription& m) {
+  for (size_t g = 0; g < m.forces.mutual_gravity.size(); ++g) {
+    if (m.forces.mutual_gravity[g].softening > 0) continue;
+    std::vector<size_t> order(m.bodies.size());
+    for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return m.bodies[a].position < m.bodies[b].position; });
+    for (size_t k = 1; k < order.size(); ++k)
+      if (m.bodies[order[k]].position == m.bodies[order[k - 1]].position) {
+        const size_t a = std::min(order[k], order[k - 1]), b = std::max(order[k], order[k - 1]);
+        throw SceneError("forces[" + std::to_string(g) + "]",
+                         "bodies " + std::to_string(a) + " and " + std::to_string(b) +
+                             " are at the same point, where unsoftened mutual gravity is infinite; move one, or give "
+                             "the force a softening");
+      }
+  }
+}
+
 MechanicalDescription read_mechanical(JsonFields& scene) {
   MechanicalDescription m;
   const long d = scene.integer("dimensions");
@@ -200,6 +241,9 @@ MechanicalDescription read_mechanical(JsonFields& scene) {
   if (scene.has("cloth")) read_cloth(scene.object("cloth"), m);
   if (scene.has("rope")) read_rope(scene.object("rope"), m);
   if (m.bodies.empty()) scene.fail("bodies", "needs at least one body (listed, or from a generator such as \"lattice\")");
+  if (static_cast<long>(m.bodies.size()) > kMaxBodies)
+    scene.fail("bodies", std::to_string(m.bodies.size()) + " bodies is more than " + std::to_string(kMaxBodies) +
+                             ", the limit of a scene");
 
   for (auto& f : scene.objects("forces")) read_force(f, m.dimensions, m.bodies.size(), m.forces);
   for (auto& c : scene.objects("colliders")) read_collider(c, m.dimensions, m.colliders);
@@ -221,6 +265,10 @@ MechanicalDescription read_mechanical(JsonFields& scene) {
     f.reject_unknown();
     m.pins.push_back(pin);
   }
+  if (static_cast<long>(m.sticks.size()) > kMaxSticks)
+    scene.fail("sticks", std::to_string(m.sticks.size()) + " sticks is more than " + std::to_string(kMaxSticks) +
+                             ", the limit of a scene");
+  check_coincident_under_gravity(m);
   const long iterations = scene.integer("constraint_iterations", 10);
   if (iterations < 1 || iterations > 10000) scene.fail("constraint_iterations", "must be from 1 to 10000");
   m.constraint_iterations = static_cast<int>(iterations);
@@ -293,7 +341,9 @@ SceneDescription read_scene(const nlohmann::json& document, const std::string& s
 }
 
 // Where in the document a parse failed, as a field path: a SAX pass that keeps the
-// path of keys and indices and stops at the error nlohmann reports.
+// path of keys and indices and stops at the error nlohmann reports — or at a key an object
+// already has, or at nesting deeper than kMaxNesting (checked before the document is built,
+// so ten million '[' cost nothing).
 class FieldPathTracker : public nlohmann::json::json_sax_t {
 public:
   std::string path() const {
@@ -316,18 +366,25 @@ public:
   bool binary(binary_t&) override { return value(); }
   bool start_object(std::size_t) override {
     advance();
-    stack_.push_back({false, -1, ""});
-    return true;
+    stack_.push_back({false, -1, "", {}});
+    return deep_enough();
   }
   bool key(string_t& k) override {
+    if (!stack_.back().keys.insert(k).second) {
+      problem_ = "duplicate key \"" + k + "\": a key may appear once in an object (which one would count?)";
+      stack_.back().key = k;
+      return false;
+    }
     stack_.back().key = k;
     return true;
   }
+  // Why the pass stopped early ("" : it did not, or nlohmann's own error).
+  const std::string& problem() const { return problem_; }
   bool end_object() override { return end(); }
   bool start_array(std::size_t) override {
     advance();
-    stack_.push_back({true, -1, ""});
-    return true;
+    stack_.push_back({true, -1, "", {}});
+    return deep_enough();
   }
   bool end_array() override { return end(); }
   bool parse_error(std::size_t, const std::string&, const nlohmann::json::exception&) override { return false; }
@@ -337,7 +394,14 @@ private:
     bool is_array;
     long index;
     std::string key;
+    std::set<std::string> keys;  // an object's keys so far
   };
+  bool deep_enough() {
+    if (static_cast<int>(stack_.size()) <= kMaxNesting) return true;
+    problem_ = "nested more than " + std::to_string(kMaxNesting) + " arrays or objects deep";
+    return false;
+  }
+  std::string problem_;
   void advance() {
     if (!stack_.empty() && stack_.back().is_array) ++stack_.back().index;
   }
@@ -377,11 +441,45 @@ private:
 
 }  // namespace
 
+namespace {
+
+// At most `limit` bytes of `text`, shortened in its middle (and never inside a UTF-8 sequence),
+// one line: an error echoes what the user wrote, and a 50 MB string is no message.
+std::string clip(const std::string& text, size_t limit) {
+  // Bytes that are not UTF-8 (a --set value, say) are shown as '?', line breaks as spaces.
+  std::string line;
+  for (size_t i = 0; i < text.size();) {
+    const auto c = static_cast<unsigned char>(text[i]);
+    const size_t length = c < 0x80 ? 1 : (c >> 5) == 0x6 ? 2 : (c >> 4) == 0xE ? 3 : (c >> 3) == 0x1E ? 4 : 0;
+    if (length > 1 && i + length <= text.size() && valid_utf8(text.substr(i, length))) {
+      line.append(text, i, length);
+      i += length;
+    } else {
+      line += length == 1 ? (c == '\n' || c == '\r' ? ' ' : text[i]) : '?';
+      ++i;
+    }
+  }
+  if (line.size() <= limit) return line;
+  auto boundary = [&](size_t i) {
+    while (i > 0 && i < line.size() && (static_cast<unsigned char>(line[i]) & 0xC0) == 0x80) --i;
+    return i;
+  };
+  const size_t head = boundary(limit / 2), tail = boundary(line.size() - limit / 2 + 3);
+  return line.substr(0, head) + "…" + line.substr(tail);
+}
+
+}  // namespace
+
 SceneFileError::SceneFileError(const std::string& file_, const std::string& field_, const std::string& message_)
-    : std::runtime_error(file_ + ": " + (field_.empty() ? "" : field_ + ": ") + message_),
+    : std::runtime_error(clip(file_, 160) + ": " + (field_.empty() ? "" : clip(field_, 100) + ": ") + clip(message_, 240)),
       file(file_), field(field_), message(message_) {}
 
 SceneDescription parse_scene(const std::string& text, const std::string& file, const std::vector<std::string>& overrides) {
+  {
+    FieldPathTracker checker;  // duplicate keys and deep nesting, before the document is built
+    if (!nlohmann::json::sax_parse(text, &checker) && !checker.problem().empty())
+      throw SceneFileError(file, checker.path(), checker.problem());
+  }
   nlohmann::json document;
   try {
     document = nlohmann::json::parse(text);
@@ -406,14 +504,27 @@ SceneDescription parse_scene(const std::string& text, const std::string& file, c
 }
 
 SceneDescription load_scene(const std::string& file, const std::vector<std::string>& overrides) {
+  // Only a regular file of a sensible size is read: not a folder, a FIFO or a device (which may
+  // never end), and not a link that goes round in a circle.
+  std::error_code error;
+  const auto status = std::filesystem::status(file, error);
+  if (error && error != std::errc::no_such_file_or_directory)
+    throw SceneFileError(file, "", "cannot be read (" + error.message() + ")");
+  if (!std::filesystem::exists(status)) throw SceneFileError(file, "", "no such file (motus list shows the scenes)");
+  if (!std::filesystem::is_regular_file(status))
+    throw SceneFileError(file, "", std::filesystem::is_directory(status)
+                                       ? "is a folder, not a scene file"
+                                       : "is not a regular file (a FIFO or a device is not read as a scene)");
+  const auto size = std::filesystem::file_size(file, error);
+  if (!error && size > static_cast<std::uintmax_t>(kMaxSceneBytes))
+    throw SceneFileError(file, "", "is " + std::to_string(size >> 20) + " MB, more than the " +
+                                       std::to_string(kMaxSceneBytes >> 20) + " MB a scene file may have");
   std::ifstream in(file, std::ios::binary);
-  if (!in) {
-    const bool exists = std::filesystem::exists(file);
-    throw SceneFileError(file, "", exists ? "cannot be read" : "no such file (motus list shows the scenes)");
-  }
-  std::stringstream text;
-  text << in.rdbuf();
-  return parse_scene(text.str(), file, overrides);
+  if (!in) throw SceneFileError(file, "", "cannot be read");
+  std::string text(static_cast<size_t>(std::min<std::uintmax_t>(size, kMaxSceneBytes)), '\0');
+  in.read(text.data(), static_cast<std::streamsize>(text.size()));
+  text.resize(static_cast<size_t>(in.gcount()));
+  return parse_scene(text, file, overrides);
 }
 
 }  // namespace motus

@@ -9,8 +9,17 @@
 
 namespace motus {
 
+// What a scene may hold (docs/scene-format.md, "Limits"): beyond these a scene is refused
+// before it is built, with the limit named.
+constexpr long kMaxSceneBytes = 64L << 20;    // a scene file: 64 MB
+constexpr int kMaxNesting = 64;               // arrays and objects inside each other
+constexpr long kMaxBodies = 1'000'000;        // bodies, listed and generated
+constexpr long kMaxSticks = 2'000'000;        // sticks
+constexpr long kMaxClothParticles = 250'000;  // a cloth generator's rows × columns (500 × 500)
+
 // A scene file that cannot be used: file, field path and what is wrong, printed as
-// one line "FILE: FIELD: MESSAGE".
+// one line "FILE: FIELD: MESSAGE" of at most a few hundred characters (a long part is
+// shortened in its middle).
 class SceneFileError : public std::runtime_error {
 public:
   SceneFileError(const std::string& file, const std::string& field, const std::string& message);

@@ -7,6 +7,19 @@
 
 namespace motus {
 
+bool valid_utf8(const std::string& s) {
+  size_t i = 0;
+  while (i < s.size()) {
+    const auto c = static_cast<unsigned char>(s[i]);
+    const int length = c < 0x80 ? 1 : (c >> 5) == 0x6 ? 2 : (c >> 4) == 0xE ? 3 : (c >> 3) == 0x1E ? 4 : 0;
+    if (length == 0 || (length > 1 && c < 0xC2) || i + static_cast<size_t>(length) > s.size()) return false;
+    for (int k = 1; k < length; ++k)
+      if ((static_cast<unsigned char>(s[i + static_cast<size_t>(k)]) & 0xC0) != 0x80) return false;
+    i += static_cast<size_t>(length);
+  }
+  return true;
+}
+
 void apply_override(nlohmann::json& scene, const std::string& assignment) {
   const auto equals = assignment.find('=');
   if (equals == std::string::npos || equals == 0)
@@ -15,6 +28,8 @@ void apply_override(nlohmann::json& scene, const std::string& assignment) {
   const std::string text = assignment.substr(equals + 1);
   nlohmann::json value = nlohmann::json::parse(text, nullptr, /*allow_exceptions=*/false);
   if (value.is_discarded()) value = text;  // a bare word: a string
+  // A scene file's strings are checked by the JSON parser; the command line's are not.
+  if (!valid_utf8(text)) throw SceneError(path, "the value given by --set is not valid UTF-8");
 
   nlohmann::json* node = &scene;
   std::string walked;
@@ -25,6 +40,8 @@ void apply_override(nlohmann::json& scene, const std::string& assignment) {
       const std::string digits = close == std::string::npos ? "" : path.substr(i + 1, close - i - 1);
       if (digits.empty() || !std::all_of(digits.begin(), digits.end(), [](unsigned char c) { return std::isdigit(c); }))
         throw SceneError(path, "bad index in --set path (use [0], [1], ...)");
+      if (digits.size() > 9) throw SceneError(path, "index " + digits.substr(0, 12) + (digits.size() > 12 ? "…" : "") +
+                                                        " in --set path is too large");
       const size_t index = std::stoul(digits);
       if (!node->is_array()) throw SceneError(walked, "is not an array, so " + path + " cannot be set");
       if (index >= node->size())

@@ -7,7 +7,11 @@
 
 namespace motus {
 
-// Applies one "PATH=VALUE"; throws SceneError(PATH, ...) when the path does not fit.
+// Applies one "PATH=VALUE"; throws SceneError(PATH, ...) when the path does not fit, an index
+// is too large, or the value is not valid UTF-8.
 void apply_override(nlohmann::json& scene, const std::string& assignment);
+
+// Whether `text` is well-formed UTF-8.
+bool valid_utf8(const std::string& text);
 
 }  // namespace motus

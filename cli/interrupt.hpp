@@ -1,0 +1,22 @@
+#pragma once
+// Ctrl-C (SIGINT) and SIGTERM: motus stops at the next safe point, removes what it was
+// writing, and exits with status 130 — never a report folder that looks complete but is not.
+#include <stdexcept>
+
+namespace motus::cli {
+
+// The exit status of an interrupted run.
+constexpr int kExitInterrupted = 130;
+
+class Interrupted : public std::runtime_error {
+public:
+  Interrupted() : std::runtime_error("interrupted") {}
+};
+
+// From now on SIGINT and SIGTERM only set a flag (a program motus waits for still gets them).
+void catch_interrupts();
+bool interrupted();
+// Throws Interrupted once an interrupt has come.
+void stop_if_interrupted();
+
+}  // namespace motus::cli

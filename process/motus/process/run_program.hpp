@@ -1,0 +1,24 @@
+#pragma once
+// Starting another program — ffmpeg, python3, zip — directly, with an argument vector: never
+// through a shell, so no name, folder or scene field can be read as a command. Standard input
+// is /dev/null; standard output and error go to a log file, or stay where motus's are.
+#include <string>
+#include <vector>
+
+namespace motus::process {
+
+// The full path of `program` on $PATH, or "" when there is none.
+std::string find_program(const std::string& program);
+
+struct Outcome {
+  bool started = false;
+  int status = -1;  // the exit status, when it exited
+  int signal = 0;   // the signal that ended it, else 0
+  bool ok() const { return started && signal == 0 && status == 0; }
+};
+
+// Runs argv[0] (a path) with the arguments argv[1…] in `folder` ("" : here) and waits for it.
+// `log` ("" : inherit) receives its standard output and error.
+Outcome run_program(const std::vector<std::string>& argv, const std::string& folder = "", const std::string& log = "");
+
+}  // namespace motus::process

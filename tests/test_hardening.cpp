@@ -1,0 +1,345 @@
+// motus over hostile and broken input, as an attacker or a careless user would give it
+// (docs/cli.md, "Exit status and errors"; docs/scene-format.md, "Limits"): no command
+// injection, no write outside the folder given, no silent loss, no hang, and one line with
+// exit status 2 for every kind of bad input. Each test is one item that was found broken; the
+// numbers in them come from the geometry of the case (worked out beside it) or from the limits
+// the docs state.
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/resource.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <thread>
+
+#include "cli_harness.hpp"
+#include "motus/scene_file/scene_file.hpp"
+#include "motus/simulation.hpp"
+
+namespace {
+
+using namespace motus_test;
+using nlohmann::json;
+
+// Two balls meeting head-on: a small scene of contacts whose name the test chooses.
+std::string two_balls(const std::string& name, double duration = 0.5) {
+  json scene = {{"name", name},
+                {"dimensions", 2},
+                {"bodies", {{{"mass", 1}, {"radius", 0.5}, {"position", {0, 0}}, {"velocity", {1, 0}}},
+                            {{"mass", 1}, {"radius", 0.5}, {"position", {3, 0}}}}},
+                {"integrator", "symplectic-euler"},
+                {"dt", 0.01},
+                {"duration", duration}};
+  return scene.dump();
+}
+
+void expect_one_line_exit_2(const Result& r, const std::string& says) {
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_EQ(count_lines(r.err), 1) << r.err;
+  EXPECT_NE(r.err.find(says), std::string::npos) << r.err;
+  EXPECT_LT(r.err.size(), 600u);
+}
+
+// ---- Security ----------------------------------------------------------------------------------
+
+// 1. A scene named  x'; touch FILE; '  and an --out folder with a quote in it: no shell ever
+//    sees them, the plots are drawn anyway.
+TEST(Hardening, NoCommandInjectionThroughTheSceneNameOrTheFolder) {
+  TempDir dir;
+  const fs::path pwned = dir / "PWNED";
+  write_file(dir / "evil.json", two_balls("x'; touch " + pwned.string() + "; '"));
+  const fs::path out = dir / "it's mine";
+  const auto r = run_motus(dir, {"compare", (dir / "evil.json").string(), "--out", out.string()});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_FALSE(fs::exists(pwned));
+  EXPECT_TRUE(fs::exists(out / "index.html"));
+  EXPECT_TRUE(fs::exists(out / "energy.png")) << read_file(out / "plot.log");
+}
+
+// 2. A scene named "../victim": the video is OUT/victim.gif, the report folder is under runs/,
+//    and the file it aimed at is untouched.
+TEST(Hardening, ASceneNameNeverWritesOutsideTheFolderGiven) {
+  TempDir dir;
+  write_file(dir / "esc.json", two_balls("../victim", 0.2));
+  write_file(dir / "victim.gif", "mine");
+  auto r = run_motus(dir, {"render", (dir / "esc.json").string(), "--out", (dir / "out").string(), "--video", "gif",
+                           "--size", "64x48", "--fps", "10"});
+  if (r.status == 2 && r.err.find("ffmpeg") != std::string::npos) GTEST_SKIP() << "no ffmpeg here";
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(read_file(dir / "victim.gif"), "mine");
+  EXPECT_TRUE(fs::exists(dir / "out/victim.gif"));
+  // compare's default folder: runs/compare-victim-…, inside runs/ of the folder it runs in.
+  const fs::path work = dir / "work";
+  fs::create_directories(work);
+  Result c;
+  {
+    const fs::path here = fs::current_path();
+    fs::current_path(work);
+    c = run_motus(dir, {"compare", (dir / "esc.json").string()});
+    fs::current_path(here);
+  }
+  ASSERT_EQ(c.status, 0) << c.err;
+  ASSERT_TRUE(fs::is_directory(work / "runs"));
+  for (const auto& e : fs::directory_iterator(work / "runs"))
+    EXPECT_EQ(e.path().filename().string().rfind("compare-victim-", 0), 0u) << e.path();
+  EXPECT_EQ(std::distance(fs::directory_iterator(work), fs::directory_iterator{}), 1);  // nothing beside runs/
+}
+
+// 3. render --overwrite removes what an earlier render wrote, and nothing else.
+TEST(Hardening, OverwriteRemovesOnlyWhatMotusWrote) {
+  TempDir dir;
+  const fs::path out = dir / "frames";
+  auto r = run_motus(dir, {"render", "head_on", "--out", out.string(), "--size", "64x48", "--fps", "2", "--duration", "1"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  ASSERT_TRUE(fs::exists(out / "frame_00002.png"));
+  write_file(out / "holiday.gif", "mine");
+  write_file(out / "holiday.mp4", "mine");
+  write_file(out / "frame_99999.png", "mine");
+  r = run_motus(dir, {"render", "head_on", "--out", out.string(), "--size", "64x48", "--fps", "1", "--duration", "1",
+                      "--overwrite"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_FALSE(fs::exists(out / "frame_00002.png"));  // the earlier render's, gone
+  EXPECT_TRUE(fs::exists(out / "frame_00001.png"));   // this render's
+  for (const char* mine : {"holiday.gif", "holiday.mp4", "frame_99999.png"}) EXPECT_EQ(read_file(out / mine), "mine") << mine;
+}
+
+// ---- Wrong answers and hangs ----------------------------------------------------------------------
+
+// 4. A run that cannot finish in a countable number of steps is bad input (docs: at most 10^15).
+TEST(Hardening, AStepCountThatOverflowsIsBadInput) {
+  TempDir dir;
+  expect_one_line_exit_2(run_motus(dir, {"run", "spring", "--dt", "1e-300"}), "more than a run can take");
+  expect_one_line_exit_2(run_motus(dir, {"run", "spring", "--duration", "1e19"}), "--duration");
+  expect_one_line_exit_2(run_motus(dir, {"run", "spring", "--steps", "99999999999999999999"}), "--steps");
+  expect_one_line_exit_2(run_motus(dir, {"compare", "head_on", "--dt", "1e-300", "--out", (dir / "r").string()}),
+                         "more than a run can take");
+  EXPECT_FALSE(fs::exists(dir / "r"));
+}
+
+// 5. Generated positions at infinity are refused by the loader; the grid refuses them too.
+TEST(Hardening, InfinitePositionsNeverHangTheCollisionGrid) {
+  TempDir dir;
+  const auto began = std::chrono::steady_clock::now();
+  expect_one_line_exit_2(run_motus(dir, {"run", "ball_gas", "--set", "lattice.spacing=1e308", "--set", "lattice.count=16"}),
+                         "lattice.spacing");
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count(), 10);
+  // The engine itself: a ball at infinity (as a blown-up run leaves it) ends the run with an error.
+  motus::SceneDescription scene;
+  motus::MechanicalDescription m;
+  m.dimensions = 2;
+  m.bodies.push_back({1, {0, 0}, {1, 0}, 0.5, 1});
+  m.bodies.push_back({1, {INFINITY, 0}, {0, 0}, 0.5, 1});
+  scene.mechanical = m;
+  motus::Simulation sim(scene, motus::Integrator::SymplecticEuler);
+  EXPECT_THROW(sim.advance(0.1, 0.01, {}), std::runtime_error);
+}
+
+// 6. A ball meeting a segment's round end bounces off the end, at every offset. The segment
+//    (10, −5)–(10, 5); a ball of radius r = 0.1 from (9.5, 5 + δ), 0 < δ < r, at (1, 0), e = 1.
+//    It touches the end (10, 5) with its centre at c = (10 − √(r² − δ²), 5 + δ), so the normal
+//    is n = (c − end)/r and it leaves at v = (1, 0) − 2 (n·(1, 0)) n. δ = 0.02: (−0.92, 0.392).
+TEST(Hardening, ABallMeetingASegmentsRoundEndBouncesOffTheEnd) {
+  const double r = 0.1;
+  int checked = 0;
+  for (double delta = 0.002; delta < r; delta += 0.002) {
+    motus::SceneDescription scene;
+    motus::MechanicalDescription m;
+    m.dimensions = 2;
+    m.bodies.push_back({1, {9.5, 5 + delta}, {1, 0}, r, 1});
+    motus::SegmentCollider s;
+    s.a = {10, -5, 0};
+    s.b = {10, 5, 0};
+    m.colliders.segments.push_back(s);
+    scene.mechanical = m;
+    motus::Simulation sim(scene, motus::Integrator::SymplecticEuler);
+    sim.advance(1.0, 0.01, {});
+    const double nx = -std::sqrt(r * r - delta * delta) / r, ny = delta / r;
+    const double vx = 1 - 2 * nx * nx, vy = -2 * nx * ny;
+    EXPECT_NEAR(sim.state()[2], vx, 1e-9) << "offset " << delta;
+    EXPECT_NEAR(sim.state()[3], vy, 1e-9) << "offset " << delta;
+    ++checked;
+  }
+  EXPECT_GE(checked, 45);
+}
+
+// 7. Two balls at exactly one point are pushed apart under verlet (to touching: 2r apart).
+TEST(Hardening, CoincidentBallsAreSeparatedUnderVerlet) {
+  motus::SceneDescription scene;
+  motus::MechanicalDescription m;
+  m.dimensions = 2;
+  m.bodies.push_back({1, {1, 1}, {0, 0}, 0.5, 1});
+  m.bodies.push_back({1, {1, 1}, {0, 0}, 0.5, 1});
+  scene.mechanical = m;
+  motus::Simulation sim(scene, motus::Integrator::Verlet);
+  sim.advance(0.01, 0.01, {});
+  const auto& y = sim.state();
+  EXPECT_NEAR(std::hypot(y[2] - y[0], y[3] - y[1]), 1.0, 1e-12);
+}
+
+// 8. Coincident bodies under unsoftened mutual gravity: refused, naming both.
+TEST(Hardening, CoincidentBodiesUnderMutualGravityAreRefused) {
+  TempDir dir;
+  write_file(dir / "g.json",
+             R"({"name": "g", "dimensions": 2, "bodies": [{"mass": 1, "position": [0, 0]}, {"mass": 1, "position": [1, 0]},
+                 {"mass": 2, "position": [0, 0]}], "forces": [{"type": "mutual_gravity", "G": 1}],
+                 "integrator": "rk4", "dt": 0.01, "duration": 1})");
+  expect_one_line_exit_2(run_motus(dir, {"run", (dir / "g.json").string()}), "forces[0]: bodies 0 and 2 are at the same point");
+}
+
+// ---- Bad input: one line, exit 2 -------------------------------------------------------------------
+
+// 9. A key twice in one object.
+TEST(Hardening, DuplicateKeysAreRefused) {
+  TempDir dir;
+  write_file(dir / "dup.json",
+             R"({"name": "x", "dimensions": 1, "bodies": [{"mass": 1, "position": [0]}], "dt": -1, "dt": 0.01, "duration": 1})");
+  expect_one_line_exit_2(run_motus(dir, {"run", (dir / "dup.json").string()}), "dt: duplicate key \"dt\"");
+}
+
+// 10. An error line is a few hundred characters at most, however large the input; 10 MB of '['
+//     costs little memory (the nesting is refused at depth 64, before the document is built).
+TEST(Hardening, ErrorLinesStayShortAndDeepInputCostsLittle) {
+  TempDir dir;
+  write_file(dir / "deep.json", std::string(10 << 20, '['));
+  rusage before{}, after{};
+  getrusage(RUSAGE_CHILDREN, &before);
+  expect_one_line_exit_2(run_motus(dir, {"run", (dir / "deep.json").string()}), "nested more than 64");
+  getrusage(RUSAGE_CHILDREN, &after);
+  EXPECT_LT(after.ru_maxrss, 200 * 1024) << "KB";  // the 10 MB text and a little more, not 1.5 GB
+  write_file(dir / "string.json", "{\"name\": \"" + std::string(50 << 20, 'a') + "\\q\"}");
+  const auto r = run_motus(dir, {"run", (dir / "string.json").string()});
+  expect_one_line_exit_2(r, "malformed JSON");
+  write_file(dir / "long.json", std::string("{\"name\": \"x\", \"dimensions\": 1, \"bodies\": [{\"mass\": 1, \"position\": [0]}], "
+                                            "\"integrator\": \"") + std::string(1 << 20, 'z') + "\", \"dt\": 1, \"duration\": 1}");
+  expect_one_line_exit_2(run_motus(dir, {"run", (dir / "long.json").string()}), "unknown integrator");
+}
+
+// 11. Only regular files of at most 64 MB are read as scenes.
+TEST(Hardening, OnlyRegularFilesAreReadAsScenes) {
+  TempDir dir;
+  fs::create_directories(dir / "folder.json");
+  expect_one_line_exit_2(run_motus(dir, {"run", (dir / "folder.json").string()}), "is a folder");
+  ASSERT_EQ(::mkfifo((dir / "fifo.json").c_str(), 0600), 0);
+  expect_one_line_exit_2(run_motus(dir, {"run", (dir / "fifo.json").string()}), "not a regular file");
+  expect_one_line_exit_2(run_motus(dir, {"run", "/dev/zero"}), "not a regular file");
+  fs::create_symlink(dir / "loop-a.json", dir / "loop-b.json");
+  fs::create_symlink(dir / "loop-b.json", dir / "loop-a.json");
+  expect_one_line_exit_2(run_motus(dir, {"run", (dir / "loop-a.json").string()}), "symbolic links");
+  {
+    std::ofstream big(dir / "big.json");
+    big.seekp((65L << 20) - 1);
+    big.put(' ');  // a sparse 65 MB file
+  }
+  expect_one_line_exit_2(run_motus(dir, {"run", (dir / "big.json").string()}), "more than the 64 MB");
+}
+
+// 12 and 13. --set: an index too large for an integer; a value that is not UTF-8 (refused before
+//            the run: nothing on standard output).
+TEST(Hardening, SetRefusesHugeIndicesAndBrokenText) {
+  TempDir dir;
+  expect_one_line_exit_2(run_motus(dir, {"run", "spring", "--set", "a[99999999999999999999]=1"}), "too large");
+  const auto r = run_motus(dir, {"run", "spring", "--json", "--set", "name=\xff\xfe"});
+  expect_one_line_exit_2(r, "not valid UTF-8");
+  EXPECT_TRUE(r.out.empty());
+}
+
+// 14. An output folder that cannot be made is refused before any engine runs.
+TEST(Hardening, AReportFolderThatCannotBeMadeIsRefusedFirst) {
+  TempDir dir;
+  write_file(dir / "a-file", "not a folder");
+  const auto began = std::chrono::steady_clock::now();
+  const auto r = run_motus(dir, {"compare", "ball_gas", "--set", "lattice.count=10000", "--out", (dir / "a-file/report").string()});
+  expect_one_line_exit_2(r, "cannot be created");
+  EXPECT_TRUE(r.out.empty());  // no table: no engine ran
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count(), 2);
+}
+
+// ---- Nothing lost, nothing pretended ------------------------------------------------------------------
+
+// 15. A full disk: a failed write is exit 1 with one line naming the file, never 0.
+TEST(Hardening, AFullDiskIsAFailureNamingTheFile) {
+  TempDir dir;
+  auto r = run_motus(dir, {"run", "spring", "--trajectory", "/dev/full", "--overwrite"});
+  EXPECT_EQ(r.status, 1) << r.err;
+  EXPECT_EQ(count_lines(r.err), 1) << r.err;
+  EXPECT_NE(r.err.find("/dev/full"), std::string::npos) << r.err;
+  // Standard output on a full disk (run_program sends it to a file: here it is /dev/full itself).
+  pid_t pid = 0;
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, 1, "/dev/full", O_WRONLY, 0);
+  posix_spawn_file_actions_addopen(&actions, 2, (dir / "err.txt").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  std::vector<std::string> args = {kMotus, "run", "spring", "--json"};
+  std::vector<char*> argv;
+  for (auto& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  ASSERT_EQ(posix_spawn(&pid, kMotus.c_str(), &actions, nullptr, argv.data(), environ), 0);
+  posix_spawn_file_actions_destroy(&actions);
+  int raw = 0;
+  waitpid(pid, &raw, 0);
+  EXPECT_EQ(WEXITSTATUS(raw), 1);
+  const std::string err = read_file(dir / "err.txt");
+  EXPECT_EQ(count_lines(err), 1) << err;
+  EXPECT_NE(err.find("standard output"), std::string::npos) << err;
+}
+
+// 16. Ctrl-C while the report's plots are drawn: exit 130, and no folder that looks complete
+//     (neither the report nor its partial folder is left).
+TEST(Hardening, AnInterruptedCompareExits130AndLeavesNoFolder) {
+  TempDir dir;
+  const fs::path out = dir / "report";
+  pid_t pid = 0;
+  posix_spawnattr_t attributes;
+  posix_spawnattr_init(&attributes);
+  posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETPGROUP);  // its own group, as a shell job is
+  posix_spawnattr_setpgroup(&attributes, 0);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, 1, (dir / "out.txt").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_addopen(&actions, 2, (dir / "err.txt").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  std::vector<std::string> args = {kMotus, "compare", "head_on", "--out", out.string()};
+  std::vector<char*> argv;
+  for (auto& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  ASSERT_EQ(posix_spawn(&pid, kMotus.c_str(), &actions, &attributes, argv.data(), environ), 0);
+  posix_spawn_file_actions_destroy(&actions);
+  posix_spawnattr_destroy(&attributes);
+  // Wait for the plotting program to start (a child of motus running plot.py), then Ctrl-C the group.
+  bool plotting = false;
+  for (int i = 0; i < 2000 && !plotting; ++i) {
+    for (const auto& e : fs::directory_iterator("/proc")) {
+      const std::string stat = read_file(e.path() / "stat");
+      const std::string cmdline = read_file(e.path() / "cmdline");
+      if (cmdline.find("plot.py") == std::string::npos) continue;
+      const auto close = stat.rfind(')');
+      if (close != std::string::npos && std::strtol(stat.c_str() + close + 4, nullptr, 10) == pid) plotting = true;
+    }
+    if (!plotting) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  ::kill(-pid, SIGINT);
+  int raw = 0;
+  waitpid(pid, &raw, 0);
+  if (!plotting) GTEST_SKIP() << "no python3 with matplotlib here: nothing to interrupt while plotting";
+  EXPECT_TRUE(WIFEXITED(raw) && WEXITSTATUS(raw) == 130) << read_file(dir / "err.txt");
+  EXPECT_FALSE(fs::exists(out));
+  for (const auto& e : fs::directory_iterator(dir.path()))
+    EXPECT_EQ(e.path().filename().string().find(".report.partial"), std::string::npos) << e.path();
+  EXPECT_NE(read_file(dir / "err.txt").find("interrupted"), std::string::npos);
+}
+
+// 17. Sizes that would be allowed but unusable are refused with the limit named (docs: at most
+//     10^6 bodies; a cloth of at most 500 × 500).
+TEST(Hardening, UnusableSizesAreRefusedWithTheLimitNamed) {
+  TempDir dir;
+  expect_one_line_exit_2(run_motus(dir, {"run", "ball_gas", "--set", "lattice.count=10000000"}), "1000000");
+  expect_one_line_exit_2(run_motus(dir, {"run", "cloth", "--set", "cloth.rows=1000", "--set", "cloth.columns=1000"}),
+                         "500 x 500");
+}
+
+}  // namespace
