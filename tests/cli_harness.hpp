@@ -92,6 +92,13 @@ inline Result run_program(const TempDir& dir, const std::string& program, const 
     if (!replaced) env_strings.push_back(entry);
   }
   env_strings.insert(env_strings.end(), environment.begin(), environment.end());
+#ifdef MOTUS_SANITIZE
+  // Under the sanitizers their reports go to files (docs/testing.md), so that a test counting
+  // the lines of motus's standard error counts motus's own.
+  env_strings.push_back("ASAN_OPTIONS=log_path=" MOTUS_SANITIZER_LOGS "/asan");
+  env_strings.push_back("UBSAN_OPTIONS=print_stacktrace=1:log_path=" MOTUS_SANITIZER_LOGS "/ubsan");
+  env_strings.push_back("LSAN_OPTIONS=suppressions=" MOTUS_LSAN_SUPPRESSIONS);
+#endif
   std::vector<char*> envp;
   for (auto& e : env_strings) envp.push_back(e.data());
   envp.push_back(nullptr);

@@ -68,6 +68,9 @@ TEST(Grade, HostileSubmissionsEndWithinTheirLimitsAndHarmNothing) {
   const std::string original = read_file(solution);
   ASSERT_NE(original.find(anchor), std::string::npos);
   for (const auto& c : cases) {
+#ifdef MOTUS_SANITIZE  // no RLIMIT_AS under AddressSanitizer (docs/testing.md): a 10 GB allocation is ASan's to refuse
+    if (c.name == "memory") continue;
+#endif
     std::string source = original;
     source.replace(source.find(anchor), anchor.size(), anchor + "  " + c.body + "\n");
     fs::create_directories(dir / "batch" / c.name);
@@ -94,6 +97,7 @@ TEST(Grade, HostileSubmissionsEndWithinTheirLimitsAndHarmNothing) {
       public_max += pts;
   const std::set<std::string> euler_tests = {"euler.table", "euler.order"};
   for (const auto& c : cases) {
+    if (!fs::exists(dir / "results" / (c.name + ".json")) && c.name == "memory") continue;  // (skipped above)
     const json result = read_json(dir / "results" / (c.name + ".json"));
     expect_valid_gradescope(result);
     const std::set<std::string> lost = failed(result);

@@ -177,7 +177,11 @@ SandboxProcess::SandboxProcess(const SandboxSpec& spec, const Limits& limits) : 
     const rlimit cpu_limit{cpu, cpu + 1}, memory_limit{memory, memory}, file_limit{file, file}, no_core{0, 0},
         process_limit{processes, processes};
     ::setrlimit(RLIMIT_CPU, &cpu_limit);
+#ifndef MOTUS_SANITIZE  // AddressSanitizer reserves terabytes of address space: no RLIMIT_AS under it
     ::setrlimit(RLIMIT_AS, &memory_limit);
+#else
+    (void)memory_limit;
+#endif
     ::setrlimit(RLIMIT_FSIZE, &file_limit);
     ::setrlimit(RLIMIT_CORE, &no_core);
     if (drop) {

@@ -1,0 +1,27 @@
+#!/usr/bin/env bash
+# Builds the fuzzers with clang (ASan + UBSan) and runs each for SECONDS (default 60), with the
+# shipped scenes as the seed corpus and the format's keywords as the dictionary. A finding
+# (a crash, a hang, a sanitizer report) stops it with a non-zero status and leaves the input
+# in BUILD_DIR/findings/. Used by ctest (a short run) and by hand (a long one):
+#   fuzz/run_fuzzers.sh 1800 build/fuzz
+set -euo pipefail
+seconds="${1:-60}"
+here="$(cd "$(dirname "$0")" && pwd)"
+build="${2:-$here/../build/fuzz}"
+cmake -S "$here" -B "$build" -DCMAKE_CXX_COMPILER=clang++ > "$build.configure.log" 2>&1 || { cat "$build.configure.log"; exit 1; }
+cmake --build "$build" -j"$(nproc)" > "$build.build.log" 2>&1 || { tail -40 "$build.build.log"; exit 1; }
+mkdir -p "$build/findings"
+status=0
+for fuzzer in fuzz_load fuzz_step; do
+  corpus="$build/corpus/$fuzzer"
+  mkdir -p "$corpus"
+  cp "$here"/../scenes/*.json "$corpus"/
+  echo "== $fuzzer for ${seconds} s"
+  if ! "$build/$fuzzer" "$corpus" -dict="$here/scene.dict" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 \
+       -max_len=65536 -artifact_prefix="$build/findings/$fuzzer-" -print_final_stats=1 2> "$build/$fuzzer.log"; then
+    status=1
+    tail -60 "$build/$fuzzer.log"
+  fi
+  grep -E "stat::number_of_executed_units|stat::peak_rss_mb|Done [0-9]+ runs" "$build/$fuzzer.log" || true
+done
+exit $status
