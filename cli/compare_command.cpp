@@ -150,6 +150,9 @@ int compare_command(const CompareOptions& o) {
   context.duration = options.duration;
   context.dimensions = scene.mechanical->dimensions;
   context.bodies = static_cast<long>(scene.mechanical->bodies.size());
+  const auto conserved = compare::conserved_quantities(scene);
+  context.momentum_conserved = conserved.momentum;
+  context.angular_momentum_conserved = conserved.angular_momentum;
   std::string picture_warning;
   if (o.render) {
     draw::ComparisonJob job;

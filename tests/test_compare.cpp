@@ -38,7 +38,7 @@ TEST(Compare, HeadOnInThreeEnginesWritesTheReport) {
   EXPECT_EQ(engine(j, "motus")->at("time_relative_to_motus"), 1.0);
   // e = 1 head-on: momentum kept by all three (tests/reference/peers.md: both peers give the exact result).
   for (const char* name : {"motus", "box2d", "bullet"}) EXPECT_LT(engine(j, name)->at("momentum_drift").get<double>(), 1e-6) << name;
-  for (const char* file : {"index.html", "metrics.csv", "summary.json", "plot.py"})
+  for (const char* file : {"index.html", "metrics.csv", "summary.json", "figures.gp", "energy.svg", "energy.png"})
     EXPECT_TRUE(fs::exists(out / file)) << file;
   const std::string html = read_file(out / "index.html");
   EXPECT_NE(html.find("<table>"), std::string::npos);

@@ -6,7 +6,7 @@
 #include <cstdlib>
 #include <fstream>
 
-#include "motus/process/run_program.hpp"
+#include "motus/plot/figure.hpp"
 
 namespace motus::compare {
 namespace {
@@ -43,48 +43,93 @@ void write_text(const std::string& path, const std::string& text) {
   check_written(out, path);
 }
 
+// The report's figures: the energy error of every engine (on a log axis of |ΔE/E₀|, or symlog
+// when it changes sign), and the momenta where the scene keeps them.
+std::vector<plot::Figure> figures(const ReportContext& c, const std::vector<EngineRun>& runs) {
+  plot::Figure energy;
+  energy.stem = "energy";
+  energy.title = c.scene_name + ": energy error against time";
+  energy.x_label = "t [s]";
+  bool changes_sign = false, negative = false, positive = false;
+  for (const auto& r : runs) {
+    if (!r.supported || r.rows.empty()) continue;
+    plot::Series s{r.engine, {}, {}};
+    const double e0 = r.rows.front().total;
+    for (const auto& row : r.rows) {
+      const double error = e0 != 0 ? (row.total - e0) / std::abs(e0) : row.total - e0;
+      s.x.push_back(row.t);
+      s.y.push_back(error);
+      negative = negative || error < 0;
+      positive = positive || error > 0;
+    }
+    energy.series.push_back(std::move(s));
+  }
+  changes_sign = negative && positive;
+  if (changes_sign) {
+    energy.y_scale = plot::Scale::symlog;
+    energy.symlog_threshold = 1e-16;
+    energy.y_label = "(E - E0) / |E0|   (symlog: logarithmic beyond 1e-16)";
+  } else {
+    energy.y_scale = plot::Scale::log;
+    energy.y_label = "|E - E0| / |E0|";
+    for (auto& s : energy.series)
+      for (double& y : s.y) y = std::abs(y);
+  }
+  energy.note = "0 is exact; each decade up is ten times more energy gained or lost";
+  std::vector<plot::Figure> all = {energy};
+
+  auto change_of = [&](const char* stem, const char* what, bool angular) {
+    plot::Figure f;
+    f.stem = stem;
+    f.title = c.scene_name + ": " + what + " change against time";
+    f.x_label = "t [s]";
+    f.y_label = std::string("|") + (angular ? "L - L0" : "p - p0") + "| / " + (angular ? "|L0|" : "sum m |v0|");
+    f.y_scale = plot::Scale::log;
+    for (const auto& r : runs) {
+      if (!r.supported || r.rows.empty()) continue;
+      plot::Series s{r.engine, {}, {}};
+      const auto& first = angular ? r.rows.front().angular_momentum : r.rows.front().momentum;
+      double size = 0;
+      for (double x : first) size += x * x;
+      const double scale = angular ? std::sqrt(size) : std::max(std::sqrt(size), r.scale_of_momentum);
+      for (const auto& row : r.rows) {
+        const auto& now = angular ? row.angular_momentum : row.momentum;
+        double change = 0;
+        for (size_t k = 0; k < now.size() && k < first.size(); ++k) change += (now[k] - first[k]) * (now[k] - first[k]);
+        s.x.push_back(row.t);
+        s.y.push_back(scale > 0 ? std::sqrt(change) / scale : std::sqrt(change));
+      }
+      f.series.push_back(std::move(s));
+    }
+    f.note = "the scene keeps it exactly: what is drawn is each engine's own error";
+    return f;
+  };
+  if (c.momentum_conserved) all.push_back(change_of("momentum", "momentum", false));
+  if (c.angular_momentum_conserved) all.push_back(change_of("angular_momentum", "angular momentum", true));
+  return all;
+}
+
 nlohmann::json number_or_null(double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); }
-
-// The plotting script: one line per engine, relative energy error and momentum change
-// against time, read from metrics.csv.
-constexpr const char* kPlotScript = R"PY(# Written by `motus compare`: plots of metrics.csv, one line per engine.
-import csv, sys
-import matplotlib
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt
-
-rows = list(csv.DictReader(open("metrics.csv")))
-engines = []
-for r in rows:
-    if r["engine"] not in engines:
-        engines.append(r["engine"])
-
-def series(engine, column):
-    rs = [r for r in rows if r["engine"] == engine]
-    return [float(r["t"]) for r in rs], [float(r[column]) for r in rs]
-
-for name, column, label in [("energy.png", "energy_error", "(E - E0) / |E0|"),
-                            ("momentum.png", "momentum_change", "|p - p0| / scale")]:
-    fig, ax = plt.subplots(figsize=(7, 3.6), dpi=100)
-    for e in engines:
-        t, y = series(e, column)
-        ax.plot(t, y, label=e, linewidth=1.4)
-    ax.set_xlabel("t [s]")
-    ax.set_ylabel(label)
-    ax.grid(True, alpha=0.3)
-    ax.legend()
-    ax.set_title(sys.argv[1] + ": " + label)
-    fig.tight_layout()
-    fig.savefig(name)
-)PY";
 
 }  // namespace
 
-std::string python_with_matplotlib() {
-  for (const std::string& candidate : {std::string("/usr/bin/python3"), process::find_program("python3")})
-    if (!candidate.empty() && process::run_program({candidate, "-c", "import matplotlib"}, "", "/dev/null").ok())
-      return candidate;
-  return "";
+Conserved conserved_quantities(const SceneDescription& scene) {
+  Conserved c;
+  if (!scene.mechanical) return c;
+  const auto& m = *scene.mechanical;
+  const auto& f = m.forces;
+  const bool closed = m.colliders.empty() && m.pins.empty() && f.gravity.empty() && f.drag.empty() && f.pendulums.empty();
+  bool anchored = false, anchored_off_origin = false;
+  for (const auto& s : f.springs)
+    if (s.b < 0) {
+      anchored = true;
+      anchored_off_origin = anchored_off_origin || s.anchor != std::array<double, 3>{0, 0, 0};
+    }
+  bool central_off_origin = false;
+  for (const auto& g : f.central_gravity) central_off_origin = central_off_origin || g.centre != std::array<double, 3>{0, 0, 0};
+  c.momentum = closed && !anchored && f.central_gravity.empty();
+  c.angular_momentum = closed && m.dimensions >= 2 && !anchored_off_origin && !central_off_origin;
+  return c;
 }
 
 nlohmann::json summary_json(const ReportContext& c, const std::vector<EngineRun>& runs) {
@@ -155,17 +200,7 @@ std::string write_report(const std::string& folder, const ReportContext& c, cons
   }
   const nlohmann::json summary = summary_json(c, runs);
   write_text(folder + "/summary.json", summary.dump(2) + "\n");
-  write_text(folder + "/plot.py", kPlotScript);
-
-  std::string warning;
-  const std::string python = python_with_matplotlib();
-  if (python.empty()) {
-    warning = "plots skipped: no python3 with matplotlib found (apt-get install python3-matplotlib)";
-  } else {
-    // The scene's name is one argument of the script, never part of a command line.
-    if (!process::run_program({python, "plot.py", c.scene_name}, folder, folder + "/plot.log").ok())
-      warning = "plots failed: see " + folder + "/plot.log";
-  }
+  const std::string warning = plot::draw(figures(c, runs), folder);
 
   // index.html
   std::ofstream html(folder + "/index.html");
@@ -208,8 +243,13 @@ std::string write_report(const std::string& folder, const ReportContext& c, cons
       html << "<p><img src=\"" << html_escape(c.contact_sheet) << "\" alt=\"the engines side by side at three instants\"></p>\n";
   }
   if (warning.empty()) {
-    html << "<h2>Energy</h2><img src=\"energy.png\" alt=\"relative energy error against time\">\n"
-            "<h2>Momentum</h2><img src=\"momentum.png\" alt=\"momentum change against time\">\n";
+    html << "<h2>Energy</h2><p><a href=\"energy.png\"><img src=\"energy.svg\" alt=\"the energy error against time\"></a></p>\n";
+    if (c.momentum_conserved)
+      html << "<h2>Momentum</h2><p><a href=\"momentum.png\"><img src=\"momentum.svg\" alt=\"the momentum change against "
+              "time\"></a></p>\n";
+    if (c.angular_momentum_conserved)
+      html << "<h2>Angular momentum</h2><p><a href=\"angular_momentum.png\"><img src=\"angular_momentum.svg\" alt=\"the "
+              "angular momentum change against time\"></a></p>\n";
   } else {
     html << "<p class=\"no\">" << html_escape(warning) << "</p>\n";
   }

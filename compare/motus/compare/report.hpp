@@ -1,6 +1,6 @@
 #pragma once
 // What `motus compare` leaves behind in its folder: the metrics as CSV and JSON, plots
-// of energy and momentum against time (matplotlib), and an index.html that opens
+// of energy and momentum against time (gnuplot), and an index.html that opens
 // straight from the file system.
 #include <nlohmann/json.hpp>
 #include <string>
@@ -17,18 +17,25 @@ struct ReportContext {
   int dimensions = 2;
   long bodies = 0;
   std::string video, contact_sheet;  // file names in the folder (--render), or ""
+  bool momentum_conserved = false;          // the scene keeps it (no walls, no outside force)
+  bool angular_momentum_conserved = false;  // about the origin
 };
+
+// Whether a scene keeps its total momentum and its angular momentum about the origin exactly
+// (so that a plot of their change shows each engine's error, not the physics): no walls, no pins,
+// and only forces between bodies — or, for the angular momentum, central about the origin.
+struct Conserved {
+  bool momentum = false, angular_momentum = false;
+};
+Conserved conserved_quantities(const SceneDescription& scene);
 
 // The summary of every engine as one JSON object (also what --json prints).
 nlohmann::json summary_json(const ReportContext& context, const std::vector<EngineRun>& runs);
 
-// Writes metrics.csv, summary.json, plot.py (+ energy.png, momentum.png when a python3
-// with matplotlib is found) and index.html into `folder` (which must exist). Returns a
-// line to show the user when the plots could not be made, else an empty string.
+// Writes metrics.csv, summary.json, the figures (energy, and momentum and angular momentum
+// where the scene keeps them: PNG and SVG, drawn by gnuplot, with figures.gp and figures.dat)
+// and index.html into `folder` (which must exist). Returns a line to show the user when the
+// plots could not be made, else an empty string.
 std::string write_report(const std::string& folder, const ReportContext& context, const std::vector<EngineRun>& runs);
-
-// The python3 that has matplotlib (Debian's /usr/bin/python3 first: the first python3 on
-// PATH may be an interpreter without Debian's packages), or "" when there is none.
-std::string python_with_matplotlib();
 
 }  // namespace motus::compare

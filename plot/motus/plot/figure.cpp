@@ -1,0 +1,148 @@
+#include "motus/plot/figure.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+#include "motus/process/run_program.hpp"
+
+namespace motus::plot {
+namespace {
+
+// A string as gnuplot's single-quoted literal (only the quote itself is special there).
+std::string quoted(const std::string& text) {
+  std::string q = "'";
+  for (char c : text) {
+    if (c == '\'') q += "''";
+    else if (c == '\n' || c == '\r') q += ' ';
+    else q += c;
+  }
+  return q + "'";
+}
+
+std::string number(double x) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.10g", x);
+  return text;
+}
+
+// The colours of motus's engines and lines (the same palette as the renders' bodies).
+const char* kColours[] = {"#4285d6", "#e67832", "#46aa64", "#cd465a", "#9164c8", "#28aab4", "#dcb428", "#966e50"};
+
+void axis(std::ostream& gp, const char* name, Scale scale, double threshold) {
+  gp << "unset logscale " << name << "\nunset nonlinear " << name << "\n";
+  if (scale == Scale::log) gp << "set logscale " << name << " 10\nset format " << name << " '%.0e'\n";
+  if (scale == Scale::symlog) {
+    const std::string t = number(threshold);
+    gp << "set nonlinear " << name << " via sgn(" << name << ")*log10(1+abs(" << name << ")/" << t
+       << ") inverse sgn(" << name << ")*" << t << "*(10**abs(" << name << ")-1)\n"
+       << "set format " << name << " '%.0e'\n";
+  }
+  if (scale == Scale::linear) gp << "set format " << name << " '%g'\n";
+}
+
+bool plottable(double v, Scale scale) { return std::isfinite(v) && (scale != Scale::log || v > 0); }
+
+}  // namespace
+
+std::string gnuplot_program() { return process::find_program("gnuplot"); }
+
+std::string draw(const std::vector<Figure>& figures, const std::string& folder) {
+  if (figures.empty()) return "";
+  // The data: one block per series, blocks separated by two blank lines (gnuplot's "index").
+  const std::string data_file = folder + "/figures.dat";
+  std::ofstream data(data_file);
+  std::ostringstream gp;
+  gp << "# Written by motus: every figure of this folder. Redraw with `gnuplot figures.gp`.\n"
+     << "set encoding utf8\nset grid lc rgb '#dddddd'\nset key top left Left reverse box opaque\n"
+     << "set border lc rgb '#555555'\nset tics nomirror\n";
+  int block = 0;
+  for (const auto& f : figures) {
+    // Each series' plottable points as a block of the data file; a series with none (exactly 0
+    // throughout, on a log axis) is still named in the legend, so that it is seen to be exact.
+    std::vector<int> blocks;
+    double x_low = INFINITY, x_high = -INFINITY;
+    long points = 0;
+    for (const auto& s : f.series) {
+      long mine = 0;
+      for (size_t i = 0; i < s.x.size() && i < s.y.size(); ++i) {
+        if (std::isfinite(s.x[i])) x_low = std::min(x_low, s.x[i]), x_high = std::max(x_high, s.x[i]);
+        mine += plottable(s.x[i], f.x_scale) && plottable(s.y[i], f.y_scale);
+      }
+      if (mine == 0) {
+        blocks.push_back(-1);
+        continue;
+      }
+      points += mine;
+      data << "# " << f.stem << ": " << s.name << "\n";
+      bool gap = false;
+      for (size_t i = 0; i < s.x.size() && i < s.y.size(); ++i) {
+        if (plottable(s.x[i], f.x_scale) && plottable(s.y[i], f.y_scale)) {
+          data << number(s.x[i]) << ' ' << number(s.y[i]) << '\n';
+          gap = false;
+        } else if (!gap) {
+          data << '\n';  // a gap in the line
+          gap = true;
+        }
+      }
+      data << "\n\n";
+      blocks.push_back(block++);
+    }
+    std::string plot_line;
+    for (size_t k = 0; k < f.series.size(); ++k) {
+      const auto& s = f.series[k];
+      const std::string colour = std::string(" lc rgb '") + kColours[k % std::size(kColours)] + "'";
+      if (blocks[k] < 0) {
+        plot_line += (k ? ", " : "plot ") + std::string("1/0 with lines lw 1.8") + colour + " title " +
+                     quoted(s.name + (f.y_scale == Scale::log ? ": exactly 0 throughout" : ": no finite point"));
+        continue;
+      }
+      plot_line += (k ? ", " : "plot ") + quoted("figures.dat") + " index " + std::to_string(blocks[k]) + " using 1:2 with " +
+                   (s.style == "points" ? "points pt 7 ps 0.8" : s.style == "linespoints" ? "linespoints pt 7 ps 0.6 lw 1.5"
+                                                                                          : "lines lw 1.8") +
+                   colour + " title " + quoted(s.name);
+    }
+    gp << "set autoscale\nunset label 2\n";
+    // The whole run on the x axis, also where a line has gaps (exact values on a log axis).
+    if (x_high > x_low && f.x_scale == Scale::linear)
+      gp << "set xrange [" << number(x_low) << ":" << number(x_high) << "]\n";
+    if (points == 0) {  // nothing to draw: give the axes a range, and say why it is empty
+      if (!(x_high > x_low)) gp << "set xrange [0:1]\n";
+      gp << "set yrange " << (f.y_scale == Scale::log ? "[1e-17:1e-13]" : "[-1:1]") << "\n"
+         << "set label 2 'every value is exactly 0' at graph 0.5, graph 0.5 center tc rgb '#555555'\n";
+    }
+    if (plot_line.empty()) continue;
+    axis(gp, "x", f.x_scale, f.symlog_threshold);
+    axis(gp, "y", f.y_scale, f.symlog_threshold);
+    // Plain text throughout (no "enhanced" markup: a scene called ball_gas keeps its underscore).
+    gp << "set title " << quoted(f.title) << "\nset xlabel " << quoted(f.x_label) << "\nset ylabel " << quoted(f.y_label)
+       << "\nunset label 1\nset bmargin " << (f.note.empty() ? 4 : 6) << "\n";
+    if (!f.note.empty()) gp << "set label 1 " << quoted(f.note) << " at screen 0.5, screen 0.025 center font ',9' tc rgb '#555555'\n";
+    for (const char* format : {"png", "svg"}) {
+      if (std::string(format) == "png")
+        gp << "set terminal pngcairo size " << f.width << "," << f.height << " font 'DejaVu Sans,10' noenhanced\n";
+      else
+        gp << "set terminal svg size " << f.width << "," << f.height << " font 'DejaVu Sans,10' noenhanced background '#ffffff'\n";
+      gp << "set output " << quoted(f.stem + "." + format) << "\n" << plot_line << "\n";
+    }
+  }
+  data.flush();
+  if (!data) throw std::runtime_error(data_file + ": could not be written (disk full?)");
+  const std::string script_file = folder + "/figures.gp";
+  {
+    std::ofstream script(script_file);
+    script << gp.str() << "set output\n";
+    script.flush();
+    if (!script) throw std::runtime_error(script_file + ": could not be written (disk full?)");
+  }
+  const std::string gnuplot = gnuplot_program();
+  if (gnuplot.empty()) return "plots skipped: gnuplot not found on PATH (apt-get install gnuplot-nox)";
+  const process::Outcome run = process::run_program({gnuplot, "figures.gp"}, folder, folder + "/figures.log");
+  if (!run.ok()) return "plots failed: see " + folder + "/figures.log";
+  return "";
+}
+
+}  // namespace motus::plot

@@ -1,0 +1,40 @@
+#pragma once
+// Plots as motus draws them: figures described in C++ (axes, scales, lines), drawn all at
+// once by one run of gnuplot (Debian's gnuplot-nox) into PNG and SVG files. gnuplot starts in
+// a few tens of milliseconds, where matplotlib takes a second: a small `motus compare` is done,
+// plots included, in well under half a second. The script and the data are left beside the
+// pictures (FOLDER/figures.gp, figures.dat), so anyone can redraw or restyle them.
+#include <string>
+#include <vector>
+
+namespace motus::plot {
+
+// symlog: logarithmic beyond ±threshold and linear inside, for a quantity that changes sign
+// (an energy error that goes up and down) or is exactly 0 at times.
+enum class Scale { linear, log, symlog };
+
+struct Series {
+  std::string name;             // the legend's entry
+  std::vector<double> x, y;     // points that are not finite (or ≤ 0 on a log axis) leave a gap
+  std::string style = "lines";  // "lines", "linespoints" or "points"
+};
+
+struct Figure {
+  std::string stem;  // the files: FOLDER/stem.png and FOLDER/stem.svg
+  std::string title, x_label, y_label;
+  Scale x_scale = Scale::linear, y_scale = Scale::linear;
+  double symlog_threshold = 1e-16;  // where a symlog axis turns linear
+  std::vector<Series> series;
+  std::string note;  // a line under the title (what to look at), or ""
+  int width = 900, height = 480;
+};
+
+// Draws every figure with one gnuplot run. Returns "" or one line for the user (no gnuplot on
+// PATH, or gnuplot failed: FOLDER/figures.log says why). Throws std::runtime_error when the
+// script or the data cannot be written.
+std::string draw(const std::vector<Figure>& figures, const std::string& folder);
+
+// The gnuplot program, or "" when there is none.
+std::string gnuplot_program();
+
+}  // namespace motus::plot
