@@ -138,8 +138,8 @@ int compare_command(const CompareOptions& o) {
   const std::string work = partial.path();
 
   ProgressBar progress(0, 1, "compare " + scene.name, 1);
+  progress.phase("stepping the engines", 0, 1);
   const auto runs = compare::run_comparison(scene, options, [&](double f) { progress.update(f); });
-  progress.finish();
 
   compare::ReportContext context;
   context.scene_name = scene.name;
@@ -161,6 +161,10 @@ int compare_command(const CompareOptions& o) {
     job.height = panel_height;
     job.fps = 1 / (static_cast<double>(options.frame_every) * options.dt);
     job.folder = work;
+    size_t frames = 0;
+    for (const auto& run : runs) frames = std::max(frames, run.frames.size());
+    progress.phase("drawing", 0, static_cast<double>(frames));
+    job.progress = [&](long done, long) { progress.update(static_cast<double>(done)); };
     for (const auto& run : runs) {
       draw::Panel panel{run.engine, run.version, {}, run.unsupported};
       for (size_t k = 0; k < run.frames.size(); ++k) {
@@ -188,7 +192,9 @@ int compare_command(const CompareOptions& o) {
       picture_warning = "pictures skipped: " + error;
     }
   }
+  progress.note("writing the report");
   const std::string warning = compare::write_report(work, context, runs);
+  progress.finish();
   stop_if_interrupted();  // (a plot that died of the same Ctrl-C is no reason to finish the report)
   partial.complete();
   nlohmann::json summary = compare::summary_json(context, runs);

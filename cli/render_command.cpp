@@ -12,6 +12,7 @@
 
 #include "cli_common.hpp"
 #include "draw_module.hpp"
+#include "interrupt.hpp"
 #include "motus/process/run_program.hpp"
 #include "motus/scene_error.hpp"
 #include "motus/simulation.hpp"
@@ -130,7 +131,8 @@ int render_command(const RenderOptions& o) {
   };
   const bool every_step = !scene.is_mechanical();
   const double min_gap = scene.output_interval > 0 ? scene.output_interval * 0.999 : 0;
-  ProgressBar progress(0, 2.0 * static_cast<double>(frames), scene.name, 1);
+  ProgressBar progress(0, static_cast<double>(frames), scene.name, 1);
+  progress.phase("simulating", 0, static_cast<double>(frames));
   const auto began = std::chrono::steady_clock::now();
   record(sim);
   job.frame_index.push_back(0);
@@ -158,7 +160,8 @@ int render_command(const RenderOptions& o) {
   for (const auto& set : o.sets)
     if (set.rfind("integrator=", 0) != 0) job.note += fmt::format("  {}", set);
   job.folder = o.out;
-  job.frame_done = [&](long k) { progress.update(static_cast<double>(frames + k)); };
+  progress.phase("drawing", 0, static_cast<double>(frames));
+  job.frame_done = [&](long k) { progress.update(static_cast<double>(k)); };
   const std::string video_name = o.video.empty() ? "" : safe_file_name(scene.name) + "." + o.video;  // a name is not a path
   write_manifest(o.out, frames, video_name);  // first: what is written is listed even if the run stops
   if (const std::string error = drawing.render_frames(job); !error.empty()) throw InputError(error);
@@ -168,10 +171,11 @@ int render_command(const RenderOptions& o) {
              duration, scene.name, o.out, wall);
   if (!o.video.empty()) {
     const std::string file = (fs::path(o.out) / video_name).string();
-    if (const std::string error =
-            drawing.encode_video((fs::path(o.out) / "frame_%05d.png").string(), o.fps, file, o.video);
-        !error.empty())
-      throw std::runtime_error(error);
+    progress.note("encoding the video (ffmpeg)");
+    const std::string error = drawing.encode_video((fs::path(o.out) / "frame_%05d.png").string(), o.fps, file, o.video);
+    progress.finish();
+    stop_if_interrupted();
+    if (!error.empty()) throw std::runtime_error(error);
     fmt::print("video        {}\n", file);
   }
   return 0;

@@ -17,7 +17,7 @@ for fuzzer in fuzz_load fuzz_step; do
   mkdir -p "$corpus"
   cp "$here"/../scenes/*.json "$corpus"/
   echo "== $fuzzer for ${seconds} s"
-  if ! "$build/$fuzzer" "$corpus" -dict="$here/scene.dict" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 \
+  if ! "$build/$fuzzer" "$corpus" -dict="$here/scene.dict" -max_total_time="$seconds" -timeout=30 -rss_limit_mb=2048 \
        -max_len=65536 -artifact_prefix="$build/findings/$fuzzer-" -print_final_stats=1 2> "$build/$fuzzer.log"; then
     status=1
     tail -60 "$build/$fuzzer.log"
