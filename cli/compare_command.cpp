@@ -33,6 +33,17 @@ std::string new_run_folder(const std::string& scene_name) {
   return path;
 }
 
+// Without --render, the report still shows the scene (its first and last frames) and replays it:
+// frames at up to 60 per second of simulated time, but no more than about two million
+// coordinates over all engines (the ball gas gets a few dozen frames, a collision hundreds).
+long replay_frame_every(const SceneDescription& scene, const compare::ComparisonOptions& options) {
+  const double steps = static_cast<double>(fixed_step_count(options.duration, options.dt));
+  const double coordinates = static_cast<double>(scene.mechanical->bodies.size()) * scene.mechanical->dimensions *
+                             static_cast<double>(std::max<size_t>(options.engines.size(), 1));
+  const double frames = std::clamp(std::min(60 * options.duration, 2e6 / std::max(coordinates, 1.0)), 2.0, 1500.0);
+  return std::max(1L, static_cast<long>(std::ceil(steps / frames)));
+}
+
 std::string format_or_dash(const nlohmann::json& v, const char* format) {
   return v.is_null() ? std::string("-") : fmt::format(fmt::runtime(format), v.get<double>());
 }
@@ -122,6 +133,8 @@ int compare_command(const CompareOptions& o) {
       throw InputError("--size: must be WxH with 64 <= W <= 4096 and 48 <= H <= 4096 (got \"" + o.size + "\")");
     if (!(o.fps > 0) || !std::isfinite(o.fps)) throw InputError("--fps: must be a finite number > 0");
     options.frame_every = std::max(1L, std::lround(1 / (o.fps * options.dt)));
+  } else {
+    options.frame_every = replay_frame_every(scene, options);
   }
   // Fail before any engine runs if motus cannot run this scene with this integrator.
   if (std::find(options.engines.begin(), options.engines.end(), "motus") != options.engines.end())

@@ -51,7 +51,7 @@ struct ComparisonOptions {
   double dt = 0.01;
   double duration = 1;
   long samples = 200;  // metric rows over the run (at most one per step)
-  long frame_every = 0;  // keep the state every this many steps for pictures (0: none)
+  long frame_every = 0;  // keep the state every this many steps, and the last, for pictures (0: none)
 };
 
 // progress(fraction of all engines' steps done) is called now and then.
