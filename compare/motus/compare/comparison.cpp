@@ -134,6 +134,7 @@ std::vector<EngineRun> run_comparison(const SceneDescription& scene, const Compa
       if (options.frame_every > 0 && (i % options.frame_every == 0 || i == steps)) keep_frame();
     }
     run.steps = steps;
+    run.last = s;
     run.notes = backend->notes();  // after the run: limits that bit during it
     done += static_cast<double>(steps);
     runs.push_back(std::move(run));

@@ -19,6 +19,7 @@ struct EngineRun {
   std::vector<MetricsRow> rows;          // at t0 and every sample time
   std::vector<Snapshot> frames;          // at t0 and every frame_every steps (for --render)
   std::vector<double> frame_energies;    // total energy of each frame
+  Snapshot last;                         // the state at the end of the run
   long steps = 0;
   double step_seconds = 0;  // wall time inside step() only, not in the metrics
 

@@ -11,12 +11,15 @@
 namespace motus::compare {
 
 struct ReportContext {
+  const SceneDescription* scene = nullptr;  // what was run (for the definitions and the exact answer)
   std::string scene_name, scene_file, description;
   std::string integrator;
   double dt = 0, duration = 0;
+  long samples = 0;  // metric samples over the run
   int dimensions = 2;
   long bodies = 0;
   std::string video, contact_sheet;  // file names in the folder (--render), or ""
+  std::string first_and_last;        // the engines side by side at the start and the end (file name), or ""
   bool momentum_conserved = false;          // the scene keeps it (no walls, no outside force)
   bool angular_momentum_conserved = false;  // about the origin
 };
