@@ -194,7 +194,7 @@ std::vector<plot::Figure> figures(const Report& r) {
         }
       if (!pair.x.empty()) f.series.push_back(std::move(pair)), f.series.push_back(std::move(gas));
     }
-    f.note = "a line named 'exactly 0 throughout' is exact at every ratio";
+    f.note = "a point missing from a line is exactly 0 (a log axis has no 0)";
     all.push_back(std::move(f));
   }
   if (has(r, "speed")) {
