@@ -36,7 +36,7 @@ std::string number(double x) {
 
 void print_tables(const stress::Report& r) {
   using namespace stress;
-  fmt::print("{}: {} bodies, {}-D, dt = {:g} s; sections: {}\n", r.scene_name, r.bodies, r.dimensions, r.dt,
+  fmt::print("{}: {} {}, {}-D, dt = {:g} s; sections: {}\n", r.scene_name, r.bodies, r.bodies == 1 ? "body" : "bodies", r.dimensions, r.dt,
              fmt::join(r.sections, ", "));
   for (const auto& [section, why] : r.not_applied) fmt::print("  not measured: {}: {}\n", section, why);
   for (const auto& [integrator, why] : r.cannot_run) fmt::print("  cannot run it: {}: {}\n", integrator, why);

@@ -351,10 +351,11 @@ std::string write_page(const std::string& folder, const Report& r) {
        "th{background:#f3f3f3}td:first-child,th:first-child{text-align:left}.no{color:#a00}.ok{color:#070}"
        "img{max-width:100%}code{background:#f3f3f3;padding:0 .2em}</style></head><body>\n";
   h << "<h1>Stress test: " << escape(r.scene_name) << "</h1>\n<p>" << escape(r.description) << "</p>\n";
-  h << fmt::format("<p>{} bodies in {} dimensions, the scene's dt = {:g} s. Every number below was measured by running "
+  h << fmt::format("<p>{} {} in {} dimensions, the scene's dt = {:g} s. Every number below was measured by running "
                    "<code>motus::Simulation</code> on the scene or on a variant of it; the CSV files hold every run. "
                    "Sections: {}.</p>\n",
-                   r.bodies, r.dimensions, r.dt, escape(fmt::format("{}", fmt::join(r.sections, ", "))));
+                   r.bodies, r.bodies == 1 ? "body" : "bodies", r.dimensions, r.dt,
+                   escape(fmt::format("{}", fmt::join(r.sections, ", "))));
   if (!r.not_applied.empty()) {
     h << "<p>Not measured on this scene:</p><ul>\n";
     for (const auto& [section, why] : r.not_applied) h << "<li><b>" << escape(section) << "</b>: " << escape(why) << "</li>\n";
