@@ -15,8 +15,11 @@ namespace {
 
 std::vector<std::string> variable_names(const SceneDescription& scene, size_t count) {
   std::vector<std::string> names;
-  if (scene.first_order)
-    if (const auto* info = find_first_order_system(scene.first_order->type)) names = info->variables;
+  if (scene.first_order) {
+    names = scene.first_order->variables;  // the loader's: the catalog's names, or an "equations" system's own
+    if (names.empty())
+      if (const auto* info = find_first_order_system(scene.first_order->type)) names = info->variables;
+  }
   for (size_t i = names.size(); i < count; ++i) names.push_back(std::string(1, 'y').append(std::to_string(i)));
   names.resize(count);
   return names;
