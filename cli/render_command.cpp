@@ -74,7 +74,7 @@ CLI::App* add_render_command(CLI::App& app, RenderOptions& o) {
   render->add_option("scene", o.scene, "Scene file, or the name of a shipped scene (see `motus list`)")->required();
   render->add_option("--out", o.out, "Folder for frame_00000.png, ... (must not exist unless --overwrite)")->required();
   render->add_option("--size", o.size, "Frame size in pixels")->type_name("WxH")->capture_default_str();
-  render->add_option("--fps", o.fps, "Frames per second of simulated time")->capture_default_str();
+  render->add_option("--fps", o.fps, "Frames per second of simulated time (World2: per simulated year)")->capture_default_str();
   render->add_option("--duration", o.duration, "Simulated time to draw, s (default: the scene's)");
   render->add_option("--integrator", o.integrator, "Integrator (default: the scene's); see `motus list`");
   render->add_option("--set", o.sets, "Override a scene field, e.g. --set lattice.count=1000 (repeatable)")
@@ -167,8 +167,9 @@ int render_command(const RenderOptions& o) {
   if (const std::string error = drawing.render_frames(job); !error.empty()) throw InputError(error);
   progress.finish();
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count();
-  fmt::print("{} frames of {}x{} at {:g} fps ({:g} s of {}) in {}/ ({:.1f} s)\n", frames, width, height, o.fps,
-             duration, scene.name, o.out, wall);
+  fmt::print("{} frames of {}x{} at {:g} per simulated {} ({:g} {} of {}) in {}/ ({:.1f} s)\n", frames, width, height,
+             o.fps, time_unit_of(scene) == "years" ? "year" : "second", duration, time_unit_of(scene), scene.name, o.out,
+             wall);
   if (!o.video.empty()) {
     const std::string file = (fs::path(o.out) / video_name).string();
     progress.note("encoding the video (ffmpeg)");

@@ -116,7 +116,7 @@ std::string duration_text(double seconds) {
 
 // World2 runs in years; everything else in seconds.
 std::string time_unit(const SceneDescription& scene) {
-  return scene.first_order && scene.first_order->type == "world2" ? " (years)" : " (s)";
+  return " (" + time_unit_of(scene) + ")";
 }
 
 // A run this short is printed step by step (the course's spring: six rows).
