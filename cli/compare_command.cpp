@@ -166,6 +166,7 @@ int compare_command(const CompareOptions& o) {
   const auto conserved = compare::conserved_quantities(scene);
   context.momentum_conserved = conserved.momentum;
   context.angular_momentum_conserved = conserved.angular_momentum;
+  context.scene = &scene;
   std::string picture_warning;
   if (o.render) {
     draw::ComparisonJob job;

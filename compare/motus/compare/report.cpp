@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <fstream>
 
+#include "motus/compare/replay.hpp"
 #include "motus/plot/figure.hpp"
 
 namespace motus::compare {
@@ -235,6 +236,10 @@ std::string write_report(const std::string& folder, const ReportContext& c, cons
          << "</td><td>" << cell(e["time_relative_to_motus"], "{:.2f}×") << "</td></tr>\n";
   }
   html << "</table>\n";
+  if (c.scene) {  // the engines side by side, played back in the page
+    write_replay(folder, *c.scene, runs);
+    html << replay_section(*c.scene, runs);
+  }
   if (!c.video.empty() || !c.contact_sheet.empty()) {
     html << "<h2>Side by side</h2>\n";
     if (!c.video.empty())

@@ -19,6 +19,7 @@ struct ReportContext {
   std::string video, contact_sheet;  // file names in the folder (--render), or ""
   bool momentum_conserved = false;          // the scene keeps it (no walls, no outside force)
   bool angular_momentum_conserved = false;  // about the origin
+  const SceneDescription* scene = nullptr;  // the scene run, for the replay (replay.hpp); none without it
 };
 
 // Whether a scene keeps its total momentum and its angular momentum about the origin exactly
@@ -33,8 +34,9 @@ Conserved conserved_quantities(const SceneDescription& scene);
 nlohmann::json summary_json(const ReportContext& context, const std::vector<EngineRun>& runs);
 
 // Writes metrics.csv, summary.json, the figures (energy, and momentum and angular momentum
-// where the scene keeps them: PNG and SVG, drawn by gnuplot, with figures.gp and figures.dat)
-// and index.html into `folder` (which must exist). Returns a line to show the user when the
+// where the scene keeps them: PNG and SVG, drawn by gnuplot, with figures.gp and figures.dat),
+// the replay (replay.js, replay-data.js; when context.scene is set) and index.html into `folder`
+// (which must exist). Returns a line to show the user when the
 // plots could not be made, else an empty string.
 std::string write_report(const std::string& folder, const ReportContext& context, const std::vector<EngineRun>& runs);
 
