@@ -340,12 +340,12 @@ TEST_F(ReplayBrowser, AfterTheCollisionTheLightBallHasMovedLeft) {
   }
 }
 
-// A time past the end shows the last frame (here through the fragment form, #t=).
+// A time past the end shows the last frame.
 TEST_F(ReplayBrowser, ATimePastTheEndShowsTheLastFrame) {
   TempDir dir;
   const Report report = make_report(dir, "head_on");
   const fs::path png = dir / "end.png";
-  const Result r = open_page(dir, chromium, page_url(report, "#t=1000"), png);
+  const Result r = open_page(dir, chromium, page_url(report, "?t=1000"), png);
   ASSERT_EQ(r.status, 0) << r.err;
   expect_no_script_errors(r);
   const Image image = read_png(png);
@@ -358,11 +358,12 @@ TEST_F(ReplayBrowser, ATimePastTheEndShowsTheLastFrame) {
   }
 }
 
-// The labels the script writes: each panel's time and energy error at the frame shown, the clock.
+// The labels the script writes: each panel's time and energy error at the frame shown, the clock
+// (here through the fragment form, #t=).
 TEST_F(ReplayBrowser, EveryPanelSaysItsTimeAndEnergyError) {
   TempDir dir;
   const Report report = make_report(dir, "head_on");
-  const Result r = open_page(dir, chromium, page_url(report, "?t=1.0"));
+  const Result r = open_page(dir, chromium, page_url(report, "#t=1.0"));
   ASSERT_EQ(r.status, 0) << r.err;
   expect_no_script_errors(r);
   const auto& times = report.engine(0).at("t");
