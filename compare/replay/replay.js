@@ -299,7 +299,8 @@
   }
   function tick(now) {
     if (!playing) return;
-    if (previous !== null) simulated += (now - previous) / 1000 * speed;
+    // (at most a quarter of a second at a time: a tab in the background does not jump to the end)
+    if (previous !== null) simulated += Math.min(now - previous, 250) / 1000 * speed;
     previous = now;
     let i = index;
     while (i < last && times[i + 1] <= simulated) ++i;
