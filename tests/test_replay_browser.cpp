@@ -304,8 +304,16 @@ TEST_F(ReplayBrowser, BeforeTheCollisionEveryBallIsWhereTheDataPutsIt) {
     EXPECT_EQ(e.at("x").size(), e.at("t").size());
     EXPECT_EQ(e.at("energy_error").size(), e.at("t").size());
   }
-  // The section comes right after the summary table.
-  EXPECT_NE(read_file(report.folder / "index.html").find("</table>\n<section id=\"replay\">"), std::string::npos);
+  // The section comes right after the summary table (the first table; closing tags of its wrapper aside).
+  const std::string html = read_file(report.folder / "index.html");
+  const size_t table = html.find("</table>"), section = html.find("<section id=\"replay\">");
+  ASSERT_NE(table, std::string::npos);
+  ASSERT_NE(section, std::string::npos);
+  ASSERT_LT(table, section);
+  std::string between = html.substr(table + 8, section - table - 8);
+  for (const std::string tag : {"</div>", "\n", " "})
+    for (size_t at; (at = between.find(tag)) != std::string::npos;) between.erase(at, tag.size());
+  EXPECT_EQ(between, "") << "between the summary table and the replay";
 
   const fs::path png = dir / "t1.png";
   const Result r = open_page(dir, chromium, page_url(report, "?t=1.0"), png);
