@@ -7,6 +7,7 @@
 #include <fstream>
 
 #include "motus/compare/explanations.hpp"
+#include "motus/compare/replay.hpp"
 #include "motus/exact/exact_solution.hpp"
 #include "motus/plot/figure.hpp"
 
@@ -268,10 +269,15 @@ std::string write_report(const std::string& folder, const ReportContext& c, cons
          << "</td><td>" << cell(e["us_per_step"], "{:.2f}") << "</td><td>" << cell(e["time_relative_to_motus"], "{:.2f}×")
          << "</td></tr>\n";
   }
+  if (!c.momentum_conserved)  // (inside the table: the replay follows it directly)
+    html << "<tr><td class=\"dim\" colspan=\"" << columns + 1
+         << "\" style=\"white-space:normal\">* This scene does not keep its momentum (walls or outside forces act on it): "
+            "that column shows their push, not an engine's error.</td></tr>\n";
   html << "</table></div>\n";
-  if (!c.momentum_conserved)
-    html << "<p class=\"dim\">* This scene does not keep its momentum (walls or outside forces act on it): that column "
-            "shows their push, not an engine's error.</p>\n";
+  if (c.scene) {  // the engines side by side, played back in the page
+    write_replay(folder, *c.scene, runs);
+    html << replay_section(*c.scene, runs);
+  }
   if (summary.contains("exact")) {
     const auto& x = summary["exact"];
     html << "<h2>The exact answer</h2>\n<p>" << html_escape(x["source"].get<std::string>()) << fmt::format(", at t = {:g} s", x["t"].get<double>())
