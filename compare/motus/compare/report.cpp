@@ -231,7 +231,7 @@ std::string write_report(const std::string& folder, const ReportContext& c, cons
   // index.html
   std::ofstream html(folder + "/index.html");
   html << "<!doctype html>\n<html><head><meta charset=\"utf-8\"><title>motus compare: " << html_escape(c.scene_name)
-       << "</title>\n<style>body{font-family:sans-serif;max-width:60em;margin:2em auto;padding:0 1em;color:#222}"
+       << "</title>\n<style>body{font-family:sans-serif;max-width:75em;margin:2em auto;padding:0 1em;color:#222}"
           "table{border-collapse:collapse;margin:.5em 0}td,th{border:1px solid #ccc;padding:.3em .6em;text-align:right;"
           "white-space:nowrap}th{background:#f3f3f3}td:first-child,th:first-child{text-align:left}.no{color:#a00}"
           ".wide{overflow-x:auto}.notice{background:#eef4fb;border-left:4px solid #4285d6;padding:.6em .9em}"
