@@ -35,7 +35,7 @@ png() {
 gif spring spring --size 320x160 --fps 10 --duration 8.9 --set integrator=velocity-verlet --set dt=0.02
 gif bouncing_balls bouncing_balls --size 240x240 --fps 10 --duration 5
 gif newtons_cradle newtons_cradle --size 320x140 --fps 15 --duration 3
-gif ragdoll ragdoll --size 280x280 --fps 15 --duration 4
+gif ragdoll ragdoll --size 300x210 --fps 15 --duration 4
 png cloth cloth --size 400x300 --fps 1 --duration 3
 png lorenz lorenz --size 400x300 --fps 1 --duration 30
 png world2 world2 --size 560x320 --fps 0.05 --duration 200
