@@ -16,7 +16,7 @@
 #include "motus/integrate/verlet.hpp"
 #include "motus/integrate/yoshida4.hpp"
 #include "motus/scene_error.hpp"
-#include "motus/systems/mechanical_as_first_order.hpp"
+#include "motus/systems/concrete_system.hpp"
 #include "motus/systems/system_catalog.hpp"
 
 namespace motus {
@@ -33,6 +33,9 @@ namespace {
 template <class T>
 constexpr bool is_adaptive =
     std::is_same_v<T, Rk4Doubling> || std::is_same_v<T, Rk45> || std::is_same_v<T, ExternalAdaptiveStep>;
+template <class T>
+constexpr bool is_external = std::is_same_v<T, ExternalFixedStep> || std::is_same_v<T, ExternalAdaptiveStep> ||
+                              std::is_same_v<T, ExternalMechanicalStep>;
 template <class T>
 constexpr bool is_symplectic = std::is_same_v<T, SymplecticEuler> || std::is_same_v<T, SymplecticEulerX> ||
                                std::is_same_v<T, Verlet> || std::is_same_v<T, VelocityVerlet> ||
@@ -181,15 +184,21 @@ void Simulation::advance(double end_time, double dt, Tolerance tolerance,
   std::visit(
       [&](auto& stepper) {
         using S = std::decay_t<decltype(stepper)>;
-        if constexpr (!is_symplectic<S>) {
+        if constexpr (is_symplectic<S>) {
+          run(stepper, world_->system());
+        } else if constexpr (is_external<S>) {  // plain functions on arrays: nothing to inline
           if (world_) {
             MechanicalAsFirstOrder as_first_order(world_->system());
             run(stepper, as_first_order);
           } else {
             run(stepper, *first_order_);
           }
+        } else if (world_) {
+          // The system by its concrete type (systems/concrete_system.hpp): direct calls, and
+          // for one body or an attractor stages of a size known at compile time.
+          with_first_order_view(world_->system(), [&](auto& f) { run(stepper, f); });
         } else {
-          run(stepper, world_->system());
+          with_concrete_system(*first_order_, [&](auto& f) { run(stepper, f); });
         }
       },
       stepper_->any);

@@ -10,10 +10,11 @@ struct LinearDrag {
   double coefficient = 0;  // b, kg/s
 
   void add_forces(int d, ConstVectorRef v, VectorRef F) const {
-    if (body >= 0) {
-      for (int k = 0; k < d; ++k) F[body * d + k] -= coefficient * v[body * d + k];
-    } else {
-      F -= coefficient * v;
+    // Every body, or only `body`: a loop whose bound is known at compile time for one body.
+    const Eigen::Index bodies = F.size() / d;
+    for (Eigen::Index i = 0; i < bodies; ++i) {
+      if (body >= 0 && i != body) continue;
+      for (int k = 0; k < d; ++k) F[i * d + k] -= coefficient * v[i * d + k];
     }
   }
 };
