@@ -4,6 +4,7 @@
 #include <stdexcept>
 #include <variant>
 
+#include "motus/integrate/dop853.hpp"
 #include "motus/integrate/euler.hpp"
 #include "motus/integrate/external_stepper.hpp"
 #include "motus/integrate/midpoint.hpp"
@@ -22,8 +23,8 @@
 namespace motus {
 
 struct Simulation::Steppers {
-  std::variant<Euler, Midpoint, Rk4, Rk4Doubling, Rk45, SymplecticEuler, SymplecticEulerX, Verlet, VelocityVerlet,
-               Yoshida4, ExternalFixedStep, ExternalAdaptiveStep, ExternalMechanicalStep>
+  std::variant<Euler, Midpoint, Rk4, Rk4Doubling, Rk45, Dop853, SymplecticEuler, SymplecticEulerX, Verlet,
+               VelocityVerlet, Yoshida4, ExternalFixedStep, ExternalAdaptiveStep, ExternalMechanicalStep>
       any;
 };
 
@@ -31,8 +32,8 @@ namespace {
 
 // The three calling shapes: step(f, t, h, y); try_step(f, t, h, y); step(s, t, h, x, v).
 template <class T>
-constexpr bool is_adaptive =
-    std::is_same_v<T, Rk4Doubling> || std::is_same_v<T, Rk45> || std::is_same_v<T, ExternalAdaptiveStep>;
+constexpr bool is_adaptive = std::is_same_v<T, Rk4Doubling> || std::is_same_v<T, Rk45> || std::is_same_v<T, Dop853> ||
+                              std::is_same_v<T, ExternalAdaptiveStep>;
 template <class T>
 constexpr bool is_external = std::is_same_v<T, ExternalFixedStep> || std::is_same_v<T, ExternalAdaptiveStep> ||
                               std::is_same_v<T, ExternalMechanicalStep>;
@@ -85,7 +86,7 @@ Simulation::Simulation(const SceneDescription& scene, Method method, ExternalPar
     throw SceneError("integrator", method_.name() +
                                        " is symplectic: it needs a mechanical scene (bodies), and this scene is the "
                                        "first-order system \"" + scene.first_order->type +
-                                       "\"; use euler, midpoint, rk4, rk4-doubling or rk45");
+                                       "\"; use euler, midpoint, rk4, rk4-doubling, rk45 or dop853");
 
   auto& any = stepper_->any;
   if (method_.is_external()) {
@@ -103,6 +104,7 @@ Simulation::Simulation(const SceneDescription& scene, Method method, ExternalPar
       case Integrator::Rk4: any.emplace<Rk4>(); break;
       case Integrator::Rk4Doubling: any.emplace<Rk4Doubling>(); break;
       case Integrator::Rk45: any.emplace<Rk45>(); break;
+      case Integrator::Dop853: any.emplace<Dop853>(); break;
       case Integrator::SymplecticEuler: any.emplace<SymplecticEuler>(); break;
       case Integrator::SymplecticEulerX: any.emplace<SymplecticEulerX>(); break;
       case Integrator::Verlet: any.emplace<Verlet>(); break;
