@@ -149,7 +149,7 @@ void Simulation::advance(double end_time, double dt, Tolerance tolerance,
         if (!accepted) {
           ++rejected_;
           if (adaptive_h_ < 1e-14 * std::max(1.0, std::abs(t_)))
-            throw std::runtime_error("step size underflow at t = " + std::to_string(t_) +
+            throw StepSizeUnderflow("step size underflow at t = " + std::to_string(t_) +
                                      ": the tolerance cannot be met in double precision");
           continue;
         }
