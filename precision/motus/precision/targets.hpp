@@ -1,0 +1,35 @@
+#pragma once
+// A curve read at a target error: the run time (and evaluations) a method needs to reach it,
+// interpolated on log–log axes between the two points of its sweep that bracket the target — the
+// first point at or below the target and the one before it. A curve whose first (cheapest) point
+// is already below the target gives that point's time as an upper bound; one that never reaches
+// the target gives nothing.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "motus/precision/work_precision.hpp"
+
+namespace motus::precision {
+
+struct AtTarget {
+  double seconds = 0;
+  double evaluations = 0;
+  bool upper_bound = false;  // the cheapest point was already below the target
+};
+
+std::optional<AtTarget> at_target(const Curve& curve, double target);
+
+struct Fastest {
+  std::string method;
+  AtTarget at;
+};
+
+// The fastest curve at the target among those whose engine is `engine` (motus's own methods:
+// "motus"; a plug-in's: its name; "odeint", "box2d", "bullet").
+std::optional<Fastest> fastest(const std::vector<Curve>& curves, const std::string& engine, double target);
+
+// Every decade from 1e-4 to 1e-10 (the targets).
+std::vector<double> default_targets();
+
+}  // namespace motus::precision
