@@ -19,6 +19,7 @@ struct EngineRun {
   std::vector<MetricsRow> rows;          // at t0 and every sample time
   std::vector<Snapshot> frames;          // at t0 and every frame_every steps (for --render)
   std::vector<double> frame_energies;    // total energy of each frame
+  Snapshot last;                         // the state at the end of the run
   long steps = 0;
   double step_seconds = 0;  // wall time inside step() only, not in the metrics
 
@@ -51,7 +52,7 @@ struct ComparisonOptions {
   double dt = 0.01;
   double duration = 1;
   long samples = 200;  // metric rows over the run (at most one per step)
-  long frame_every = 0;  // keep the state every this many steps for pictures (0: none)
+  long frame_every = 0;  // keep the state every this many steps, and the last, for pictures (0: none)
 };
 
 // progress(fraction of all engines' steps done) is called now and then.
