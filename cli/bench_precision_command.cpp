@@ -39,7 +39,7 @@ std::string new_run_folder(const std::string& scene_name) {
 
 std::string microseconds(const std::optional<precision::Fastest>& f) {
   if (!f) return "-";
-  return fmt::format("{}{:.3g}", f->at.upper_bound ? "<=" : "", 1e6 * f->at.seconds);
+  return fmt::format("{}{:.3g} ({:.3g})", f->at.upper_bound ? "<=" : "", 1e6 * f->at.seconds, 1e6 * f->at.median_seconds);
 }
 
 }  // namespace
@@ -173,25 +173,28 @@ int bench_precision_command(const BenchPrecisionOptions& o) {
     }
   }
 
-  // The fastest of each engine at each target, and motus's against each peer's.
+  // The targets table: the fastest of each engine at each target, and motus's against each peer's.
   const std::vector<double> targets = o.targets.empty() ? precision::default_targets() : o.targets;
   std::vector<std::string> engines = {"motus"};
   for (const auto& c : curves)
     if (std::find(engines.begin(), engines.end(), c.engine) == engines.end()) engines.push_back(c.engine);
-  fmt::print("\nthe fastest method at each target error (each curve interpolated on log-log axes; <= : its cheapest "
-             "point is already below the target)\n{:<10}", "target");
-  for (const auto& e : engines) fmt::print("  {:<34}{:>9}", e + " fastest", "us");
-  for (size_t k = 1; k < engines.size(); ++k) fmt::print("{:>16}", "motus/" + engines[k]);
+  fmt::print("\ntargets: the fastest method of each engine at each target error, each curve interpolated on log-log "
+             "axes;\nus = microseconds of the fastest runs (the median runs'); <= : the cheapest point is already "
+             "below the target\n{:<8}", "target");
+  for (const auto& e : engines) fmt::print("  {:<30}{:>18}", e, "us");
+  for (size_t k = 1; k < engines.size(); ++k) fmt::print("{:>22}", "motus/" + engines[k]);
   fmt::print("\n");
   for (double target : targets) {
-    fmt::print("{:<10g}", target);
+    fmt::print("{:<8g}", target);
     std::vector<std::optional<precision::Fastest>> best;
     for (const auto& e : engines) {
       best.push_back(precision::fastest(curves, e, target));
-      fmt::print("  {:<34}{:>9}", best.back() ? best.back()->method : "not reached", microseconds(best.back()));
+      fmt::print("  {:<30}{:>18}", best.back() ? best.back()->method : "not reached", microseconds(best.back()));
     }
     for (size_t k = 1; k < engines.size(); ++k)
-      fmt::print("{:>16}", best[0] && best[k] ? fmt::format("{:.2f}", best[0]->at.seconds / best[k]->at.seconds) : "-");
+      fmt::print("{:>22}", best[0] && best[k] ? fmt::format("{:.2f} ({:.2f})", best[0]->at.seconds / best[k]->at.seconds,
+                                                            best[0]->at.median_seconds / best[k]->at.median_seconds)
+                                              : "-");
     fmt::print("\n");
   }
 

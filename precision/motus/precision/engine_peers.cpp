@@ -5,6 +5,7 @@
 
 #include "motus/compare/backends/backend.hpp"
 #include "motus/precision/motus_sweep.hpp"
+#include "motus/precision/run_times.hpp"
 #include "motus/simulation.hpp"
 
 namespace motus::precision {
@@ -19,7 +20,7 @@ Curve sweep_engine(const SceneDescription& scene, const std::string& name, const
     const long steps = fixed_step_count(sweep.end - scene.start_time, dt);
     Point p;
     p.h = dt;
-    p.seconds = INFINITY;
+    RunTimes times;
     for (int r = 0; r <= sweep.repeats; ++r) {
       std::unique_ptr<compare::Backend> engine = compare::make_backend(name);
       try {
@@ -44,10 +45,13 @@ Curve sweep_engine(const SceneDescription& scene, const std::string& name, const
         p.steps = steps;
         p.evaluations = steps;  // the scene's forces, applied once per step
         p.error = state_error(scene, y, p.t_end);
+        if (sweep.repeats == 0) times.add(seconds);
       } else {
-        p.seconds = std::min(p.seconds, seconds);
+        times.add(seconds);
       }
     }
+    p.seconds = times.fastest();
+    p.median_seconds = times.median();
     c.points.push_back(p);
     if (sweep.point_done) sweep.point_done();
   }

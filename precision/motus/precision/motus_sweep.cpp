@@ -6,6 +6,7 @@
 #include <string>
 
 #include "motus/exact/exact_solution.hpp"
+#include "motus/precision/run_times.hpp"
 #include "motus/simulation.hpp"
 
 namespace motus::precision {
@@ -41,7 +42,7 @@ Point measure(const SceneDescription& scene, const Method& method, double h, dou
   Point p;
   p.h = h;
   p.tolerance = method.adaptive() ? tol : 0;
-  p.seconds = INFINITY;
+  RunTimes times;
   // One untimed run (its numbers are the point's), then the timed ones.
   for (int r = 0; r <= repeats; ++r) {
     Simulation sim(scene, method);
@@ -58,11 +59,13 @@ Point measure(const SceneDescription& scene, const Method& method, double h, dou
       p.error = state_error(scene, sim.state(), sim.time());
       p.steps = sim.steps();
       p.evaluations = sim.evaluations();
-      if (repeats == 0) p.seconds = seconds;
+      if (repeats == 0) times.add(seconds);
     } else {
-      p.seconds = std::min(p.seconds, seconds);
+      times.add(seconds);
     }
   }
+  p.seconds = times.fastest();
+  p.median_seconds = times.median();
   return p;
 }
 

@@ -6,9 +6,12 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <type_traits>
 
 #include "motus/precision/motus_sweep.hpp"
+#include "motus/precision/run_times.hpp"
+#include "motus/scene_error.hpp"
 #include "motus/simulation.hpp"
 #include "motus/systems/concrete_system.hpp"
 
@@ -81,7 +84,7 @@ Point measure(const SceneDescription& scene, long& evaluations, double h, double
   Point p;
   p.h = h;
   p.tolerance = tol;
-  p.seconds = INFINITY;
+  RunTimes times;
   for (int r = 0; r <= repeats; ++r) {
     const long before = evaluations;
     const auto began = std::chrono::steady_clock::now();
@@ -98,10 +101,13 @@ Point measure(const SceneDescription& scene, long& evaluations, double h, double
       p.steps = o.steps;
       p.evaluations = evaluations - before;
       p.error = state_error(scene, o.state, o.t_end);
+      if (repeats == 0) times.add(seconds);
     } else {
-      p.seconds = std::min(p.seconds, seconds);
+      times.add(seconds);
     }
   }
+  p.seconds = times.fastest();
+  p.median_seconds = times.median();
   return p;
 }
 
@@ -205,7 +211,19 @@ std::string odeint_version() {
 std::vector<Curve> sweep_odeint(const SceneDescription& scene, const Sweep& sweep) {
   // A simulation owns the system, built exactly as for motus's own runs; only its system and
   // initial state are used.
-  Simulation sim(scene, Integrator::Rk4);
+  std::optional<Simulation> built;
+  try {
+    built.emplace(scene, Integrator::Rk4);
+  } catch (const SceneError& e) {  // collisions or constraints: a Runge–Kutta method cannot run them
+    std::vector<Curve> curves;
+    for (const char* name : {"runge_kutta4", "runge_kutta_dopri5", "runge_kutta_fehlberg78", "symplectic_rkn_sb3a_mclachlan"}) {
+      Curve c = curve(name, "", false);
+      c.unsupported = std::string("the scene's collisions or constraints: ") + e.what();
+      curves.push_back(std::move(c));
+    }
+    return curves;
+  }
+  Simulation& sim = *built;
   const Vector y0 = sim.state();
   std::vector<Curve> curves;
   auto run = [&](auto& f) { runge_kutta(scene, f, y0, sweep, curves); };

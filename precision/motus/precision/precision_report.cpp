@@ -44,7 +44,7 @@ void write_file(const std::string& path, const std::string& text) {
 // Microseconds, or "–".
 std::string micro(const std::optional<AtTarget>& at) {
   if (!at) return "–";
-  return fmt::format("{}{:.3g}", at->upper_bound ? "≤ " : "", 1e6 * at->seconds);
+  return fmt::format("{}{:.3g} ({:.3g})", at->upper_bound ? "≤ " : "", 1e6 * at->seconds, 1e6 * at->median_seconds);
 }
 
 std::vector<plot::Figure> diagrams(const ReportContext& c, const std::vector<Curve>& curves) {
@@ -90,13 +90,13 @@ std::vector<plot::Figure> diagrams(const ReportContext& c, const std::vector<Cur
 }  // namespace
 
 std::string precision_csv(const std::string& scene, const std::vector<Curve>& curves) {
-  std::string csv = "scene,integrator,h,tolerance,steps,evaluations,t_end,error,seconds,engine,failed\n";
+  std::string csv = "scene,integrator,h,tolerance,steps,evaluations,t_end,error,seconds,engine,failed,median_seconds\n";
   for (const Curve& c : curves)
     for (const Point& p : c.points)
-      csv += fmt::format("{},{},{:.17g},{},{},{},{:.17g},{:.6e},{:.6e},{},{}\n", scene, c.method, p.h,
+      csv += fmt::format("{},{},{:.17g},{},{},{},{:.17g},{:.6e},{:.6e},{},{},{:.6e}\n", scene, c.method, p.h,
                          c.adaptive ? fmt::format("{:.6g}", p.tolerance) : "", p.steps, p.evaluations, p.t_end,
                          p.failed.empty() ? p.error : NAN, p.failed.empty() ? p.seconds : NAN, c.engine,
-                         csv_text(p.failed));
+                         csv_text(p.failed), p.failed.empty() ? p.median_seconds : NAN);
   return csv;
 }
 
@@ -104,13 +104,13 @@ std::string write_precision_report(const std::string& folder, const ReportContex
   write_file(folder + "/precision.csv", precision_csv(c.scene, curves));
 
   // targets.csv: every curve read at every target.
-  std::string targets = "target,integrator,engine,seconds,evaluations,upper_bound\n";
+  std::string targets = "target,integrator,engine,seconds,median_seconds,evaluations,upper_bound\n";
   for (double target : c.targets)
     for (const Curve& curve : curves) {
       const auto at = at_target(curve, target);
       if (at)
-        targets += fmt::format("{:g},{},{},{:.6e},{:.1f},{}\n", target, curve.method, curve.engine, at->seconds,
-                               at->evaluations, at->upper_bound ? "yes" : "no");
+        targets += fmt::format("{:g},{},{},{:.6e},{:.6e},{:.1f},{}\n", target, curve.method, curve.engine, at->seconds,
+                               at->median_seconds, at->evaluations, at->upper_bound ? "yes" : "no");
     }
   write_file(folder + "/targets.csv", targets);
 
@@ -137,9 +137,10 @@ std::string write_precision_report(const std::string& folder, const ReportContex
       c.start, c.end, c.sweep.dt, c.sweep.levels - 1, c.sweep.per_decade, c.sweep.repeats);
 
   // The fastest of each engine at each target.
-  html += "<h2>The fastest method at each target error</h2>\n<p>Each method's curve read at the target, "
+  html += "<h2>Targets: the fastest method at each target error</h2>\n<p>Each method's curve read at the target, "
           "interpolated on log–log axes between the two points that bracket it (≤: the method's cheapest point is "
-          "already below the target).</p>\n<table><tr><th>target error</th>";
+          "already below the target). µs: from the fastest runs of each point, the median runs' in brackets; the "
+          "ratios likewise.</p>\n<table><tr><th>target error</th>";
   for (const auto& e : engines) html += "<th>" + html_escape(e) + " fastest</th><th>µs</th>";
   for (size_t k = 1; k < engines.size(); ++k) html += "<th>motus ÷ " + html_escape(engines[k]) + "</th>";
   html += "</tr>\n";
@@ -153,7 +154,8 @@ std::string write_precision_report(const std::string& folder, const ReportContex
     }
     for (size_t k = 1; k < engines.size(); ++k)
       html += engines[0] == "motus" && best[0] && best[k]
-                  ? fmt::format("<td>{:.2f}</td>", best[0]->at.seconds / best[k]->at.seconds)
+                  ? fmt::format("<td>{:.2f} ({:.2f})</td>", best[0]->at.seconds / best[k]->at.seconds,
+                                best[0]->at.median_seconds / best[k]->at.median_seconds)
                   : "<td>–</td>";
     html += "</tr>\n";
   }
@@ -170,7 +172,7 @@ std::string write_precision_report(const std::string& folder, const ReportContex
   }
 
   html += "<h2>Every method at every target</h2>\n<table><tr><th>method</th>";
-  for (double target : c.targets) html += fmt::format("<th>{:g} [µs]</th>", target);
+  for (double target : c.targets) html += fmt::format("<th>{:g}: µs (median)</th>", target);
   html += "</tr>\n";
   for (const Curve& curve : curves) {
     html += "<tr><td>" + html_escape(curve.method) + "</td>";

@@ -9,11 +9,12 @@ std::optional<AtTarget> at_target(const Curve& curve, double target) {
   for (const Point& p : curve.points) {
     if (!p.failed.empty() || !(p.seconds > 0) || !std::isfinite(p.seconds)) continue;
     if (p.error <= target) {
-      if (!previous || p.error <= 0) return AtTarget{p.seconds, static_cast<double>(p.evaluations), !previous};
+      if (!previous || p.error <= 0)
+        return AtTarget{p.seconds, p.median_seconds, static_cast<double>(p.evaluations), !previous};
       // log t = log t0 + f (log t1 − log t0), f = (log E − log e0) / (log e1 − log e0)
       const double f = std::log(target / previous->error) / std::log(p.error / previous->error);
       auto between = [f](double a, double b) { return std::exp(std::log(a) + f * std::log(b / a)); };
-      return AtTarget{between(previous->seconds, p.seconds),
+      return AtTarget{between(previous->seconds, p.seconds), between(previous->median_seconds, p.median_seconds),
                       between(static_cast<double>(previous->evaluations), static_cast<double>(p.evaluations)), false};
     }
     previous = std::isfinite(p.error) && p.evaluations > 0 ? &p : nullptr;

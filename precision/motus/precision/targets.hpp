@@ -13,7 +13,8 @@
 namespace motus::precision {
 
 struct AtTarget {
-  double seconds = 0;
+  double seconds = 0;         // from the points' fastest runs
+  double median_seconds = 0;  // from the points' median runs
   double evaluations = 0;
   bool upper_bound = false;  // the cheapest point was already below the target
 };

@@ -17,6 +17,7 @@ struct Point {
   double t_end = 0;      // where the run ended, at which the error is taken
   double error = 0;      // max over the state of |y − y_exact| at t_end (inf when it blew up)
   double seconds = 0;    // the fastest of the timed runs
+  double median_seconds = 0;  // their median
   std::string failed;    // why this point could not be measured, or ""
 };
 
