@@ -16,8 +16,10 @@ struct CentralGravity {
   double mu = 1;
   double softening = 0;
 
-  template <class Masses>  // a Vector, or a fixed-size one (one body: the loops unroll)
-  void add_forces(int d, const Masses& m, ConstVectorRef x, VectorRef F) const {
+  // Masses, X, Forces: Vectors (or Refs), or fixed-size ones (one body: the loops unroll and the
+  // numbers stay in registers).
+  template <class Masses, class X, class Forces>
+  void add_forces(int d, const Masses& m, const X& x, Forces&& F) const {
     // Every body, or only `body`: a loop whose bound is known at compile time for one body.
     for (Eigen::Index i = 0; i < m.size(); ++i) {
       if (body >= 0 && i != body) continue;
@@ -47,8 +49,8 @@ struct MutualGravity {
   double G = 1;
   double softening = 0;
 
-  template <class Masses>  // a Vector, or a fixed-size one (one body: the loops unroll)
-  void add_forces(int d, const Masses& m, ConstVectorRef x, VectorRef F) const {
+  template <class Masses, class X, class Forces>  // Vectors (or Refs), or fixed-size ones for one body
+  void add_forces(int d, const Masses& m, const X& x, Forces&& F) const {
     for (Eigen::Index i = 0; i < m.size(); ++i)
       for (Eigen::Index j = i + 1; j < m.size(); ++j) {
         double r[3] = {0, 0, 0};

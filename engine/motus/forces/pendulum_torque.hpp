@@ -14,8 +14,8 @@ struct PendulumTorque {
   double g = 9.81;     // m/s²
   double length = 1;   // m
 
-  template <class Masses>  // a Vector, or a fixed-size one (one body: the loops unroll)
-  void add_forces(int d, const Masses& m, ConstVectorRef x, VectorRef F) const {
+  template <class Masses, class X, class Forces>  // Vectors (or Refs), or fixed-size ones for one body
+  void add_forces(int d, const Masses& m, const X& x, Forces&& F) const {
     for (Eigen::Index i = 0; i < m.size(); ++i)  // only `body`; a loop of known bound for one body
       if (i == body) F[i * d] -= m[i] * (g / length) * std::sin(x[i * d]);
   }

@@ -27,7 +27,7 @@ private:
   MechanicalSystem& system_;
 };
 
-template <int D>
+template <int D, unsigned Kinds = kAnyForces>  // Kinds: MechanicalSystem::acceleration_of_one_body
 class OneBodyAsFirstOrder final {
 public:
   static constexpr int static_size = 2 * D;
@@ -36,7 +36,7 @@ public:
   int size() const { return static_size; }
   [[gnu::always_inline]] void derivative(double t, ConstVectorRef y, VectorRef dydt) {
     for (int k = 0; k < D; ++k) dydt[k] = y[D + k];
-    system_.acceleration_of_one_body<D>(t, y.data(), y.data() + D, dydt.data() + D);
+    system_.template acceleration_of_one_body<D, Kinds>(t, y.data(), y.data() + D, dydt.data() + D);
   }
   MechanicalSystem& mechanical() { return system_; }
 
