@@ -161,6 +161,12 @@ TEST(Targets, InterpolatesOnLogLogAxes) {
   EXPECT_FALSE(at->upper_bound);
   EXPECT_TRUE(precision::at_target(c, 1e-1)->upper_bound);
   EXPECT_FALSE(precision::at_target(c, 1e-7));
+  // Not monotone (an adaptive method's lucky dip at 1e-5): read where it stays below for good.
+  c.points = {point(1e-2, 1e-6, 100), point(1e-5, 2e-6, 200), point(1e-3, 1e-5, 1000), point(1e-5, 1e-4, 10000)};
+  const auto for_good = precision::at_target(c, 1e-4);
+  ASSERT_TRUE(for_good);
+  EXPECT_NEAR(for_good->evaluations, 1000 * std::pow(10.0, 0.5), 1e-6);  // halfway from 1e-3 to 1e-5
+  EXPECT_FALSE(precision::at_target(c, 1e-6));
 }
 
 // ---------------------------------------------------------------------------------------------------------

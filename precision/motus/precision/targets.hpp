@@ -1,9 +1,9 @@
 #pragma once
 // A curve read at a target error: the run time (and evaluations) a method needs to reach it,
-// interpolated on log–log axes between the two points of its sweep that bracket the target — the
-// first point at or below the target and the one before it. A curve whose first (cheapest) point
-// is already below the target gives that point's time as an upper bound; one that never reaches
-// the target gives nothing.
+// interpolated on log–log axes between the two points of its sweep that bracket the target where
+// the curve goes below it for good — the point after the last one above the target, and that one.
+// A curve whose every point is below the target gives its first (cheapest) point's time as an
+// upper bound; one that ends above the target gives nothing.
 #include <optional>
 #include <string>
 #include <vector>
