@@ -240,6 +240,21 @@ TEST(BenchPrecisionCommand, APeerThatCannotRunTheSceneIsReported) {
   EXPECT_NE(read_file(out / "index.html").find("cannot run this scene"), std::string::npos);
 }
 
+TEST(BenchPrecisionCommand, MethodsThatCannotRunCollisionsAreReported) {
+  TempDir dir;
+  const auto r = run_motus(dir, {"bench", "precision", "head_on", "--integrators", "rk4,symplectic-euler", "--peers",
+                                 "odeint", "--levels", "1", "--repeats", "1", "--out", (dir / "run").string()});
+  ASSERT_EQ(r.status, 0) << r.err;
+  for (const char* method : {"rk4", "odeint:runge_kutta4", "odeint:runge_kutta_fehlberg78"}) {
+    bool said = false;
+    std::stringstream lines(r.out);
+    for (std::string line; std::getline(lines, line);)
+      said = said || (line.rfind(std::string(method) + " ", 0) == 0 && line.find("cannot run this scene") != std::string::npos);
+    EXPECT_TRUE(said) << method << "\n" << r.out;
+  }
+  EXPECT_NE(read_file(dir / "run" / "precision.csv").find(",symplectic-euler,"), std::string::npos);
+}
+
 TEST(BenchPrecisionCommand, BadPeersAndFlagsAreOneLineExitTwo) {
   TempDir dir;
   fs::create_directories(dir / "exists");

@@ -7,6 +7,7 @@
 
 #include "motus/exact/exact_solution.hpp"
 #include "motus/precision/run_times.hpp"
+#include "motus/scene_error.hpp"
 #include "motus/simulation.hpp"
 
 namespace motus::precision {
@@ -79,6 +80,12 @@ Curve sweep_motus(const SceneDescription& scene, const Method& method, const Swe
   c.adaptive = method.adaptive();
   if (method.needs_mechanical() && !scene.is_mechanical()) {
     c.unsupported = "symplectic: needs a mechanical scene (bodies)";
+    return c;
+  }
+  try {
+    Simulation refused(scene, method);  // collisions or constraints the method cannot run
+  } catch (const SceneError& e) {
+    c.unsupported = e.what();
     return c;
   }
   if (c.adaptive) {
