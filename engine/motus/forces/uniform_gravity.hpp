@@ -9,7 +9,10 @@ namespace motus {
 struct UniformGravity {
   std::array<double, 3> g{0, 0, 0};  // m/s², only the first `d` components are used
 
-  void add_forces(int d, const Vector& m, ConstVectorRef /*x*/, VectorRef F) const {
+  // Masses, X, Forces: Vectors (or Refs), or fixed-size ones (one body: the loops unroll and the
+  // numbers stay in registers).
+  template <class Masses, class X, class Forces>
+  void add_forces(int d, const Masses& m, const X& /*x*/, Forces&& F) const {
     for (Eigen::Index i = 0; i < m.size(); ++i)
       for (int k = 0; k < d; ++k) F[i * d + k] += m[i] * g[k];
   }

@@ -13,6 +13,7 @@ MechanicalSystem::MechanicalSystem(int dimensions, std::vector<double> masses, F
   for (double m : masses)
     if (!(m > 0)) throw std::invalid_argument("every mass must be > 0");
   inverse_mass_ = mass_.cwiseInverse();
+  one_mass_[0] = mass_.size() > 0 ? mass_[0] : 1.0;
 }
 
 void MechanicalSystem::acceleration(double t, ConstVectorRef x, ConstVectorRef v, VectorRef a) {
