@@ -7,23 +7,12 @@
 #include <stdexcept>
 
 #include "motus/plot/figure.hpp"
+#include "motus/plot/html.hpp"
 
 namespace motus::cli::stress {
 namespace {
 
-std::string escape(const std::string& text) {
-  std::string out;
-  for (char c : text) {
-    switch (c) {
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '&': out += "&amp;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
-    }
-  }
-  return out;
-}
+using motus::plot::html_escape;
 
 // A number for a CSV cell or a table: 17 significant digits in CSV, 3 on the page; "inf" as is.
 std::string csv(double x) { return fmt::format("{:.17g}", x); }
@@ -345,30 +334,30 @@ std::string write_page(const std::string& folder, const Report& r) {
   const std::string warning = plot::draw(figures(r), folder);
 
   File h(folder + "/index.html");
-  h << "<!doctype html>\n<html><head><meta charset=\"utf-8\"><title>motus stress: " << escape(r.scene_name)
+  h << "<!doctype html>\n<html><head><meta charset=\"utf-8\"><title>motus stress: " << html_escape(r.scene_name)
     << "</title>\n<style>body{font-family:sans-serif;max-width:62em;margin:2em auto;padding:0 1em;color:#222}"
        "table{border-collapse:collapse;margin:.5em 0}td,th{border:1px solid #ccc;padding:.25em .55em;text-align:right}"
        "th{background:#f3f3f3}td:first-child,th:first-child{text-align:left}.no{color:#a00}.ok{color:#070}"
        "img{max-width:100%}code{background:#f3f3f3;padding:0 .2em}</style></head><body>\n";
-  h << "<h1>Stress test: " << escape(r.scene_name) << "</h1>\n<p>" << escape(r.description) << "</p>\n";
+  h << "<h1>Stress test: " << html_escape(r.scene_name) << "</h1>\n<p>" << html_escape(r.description) << "</p>\n";
   h << fmt::format("<p>{} {} in {} dimensions, the scene's dt = {:g} s. Every number below was measured by running "
                    "<code>motus::Simulation</code> on the scene or on a variant of it; the CSV files hold every run. "
                    "Sections: {}.</p>\n",
                    r.bodies, r.bodies == 1 ? "body" : "bodies", r.dimensions, r.dt,
-                   escape(fmt::format("{}", fmt::join(r.sections, ", "))));
+                   html_escape(fmt::format("{}", fmt::join(r.sections, ", "))));
   if (!r.not_applied.empty()) {
     h << "<p>Not measured on this scene:</p><ul>\n";
-    for (const auto& [section, why] : r.not_applied) h << "<li><b>" << escape(section) << "</b>: " << escape(why) << "</li>\n";
+    for (const auto& [section, why] : r.not_applied) h << "<li><b>" << html_escape(section) << "</b>: " << html_escape(why) << "</li>\n";
     h << "</ul>\n";
   }
   if (!r.cannot_run.empty()) {
     h << "<p>Integrators that cannot run this scene:</p><ul>\n";
-    for (const auto& [integrator, why] : r.cannot_run) h << "<li><code>" << escape(integrator) << "</code>: " << escape(why) << "</li>\n";
+    for (const auto& [integrator, why] : r.cannot_run) h << "<li><code>" << html_escape(integrator) << "</code>: " << html_escape(why) << "</li>\n";
     h << "</ul>\n";
   }
   auto figure = [&](const std::string& stem, const std::string& alt) {
     if (warning.empty())
-      h << "<p><a href=\"" << stem << ".png\"><img src=\"" << stem << ".svg\" alt=\"" << escape(alt) << "\"></a></p>\n";
+      h << "<p><a href=\"" << stem << ".png\"><img src=\"" << stem << ".svg\" alt=\"" << html_escape(alt) << "\"></a></p>\n";
   };
   const std::string blown_rule = fmt::format("the energy is not finite, or |E − E₀| &gt; {:g}·|E₀|, or an orbit that was bound "
                                              "(E₀ &lt; 0) escapes (E ≥ 0)",
@@ -386,7 +375,7 @@ std::string write_page(const std::string& folder, const Report& r) {
       << "<th>theory</th><th>measured / theory</th></tr>\n";
     for (const auto& s : r.stability) {
       if (!s.skipped.empty()) {
-        h << "<tr><td>" << name(s.integrator) << "</td><td colspan=\"" << (r.omega ? 4 : 3) << "\">" << escape(s.skipped) << "</td></tr>\n";
+        h << "<tr><td>" << name(s.integrator) << "</td><td colspan=\"" << (r.omega ? 4 : 3) << "\">" << html_escape(s.skipped) << "</td></tr>\n";
         continue;
       }
       const double z = r.omega ? *r.omega * s.limit : NAN;
@@ -394,7 +383,7 @@ std::string write_page(const std::string& folder, const Report& r) {
         << (s.limit > 0 ? fmt::format("{:.6g}", s.limit) : "none (blows up at every h tried)")
         << (s.first_blowup == 0 ? " (no blow-up found)" : "") << "</td>";
       if (r.omega) h << "<td>" << (s.limit > 0 ? fmt::format("{:.6f}", z) : "–") << "</td>";
-      h << "<td>" << escape(s.theory.text) << "</td><td>"
+      h << "<td>" << html_escape(s.theory.text) << "</td><td>"
         << (s.theory.z > 0 && s.limit > 0 ? fmt::format("{:.5f}", z / s.theory.z) : "–") << "</td></tr>\n";
     }
     h << "</table>\n";
@@ -409,26 +398,26 @@ std::string write_page(const std::string& folder, const Report& r) {
     h << "<table><tr><th>integrator</th><th>max, first hundredth</th><th>max, last tenth</th><th>verdict</th></tr>\n";
     for (const auto& d : r.drift) {
       if (!d.skipped.empty()) {
-        h << "<tr><td>" << name(d.integrator) << "</td><td colspan=\"3\">" << escape(d.skipped) << "</td></tr>\n";
+        h << "<tr><td>" << name(d.integrator) << "</td><td colspan=\"3\">" << html_escape(d.skipped) << "</td></tr>\n";
         continue;
       }
       h << "<tr><td>" << name(d.integrator) << "</td><td>" << short_number(d.first_hundredth_max) << "</td><td>"
         << (d.blown.empty() ? short_number(d.last_tenth_max) : "–") << "</td><td class=\"" << (d.verdict == "bounded" ? "ok" : "no")
-        << "\">" << escape(d.verdict) << "</td></tr>\n";
+        << "\">" << html_escape(d.verdict) << "</td></tr>\n";
     }
     h << "</table>\n";
     figure("drift", "the energy error against time, log-log");
     h << "<p>Data: <a href=\"drift.csv\">drift.csv</a>.</p>\n";
   }
   if (has(r, "stiffness")) {
-    h << "<h2>Stiffness</h2>\n<p>Raised by decades, 1× to 10⁸×, at the scene's dt: " << escape(r.stiffness_knob) << ". Each run is "
+    h << "<h2>Stiffness</h2>\n<p>Raised by decades, 1× to 10⁸×, at the scene's dt: " << html_escape(r.stiffness_knob) << ". Each run is "
       << r.settings.steps << " steps; blown up as above.";
     if (r.omega)
       h << " On an oscillator ω grows as √k, so theory says a method fails once ω√(factor)·dt passes its limit.";
     h << "</p>\n<table><tr><th>integrator</th><th>first factor that fails</th>" << (r.omega ? "<th>theory</th>" : "") << "</tr>\n";
     for (const auto& s : r.stiffness) {
       if (!s.skipped.empty()) {
-        h << "<tr><td>" << name(s.integrator) << "</td><td colspan=\"2\">" << escape(s.skipped) << "</td></tr>\n";
+        h << "<tr><td>" << name(s.integrator) << "</td><td colspan=\"2\">" << html_escape(s.skipped) << "</td></tr>\n";
         continue;
       }
       h << "<tr><td>" << name(s.integrator) << "</td><td>" << (s.first_failure > 0 ? fmt::format("{:g}", s.first_failure) : "none up to 1e8")
@@ -454,9 +443,9 @@ std::string write_page(const std::string& folder, const Report& r) {
          "<th>scene max |ΔE|/E₀</th></tr>\n";
     for (const auto& m : r.mass_ratio)
       h << "<tr><td>" << name(m.integrator) << "</td><td>" << fmt::format("{:g}", m.ratio) << "</td><td>"
-        << (m.pair.failed.empty() ? short_number(m.pair.velocity_error) : escape(m.pair.failed)) << "</td><td>"
+        << (m.pair.failed.empty() ? short_number(m.pair.velocity_error) : html_escape(m.pair.failed)) << "</td><td>"
         << short_number(m.pair.energy_error) << "</td><td>" << short_number(m.pair.momentum_error) << "</td><td>"
-        << (m.gas_failed.empty() ? short_number(m.gas_energy_error) : escape(m.gas_failed)) << "</td></tr>\n";
+        << (m.gas_failed.empty() ? short_number(m.gas_energy_error) : html_escape(m.gas_failed)) << "</td></tr>\n";
     h << "</table>\n";
     figure("mass_ratio", "errors against the mass ratio");
     h << "<p>Data: <a href=\"mass_ratio.csv\">mass_ratio.csv</a>.</p>\n";
@@ -472,12 +461,12 @@ std::string write_page(const std::string& folder, const Report& r) {
     for (const auto& s : r.speed) {
       h << "<tr><td>" << name(s.integrator) << "</td><td>" << fmt::format("{:g}", s.radii_per_step) << "</td>";
       if (!s.pair_failed.empty())
-        h << "<td colspan=\"3\" class=\"no\">" << escape(s.pair_failed) << "</td>";
+        h << "<td colspan=\"3\" class=\"no\">" << html_escape(s.pair_failed) << "</td>";
       else
         h << "<td class=\"" << (s.pair_order_kept ? "ok\">yes" : "no\">no: it went through") << "</td><td class=\""
           << (s.pair_inside ? "ok\">yes" : "no\">no") << "</td><td>" << s.pair_ball_collisions << "</td>";
       if (!s.gas_failed.empty())
-        h << "<td colspan=\"3\" class=\"no\">" << escape(s.gas_failed) << "</td>";
+        h << "<td colspan=\"3\" class=\"no\">" << html_escape(s.gas_failed) << "</td>";
       else
         h << "<td>" << s.gas_outside << "</td><td>" << short_number(s.gas_max_overlap) << "</td><td>" << short_number(s.gas_energy_error)
           << "</td>";
@@ -495,13 +484,13 @@ std::string write_page(const std::string& folder, const Report& r) {
          "projection sweeps. The stick error is the largest |length − rest length| / rest length over the sticks and the run.</p>\n";
     h << "<table><tr><th>variant</th><th>R</th><th>max stick error</th><th>at the end</th></tr>\n";
     for (const auto& s : r.sticks)
-      h << "<tr><td>" << escape(s.variant) << "</td><td>" << fmt::format("{:g}", s.ratio) << "</td><td>"
-        << (s.failed.empty() ? short_number(s.max_error) : escape(s.failed)) << "</td><td>" << short_number(s.final_error) << "</td></tr>\n";
+      h << "<tr><td>" << html_escape(s.variant) << "</td><td>" << fmt::format("{:g}", s.ratio) << "</td><td>"
+        << (s.failed.empty() ? short_number(s.max_error) : html_escape(s.failed)) << "</td><td>" << short_number(s.final_error) << "</td></tr>\n";
     h << "</table>\n";
     figure("sticks", "the stick error against the mass ratio");
     h << "<p>Data: <a href=\"sticks.csv\">sticks.csv</a>.</p>\n";
   }
-  if (!warning.empty()) h << "<p class=\"no\">" << escape(warning) << "</p>\n";
+  if (!warning.empty()) h << "<p class=\"no\">" << html_escape(warning) << "</p>\n";
   h << "<p>All numbers: <a href=\"summary.json\">summary.json</a>. The figures are drawn by gnuplot from "
        "<code>figures.gp</code> and <code>figures.dat</code> beside them. What each section does: <code>docs/cli.md</code>, "
        "\"motus stress\", in the motus sources.</p>\n</body></html>\n";

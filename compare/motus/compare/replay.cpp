@@ -11,25 +11,14 @@
 #include <stdexcept>
 
 #include "motus/compare/replay_js.hpp"  // kReplayJs: compare/replay/replay.js, generated at build time
+#include "motus/plot/html.hpp"
 
 namespace motus::compare {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-std::string escape(const std::string& text) {
-  std::string out;
-  for (char c : text) {
-    switch (c) {
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '&': out += "&amp;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
-    }
-  }
-  return out;
-}
+using motus::plot::html_escape;
 
 void check_written(std::ofstream& out, const std::string& path) {
   out.flush();
@@ -244,15 +233,15 @@ std::string replay_section(const SceneDescription& scene, const std::vector<Engi
       "<div class=\"replay-title\"><h2>Replay</h2><button type=\"button\" class=\"replay-close\" hidden>"
       "show the whole report</button></div>\n<div class=\"replay-panels\">\n";
   for (const auto& r : runs) {
-    html += "<div class=\"replay-panel\"><div class=\"replay-caption\"><b>" + escape(r.engine) + "</b> <small>" +
-            escape(r.version) + "</small><br>";
+    html += "<div class=\"replay-panel\"><div class=\"replay-caption\"><b>" + html_escape(r.engine) + "</b> <small>" +
+            html_escape(r.version) + "</small><br>";
     if (r.supported && !r.frames.empty()) {
       html += "<span class=\"replay-time\"></span> &nbsp; <span class=\"replay-energy\"></span></div>"
               "<canvas class=\"replay-canvas\" width=\"288\" height=\"288\"></canvas></div>\n";
     } else {
       html += "not run</div><div class=\"replay-reason\">";
       if (!r.supported)
-        for (const auto& u : r.unsupported) html += escape(u) + "<br>";
+        for (const auto& u : r.unsupported) html += html_escape(u) + "<br>";
       else
         html += "no frames were kept for this engine";
       html += "</div></div>\n";

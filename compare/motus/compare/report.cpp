@@ -10,23 +10,12 @@
 #include "motus/compare/replay.hpp"
 #include "motus/exact/exact_solution.hpp"
 #include "motus/plot/figure.hpp"
+#include "motus/plot/html.hpp"
 
 namespace motus::compare {
 namespace {
 
-std::string html_escape(const std::string& text) {
-  std::string out;
-  for (char c : text) {
-    switch (c) {
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '&': out += "&amp;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
-    }
-  }
-  return out;
-}
+using motus::plot::html_escape;
 
 const EngineRun* find_motus(const std::vector<EngineRun>& runs) {
   for (const auto& r : runs)

@@ -10,23 +10,12 @@
 
 #include "motus/plot/figure.hpp"
 #include "motus/precision/targets.hpp"
+#include "motus/plot/html.hpp"
 
 namespace motus::precision {
 namespace {
 
-std::string html_escape(const std::string& text) {
-  std::string out;
-  for (char c : text) {
-    switch (c) {
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '&': out += "&amp;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
-    }
-  }
-  return out;
-}
+using motus::plot::html_escape;
 
 std::string csv_text(const std::string& text) {
   std::string out;
