@@ -116,6 +116,20 @@ TEST(EquationsArenstorf, Rk45AtATightToleranceReturnsToTheStartAtThePeriod) {
   EXPECT_LT(error, 1e-8);  // the issue
 }
 
+// The order-8 pair on the same orbit: the issue's "new high-order method at a tight tolerance".
+TEST(EquationsArenstorf, Dop853AtATightToleranceReturnsToTheStartAtThePeriod) {
+  const auto scene = motus::load_scene(scene_path("arenstorf"));
+  const double period = scene.reference.at(0).t;
+  const motus::Vector y0 = Eigen::Map<const motus::Vector>(scene.first_order->initial.data(), 4);
+  motus::Simulation sim(scene, Integrator::Dop853);
+  sim.advance(period, scene.dt, motus::Tolerance{1e-13, 1e-13});
+  const double error = max_difference(sim.state(), y0);
+  std::printf("  dop853 at rtol = atol = 1e-13: %ld steps (%ld rejected), %ld evaluations, |y(T) - y0| = %.3e\n",
+              sim.steps(), sim.rejected(), sim.evaluations(), error);
+  EXPECT_EQ(sim.time(), period);  // an adaptive run lands on the end time exactly
+  EXPECT_LT(error, 1e-8);
+}
+
 // ---------------------------------------------------------------------------------------------
 // Van der Pol: the period of the limit cycle.
 
