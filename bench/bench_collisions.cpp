@@ -16,6 +16,7 @@
 #include <ctime>
 #include <memory>
 #include <string>
+#include <utility>
 
 #include "motus/ball_lattice.hpp"
 #include "motus/integrate/symplectic_euler.hpp"
@@ -33,7 +34,7 @@ SceneDescription ball_gas(long count, int dimensions) {
   BallLattice lattice;
   lattice.count = count;
   add_ball_lattice(m, lattice);
-  scene.mechanical = m;
+  scene.mechanical = std::move(m);
   scene.integrator = "symplectic-euler";
   scene.dt = 1.0 / 60;
   return scene;
@@ -122,7 +123,7 @@ SceneDescription notes_spring() {
   Spring s;
   s.stiffness = 5;
   m.forces.springs.push_back(s);
-  scene.mechanical = m;
+  scene.mechanical = std::move(m);
   scene.dt = 0.01;
   return scene;
 }
