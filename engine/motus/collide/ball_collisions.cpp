@@ -30,6 +30,7 @@ BallCollisions<D>::BallCollisions(const Vector& inverse_mass, std::vector<double
     : n_(static_cast<int>(inverse_mass.size())), rules_(rules), inverse_mass_(inverse_mass), radius_(std::move(radius)),
       restitution_(std::move(restitution)) {
   for (int i = 0; i < n_; ++i) {
+    if (i > 0 && radius_[i] != radius_[0]) uniform_radius_ = false;
     max_radius_ = std::max(max_radius_, radius_[i]);
     if (radius_[i] > 0) {
       balls_.push_back(i);
@@ -55,21 +56,17 @@ BallCollisions<D>::BallCollisions(const Vector& inverse_mass, std::vector<double
   } else if (!colliders.segments.empty()) {
     throw std::invalid_argument("segment colliders exist in 2-D scenes only");
   }
-  local_time_.assign(n_, 0.0);
-  travelled_.assign(n_, 0.0);
-  collision_count_.assign(n_, 0);
-  collisions_this_step_.assign(n_, 0);
-  fast_flag_.assign(n_, 0);
+  state_.assign(static_cast<size_t>(n_), BallState{});
   ball_cell_.assign(n_, 0);
 }
 
 template <int D>
 void BallCollisions<D>::advance(int i, double t) {
-  const double dt = t - local_time_[i];
+  const double dt = t - state_[i].local_time;
   if (dt <= 0) return;
   position(i) += velocity(i) * dt;
-  travelled_[i] += velocity(i).norm() * dt;
-  local_time_[i] = t;
+  state_[i].travelled += velocity(i).norm() * dt;
+  state_[i].local_time = t;
 }
 
 template <int D>
@@ -93,7 +90,7 @@ void BallCollisions<D>::drift(VectorRef x, VectorRef v, double h) {
       grid_low_ = grid_low_.cwiseMin(position(i));
       grid_high_ = grid_high_.cwiseMax(position(i));
     } else {
-      fast_flag_[i] = 1;
+      state_[i].fast = true;
       fast_.push_back(i);
     }
   }
@@ -106,8 +103,8 @@ void BallCollisions<D>::drift(VectorRef x, VectorRef v, double h) {
     std::pop_heap(events_.begin(), events_.end(), std::greater<>());
     const Event e = events_.back();
     events_.pop_back();
-    if (collision_count_[e.i] != e.count_i) continue;  // stale: i has collided since
-    if (e.other >= 0 && collision_count_[e.other] != e.count_other) continue;
+    if (state_[e.i].collision_count != e.count_i) continue;  // stale: i has collided since
+    if (e.other >= 0 && state_[e.other].collision_count != e.count_other) continue;
     if (++events_this_step_ > limit)
       throw std::runtime_error("more than " + std::to_string(limit) +
                                " collisions in one step: the scene cannot settle (overlapping bodies?)");
@@ -119,13 +116,13 @@ void BallCollisions<D>::drift(VectorRef x, VectorRef v, double h) {
   // step marked.
   x += h * v;
   for (int i : moved_) {
-    position(i) -= velocity(i) * local_time_[i];
-    local_time_[i] = 0;
-    travelled_[i] = 0;
-    collisions_this_step_[i] = 0;
+    position(i) -= velocity(i) * state_[i].local_time;
+    state_[i].local_time = 0;
+    state_[i].travelled = 0;
+    state_[i].collisions_this_step = 0;
   }
   moved_.clear();
-  for (int i : fast_) fast_flag_[i] = 0;
+  for (int i : fast_) state_[i].fast = false;
   fast_.clear();
 }
 
@@ -185,17 +182,24 @@ void BallCollisions<D>::build_grid() {
   // sum the counts (slot c + 2 becomes the end of cell c), and place each ball at its
   // cell's insertion point, slot c + 1, which starts at the cell's start and ends at its
   // end — so that afterwards cell c holds sorted_[cell_start_[c] .. cell_start_[c + 1]).
-  cell_start_.assign(static_cast<size_t>(cells) + 2, 0);
-  for (int i : balls_)
-    if (!fast_flag_[i]) {
-      ball_cell_[i] = cell_index(cell_of(position(i)));
-      ++cell_start_[static_cast<size_t>(ball_cell_[i]) + 2];
+  // (Most steps have no fast ball: then every ball is slow, without reading its flag.)
+  auto for_slow = [&](auto&& f) {
+    if (fast_.empty()) {
+      for (int i : balls_) f(i);
+    } else {
+      for (int i : balls_)
+        if (!state_[i].fast) f(i);
     }
+  };
+  cell_start_.assign(static_cast<size_t>(cells) + 2, 0);
+  for_slow([&](int i) {
+    ball_cell_[i] = cell_index(cell_of(position(i)));
+    ++cell_start_[static_cast<size_t>(ball_cell_[i]) + 2];
+  });
   int sum = 0;  // (in a register: the running sum is one long dependency chain)
   for (int c = 2; c < cells + 2; ++c) cell_start_[c] = sum += cell_start_[c];
   sorted_.resize(static_cast<size_t>(slow));
-  for (int i : balls_)
-    if (!fast_flag_[i]) sorted_[cell_start_[ball_cell_[i] + 1]++] = i;
+  for_slow([&](int i) { sorted_[cell_start_[ball_cell_[i] + 1]++] = i; });
 }
 
 template <int D>
@@ -241,7 +245,7 @@ void BallCollisions<D>::for_cells_in_box(const Point& low, const Point& high, Vi
 
 template <int D>
 void BallCollisions<D>::push(double t, int i, int other) {
-  events_.push_back({t, i, other, collision_count_[i], other >= 0 ? collision_count_[other] : 0u});
+  events_.push_back({t, i, other, state_[i].collision_count, other >= 0 ? state_[other].collision_count : 0u});
   std::push_heap(events_.begin(), events_.end(), std::greater<>());
 }
 
@@ -296,7 +300,7 @@ void BallCollisions<D>::find_initial_events() {
   for (int i : fast_) separate_from_walls(i);  // their events come with find_events below
   if (!grid || general_walls) {
     for (int i : balls_)
-      if (!fast_flag_[i]) walls_one_by_one(i, !grid);
+      if (!state_[i].fast) walls_one_by_one(i, !grid);
   }
   for (int i : points_) walls_one_by_one(i, true);
   if (grid) {
@@ -323,17 +327,18 @@ void BallCollisions<D>::find_initial_events() {
   const double* x = x_;  // local copies: the compiler need not reload them after a push
   const double* v = v_;
   const double* radius = radius_.data();
+  const bool uniform = uniform_radius_;
   const int* sorted = sorted_.data();
   const int* cell_start = cell_start_.data();
   for (size_t s = 0; s < sorted_.size(); ++s) {
     const int i = sorted[s];
     Point p_i = Eigen::Map<const Point>(x + D * i);
     const Point v_i = Eigen::Map<const Point>(v + D * i);
-    const double r_i = radius[i];
+    const double r_i = uniform ? max_radius_ : radius[i];
     auto test = [&](int k) {
       ++tests;
       Point dp = Eigen::Map<const Point>(x + D * k) - p_i;
-      const double R = r_i + radius[k];
+      const double R = r_i + (uniform ? max_radius_ : radius[k]);  // (one stream fewer when all radii agree)
       double dp_dp = dp.squaredNorm();
       if (dp_dp < R * R * (1 - kOverlapSlack)) {  // overlapping: move apart first (rare)
         separate(i, k);
@@ -384,7 +389,7 @@ template <int D>
 void BallCollisions<D>::find_events(int i, double t, int exclude) {
   find_wall_events(i, t);
   if (radius_[i] <= 0 || balls_.size() < 2) return;
-  if (!fast_flag_[i]) {
+  if (!state_[i].fast) {
     // Its possible partners started in the neighbouring cells, or are fast.
     const int c = ball_cell_[i];
     for (int offset : neighbour_offsets_) {
@@ -392,7 +397,7 @@ void BallCollisions<D>::find_events(int i, double t, int exclude) {
       const int m = c + offset;
       for (int u = cell_start_[m]; u < cell_start_[m + 1]; ++u) {
         const int k = sorted_[u];
-        if (k != i && k != exclude && !fast_flag_[k]) test_pair(i, k, t);
+        if (k != i && k != exclude && !state_[k].fast) test_pair(i, k, t);
       }
     }
   } else {
@@ -400,7 +405,7 @@ void BallCollisions<D>::find_events(int i, double t, int exclude) {
     const Point p = position_at(i, t), q = p + velocity(i) * (h_ - t);
     const double margin = radius_[i] + max_radius_ + sweep_;
     for_cells_in_box(p.cwiseMin(q).array() - margin, p.cwiseMax(q).array() + margin, [&](int k) {
-      if (k != i && k != exclude && !fast_flag_[k]) test_pair(i, k, t);
+      if (k != i && k != exclude && !state_[k].fast) test_pair(i, k, t);
     });
   }
   for (int k : fast_)
@@ -516,9 +521,9 @@ void BallCollisions<D>::separate_from_walls(int i) {
 
 template <int D>
 void BallCollisions<D>::mark_fast_if_needed(int i, double t) {
-  if (fast_flag_[i] || radius_[i] <= 0) return;
-  if (travelled_[i] + velocity(i).norm() * (h_ - t) > sweep_) {
-    fast_flag_[i] = 1;
+  if (state_[i].fast || radius_[i] <= 0) return;
+  if (state_[i].travelled + velocity(i).norm() * (h_ - t) > sweep_) {
+    state_[i].fast = true;
     fast_.push_back(i);
   }
 }
@@ -526,25 +531,25 @@ void BallCollisions<D>::mark_fast_if_needed(int i, double t) {
 template <int D>
 void BallCollisions<D>::resolve(const Event& e) {
   const int i = e.i;
-  if (collisions_this_step_[i] == 0) moved_.push_back(i);
+  if (state_[i].collisions_this_step == 0) moved_.push_back(i);
   advance(i, e.t);
   if (e.other >= 0) {
     const int k = e.other;
-    if (collisions_this_step_[k] == 0) moved_.push_back(k);
+    if (state_[k].collisions_this_step == 0) moved_.push_back(k);
     advance(k, e.t);
     const Point d = position(k) - position(i);
     const double distance = d.norm();
     if (distance > 0) {
       double restitution = restitution_[i] * restitution_[k];
       if (restitution < 1 &&
-          (collisions_this_step_[i] >= kCollapseLimit || collisions_this_step_[k] >= kCollapseLimit))
+          (state_[i].collisions_this_step >= kCollapseLimit || state_[k].collisions_this_step >= kCollapseLimit))
         restitution = 0;
       collide(i, k, Point(d / distance), restitution);
     }
-    ++collision_count_[i];
-    ++collision_count_[k];
-    ++collisions_this_step_[i];
-    ++collisions_this_step_[k];
+    ++state_[i].collision_count;
+    ++state_[k].collision_count;
+    ++state_[i].collisions_this_step;
+    ++state_[k].collisions_this_step;
     ++counters_.ball_collisions;
     mark_fast_if_needed(i, e.t);
     mark_fast_if_needed(k, e.t);
@@ -556,10 +561,10 @@ void BallCollisions<D>::resolve(const Event& e) {
                               ? planes_[static_cast<size_t>(w)].restitution
                               : segments_[static_cast<size_t>(w) - planes_.size()].restitution;
     double restitution = restitution_[i] * wall_e;
-    if (restitution < 1 && collisions_this_step_[i] >= kCollapseLimit) restitution = 0;
+    if (restitution < 1 && state_[i].collisions_this_step >= kCollapseLimit) restitution = 0;
     bounce(i, wall_normal(i, w), restitution);
-    ++collision_count_[i];
-    ++collisions_this_step_[i];
+    ++state_[i].collision_count;
+    ++state_[i].collisions_this_step;
     ++counters_.wall_collisions;
     mark_fast_if_needed(i, e.t);
     find_events(i, e.t, -1);
