@@ -21,6 +21,10 @@ constexpr unsigned kCollapseLimit = 64;
 // Overlap smaller than this fraction of the contact distance is rounding, not overlap.
 constexpr double kOverlapSlack = 1e-12;
 
+// Up to this many grid cells (half a megabyte of starts: in L2) the grid is counting-sorted
+// in one level; beyond it, in two (see build_grid).
+constexpr int kSmallGrid = 1 << 17;
+
 }  // namespace
 
 template <int D>
@@ -178,10 +182,15 @@ void BallCollisions<D>::build_grid() {
     if (leading > 0 && code % 3 == 1) forward_rows_.push_back(offset);  // the middle cell of a row above
   }
 
-  // Counting sort by cell, in three passes: count each cell's balls (into slot c + 2),
-  // sum the counts (slot c + 2 becomes the end of cell c), and place each ball at its
-  // cell's insertion point, slot c + 1, which starts at the cell's start and ends at its
-  // end — so that afterwards cell c holds sorted_[cell_start_[c] .. cell_start_[c + 1]).
+  // Counting sort by cell. Big grids in two levels, so that the cells' array is written once and
+  // never read back while sorting: first by block of kBlock consecutive cells (few
+  // blocks: their counts stay in cache), then within each block by cell, with counts in
+  // a small local array, writing the block's cell starts as it goes. At a million balls
+  // the cells' array is tens of MB, and a one-level sort (zero it, count into it, sum it,
+  // place from it) streams it through memory four times. Both levels are stable, so
+  // within a cell the balls keep balls_'s order (as a one-level sort would leave them),
+  // and the events come in the same order. Afterwards cell c holds sorted_[cell_start_[c]
+  // .. cell_start_[c + 1]).
   // (Most steps have no fast ball: then every ball is slow, without reading its flag.)
   auto for_slow = [&](auto&& f) {
     if (fast_.empty()) {
@@ -191,15 +200,54 @@ void BallCollisions<D>::build_grid() {
         if (!state_[i].fast) f(i);
     }
   };
-  cell_start_.assign(static_cast<size_t>(cells) + 2, 0);
+  if (cells <= kSmallGrid) {
+    // Cells that fit in cache: one level (zero, count, sum, place — each at cache speed).
+    cell_start_.assign(static_cast<size_t>(cells) + 2, 0);
+    for_slow([&](int i) {
+      ball_cell_[i] = cell_index(cell_of(position(i)));
+      ++cell_start_[static_cast<size_t>(ball_cell_[i]) + 2];
+    });
+    int sum = 0;  // (in a register: the running sum is one long dependency chain)
+    for (int c = 2; c < cells + 2; ++c) cell_start_[c] = sum += cell_start_[c];
+    sorted_.resize(static_cast<size_t>(slow));
+    for_slow([&](int i) { sorted_[cell_start_[ball_cell_[i] + 1]++] = i; });
+    return;
+  }
+  constexpr int kBlockBits = 12, kBlock = 1 << kBlockBits;
+  const int blocks = (cells + kBlock - 1) >> kBlockBits;
+  // Level one: count per block (into slot b + 2), sum, place at slot b + 1 (as in a
+  // one-level counting sort); block b then spans by_block_[block_start_[b] ..
+  // block_start_[b + 1]).
+  block_start_.assign(static_cast<size_t>(blocks) + 2, 0);
   for_slow([&](int i) {
-    ball_cell_[i] = cell_index(cell_of(position(i)));
-    ++cell_start_[static_cast<size_t>(ball_cell_[i]) + 2];
+    const int c = cell_index(cell_of(position(i)));
+    ball_cell_[i] = c;
+    ++block_start_[static_cast<size_t>(c >> kBlockBits) + 2];
   });
-  int sum = 0;  // (in a register: the running sum is one long dependency chain)
-  for (int c = 2; c < cells + 2; ++c) cell_start_[c] = sum += cell_start_[c];
+  int sum = 0;
+  for (int b = 2; b < blocks + 2; ++b) block_start_[b] = sum += block_start_[b];
+  by_block_.resize(static_cast<size_t>(slow));
+  for_slow([&](int i) { by_block_[block_start_[(ball_cell_[i] >> kBlockBits) + 1]++] = {i, ball_cell_[i]}; });
+  // Level two, block by block.
   sorted_.resize(static_cast<size_t>(slow));
-  for_slow([&](int i) { sorted_[cell_start_[ball_cell_[i] + 1]++] = i; });
+  cell_start_.resize(static_cast<size_t>(cells) + 2);
+  local_count_.resize(kBlock);
+  int* count = local_count_.data();
+  for (int b = 0; b < blocks; ++b) {
+    const int first_cell = b << kBlockBits, block_cells = std::min(kBlock, cells - first_cell);
+    const int from = block_start_[b], to = block_start_[b + 1];
+    std::fill(count, count + block_cells, 0);
+    for (int s = from; s < to; ++s) ++count[by_block_[s].cell & (kBlock - 1)];
+    int* starts = cell_start_.data() + first_cell;
+    int run = from;  // count[j] becomes cell j's insertion point
+    for (int j = 0; j < block_cells; ++j) {
+      const int here = count[j];
+      starts[j] = count[j] = run;
+      run += here;
+    }
+    for (int s = from; s < to; ++s) sorted_[count[by_block_[s].cell & (kBlock - 1)]++] = by_block_[s].ball;
+  }
+  cell_start_[cells] = cell_start_[cells + 1] = static_cast<int>(slow);
 }
 
 template <int D>

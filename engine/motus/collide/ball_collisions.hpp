@@ -136,6 +136,11 @@ private:
   double cell_size_ = 1, inverse_cell_size_ = 1;
   Cell dims_{}, stride_{};
   std::vector<int> cell_start_, sorted_, ball_cell_;
+  struct Placed {
+    int ball, cell;
+  };
+  std::vector<int> block_start_, local_count_;  // the sort's first level, and its second's counts
+  std::vector<Placed> by_block_;
   std::vector<int> forward_rows_, neighbour_offsets_;
 };
 
