@@ -164,10 +164,11 @@ void BallCollisions<D>::build_grid() {
     stride_[k] = cells;
     cells *= dims_[k];
   }
-  // The neighbour cells as index offsets: all 3^D of them; and the "forward" half (last
-  // non-zero step +1), which visits every pair of neighbouring cells once, as rows:
-  // three cells side by side along x are consecutive in the sorted array, so a row is
-  // one range of balls. In 2-D that is the rest of the ball's own row and one row above.
+  // The neighbour cells as rows, each given by the index offset of its middle cell: three
+  // cells side by side along x are consecutive in the sorted array, so a row is one range
+  // of balls (in the order that visiting its cells one by one would give). All 3^(D-1)
+  // rows; and the "forward" half (last non-zero step +1), which visits every pair of
+  // neighbouring cells once. In 2-D that is the rest of the ball's own row and one row above.
   neighbour_offsets_.clear();
   forward_rows_.clear();
   int total = 1;
@@ -178,7 +179,7 @@ void BallCollisions<D>::build_grid() {
       offset += (c % 3 - 1) * stride_[k];
       if (k > 0 && c % 3 != 1) leading = c % 3 - 1;
     }
-    neighbour_offsets_.push_back(offset);
+    if (code % 3 == 1) neighbour_offsets_.push_back(offset);
     if (leading > 0 && code % 3 == 1) forward_rows_.push_back(offset);  // the middle cell of a row above
   }
 
@@ -441,9 +442,9 @@ void BallCollisions<D>::find_events(int i, double t, int exclude) {
     // Its possible partners started in the neighbouring cells, or are fast.
     const int c = ball_cell_[i];
     for (int offset : neighbour_offsets_) {
-      ++counters_.cell_queries;
+      counters_.cell_queries += 3;
       const int m = c + offset;
-      for (int u = cell_start_[m]; u < cell_start_[m + 1]; ++u) {
+      for (int u = cell_start_[m - 1], end = cell_start_[m + 2]; u < end; ++u) {
         const int k = sorted_[u];
         if (k != i && k != exclude && !state_[k].fast) test_pair(i, k, t);
       }
