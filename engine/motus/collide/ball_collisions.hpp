@@ -78,7 +78,7 @@ private:
   void advance(int i, double t);
 
   void build_grid();
-  Cell cell_of(const Point& p) const;
+  [[gnu::always_inline]] inline Cell cell_of(const Point& p) const;  // (in every per-ball loop of the grid)
   int cell_index(const Cell& c) const;
   template <class Visit>
   void for_cells_in_box(const Point& low, const Point& high, Visit&& visit);
