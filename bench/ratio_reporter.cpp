@@ -11,7 +11,7 @@ void RatioReporter::add_ratio(std::string label, std::string numerator, std::str
 
 void RatioReporter::ReportRuns(const std::vector<Run>& runs) {
   for (const auto& run : runs)
-    if (run.run_type == Run::RT_Iteration && !run.error_occurred)
+    if (!run.error_occurred)  // (aggregates too: "name_median" and the like, for ratios of them)
       ns_per_iteration_[run.benchmark_name()] = run.GetAdjustedRealTime() * benchmark::GetTimeUnitMultiplier(run.time_unit) * 1e9;
   ConsoleReporter::ReportRuns(runs);
 }

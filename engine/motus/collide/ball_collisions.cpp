@@ -21,6 +21,10 @@ constexpr unsigned kCollapseLimit = 64;
 // Overlap smaller than this fraction of the contact distance is rounding, not overlap.
 constexpr double kOverlapSlack = 1e-12;
 
+// Up to this many grid cells (half a megabyte of starts: in L2) the grid is counting-sorted
+// in one level; beyond it, in two (see build_grid).
+constexpr int kSmallGrid = 1 << 17;
+
 }  // namespace
 
 template <int D>
@@ -30,6 +34,7 @@ BallCollisions<D>::BallCollisions(const Vector& inverse_mass, std::vector<double
     : n_(static_cast<int>(inverse_mass.size())), rules_(rules), inverse_mass_(inverse_mass), radius_(std::move(radius)),
       restitution_(std::move(restitution)) {
   for (int i = 0; i < n_; ++i) {
+    if (i > 0 && radius_[i] != radius_[0]) uniform_radius_ = false;
     max_radius_ = std::max(max_radius_, radius_[i]);
     if (radius_[i] > 0) {
       balls_.push_back(i);
@@ -55,21 +60,17 @@ BallCollisions<D>::BallCollisions(const Vector& inverse_mass, std::vector<double
   } else if (!colliders.segments.empty()) {
     throw std::invalid_argument("segment colliders exist in 2-D scenes only");
   }
-  local_time_.assign(n_, 0.0);
-  travelled_.assign(n_, 0.0);
-  collision_count_.assign(n_, 0);
-  collisions_this_step_.assign(n_, 0);
-  fast_flag_.assign(n_, 0);
+  state_.assign(static_cast<size_t>(n_), BallState{});
   ball_cell_.assign(n_, 0);
 }
 
 template <int D>
 void BallCollisions<D>::advance(int i, double t) {
-  const double dt = t - local_time_[i];
+  const double dt = t - state_[i].local_time;
   if (dt <= 0) return;
   position(i) += velocity(i) * dt;
-  travelled_[i] += velocity(i).norm() * dt;
-  local_time_[i] = t;
+  state_[i].travelled += velocity(i).norm() * dt;
+  state_[i].local_time = t;
 }
 
 template <int D>
@@ -93,7 +94,7 @@ void BallCollisions<D>::drift(VectorRef x, VectorRef v, double h) {
       grid_low_ = grid_low_.cwiseMin(position(i));
       grid_high_ = grid_high_.cwiseMax(position(i));
     } else {
-      fast_flag_[i] = 1;
+      state_[i].fast = true;
       fast_.push_back(i);
     }
   }
@@ -106,8 +107,8 @@ void BallCollisions<D>::drift(VectorRef x, VectorRef v, double h) {
     std::pop_heap(events_.begin(), events_.end(), std::greater<>());
     const Event e = events_.back();
     events_.pop_back();
-    if (collision_count_[e.i] != e.count_i) continue;  // stale: i has collided since
-    if (e.other >= 0 && collision_count_[e.other] != e.count_other) continue;
+    if (state_[e.i].collision_count != e.count_i) continue;  // stale: i has collided since
+    if (e.other >= 0 && state_[e.other].collision_count != e.count_other) continue;
     if (++events_this_step_ > limit)
       throw std::runtime_error("more than " + std::to_string(limit) +
                                " collisions in one step: the scene cannot settle (overlapping bodies?)");
@@ -119,13 +120,13 @@ void BallCollisions<D>::drift(VectorRef x, VectorRef v, double h) {
   // step marked.
   x += h * v;
   for (int i : moved_) {
-    position(i) -= velocity(i) * local_time_[i];
-    local_time_[i] = 0;
-    travelled_[i] = 0;
-    collisions_this_step_[i] = 0;
+    position(i) -= velocity(i) * state_[i].local_time;
+    state_[i].local_time = 0;
+    state_[i].travelled = 0;
+    state_[i].collisions_this_step = 0;
   }
   moved_.clear();
-  for (int i : fast_) fast_flag_[i] = 0;
+  for (int i : fast_) state_[i].fast = false;
   fast_.clear();
 }
 
@@ -143,7 +144,9 @@ void BallCollisions<D>::build_grid() {
     throw std::runtime_error("a body's position is no longer finite: the collision grid cannot place it");
   // Dense cells over the balls' extent, but never many more cells than balls (a sparse
   // scene gets bigger cells instead).
-  const double budget = 4.0 * static_cast<double>(slow) + 64;
+  // (3-D needs the more: a cubic lattice of spacing 4r has ~7 cells of the smallest size
+  // per ball, and bigger cells cost more pair tests than the cells they save.)
+  const double budget = (D == 3 ? 8.0 : 4.0) * static_cast<double>(slow) + 64;
   for (;;) {
     double total = 1;
     for (int k = 0; k < D; ++k) {
@@ -161,10 +164,11 @@ void BallCollisions<D>::build_grid() {
     stride_[k] = cells;
     cells *= dims_[k];
   }
-  // The neighbour cells as index offsets: all 3^D of them; and the "forward" half (last
-  // non-zero step +1), which visits every pair of neighbouring cells once, as rows:
-  // three cells side by side along x are consecutive in the sorted array, so a row is
-  // one range of balls. In 2-D that is the rest of the ball's own row and one row above.
+  // The neighbour cells as rows, each given by the index offset of its middle cell: three
+  // cells side by side along x are consecutive in the sorted array, so a row is one range
+  // of balls (in the order that visiting its cells one by one would give). All 3^(D-1)
+  // rows; and the "forward" half (last non-zero step +1), which visits every pair of
+  // neighbouring cells once. In 2-D that is the rest of the ball's own row and one row above.
   neighbour_offsets_.clear();
   forward_rows_.clear();
   int total = 1;
@@ -175,25 +179,76 @@ void BallCollisions<D>::build_grid() {
       offset += (c % 3 - 1) * stride_[k];
       if (k > 0 && c % 3 != 1) leading = c % 3 - 1;
     }
-    neighbour_offsets_.push_back(offset);
+    if (code % 3 == 1) neighbour_offsets_.push_back(offset);
     if (leading > 0 && code % 3 == 1) forward_rows_.push_back(offset);  // the middle cell of a row above
   }
 
-  // Counting sort by cell, in three passes: count each cell's balls (into slot c + 2),
-  // sum the counts (slot c + 2 becomes the end of cell c), and place each ball at its
-  // cell's insertion point, slot c + 1, which starts at the cell's start and ends at its
-  // end — so that afterwards cell c holds sorted_[cell_start_[c] .. cell_start_[c + 1]).
-  cell_start_.assign(static_cast<size_t>(cells) + 2, 0);
-  for (int i : balls_)
-    if (!fast_flag_[i]) {
+  // Counting sort by cell. Big grids in two levels, so that the cells' array is written once and
+  // never read back while sorting: first by block of kBlock consecutive cells (few
+  // blocks: their counts stay in cache), then within each block by cell, with counts in
+  // a small local array, writing the block's cell starts as it goes. At a million balls
+  // the cells' array is tens of MB, and a one-level sort (zero it, count into it, sum it,
+  // place from it) streams it through memory four times. Both levels are stable, so
+  // within a cell the balls keep balls_'s order (as a one-level sort would leave them),
+  // and the events come in the same order. Afterwards cell c holds sorted_[cell_start_[c]
+  // .. cell_start_[c + 1]).
+  // (Most steps have no fast ball: then every ball is slow, without reading its flag.)
+  auto for_slow = [&](auto&& f) {
+    if (fast_.empty()) {
+      for (int i : balls_) f(i);
+    } else {
+      for (int i : balls_)
+        if (!state_[i].fast) f(i);
+    }
+  };
+  if (cells <= kSmallGrid) {
+    // Cells that fit in cache: one level (zero, count, sum, place — each at cache speed).
+    cell_start_.assign(static_cast<size_t>(cells) + 2, 0);
+    for_slow([&](int i) {
       ball_cell_[i] = cell_index(cell_of(position(i)));
       ++cell_start_[static_cast<size_t>(ball_cell_[i]) + 2];
-    }
-  int sum = 0;  // (in a register: the running sum is one long dependency chain)
-  for (int c = 2; c < cells + 2; ++c) cell_start_[c] = sum += cell_start_[c];
+    });
+    int sum = 0;  // (in a register: the running sum is one long dependency chain)
+    for (int c = 2; c < cells + 2; ++c) cell_start_[c] = sum += cell_start_[c];
+    sorted_.resize(static_cast<size_t>(slow));
+    for_slow([&](int i) { sorted_[cell_start_[ball_cell_[i] + 1]++] = i; });
+    return;
+  }
+  constexpr int kBlockBits = 12, kBlock = 1 << kBlockBits;
+  const int blocks = (cells + kBlock - 1) >> kBlockBits;
+  // Level one: count per block (into slot b + 2), sum, place at slot b + 1 (as in a
+  // one-level counting sort); block b then spans by_block_[block_start_[b] ..
+  // block_start_[b + 1]).
+  block_start_.assign(static_cast<size_t>(blocks) + 2, 0);
+  for_slow([&](int i) {
+    const int c = cell_index(cell_of(position(i)));
+    ball_cell_[i] = c;
+    ++block_start_[static_cast<size_t>(c >> kBlockBits) + 2];
+  });
+  int sum = 0;
+  for (int b = 2; b < blocks + 2; ++b) block_start_[b] = sum += block_start_[b];
+  by_block_.resize(static_cast<size_t>(slow));
+  for_slow([&](int i) { by_block_[block_start_[(ball_cell_[i] >> kBlockBits) + 1]++] = {i, ball_cell_[i]}; });
+  // Level two, block by block.
   sorted_.resize(static_cast<size_t>(slow));
-  for (int i : balls_)
-    if (!fast_flag_[i]) sorted_[cell_start_[ball_cell_[i] + 1]++] = i;
+  cell_start_.resize(static_cast<size_t>(cells) + 2);
+  local_count_.resize(kBlock);
+  int* count = local_count_.data();
+  for (int b = 0; b < blocks; ++b) {
+    const int first_cell = b << kBlockBits, block_cells = std::min(kBlock, cells - first_cell);
+    const int from = block_start_[b], to = block_start_[b + 1];
+    std::fill(count, count + block_cells, 0);
+    for (int s = from; s < to; ++s) ++count[by_block_[s].cell & (kBlock - 1)];
+    int* starts = cell_start_.data() + first_cell;
+    int run = from;  // count[j] becomes cell j's insertion point
+    for (int j = 0; j < block_cells; ++j) {
+      const int here = count[j];
+      starts[j] = count[j] = run;
+      run += here;
+    }
+    for (int s = from; s < to; ++s) sorted_[count[by_block_[s].cell & (kBlock - 1)]++] = by_block_[s].ball;
+  }
+  cell_start_[cells] = cell_start_[cells + 1] = static_cast<int>(slow);
 }
 
 template <int D>
@@ -221,21 +276,25 @@ template <class Visit>
 void BallCollisions<D>::for_cells_in_box(const Point& low, const Point& high, Visit&& visit) {
   if (cell_start_.empty()) return;
   const Cell a = cell_of(low), b = cell_of(high);
+  // Row by row: the cells of a row along x are consecutive, and so are their balls in
+  // sorted_, so a row is one range (the same balls in the same order as cell by cell).
+  const int row_cells = b[0] - a[0] + 1;
   Cell c = a;
   for (;;) {
-    ++counters_.cell_queries;
-    const int index = cell_index(c);
-    for (int s = cell_start_[index]; s < cell_start_[index + 1]; ++s) visit(sorted_[s]);
-    int k = 0;
-    while (k < D && c[k] == b[k]) c[k] = a[k], ++k;  // an odometer over the box of cells
-    if (k == D) break;
+    counters_.cell_queries += row_cells;
+    const int first = cell_index(c);
+    const int end = cell_start_[first + row_cells];
+    for (int s = cell_start_[first]; s < end; ++s) visit(sorted_[s]);
+    int k = 1;
+    while (k < D && c[k] == b[k]) c[k] = a[k], ++k;  // an odometer over the rows of the box
+    if (k >= D) break;
     ++c[k];
   }
 }
 
 template <int D>
 void BallCollisions<D>::push(double t, int i, int other) {
-  events_.push_back({t, i, other, collision_count_[i], other >= 0 ? collision_count_[other] : 0u});
+  events_.push_back({t, i, other, state_[i].collision_count, other >= 0 ? state_[other].collision_count : 0u});
   std::push_heap(events_.begin(), events_.end(), std::greater<>());
 }
 
@@ -290,7 +349,7 @@ void BallCollisions<D>::find_initial_events() {
   for (int i : fast_) separate_from_walls(i);  // their events come with find_events below
   if (!grid || general_walls) {
     for (int i : balls_)
-      if (!fast_flag_[i]) walls_one_by_one(i, !grid);
+      if (!state_[i].fast) walls_one_by_one(i, !grid);
   }
   for (int i : points_) walls_one_by_one(i, true);
   if (grid) {
@@ -317,17 +376,18 @@ void BallCollisions<D>::find_initial_events() {
   const double* x = x_;  // local copies: the compiler need not reload them after a push
   const double* v = v_;
   const double* radius = radius_.data();
+  const bool uniform = uniform_radius_;
   const int* sorted = sorted_.data();
   const int* cell_start = cell_start_.data();
   for (size_t s = 0; s < sorted_.size(); ++s) {
     const int i = sorted[s];
     Point p_i = Eigen::Map<const Point>(x + D * i);
     const Point v_i = Eigen::Map<const Point>(v + D * i);
-    const double r_i = radius[i];
+    const double r_i = uniform ? max_radius_ : radius[i];
     auto test = [&](int k) {
       ++tests;
       Point dp = Eigen::Map<const Point>(x + D * k) - p_i;
-      const double R = r_i + radius[k];
+      const double R = r_i + (uniform ? max_radius_ : radius[k]);  // (one stream fewer when all radii agree)
       double dp_dp = dp.squaredNorm();
       if (dp_dp < R * R * (1 - kOverlapSlack)) {  // overlapping: move apart first (rare)
         separate(i, k);
@@ -378,15 +438,15 @@ template <int D>
 void BallCollisions<D>::find_events(int i, double t, int exclude) {
   find_wall_events(i, t);
   if (radius_[i] <= 0 || balls_.size() < 2) return;
-  if (!fast_flag_[i]) {
+  if (!state_[i].fast) {
     // Its possible partners started in the neighbouring cells, or are fast.
     const int c = ball_cell_[i];
     for (int offset : neighbour_offsets_) {
-      ++counters_.cell_queries;
+      counters_.cell_queries += 3;
       const int m = c + offset;
-      for (int u = cell_start_[m]; u < cell_start_[m + 1]; ++u) {
+      for (int u = cell_start_[m - 1], end = cell_start_[m + 2]; u < end; ++u) {
         const int k = sorted_[u];
-        if (k != i && k != exclude && !fast_flag_[k]) test_pair(i, k, t);
+        if (k != i && k != exclude && !state_[k].fast) test_pair(i, k, t);
       }
     }
   } else {
@@ -394,7 +454,7 @@ void BallCollisions<D>::find_events(int i, double t, int exclude) {
     const Point p = position_at(i, t), q = p + velocity(i) * (h_ - t);
     const double margin = radius_[i] + max_radius_ + sweep_;
     for_cells_in_box(p.cwiseMin(q).array() - margin, p.cwiseMax(q).array() + margin, [&](int k) {
-      if (k != i && k != exclude && !fast_flag_[k]) test_pair(i, k, t);
+      if (k != i && k != exclude && !state_[k].fast) test_pair(i, k, t);
     });
   }
   for (int k : fast_)
@@ -510,9 +570,9 @@ void BallCollisions<D>::separate_from_walls(int i) {
 
 template <int D>
 void BallCollisions<D>::mark_fast_if_needed(int i, double t) {
-  if (fast_flag_[i] || radius_[i] <= 0) return;
-  if (travelled_[i] + velocity(i).norm() * (h_ - t) > sweep_) {
-    fast_flag_[i] = 1;
+  if (state_[i].fast || radius_[i] <= 0) return;
+  if (state_[i].travelled + velocity(i).norm() * (h_ - t) > sweep_) {
+    state_[i].fast = true;
     fast_.push_back(i);
   }
 }
@@ -520,25 +580,25 @@ void BallCollisions<D>::mark_fast_if_needed(int i, double t) {
 template <int D>
 void BallCollisions<D>::resolve(const Event& e) {
   const int i = e.i;
-  if (collisions_this_step_[i] == 0) moved_.push_back(i);
+  if (state_[i].collisions_this_step == 0) moved_.push_back(i);
   advance(i, e.t);
   if (e.other >= 0) {
     const int k = e.other;
-    if (collisions_this_step_[k] == 0) moved_.push_back(k);
+    if (state_[k].collisions_this_step == 0) moved_.push_back(k);
     advance(k, e.t);
     const Point d = position(k) - position(i);
     const double distance = d.norm();
     if (distance > 0) {
       double restitution = restitution_[i] * restitution_[k];
       if (restitution < 1 &&
-          (collisions_this_step_[i] >= kCollapseLimit || collisions_this_step_[k] >= kCollapseLimit))
+          (state_[i].collisions_this_step >= kCollapseLimit || state_[k].collisions_this_step >= kCollapseLimit))
         restitution = 0;
       collide(i, k, Point(d / distance), restitution);
     }
-    ++collision_count_[i];
-    ++collision_count_[k];
-    ++collisions_this_step_[i];
-    ++collisions_this_step_[k];
+    ++state_[i].collision_count;
+    ++state_[k].collision_count;
+    ++state_[i].collisions_this_step;
+    ++state_[k].collisions_this_step;
     ++counters_.ball_collisions;
     mark_fast_if_needed(i, e.t);
     mark_fast_if_needed(k, e.t);
@@ -550,10 +610,10 @@ void BallCollisions<D>::resolve(const Event& e) {
                               ? planes_[static_cast<size_t>(w)].restitution
                               : segments_[static_cast<size_t>(w) - planes_.size()].restitution;
     double restitution = restitution_[i] * wall_e;
-    if (restitution < 1 && collisions_this_step_[i] >= kCollapseLimit) restitution = 0;
+    if (restitution < 1 && state_[i].collisions_this_step >= kCollapseLimit) restitution = 0;
     bounce(i, wall_normal(i, w), restitution);
-    ++collision_count_[i];
-    ++collisions_this_step_[i];
+    ++state_[i].collision_count;
+    ++state_[i].collisions_this_step;
     ++counters_.wall_collisions;
     mark_fast_if_needed(i, e.t);
     find_events(i, e.t, -1);

@@ -1,0 +1,75 @@
+// The ball gas on a big grid: more than 2^17 cells, where the broad phase counting-sorts
+// the grid in two levels (ball_collisions.cpp, build_grid). Checked against conservation
+// (no walls, no forces: momentum and kinetic energy are kept by every elastic impulse,
+// to rounding) and geometry (no contact missed: no two balls overlap at the end).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <vector>
+
+#include "motus/ball_lattice.hpp"
+#include "motus/simulation.hpp"
+
+namespace {
+
+using motus::Integrator;
+using motus::SceneDescription;
+using motus::Simulation;
+
+SceneDescription open_gas(int dimensions, long count) {
+  SceneDescription scene;
+  motus::MechanicalDescription m;
+  m.dimensions = dimensions;
+  motus::BallLattice lattice;  // radius 0.5, spacing 2: ~3.6 cells per ball in 2-D, ~7 in 3-D
+  lattice.count = count;
+  lattice.container = false;
+  motus::add_ball_lattice(m, lattice);
+  scene.mechanical = std::move(m);
+  scene.integrator = "symplectic-euler";
+  scene.dt = 1.0 / 60;
+  return scene;
+}
+
+// The smallest distance between two ball centres, by a sweep along x.
+double closest_pair(const Simulation& sim) {
+  const int d = sim.mechanical_system()->dimensions(), n = sim.mechanical_system()->size() / d;  // (size: coordinates)
+  const auto& y = sim.state();
+  std::vector<int> order(static_cast<size_t>(n));
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(), [&](int a, int b) { return y[a * d] < y[b * d]; });
+  double best = INFINITY;
+  for (size_t a = 0; a < order.size(); ++a)
+    for (size_t b = a + 1; b < order.size() && y[order[b] * d] - y[order[a] * d] < best; ++b) {
+      double s = 0;
+      for (int k = 0; k < d; ++k) s += std::pow(y[order[b] * d + k] - y[order[a] * d + k], 2);
+      best = std::min(best, std::sqrt(s));
+    }
+  return best;
+}
+
+TEST(BigGrid, KeepsMomentumAndEnergyAndMissesNoContact) {
+  for (const auto& [d, count] : {std::pair{2, 40000L}, std::pair{3, 27000L}}) {
+    const SceneDescription scene = open_gas(d, count);
+    Simulation sim(scene, Integrator::SymplecticEuler);
+    const int n = sim.mechanical_system()->size();  // coordinates: N·d
+    auto momentum = [&] {
+      std::vector<double> p(static_cast<size_t>(d), 0.0);
+      for (int i = 0; i < n; ++i) p[static_cast<size_t>(i % d)] += sim.state()[n + i];  // unit masses
+      return p;
+    };
+    const std::vector<double> p0 = momentum();
+    const double e0 = sim.energy()->total;
+    sim.advance(60 * scene.dt, scene.dt, {});
+    const auto& counters = sim.world()->collision_counters();
+    // A second of gas: thousands of contacts, so the test says something.
+    EXPECT_GT(counters.ball_collisions, count / 20) << d << "-D";
+    EXPECT_NEAR(sim.energy()->total, e0, 1e-12 * e0) << d << "-D";
+    const std::vector<double> p1 = momentum();
+    for (int k = 0; k < d; ++k) EXPECT_NEAR(p1[static_cast<size_t>(k)], p0[static_cast<size_t>(k)], 1e-9) << d << "-D";
+    EXPECT_GE(closest_pair(sim), 1.0 - 1e-9) << d << "-D: two balls of radius 0.5 overlap (a contact was missed)";
+  }
+}
+
+}  // namespace
