@@ -36,6 +36,7 @@ private:
   int d_;
   Vector mass_;
   Vector inverse_mass_;
+  Vector coordinate_inverse_mass_;  // 1/m_i for each of body i's coordinates
   ForceSet forces_;
 };
 
