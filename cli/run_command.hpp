@@ -19,6 +19,7 @@ struct RunOptions {
   std::string trajectory;
   bool overwrite = false;
   bool json = false;
+  int repeats = 5;  // runs timed; the first is the one reported
 };
 
 CLI::App* add_run_command(CLI::App& app, RunOptions& options);

@@ -8,6 +8,7 @@
 
 #include "motus/compare/backends/backend.hpp"
 #include "motus/compare/metrics.hpp"
+#include "motus/compare/timing.hpp"
 
 namespace motus::compare {
 
@@ -20,7 +21,8 @@ struct EngineRun {
   std::vector<Snapshot> frames;          // at t0 and every frame_every steps (for --render)
   std::vector<double> frame_energies;    // total energy of each frame
   long steps = 0;
-  double step_seconds = 0;  // wall time inside step() only, not in the metrics
+  // CPU seconds of all `steps` step() calls, one number per timing round (timing.hpp).
+  std::vector<double> round_seconds;
 
   // Summaries (meaningful when supported and rows is not empty).
   double energy_drift() const;       // (E_end − E_0)/|E_0|
@@ -30,7 +32,8 @@ struct EngineRun {
   double max_constraint_error() const;
   double max_from_motus() const;     // m
   double max_from_exact() const;     // m; −1 when the scene has no analytic solution
-  double microseconds_per_step() const { return steps ? 1e6 * step_seconds / static_cast<double>(steps) : 0; }
+  // Microseconds per step over the timing rounds: min, median, max (0 without rounds).
+  Timings microseconds_per_step() const;
 
   double scale_of_momentum = 0;  // Σ m|v_0|, set by run_comparison
 };
@@ -52,8 +55,14 @@ struct ComparisonOptions {
   double duration = 1;
   long samples = 200;  // metric rows over the run (at most one per step)
   long frame_every = 0;  // keep the state every this many steps for pictures (0: none)
+  int repeats = 5;       // timing rounds
 };
 
+// First every engine runs the scene once with its metrics sampled (untimed): the rows, frames,
+// settings and notes. Then `repeats` timing rounds: in each, every engine builds the scene
+// afresh and runs all its steps with nothing else in between, timed as one block of CPU time;
+// the engines take turns within a round (the round's first engine rotates), so that whatever
+// else the machine is doing falls on all of them alike.
 // progress(fraction of all engines' steps done) is called now and then.
 std::vector<EngineRun> run_comparison(const SceneDescription& scene, const ComparisonOptions& options,
                                       const std::function<void(double)>& progress = {});

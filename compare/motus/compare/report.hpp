@@ -16,6 +16,7 @@ struct ReportContext {
   double dt = 0, duration = 0;
   int dimensions = 2;
   long bodies = 0;
+  int repeats = 0;  // timing rounds
   std::string video, contact_sheet;  // file names in the folder (--render), or ""
   bool momentum_conserved = false;          // the scene keeps it (no walls, no outside force)
   bool angular_momentum_conserved = false;  // about the origin
