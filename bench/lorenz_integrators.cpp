@@ -53,7 +53,11 @@ BENCHMARK(LorenzAdaptive<Rk45>)->Name("Lorenz/rk45");
 // behind the FirstOrderSystem interface (one virtual call per derivative).
 void LorenzRk4ThroughSimulation(benchmark::State& state) {
   SceneDescription scene;
-  scene.first_order = FirstOrderDescription{"lorenz", {{"sigma", 10}, {"rho", 28}, {"beta", 8.0 / 3}}, {1, 1, 1}};
+  FirstOrderDescription lorenz;
+  lorenz.type = "lorenz";
+  lorenz.parameters = {{"sigma", 10}, {"rho", 28}, {"beta", 8.0 / 3}};
+  lorenz.initial = {1, 1, 1};
+  scene.first_order = lorenz;
   Simulation sim(scene, Integrator::Rk4);
   constexpr long kSteps = 1000;
   for (auto _ : state) sim.advance(sim.time() + kSteps * kLorenzStep, kLorenzStep, {});

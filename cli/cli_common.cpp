@@ -1,5 +1,7 @@
 #include "cli_common.hpp"
 
+#include "motus/systems/system_catalog.hpp"
+
 #include <algorithm>
 #include <cstdlib>
 #include <sys/stat.h>
@@ -185,6 +187,13 @@ void check_can_write(const std::string& path, bool overwrite) {
     throw InputError(path + ": already exists; choose another name or pass --overwrite");
   const fs::path parent = fs::path(path).parent_path();
   if (!parent.empty() && !fs::is_directory(parent)) throw InputError(path + ": folder " + parent.string() + " does not exist");
+}
+
+std::string time_unit_of(const SceneDescription& scene) {
+  if (scene.first_order)
+    if (const auto* info = find_first_order_system(scene.first_order->type); info && info->time_unit == "year")
+      return "years";
+  return "s";
 }
 
 }  // namespace motus::cli

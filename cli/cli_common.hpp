@@ -60,6 +60,10 @@ Method method_for(const std::string& path, const SceneDescription& scene, const 
 // "euler, midpoint, ..., student:euler, ..." for messages.
 std::string known_integrators();
 
+// What the scene's time is counted in, for people: "s", or "years" for World2 (the system
+// catalog's time_unit).
+std::string time_unit_of(const SceneDescription& scene);
+
 // A name (a scene's, say) made safe as one file name: letters, digits, '.', '-' and '_' are
 // kept, anything else becomes '_', no leading dot, at most 64 characters; "scene" if nothing is
 // left. A scene named "../victim" writes "victim", inside the folder it was given.

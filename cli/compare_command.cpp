@@ -12,6 +12,7 @@
 #include "motus/compare/comparison.hpp"
 #include "draw_module.hpp"
 #include "interrupt.hpp"
+#include "motus/exact/exact_solution.hpp"
 #include "motus/simulation.hpp"
 #include "progress_bar.hpp"
 #include "motus/compare/report.hpp"
@@ -31,6 +32,17 @@ std::string new_run_folder(const std::string& scene_name) {
   std::string path = fmt::format("runs/compare-{}-{}", name, stamp);
   for (int i = 2; fs::exists(path); ++i) path = fmt::format("runs/compare-{}-{}-{}", name, stamp, i);
   return path;
+}
+
+// Without --render, the report still shows the scene (its first and last frames) and replays it:
+// frames at up to 60 per second of simulated time, but no more than about two million
+// coordinates over all engines (the ball gas gets a few dozen frames, a collision hundreds).
+long replay_frame_every(const SceneDescription& scene, const compare::ComparisonOptions& options) {
+  const double steps = static_cast<double>(fixed_step_count(options.duration, options.dt));
+  const double coordinates = static_cast<double>(scene.mechanical->bodies.size()) * scene.mechanical->dimensions *
+                             static_cast<double>(std::max<size_t>(options.engines.size(), 1));
+  const double frames = std::clamp(std::min(60 * options.duration, 2e6 / std::max(coordinates, 1.0)), 2.0, 1500.0);
+  return std::max(1L, static_cast<long>(std::ceil(steps / frames)));
 }
 
 std::string format_or_dash(const nlohmann::json& v, const char* format) {
@@ -64,7 +76,7 @@ CLI::App* add_compare_command(CLI::App& app, CompareOptions& o) {
   c->add_flag("--render", o.render,
               "Also draw the same instants of every engine side by side: PNG frames, an MP4 (ffmpeg) and a contact "
               "sheet, embedded in the report");
-  c->add_option("--size", o.size, "With --render: the size of each engine's panel, WxH")->capture_default_str();
+  c->add_option("--size", o.size, "The size of each engine's panel in the pictures (the report's first and last frames; every frame with --render), WxH")->capture_default_str();
   c->add_option("--fps", o.fps, "With --render: frames per second of simulated time")->capture_default_str();
   return c;
 }
@@ -120,14 +132,18 @@ int compare_command(const CompareOptions& o) {
   options.repeats = o.repeats;
   checked_step_count(options.duration, options.dt, o.duration ? "--duration" : o.dt ? "--dt" : "dt/duration");
   int panel_width = 0, panel_height = 0;
-  if (o.render) {
+  {
     char x = 0;
     std::istringstream size(o.size);
     if (!(size >> panel_width >> x >> panel_height) || x != 'x' || panel_width < 64 || panel_height < 48 ||
         panel_width > 4096 || panel_height > 4096)
       throw InputError("--size: must be WxH with 64 <= W <= 4096 and 48 <= H <= 4096 (got \"" + o.size + "\")");
+  }
+  if (o.render) {
     if (!(o.fps > 0) || !std::isfinite(o.fps)) throw InputError("--fps: must be a finite number > 0");
     options.frame_every = std::max(1L, std::lround(1 / (o.fps * options.dt)));
+  } else {
+    options.frame_every = replay_frame_every(scene, options);
   }
   // Fail before any engine runs if motus cannot run this scene with this integrator.
   if (std::find(options.engines.begin(), options.engines.end(), "motus") != options.engines.end())
@@ -144,16 +160,18 @@ int compare_command(const CompareOptions& o) {
   const std::string work = partial.path();
 
   ProgressBar progress(0, 1, "compare " + scene.name, 1);
+  progress.phase("stepping the engines", 0, 1);
   const auto runs = compare::run_comparison(scene, options, [&](double f) { progress.update(f); });
-  progress.finish();
 
   compare::ReportContext context;
   context.scene_name = scene.name;
   context.scene_file = path;
   context.description = scene.description;
   context.integrator = integrator_name;
+  context.scene = &scene;
   context.dt = options.dt;
   context.duration = options.duration;
+  context.samples = options.samples;
   context.dimensions = scene.mechanical->dimensions;
   context.bodies = static_cast<long>(scene.mechanical->bodies.size());
   context.repeats = options.repeats;
@@ -161,13 +179,18 @@ int compare_command(const CompareOptions& o) {
   context.momentum_conserved = conserved.momentum;
   context.angular_momentum_conserved = conserved.angular_momentum;
   std::string picture_warning;
-  if (o.render) {
+  {  // --render: every frame, a video and a contact sheet; otherwise the first and the last frame
     draw::ComparisonJob job;
+    job.first_and_last_only = !o.render;
     job.scene = &scene;
     job.width = panel_width;
     job.height = panel_height;
     job.fps = 1 / (static_cast<double>(options.frame_every) * options.dt);
     job.folder = work;
+    size_t frames = 0;
+    for (const auto& run : runs) frames = std::max(frames, run.frames.size());
+    progress.phase("drawing", 0, static_cast<double>(o.render ? frames : 2));
+    job.progress = [&](long done, long) { progress.update(static_cast<double>(o.render ? done : done == 1 ? 1 : 2)); };
     for (const auto& run : runs) {
       draw::Panel panel{run.engine, run.version, {}, run.unsupported};
       for (size_t k = 0; k < run.frames.size(); ++k) {
@@ -187,7 +210,9 @@ int compare_command(const CompareOptions& o) {
     } catch (const InputError& e) {  // no drawing module: the report is still worth having
       error = e.what();
     }
-    if (error.empty()) {
+    if (error.empty() && !o.render) {
+      context.first_and_last = pictures.contact_sheet;
+    } else if (error.empty()) {
       context.video = pictures.video;
       context.contact_sheet = pictures.contact_sheet;
       picture_warning = pictures.warning;
@@ -195,7 +220,9 @@ int compare_command(const CompareOptions& o) {
       picture_warning = "pictures skipped: " + error;
     }
   }
+  progress.note("writing the report");
   const std::string warning = compare::write_report(work, context, runs);
+  progress.finish();
   stop_if_interrupted();  // (a plot that died of the same Ctrl-C is no reason to finish the report)
   partial.complete();
   nlohmann::json summary = compare::summary_json(context, runs);
@@ -207,12 +234,15 @@ int compare_command(const CompareOptions& o) {
     fmt::print("{}: {} bodies, {}-D, dt = {:g} s, {:g} s ({} steps); motus integrator {}\n", scene.name,
                context.bodies, context.dimensions, options.dt, options.duration,
                fixed_step_count(options.duration, options.dt), integrator_name);
+    // Where the scene has an exact answer, the distance from it matters more than from motus.
+    const bool exact_known = has_exact_solution(scene);
+    const char* distance_key = exact_known ? "max_distance_from_exact" : "max_distance_from_motus";
     fmt::print("us/step: CPU time per step, the fastest of {} rounds (engines taking turns), the median beside it; "
                "spread = (slowest - fastest) / fastest\n\n",
                options.repeats);
     fmt::print("{:<8}{:>13}{:>13}{:>13}{:>13}{:>13}{:>13}{:>11}{:>11}{:>8}{:>12}\n", "engine", "energy drift",
-               "max |dE|/E0", "momentum", "penetration", "constraint", "from motus", "us/step", "median", "spread",
-               "time/motus");
+               "max |dE|/E0", "momentum", "penetration", "constraint", exact_known ? "from exact" : "from motus",
+               "us/step", "median", "spread", "time/motus");
     for (const auto& e : summary["engines"]) {
       if (!e["supported"].get<bool>()) {
         for (const auto& u : e["unsupported"]) fmt::print("{:<8}{}\n", e["engine"].get<std::string>(), u.get<std::string>());
@@ -221,7 +251,7 @@ int compare_command(const CompareOptions& o) {
       fmt::print("{:<8}{:>13}{:>13}{:>13}{:>13}{:>13}{:>13}{:>11}{:>11}{:>8}{:>12}\n", e["engine"].get<std::string>(),
                  format_or_dash(e["energy_drift"], "{:+.2e}"), format_or_dash(e["max_energy_error"], "{:.2e}"),
                  format_or_dash(e["momentum_drift"], "{:.2e}"), format_or_dash(e["max_penetration"], "{:.2e}"),
-                 format_or_dash(e["constraint_error"], "{:.2e}"), format_or_dash(e["max_distance_from_motus"], "{:.2e}"),
+                 format_or_dash(e["constraint_error"], "{:.2e}"), format_or_dash(e[distance_key], "{:.2e}"),
                  format_or_dash(e["us_per_step"], "{:.2f}"), format_or_dash(e["us_per_step_median"], "{:.2f}"),
                  e["us_per_step_spread"].is_null()
                      ? std::string("-")
@@ -230,7 +260,9 @@ int compare_command(const CompareOptions& o) {
     }
     for (const auto& e : summary["engines"])
       for (const auto& n : e["notes"]) fmt::print("note ({}): {}\n", e["engine"].get<std::string>(), n.get<std::string>());
-    fmt::print("\nreport: {}\n", summary["report"].get<std::string>());
+    if (summary.contains("notice")) fmt::print("\n{}\n", summary["notice"].get<std::string>());
+    fmt::print("\nreport: {} (what each column means, the plots{})\n", summary["report"].get<std::string>(),
+               summary.contains("exact") ? ", the exact answer" : "");
   }
   if (!warning.empty()) fmt::print(stderr, "motus: {}\n", warning);
   if (!picture_warning.empty()) fmt::print(stderr, "motus: {}\n", picture_warning);

@@ -46,6 +46,9 @@ int list_command(const std::vector<std::string>& plugin_files) {
   }
   fmt::print("first-order systems (\"system\": {{\"type\": ...}}):\n");
   for (const auto& s : first_order_systems()) fmt::print("  {:<20} {}\n", s.type, s.description);
+  fmt::print("  {:<20} {}\n", "equations",
+             "your own: \"variables\", \"parameters\" and one expression per variable in \"equations\" "
+             "(docs/scene-format.md)");
   return 0;
 }
 

@@ -3,6 +3,7 @@
 //   motus list                        scenes, integrators, systems
 //   motus bench precision SCENE ...   run time against error
 //   motus render SCENE --out DIR ...  PNG frames (and a video) of a scene
+//   motus stress SCENE ...            the stability stress test: tables and a page
 #include <fmt/format.h>
 
 #include <cerrno>
@@ -21,6 +22,7 @@
 #include "interrupt.hpp"
 #include "run_command.hpp"
 #include "serve_command.hpp"
+#include "stress_command.hpp"
 #include "motus/scene_file/scene_file.hpp"
 
 int main(int argc, char** argv) {
@@ -49,6 +51,8 @@ int main(int argc, char** argv) {
   auto* grade = add_grade_command(app, grade_options);
   ServeOptions serve_options;
   auto* serve = add_serve_command(app, serve_options);
+  StressOptions stress_options;
+  auto* stress = add_stress_command(app, stress_options);
 
   try {
     app.parse(argc, argv);
@@ -73,6 +77,7 @@ int main(int argc, char** argv) {
     else if (*render) status = render_command(render_options);
     else if (*grade) status = grade_command(grade_options);
     else if (*serve) status = serve_command(serve_options);
+    else if (*stress) status = stress_command(stress_options);
     // Whatever went to standard output must have got there (a full disk is a failure, not 0).
     if (std::fflush(stdout) != 0 || std::ferror(stdout)) {
       fmt::print(stderr, "motus: the run failed: standard output could not be written ({})\n", std::strerror(errno));
@@ -90,6 +95,7 @@ int main(int argc, char** argv) {
     // Raised while building the run (e.g. a symplectic integrator on a first-order system).
     const std::string scene = resolve_scene_path(run->parsed()       ? run_options.scene
                                                  : compare->parsed() ? compare_options.scene
+                                                 : stress->parsed()  ? stress_options.scene
                                                                      : precision_options.scene);
     fmt::print(stderr, "motus: error: {}\n", one_line(scene + ": " + (e.field().empty() ? "" : e.field() + ": ") + e.what()));
     return kExitBadInput;

@@ -1,19 +1,69 @@
 #include "progress_bar.hpp"
 
-#include "interrupt.hpp"
-
+#include <sys/ioctl.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
+
+#include "interrupt.hpp"
 
 namespace motus {
+namespace {
+
+// The number of terminal columns a UTF-8 string takes (one per code point: the bar uses no
+// wide characters).
+size_t columns(const std::string& s) {
+  size_t n = 0;
+  for (unsigned char c : s) n += (c & 0xC0) != 0x80;
+  return n;
+}
+
+std::string seconds_text(double s) {
+  char text[32];
+  if (s < 60) std::snprintf(text, sizeof text, "%.0f s", s);
+  else if (s < 3600) std::snprintf(text, sizeof text, "%.0f min %02.0f s", std::floor(s / 60), std::fmod(s, 60));
+  else std::snprintf(text, sizeof text, "%.1f h", s / 3600);
+  return text;
+}
+
+}  // namespace
 
 ProgressBar::ProgressBar(double start, double end, std::string label, unsigned check_every)
-    : start_(start), end_(end), label_(std::move(label)), enabled_(isatty(STDERR_FILENO) != 0),
-      check_mask_(check_every - 1), began_(std::chrono::steady_clock::now()), last_draw_(began_) {}
+    : start_(start), end_(end), label_(std::move(label)), check_mask_(check_every - 1),
+      began_(std::chrono::steady_clock::now()), last_draw_(began_), phase_began_(began_) {
+  const char* mode = std::getenv("MOTUS_PROGRESS");
+  always_ = mode && std::string(mode) == "always";
+  enabled_ = always_ || isatty(STDERR_FILENO) != 0;
+}
 
 ProgressBar::~ProgressBar() { finish(); }
+
+int ProgressBar::width() const {
+  if (const char* env = std::getenv("COLUMNS"); env && std::atoi(env) > 0) return std::atoi(env);
+  winsize size{};
+  if (ioctl(STDERR_FILENO, TIOCGWINSZ, &size) == 0 && size.ws_col > 0) return size.ws_col;
+  return 80;
+}
+
+void ProgressBar::phase(const std::string& name, double start, double end) {
+  phase_ = name;
+  start_ = start;
+  end_ = end;
+  phase_began_ = std::chrono::steady_clock::now();
+  phase_fraction_ = 0;
+  fraction_ = 0;
+  calls_ = 0;
+}
+
+void ProgressBar::note(const std::string& what) {
+  phase(what, 0, 0);
+  if (enabled_ && (shown_ || always_ ||
+                   std::chrono::duration<double>(std::chrono::steady_clock::now() - began_).count() >= 2.0))
+    draw(-1);
+}
 
 void ProgressBar::update(double now) {
   if ((++calls_ & check_mask_) != 0) return;
@@ -21,28 +71,60 @@ void ProgressBar::update(double now) {
   if (!enabled_) return;
   const auto clock = std::chrono::steady_clock::now();
   const double elapsed = std::chrono::duration<double>(clock - began_).count();
-  if (elapsed < 2.0) return;
-  if (shown_ && std::chrono::duration<double>(clock - last_draw_).count() < 0.1) return;
+  if (elapsed < 2.0 && !always_) return;
+  if (shown_ && std::chrono::duration<double>(clock - last_draw_).count() < 0.1 && !always_) return;
   last_draw_ = clock;
-  const double fraction = end_ > start_ ? std::clamp((now - start_) / (end_ - start_), 0.0, 1.0) : 1.0;
-  draw(fraction, elapsed);
+  fraction_ = end_ > start_ ? std::clamp((now - start_) / (end_ - start_), 0.0, 1.0) : 1.0;
+  draw(fraction_);
 }
 
-void ProgressBar::draw(double fraction, double elapsed) {
-  constexpr int width = 30;
-  const int filled = static_cast<int>(fraction * width);
-  std::string bar(static_cast<size_t>(filled), '#');
-  bar.resize(width, '.');
-  const double remaining = fraction > 0 ? elapsed * (1 - fraction) / fraction : 0;
-  std::fprintf(stderr, "\r%s [%s] %5.1f%%  %.0f s, about %.0f s to go ", label_.c_str(), bar.c_str(),
-               100 * fraction, elapsed, remaining);
+std::string ProgressBar::line(const std::string& label, const std::string& phase, double fraction, double elapsed,
+                              double remaining, int width) {
+  const std::string name = phase.empty() ? label : label + ", " + phase;
+  std::string tail;
+  if (fraction < 0) {
+    tail = "  " + seconds_text(elapsed);  // a phase without steps: no bar, no estimate
+  } else {
+    char percent[16];
+    std::snprintf(percent, sizeof percent, " %3.0f%%", 100 * fraction);
+    tail = std::string(percent) + "  " + seconds_text(elapsed) +
+           (std::isfinite(remaining) && remaining > 0 ? ", ~" + seconds_text(remaining) + " to go" : "");
+  }
+  // name [#####.....] tail — the bar takes what is left, between 10 and 30 columns; with less
+  // room it goes, and then the name is cut: the line is always at most width − 1 columns.
+  const int room = width - 1 - static_cast<int>(columns(name)) - static_cast<int>(columns(tail)) - 3;
+  std::string out = name;
+  if (fraction >= 0 && room >= 10) {
+    const int bar = std::min(room, 30);
+    const int filled = static_cast<int>(fraction * bar);
+    out += " [" + std::string(static_cast<size_t>(filled), '#') + std::string(static_cast<size_t>(bar - filled), '.') + "]";
+  }
+  out += tail;
+  while (static_cast<int>(columns(out)) > width - 1 && !out.empty()) {
+    out.pop_back();
+    while (!out.empty() && (static_cast<unsigned char>(out.back()) & 0xC0) == 0x80) out.pop_back();
+  }
+  return out;
+}
+
+void ProgressBar::draw(double fraction) {
+  const auto clock = std::chrono::steady_clock::now();
+  const double elapsed = std::chrono::duration<double>(clock - began_).count();
+  // The time to go from this phase's own rate (a fast first phase says nothing of a slow one).
+  const double in_phase = std::chrono::duration<double>(clock - phase_began_).count();
+  const double done = fraction - phase_fraction_;
+  const double remaining = fraction >= 0 && done > 0 && in_phase > 0.2 ? (1 - fraction) * in_phase / done : NAN;
+  const int w = width();
+  const std::string text = line(label_, phase_, fraction, elapsed, remaining, w);
+  // \r, the line, and spaces to the end of what the last one took: nothing is left behind.
+  std::fprintf(stderr, "\r%s%*s\r%s", text.c_str(), std::max(0, w - 1 - static_cast<int>(columns(text))), "", text.c_str());
   std::fflush(stderr);
   shown_ = true;
 }
 
 void ProgressBar::finish() {
   if (!shown_) return;
-  std::fprintf(stderr, "\r%*s\r", 80, "");  // clear the line for the summary
+  std::fprintf(stderr, "\r%*s\r", width() - 1, "");  // clear the line for the summary
   std::fflush(stderr);
   shown_ = false;
 }

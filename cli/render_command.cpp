@@ -12,6 +12,7 @@
 
 #include "cli_common.hpp"
 #include "draw_module.hpp"
+#include "interrupt.hpp"
 #include "motus/process/run_program.hpp"
 #include "motus/scene_error.hpp"
 #include "motus/simulation.hpp"
@@ -73,7 +74,7 @@ CLI::App* add_render_command(CLI::App& app, RenderOptions& o) {
   render->add_option("scene", o.scene, "Scene file, or the name of a shipped scene (see `motus list`)")->required();
   render->add_option("--out", o.out, "Folder for frame_00000.png, ... (must not exist unless --overwrite)")->required();
   render->add_option("--size", o.size, "Frame size in pixels")->type_name("WxH")->capture_default_str();
-  render->add_option("--fps", o.fps, "Frames per second of simulated time")->capture_default_str();
+  render->add_option("--fps", o.fps, "Frames per second of simulated time (World2: per simulated year)")->capture_default_str();
   render->add_option("--duration", o.duration, "Simulated time to draw, s (default: the scene's)");
   render->add_option("--integrator", o.integrator, "Integrator (default: the scene's); see `motus list`");
   render->add_option("--set", o.sets, "Override a scene field, e.g. --set lattice.count=1000 (repeatable)")
@@ -130,7 +131,8 @@ int render_command(const RenderOptions& o) {
   };
   const bool every_step = !scene.is_mechanical();
   const double min_gap = scene.output_interval > 0 ? scene.output_interval * 0.999 : 0;
-  ProgressBar progress(0, 2.0 * static_cast<double>(frames), scene.name, 1);
+  ProgressBar progress(0, static_cast<double>(frames), scene.name, 1);
+  progress.phase("simulating", 0, static_cast<double>(frames));
   const auto began = std::chrono::steady_clock::now();
   record(sim);
   job.frame_index.push_back(0);
@@ -158,20 +160,23 @@ int render_command(const RenderOptions& o) {
   for (const auto& set : o.sets)
     if (set.rfind("integrator=", 0) != 0) job.note += fmt::format("  {}", set);
   job.folder = o.out;
-  job.frame_done = [&](long k) { progress.update(static_cast<double>(frames + k)); };
+  progress.phase("drawing", 0, static_cast<double>(frames));
+  job.frame_done = [&](long k) { progress.update(static_cast<double>(k)); };
   const std::string video_name = o.video.empty() ? "" : safe_file_name(scene.name) + "." + o.video;  // a name is not a path
   write_manifest(o.out, frames, video_name);  // first: what is written is listed even if the run stops
   if (const std::string error = drawing.render_frames(job); !error.empty()) throw InputError(error);
   progress.finish();
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count();
-  fmt::print("{} frames of {}x{} at {:g} fps ({:g} s of {}) in {}/ ({:.1f} s)\n", frames, width, height, o.fps,
-             duration, scene.name, o.out, wall);
+  fmt::print("{} frames of {}x{} at {:g} per simulated {} ({:g} {} of {}) in {}/ ({:.1f} s)\n", frames, width, height,
+             o.fps, time_unit_of(scene) == "years" ? "year" : "second", duration, time_unit_of(scene), scene.name, o.out,
+             wall);
   if (!o.video.empty()) {
     const std::string file = (fs::path(o.out) / video_name).string();
-    if (const std::string error =
-            drawing.encode_video((fs::path(o.out) / "frame_%05d.png").string(), o.fps, file, o.video);
-        !error.empty())
-      throw std::runtime_error(error);
+    progress.note("encoding the video (ffmpeg)");
+    const std::string error = drawing.encode_video((fs::path(o.out) / "frame_%05d.png").string(), o.fps, file, o.video);
+    progress.finish();
+    stop_if_interrupted();
+    if (!error.empty()) throw std::runtime_error(error);
     fmt::print("video        {}\n", file);
   }
   return 0;

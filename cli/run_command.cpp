@@ -5,7 +5,9 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <fstream>
+#include <iostream>
 #include <nlohmann/json.hpp>
 
 #include "cli_common.hpp"
@@ -27,19 +29,26 @@ nlohmann::json energy_json(const std::optional<Energy>& e) {
 // Writes the trajectory CSV: a header, then one row per output time.
 class TrajectoryWriter {
 public:
+  // path "-": standard output.
   TrajectoryWriter(const std::string& path, const Simulation& sim, double interval)
-      : path_(path), out_(path), interval_(interval) {
-    if (!out_) throw InputError(path + ": cannot be written");
-    out_ << "t";
-    for (const auto& n : sim.state_names()) out_ << ',' << n;
-    if (sim.is_mechanical()) out_ << ",kinetic,potential,total";
-    if (sim.has_constraints()) out_ << ",constraint_error";
+      : path_(path == "-" ? "standard output" : path), interval_(interval) {
+    if (path == "-") {
+      out_ = &std::cout;
+    } else {
+      file_.open(path);
+      out_ = &file_;
+    }
+    if (!*out_) throw InputError(path + ": cannot be written");
+    *out_ << "t";
+    for (const auto& n : sim.state_names()) *out_ << ',' << n;
+    if (sim.is_mechanical()) *out_ << ",kinetic,potential,total";
+    if (sim.has_constraints()) *out_ << ",constraint_error";
     if (!sim.is_mechanical()) {
       aux_names_ = sim.first_order_system()->auxiliary_names();
-      for (const auto& n : aux_names_) out_ << ',' << n;
+      for (const auto& n : aux_names_) *out_ << ',' << n;
       aux_.resize(static_cast<Eigen::Index>(aux_names_.size()));
     }
-    out_ << '\n';
+    *out_ << '\n';
     next_ = sim.time();
     row(sim);
   }
@@ -50,21 +59,21 @@ public:
   // (a full disk) is an error naming the file, not a run that went well.
   void finish(const Simulation& sim) {
     if (sim.time() > last_) row(sim);
-    out_.flush();
-    if (!out_) throw std::runtime_error(path_ + ": could not be written (disk full?)");
+    out_->flush();
+    if (!*out_) throw std::runtime_error(path_ + ": could not be written (disk full?)");
   }
 
 private:
   void row(const Simulation& sim) {
-    out_ << fmt::format("{:.17g}", sim.time());
-    for (double v : sim.state()) out_ << fmt::format(",{:.17g}", v);
-    if (const auto e = sim.energy()) out_ << fmt::format(",{:.17g},{:.17g},{:.17g}", e->kinetic, e->potential, e->total);
-    if (sim.has_constraints()) out_ << fmt::format(",{:.17g}", sim.constraint_error());
+    *out_ << fmt::format("{:.17g}", sim.time());
+    for (double v : sim.state()) *out_ << fmt::format(",{:.17g}", v);
+    if (const auto e = sim.energy()) *out_ << fmt::format(",{:.17g},{:.17g},{:.17g}", e->kinetic, e->potential, e->total);
+    if (sim.has_constraints()) *out_ << fmt::format(",{:.17g}", sim.constraint_error());
     if (!aux_names_.empty()) {
       sim.first_order_system()->auxiliaries(sim.time(), sim.state(), aux_);
-      for (double v : aux_) out_ << fmt::format(",{:.17g}", v);
+      for (double v : aux_) *out_ << fmt::format(",{:.17g}", v);
     }
-    out_ << '\n';
+    *out_ << '\n';
     last_ = sim.time();
     while (next_ <= sim.time() + 1e-9 * std::max(1.0, std::abs(sim.time()))) {
       if (interval_ <= 0) {
@@ -76,7 +85,8 @@ private:
   }
 
   std::string path_;
-  std::ofstream out_;
+  std::ofstream file_;
+  std::ostream* out_ = nullptr;
   double interval_;
   double next_ = 0;
   double last_ = -INFINITY;
@@ -91,10 +101,39 @@ int report_non_finite(double by) {
   return kExitFailure;
 }
 
-std::string vec(const Vector& v) {
+std::string vec(ConstVectorRef v) {
   std::vector<std::string> parts;
-  for (double x : v) parts.push_back(fmt::format("{:.10g}", x));
-  return "(" + fmt::format("{}", fmt::join(parts, ", ")) + ")";
+  for (Eigen::Index i = 0; i < v.size(); ++i) parts.push_back(fmt::format("{:.10g}", v[i]));
+  return fmt::format("({})", fmt::join(parts, ", "));
+}
+
+// A time as a person reads it: "3.2 µs", "5.28 ms", "1.6 s".
+std::string duration_text(double seconds) {
+  if (seconds < 1e-6) return fmt::format("{:.1f} ns", seconds * 1e9);
+  if (seconds < 1e-3) return fmt::format("{:.3g} µs", seconds * 1e6);
+  if (seconds < 1) return fmt::format("{:.3g} ms", seconds * 1e3);
+  return fmt::format("{:.3g} s", seconds);
+}
+
+// World2 runs in years; everything else in seconds.
+std::string time_unit(const SceneDescription& scene) {
+  return " (" + time_unit_of(scene) + ")";
+}
+
+// A run this short is printed step by step (the course's spring: six rows).
+constexpr size_t kTableRows = 12;
+constexpr int kBodiesShown = 4;
+
+// One row per recorded step: t, then the columns (x, v, a for a body; the variables of a system).
+void print_table(std::FILE* out, const std::vector<std::vector<double>>& rows, const std::vector<std::string>& names) {
+  fmt::print(out, "{:>10}", "t");
+  for (const auto& n : names) fmt::print(out, "{:>14}", n);
+  fmt::print(out, "\n");
+  for (const auto& row : rows) {
+    for (size_t k = 0; k < row.size(); ++k)
+      fmt::print(out, "{}", k == 0 ? fmt::format("{:>10.6g}", row[k]) : fmt::format("{:>14.8g}", row[k]));
+    fmt::print(out, "\n");
+  }
 }
 
 }  // namespace
@@ -122,6 +161,10 @@ CLI::App* add_run_command(CLI::App& app, RunOptions& o) {
   return run;
 }
 
+namespace {
+bool adaptive_method(const Method& m) { return m.adaptive(); }
+}  // namespace
+
 int run_command(const RunOptions& o) {
   const std::string path = resolve_scene_path(o.scene);
   SceneDescription scene = load_scene(path, o.sets);
@@ -144,9 +187,46 @@ int run_command(const RunOptions& o) {
   const Vector state0 = sim.state();
 
   std::optional<TrajectoryWriter> trajectory;
+  if (o.trajectory == "-" && o.json)
+    throw InputError("--trajectory -: standard output is the CSV's; --json wants it too (write the CSV to a file)");
   if (!o.trajectory.empty()) {
-    check_can_write(o.trajectory, o.overwrite);
+    if (o.trajectory != "-") check_can_write(o.trajectory, o.overwrite);
     trajectory.emplace(o.trajectory, sim, scene.output_interval);
+  }
+  // A short run is shown step by step: the time, the state and (for bodies) the acceleration.
+  std::vector<std::vector<double>> table;
+  std::vector<std::string> table_names;
+  const bool small_state = sim.is_mechanical() ? sim.mechanical_system()->particles() <= 2 : sim.state().size() <= 6;
+  bool tabulate = small_state && (adaptive_method(method) || fixed_step_count(duration, dt) < static_cast<long>(kTableRows));
+  Vector acceleration(sim.is_mechanical() ? sim.mechanical_system()->size() : 0);
+  auto tabulate_row = [&](const Simulation& s) {
+    std::vector<double> row = {s.time()};
+    if (s.is_mechanical()) {
+      const Eigen::Index n = s.mechanical_system()->size();
+      MechanicalSystem measuring = *s.mechanical_system();  // (a copy: it counts evaluations)
+      measuring.acceleration(s.time(), s.state().head(n), s.state().tail(n), acceleration);
+      for (Eigen::Index i = 0; i < n; ++i) row.insert(row.end(), {s.state()[i], s.state()[n + i], acceleration[i]});
+    } else {
+      row.insert(row.end(), s.state().data(), s.state().data() + s.state().size());
+    }
+    table.push_back(std::move(row));
+    if (table.size() > kTableRows) tabulate = false;
+  };
+  if (tabulate) {
+    if (sim.is_mechanical()) {
+      static const char* axes[] = {"x", "y", "z"};
+      const int d = sim.mechanical_system()->dimensions();
+      for (int b = 0; b < sim.mechanical_system()->particles(); ++b)
+        for (int k = 0; k < d; ++k) {
+          const bool one = sim.mechanical_system()->particles() == 1;
+          const std::string suffix = std::string(axes[k]) + (one ? "" : std::to_string(b));
+          if (one && d == 1) table_names.insert(table_names.end(), {"x", "v", "a"});  // as the course writes it
+          else for (const char* q : {"", "v", "a"}) table_names.push_back(std::string(q) + suffix);
+        }
+    } else {
+      table_names = sim.state_names();
+    }
+    tabulate_row(sim);
   }
   // The progress bar spans every run: the first, reported, and the others, only timed.
   const double t0 = sim.time();
@@ -159,6 +239,7 @@ int run_command(const RunOptions& o) {
   double cpu_began = compare::cpu_seconds();
   sim.advance(sim.time() + duration, dt, tolerance, [&](const Simulation& s) {
     if (trajectory) trajectory->after_step(s);
+    if (tabulate) tabulate_row(s);
     if ((s.steps() & 15) == 0 && std::isnan(non_finite_by) && !s.state().allFinite()) non_finite_by = s.time();
     if (constrained) worst_constraint_error = std::max(worst_constraint_error, s.constraint_error());
     progress.update(s.time() - t0);
@@ -181,6 +262,7 @@ int run_command(const RunOptions& o) {
   }
   progress.finish();
   if (trajectory) trajectory->finish(sim);
+  if (!tabulate) table.clear();
   std::vector<double> per_step;
   for (double seconds : round_seconds) per_step.push_back(sim.steps() ? 1e9 * seconds / static_cast<double>(sim.steps()) : 0);
   const compare::Timings time = compare::summarize(per_step);
@@ -236,44 +318,62 @@ int run_command(const RunOptions& o) {
     return finite ? 0 : report_non_finite(std::isnan(non_finite_by) ? sim.time() : non_finite_by);
   }
 
-  fmt::print("scene        {}  ({})\n", scene.name, path);
-  if (!scene.description.empty()) fmt::print("             {}\n", scene.description);
-  fmt::print("integrator   {}{}, dt = {:g}{}\n", integrator_name, adaptive ? " (adaptive)" : "", dt,
+  // With --trajectory - the CSV is standard output, and the summary goes to standard error.
+  std::FILE* out = o.trajectory == "-" ? stderr : stdout;
+  fmt::print(out, "scene        {}  ({})\n", scene.name, path);
+  if (!scene.description.empty()) fmt::print(out, "             {}\n", scene.description);
+  if (!o.sets.empty())
+    fmt::print(out, "             (the description is the file's; this run changed {})\n", fmt::join(o.sets, ", "));
+  fmt::print(out, "integrator   {}{}, dt = {:g}{}\n", integrator_name, adaptive ? " (adaptive)" : "", dt,
              adaptive ? fmt::format(", rtol = {:g}, atol = {:g}", tolerance.rtol, tolerance.atol) : "");
-  fmt::print("time         {:g} -> {:.10g}\n\n", scene.start_time, sim.time());
+  fmt::print(out, "time         {:g} -> {:.10g}{}\n\n", scene.start_time, sim.time(), time_unit(scene));
+  if (table.size() > 1) {  // a short run: every step, as the course's tables have it
+    print_table(out, table, table_names);
+    fmt::print(out, "\n");
+  }
   if (sim.is_mechanical()) {
     const auto e1 = sim.energy();
-    fmt::print("{:<18}{:>22}{:>22}{:>14}\n", "", "start", "end", "change");
-    auto row = [](const char* name, double a, double b) {
+    fmt::print(out, "{:<18}{:>22}{:>22}{:>14}\n", "", "start", "end", "change");
+    auto row = [&](const char* name, double a, double b) {
       const double rel = a != 0 ? (b - a) / std::abs(a) : b - a;
-      fmt::print("{:<18}{:>22.12g}{:>22.12g}{:>14.3e}{}\n", name, a, b, rel, a != 0 ? "" : " (abs)");
+      fmt::print(out, "{:<18}{:>22.12g}{:>22.12g}{:>14.3e}{}\n", name, a, b, rel, a != 0 ? "" : " (abs)");
     };
     row("kinetic energy", energy0->kinetic, e1->kinetic);
     row("potential energy", energy0->potential, e1->potential);
     row("total energy", energy0->total, e1->total);
-    fmt::print("{:<18}{:>30}{:>30}\n", "momentum", vec(momentum0), vec(sim.momentum()));
-    if (angular0.size()) fmt::print("{:<18}{:>30}{:>30}\n", "angular momentum", vec(angular0), vec(sim.angular_momentum()));
+    fmt::print(out, "{:<18}{}  ->  {}\n", "momentum", vec(momentum0), vec(sim.momentum()));
+    if (angular0.size()) fmt::print(out, "{:<18}{}  ->  {}\n", "angular momentum", vec(angular0), vec(sim.angular_momentum()));
+    // The final state of a few bodies (--json and --trajectory have all of them).
+    const int d = scene.mechanical->dimensions, n = sim.mechanical_system()->size();
+    const int bodies = n / d;
+    if (bodies <= kBodiesShown) {
+      fmt::print(out, "\n");
+      for (int b = 0; b < bodies; ++b)
+        fmt::print(out, "{:<18}x = {}   v = {}\n", bodies == 1 ? "final state" : fmt::format("body {}, end", b),
+                   vec(sim.state().segment(b * d, d)), vec(sim.state().segment(n + b * d, d)));
+    }
   } else {
     const auto names = sim.state_names();
-    fmt::print("{:<18}{:>22}{:>22}\n", "", "start", "end");
+    fmt::print(out, "{:<18}{:>22}{:>22}\n", "", "start", "end");
     for (size_t i = 0; i < names.size(); ++i)
-      fmt::print("{:<18}{:>22.12g}{:>22.12g}\n", names[i], state0[static_cast<Eigen::Index>(i)],
+      fmt::print(out, "{:<18}{:>22.12g}{:>22.12g}\n", names[i], state0[static_cast<Eigen::Index>(i)],
                  sim.state()[static_cast<Eigen::Index>(i)]);
   }
-  fmt::print("\nsteps        {} accepted, {} rejected\n", sim.steps(), sim.rejected());
-  fmt::print("evaluations  {} derivative evaluations\n", sim.evaluations());
-  fmt::print("time         {:.1f} ns per step: the fastest of {} runs (CPU time), median {:.1f}, spread {:.0f}%\n", time.min,
-             time.rounds, time.median, 100 * time.spread());
-  fmt::print("wall time    {:.6f} s (the first run)\n", wall);
-  if (world) fmt::print("passes       {}\n", fmt::join(world->passes(), ", "));
+  fmt::print(out, "\nsteps        {} accepted, {} rejected\n", sim.steps(), sim.rejected());
+  fmt::print(out, "evaluations  {} derivative evaluations\n", sim.evaluations());
+  fmt::print(out, "time         {} per step: the fastest of {} runs (CPU time), median {}, spread {:.0f}%\n",
+             duration_text(1e-9 * time.min), time.rounds, duration_text(1e-9 * time.median), 100 * time.spread());
+  fmt::print(out, "wall time    {} ({} per step, the first run)\n", duration_text(wall),
+             duration_text(sim.steps() ? wall / static_cast<double>(sim.steps()) : 0.0));
+  if (world) fmt::print(out, "passes       {}\n", fmt::join(world->passes(), ", "));
   if (world && world->has_collisions())
-    fmt::print("collisions   {} ball-ball, {} with walls; broad phase {} queries, {} pair tests; {} overlaps removed\n",
+    fmt::print(out, "collisions   {} ball-ball, {} with walls; broad phase {} queries, {} pair tests; {} overlaps removed\n",
                collisions.ball_collisions, collisions.wall_collisions, collisions.broad_phase_queries(),
                collisions.pair_tests, collisions.position_corrections);
   if (constrained)
-    fmt::print("constraints  largest stick-length error {:.3e} over the run, {:.3e} at the end\n", worst_constraint_error,
+    fmt::print(out, "constraints  largest stick-length error {:.3e} over the run, {:.3e} at the end\n", worst_constraint_error,
                sim.constraint_error());
-  if (!o.trajectory.empty()) fmt::print("trajectory   {}\n", o.trajectory);
+  if (!o.trajectory.empty()) fmt::print(out, "trajectory   {}\n", o.trajectory == "-" ? "standard output" : o.trajectory);
   return finite ? 0 : report_non_finite(std::isnan(non_finite_by) ? sim.time() : non_finite_by);
 }
 

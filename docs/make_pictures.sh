@@ -1,5 +1,6 @@
 #!/bin/sh
-# Regenerates the README's pictures in docs/pictures/ with `motus render` (docs/render.md).
+# Regenerates the README's pictures in docs/pictures/ with `motus render` (docs/render.md), `motus compare` and
+# `motus stress`.
 #   docs/make_pictures.sh              uses build/motus
 #   MOTUS=build-x/motus docs/make_pictures.sh
 # Needs ffmpeg (for the GIFs). Every file stays well under 200 KB.
@@ -34,12 +35,18 @@ png() {
 gif spring spring --size 320x160 --fps 10 --duration 8.9 --set integrator=velocity-verlet --set dt=0.02
 gif bouncing_balls bouncing_balls --size 240x240 --fps 10 --duration 5
 gif newtons_cradle newtons_cradle --size 320x140 --fps 15 --duration 3
-gif ragdoll ragdoll --size 280x280 --fps 15 --duration 4
+gif ragdoll ragdoll --size 300x210 --fps 15 --duration 4
 png cloth cloth --size 400x300 --fps 1 --duration 3
 png lorenz lorenz --size 400x300 --fps 1 --duration 30
 png world2 world2 --size 560x320 --fps 0.05 --duration 200
 
-# One instant of Newton's cradle in motus, Box2D and Bullet side by side (`motus compare --render`).
-"$MOTUS" compare newtons_cradle --render --size 300x150 --fps 10 --duration 1.5 --out "$WORK/compare" >/dev/null
-cp "$(ls "$WORK/compare/frames"/frame_*.png | tail -n 1)" "$OUT/compare_newtons_cradle.png"
+# Newton's cradle in motus, Box2D and Bullet side by side at the start and the end: the picture
+# every `motus compare` report has (first_and_last.png).
+"$MOTUS" compare newtons_cradle --size 300x150 --out "$WORK/compare" >/dev/null
+cp "$WORK/compare/first_and_last.png" "$OUT/compare_newtons_cradle.png"
 echo "$OUT/compare_newtons_cradle.png  $(wc -c <"$OUT/compare_newtons_cradle.png") bytes"
+
+# The stress test's long run on the oscillator (`motus stress`, docs/cli.md): the energy error over 10^5 steps.
+"$MOTUS" stress oscillator --out "$WORK/stress" >/dev/null
+cp "$WORK/stress/drift.png" "$OUT/stress_oscillator_drift.png"
+echo "$OUT/stress_oscillator_drift.png  $(wc -c <"$OUT/stress_oscillator_drift.png") bytes"

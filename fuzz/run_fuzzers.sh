@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Builds the fuzzers with clang (ASan + UBSan) and runs each for SECONDS (default 60), with the
-# shipped scenes as the seed corpus and the format's keywords as the dictionary. A finding
+# shipped scenes and fuzz/regressions/ (the past findings) as the seed corpus and the format's keywords as the dictionary. A finding
 # (a crash, a hang, a sanitizer report) stops it with a non-zero status and leaves the input
 # in BUILD_DIR/findings/. Used by ctest (a short run) and by hand (a long one):
 #   fuzz/run_fuzzers.sh 1800 build/fuzz
@@ -16,8 +16,9 @@ for fuzzer in fuzz_load fuzz_step; do
   corpus="$build/corpus/$fuzzer"
   mkdir -p "$corpus"
   cp "$here"/../scenes/*.json "$corpus"/
+  cp "$here"/regressions/* "$corpus"/   # every past finding is replayed first
   echo "== $fuzzer for ${seconds} s"
-  if ! "$build/$fuzzer" "$corpus" -dict="$here/scene.dict" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 \
+  if ! "$build/$fuzzer" "$corpus" -dict="$here/scene.dict" -max_total_time="$seconds" -timeout=30 -rss_limit_mb=2048 \
        -max_len=65536 -artifact_prefix="$build/findings/$fuzzer-" -print_final_stats=1 2> "$build/$fuzzer.log"; then
     status=1
     tail -60 "$build/$fuzzer.log"

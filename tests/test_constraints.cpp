@@ -107,7 +107,8 @@ SceneDescription rope_scene() {
   return verlet_scene("rope", m, 10);
 }
 
-// scenes/ragdoll.json: a standing figure lifted 1.5 m and thrown sideways at 3 m/s.
+// scenes/ragdoll.json: a standing figure lifted 1.5 m and thrown up and to the right, tumbling
+// (spun at 6 rad/s clockwise about the point 0.9 m above its feet), into a 6 m × 4 m room.
 struct Part {
   double x, y, radius, mass;
 };
@@ -126,21 +127,24 @@ constexpr std::array<Part, 13> kRagdoll = {{
     {-0.12, 0.05, 0.05, 2},  // left foot
     {0.12, 0.05, 0.05, 2},   // right foot
 }};
-constexpr std::array<std::array<int, 2>, 17> kRagdollSticks = {{
+constexpr std::array<std::array<int, 2>, 19> kRagdollSticks = {{
     {0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3},    // head and shoulders
     {2, 4}, {4, 6}, {3, 5}, {5, 7},                    // arms
     {1, 8}, {2, 8}, {3, 8},                            // torso
     {8, 9}, {9, 11}, {8, 10}, {10, 12},                // legs
+    {2, 9}, {3, 10},                                   // shoulder to knee: the hips do not fold
 }};
-constexpr std::array<double, 2> kBoxMin{-2, -1}, kBoxMax{2, 4};
+constexpr std::array<double, 2> kBoxMin{-3, 0}, kBoxMax{3, 4};
+constexpr double kRagdollSpin = -6, kRagdollSpinAt = 0.9;  // rad/s, and the height it spins about
 
 SceneDescription ragdoll_scene() {
   MechanicalDescription m = with_gravity(10);
   for (const Part& p : kRagdoll) {
     motus::BodyDescription b;
     b.mass = p.mass;
-    b.position = {p.x, p.y + 1.5};
-    b.velocity = {3, 0};
+    b.position = {p.x - 1, p.y + 1.5};
+    // (1, 3) m/s plus the spin ω × r about (0, kRagdollSpinAt) in the figure's own frame.
+    b.velocity = {1 - kRagdollSpin * (p.y - kRagdollSpinAt), 3 + kRagdollSpin * p.x};
     b.radius = p.radius;
     m.bodies.push_back(b);
   }
@@ -148,8 +152,7 @@ SceneDescription ragdoll_scene() {
     const double dx = kRagdoll[b].x - kRagdoll[a].x, dy = kRagdoll[b].y - kRagdoll[a].y;
     m.sticks.push_back({a, b, std::hypot(dx, dy)});  // the loader's default: the start distance
   }
-  m.colliders.planes.push_back(ground());
-  m.colliders.boxes.push_back({{kBoxMin[0], kBoxMin[1], 0}, {kBoxMax[0], kBoxMax[1], 0}, 1});
+  m.colliders.boxes.push_back({{kBoxMin[0], kBoxMin[1], 0}, {kBoxMax[0], kBoxMax[1], 0}, 0.3});
   return verlet_scene("ragdoll", m, 6);
 }
 
@@ -499,7 +502,7 @@ TEST(Ragdoll, NoParticleEverEndsUpInTheFloorOrOutsideTheBox) {
       const double r = kRagdoll[i].radius;
       const double x = y[static_cast<Eigen::Index>(2 * i)], h = y[static_cast<Eigen::Index>(2 * i + 1)];
       lowest_gap = std::min(lowest_gap, h - r);
-      ASSERT_GE(h, r - 1e-12) << "body " << i << " at t = " << s.time();  // ground plane y = 0
+      ASSERT_GE(h, kBoxMin[1] + r - 1e-12) << "body " << i << " at t = " << s.time();  // the floor
       ASSERT_GE(x, kBoxMin[0] + r - 1e-12) << "body " << i;              // the box's side walls
       ASSERT_LE(x, kBoxMax[0] - r + 1e-12) << "body " << i;
       ASSERT_LE(h, kBoxMax[1] - r + 1e-12) << "body " << i;
@@ -511,6 +514,41 @@ TEST(Ragdoll, NoParticleEverEndsUpInTheFloorOrOutsideTheBox) {
   EXPECT_LT(lowest_gap, 1e-3);  // it did land (the test would be empty otherwise)
   // Five balls (head, hands, feet): the broad phase ran, and the counters show it.
   EXPECT_GT(sim.world()->collision_counters().broad_phase_queries(), 0);
+}
+
+// The README's picture: the shipped ragdoll lands on its back and is still a ragdoll at the end —
+// every stick at its length (within 1 %), lying on the floor, and not a heap: its head more than
+// half its standing height from its feet (sticks are its only bones; the 17-stick figure thrown
+// at the wall folded up with its head 0.25 m from its feet, 15 %; with shoulder-to-knee sticks the
+// hips cannot fold, and only the knees can bend, which leaves at least 0.8 m).
+TEST(Ragdoll, TheShippedOneLandsAndStaysARagdoll) {
+  const SceneDescription scene = motus::load_scene(MOTUS_SCENES_DIR "/ragdoll.json");
+  const SceneDescription described = ragdoll_scene();
+  const auto& bodies = scene.mechanical->bodies;
+  const auto& sticks = scene.mechanical->sticks;
+  ASSERT_EQ(bodies.size(), kRagdoll.size());
+  ASSERT_EQ(sticks.size(), kRagdollSticks.size());
+  for (size_t i = 0; i < bodies.size(); ++i) {  // the file is the figure described above
+    const auto& d = described.mechanical->bodies[i];
+    for (int k = 0; k < 2; ++k) {
+      EXPECT_NEAR(bodies[i].position[k], d.position[k], 1e-12) << "body " << i;
+      EXPECT_NEAR(bodies[i].velocity[k], d.velocity[k], 1e-12) << "body " << i;
+    }
+  }
+  Simulation sim(scene, Integrator::Verlet);
+  const double kinetic_at_start = sim.energy()->kinetic;
+  sim.advance(scene.duration, scene.dt, {});
+  const Vector& y = sim.state();
+  auto at = [&](int i) { return Eigen::Vector2d(y[2 * i], y[2 * i + 1]); };
+  const double end_error = sim.world()->constraint_error(y.head(26));
+  const double head_to_feet = (at(0) - 0.5 * (at(11) + at(12))).norm();
+  const double standing = kRagdoll[0].y - kRagdoll[11].y;
+  std::printf("  ragdoll at t = 6 s: stick error %.3f%%, head to feet %.3f m (standing %.2f m), "
+              "kinetic energy %.3g of the start's, head at height %.3f m\n",
+              100 * end_error, head_to_feet, standing, sim.energy()->kinetic / kinetic_at_start, at(0).y());
+  EXPECT_LT(end_error, 0.01);
+  EXPECT_GT(head_to_feet, 0.5 * standing);
+  EXPECT_LT(at(0).y(), 0.5);  // it lies on the floor, not standing or sitting
 }
 
 // ---------------------------------------------------------------------------------

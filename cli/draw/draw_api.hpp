@@ -18,7 +18,7 @@
 
 namespace motus::draw {
 
-constexpr int kApiVersion = 2;
+constexpr int kApiVersion = 3;
 // The function the module exports (extern "C", so dlsym finds it by this name).
 constexpr const char* kEntryPoint = "motus_draw_api";
 
@@ -56,12 +56,15 @@ struct ComparisonJob {
   double fps = 30;
   std::string folder;             // frames/, comparison.mp4 and contact_sheet.png go here (it exists)
   std::function<void(long done, long total)> progress;
+  // Only the first and the last instant, as first_and_last.png (no frames/, no video): the
+  // picture every report has, --render or not.
+  bool first_and_last_only = false;
 };
 
 struct ComparisonPictures {
   long frames = 0;
   std::string video;          // file name in the folder, or "" when ffmpeg is missing
-  std::string contact_sheet;  // file name in the folder
+  std::string contact_sheet;  // file name in the folder (first_and_last.png when first_and_last_only)
   std::string warning;        // one line for the user, or ""
 };
 

@@ -96,13 +96,15 @@ std::string draw_comparison(const ComparisonJob& job, ComparisonPictures& pictur
     std::vector<std::string> labels;
     for (const auto& panel : job.panels) labels.push_back(panel.label.empty() ? panel.engine : panel.label);
     const std::string frames_folder = job.folder + "/frames";
-    fs::create_directories(frames_folder);
+    if (!job.first_and_last_only) fs::create_directories(frames_folder);
     const size_t frames = reference->size();
     std::vector<render::Image> sheet;
-    const std::vector<size_t> sheet_frames = {0, frames / 2, frames - 1};
+    const std::vector<size_t> sheet_frames =
+        job.first_and_last_only ? std::vector<size_t>{0, frames - 1} : std::vector<size_t>{0, frames / 2, frames - 1};
     std::vector<std::string> sheet_labels;
     render::Image panel_image;
     for (size_t k = 0; k < frames; ++k) {
+      if (job.first_and_last_only && k != 0 && k + 1 != frames) continue;
       std::vector<render::Image> panels;
       for (size_t e = 0; e < job.panels.size(); ++e) {
         const Panel& panel = job.panels[e];
@@ -120,7 +122,7 @@ std::string draw_comparison(const ComparisonJob& job, ComparisonPictures& pictur
         panels.push_back(panel_image);
       }
       const render::Image row = render::compose_side_by_side(panels, labels);
-      render::write_png(fmt::format("{}/frame_{:05d}.png", frames_folder, k), row);
+      if (!job.first_and_last_only) render::write_png(fmt::format("{}/frame_{:05d}.png", frames_folder, k), row);
       if (std::find(sheet_frames.begin(), sheet_frames.end(), k) != sheet_frames.end()) {
         sheet.push_back(row);
         sheet_labels.push_back(fmt::format("t = {:.3g} s", reference->times[k]));
@@ -128,8 +130,9 @@ std::string draw_comparison(const ComparisonJob& job, ComparisonPictures& pictur
       if (job.progress) job.progress(static_cast<long>(k) + 1, static_cast<long>(frames));
     }
     pictures.frames = static_cast<long>(frames);
-    pictures.contact_sheet = "contact_sheet.png";
+    pictures.contact_sheet = job.first_and_last_only ? "first_and_last.png" : "contact_sheet.png";
     render::write_png(job.folder + "/" + pictures.contact_sheet, render::contact_sheet(sheet, 1, sheet_labels));
+    if (job.first_and_last_only) return;
     if (process::find_program("ffmpeg").empty()) {
       pictures.warning = "video skipped: ffmpeg not found on PATH (install the Debian package ffmpeg)";
     } else {

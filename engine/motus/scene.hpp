@@ -10,6 +10,7 @@
 #include "motus/collide/colliders.hpp"
 #include "motus/constrain/constraints.hpp"
 #include "motus/forces/force_set.hpp"
+#include "motus/systems/system_factory.hpp"
 
 namespace motus {
 
@@ -33,9 +34,13 @@ struct MechanicalDescription {
 };
 
 struct FirstOrderDescription {
-  std::string type;                          // "lorenz", "world2", ... (see system_catalog.hpp)
+  std::string type;                          // "lorenz", "world2", ... (see system_catalog.hpp), or "equations"
   std::map<std::string, double> parameters;  // every parameter, defaults filled in
   std::vector<double> initial;
+  std::vector<std::string> variables;        // the state's names ("" or empty: the catalog's)
+  // A system built outside the engine (the scene file's "equations"): when set, Simulation
+  // makes its system with it instead of looking `type` up in the catalog.
+  SystemFactory make;
 };
 
 // A state known to high accuracy at time t (e.g. tests/reference/lorenz.json).

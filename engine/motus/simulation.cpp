@@ -66,9 +66,14 @@ Simulation::Simulation(const SceneDescription& scene, Method method, ExternalPar
     }
     world_ = std::make_unique<World>(m, method_, parts);  // throws if the integrator cannot run its passes
   } else if (scene.first_order) {
-    const SystemInfo* info = find_first_order_system(scene.first_order->type);
-    if (!info) throw SceneError("system.type", "unknown system \"" + scene.first_order->type + "\"");
-    first_order_ = info->make(scene.first_order->parameters);
+    if (scene.first_order->make) {
+      first_order_ = scene.first_order->make();  // e.g. the scene file's "equations"
+      if (!first_order_) throw SceneError("system", "the system could not be made");
+    } else {
+      const SystemInfo* info = find_first_order_system(scene.first_order->type);
+      if (!info) throw SceneError("system.type", "unknown system \"" + scene.first_order->type + "\"");
+      first_order_ = info->make(scene.first_order->parameters);
+    }
     const auto& init = scene.first_order->initial;
     if (static_cast<int>(init.size()) != first_order_->size())
       throw SceneError("system.initial", "needs " + std::to_string(first_order_->size()) + " numbers (" +

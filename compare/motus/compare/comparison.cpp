@@ -148,9 +148,11 @@ std::vector<EngineRun> run_comparison(const SceneDescription& scene, const Compa
         sample(index++);
         if (progress) progress((done + static_cast<double>(i)) / total_steps);
       }
-      if (options.frame_every > 0 && i % options.frame_every == 0) keep_frame();
+      // (and the last state always: the report shows where each engine ended)
+      if (options.frame_every > 0 && (i % options.frame_every == 0 || i == steps)) keep_frame();
     }
     run.steps = steps;
+    run.last = s;
     run.notes = backend->notes();  // after the run: limits that bit during it
     done += static_cast<double>(steps);
     runs.push_back(std::move(run));

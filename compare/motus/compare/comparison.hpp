@@ -20,6 +20,7 @@ struct EngineRun {
   std::vector<MetricsRow> rows;          // at t0 and every sample time
   std::vector<Snapshot> frames;          // at t0 and every frame_every steps (for --render)
   std::vector<double> frame_energies;    // total energy of each frame
+  Snapshot last;                         // the state at the end of the run
   long steps = 0;
   // CPU seconds of all `steps` step() calls, one number per timing round (timing.hpp).
   std::vector<double> round_seconds;
@@ -54,7 +55,7 @@ struct ComparisonOptions {
   double dt = 0.01;
   double duration = 1;
   long samples = 200;  // metric rows over the run (at most one per step)
-  long frame_every = 0;  // keep the state every this many steps for pictures (0: none)
+  long frame_every = 0;  // keep the state every this many steps, and the last, for pictures (0: none)
   int repeats = 5;       // timing rounds
 };
 

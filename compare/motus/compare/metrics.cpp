@@ -76,6 +76,12 @@ double Metrics::deepest_penetration(const std::vector<double>& x) const {
   if (balls_.size() < 2) return deepest;
   // Balls: sort by a grid cell of size 2·r_max and look at neighbouring cells only.
   const double cell = 2 * max_radius_;
+  // A cell index, clamped as a double first: a body a peer has flung to 1e300 m (or to NaN) must
+  // not overflow the int (it then shares an edge cell with others, which only costs a comparison).
+  auto cell_of = [&](int i, int k) {
+    const double c = std::floor(coordinate(i, k) / cell);
+    return static_cast<int>(std::clamp(std::isnan(c) ? 0.0 : c, -999999.0, 999999.0));
+  };
   auto key = [&](const int* c) {
     long k = 0;
     for (int j = 0; j < d_; ++j) k = k * 2000003L + (c[j] + 1000000L);
@@ -84,7 +90,7 @@ double Metrics::deepest_penetration(const std::vector<double>& x) const {
   cells_.clear();
   for (int i : balls_) {
     int c[3] = {0, 0, 0};
-    for (int k = 0; k < d_; ++k) c[k] = static_cast<int>(std::floor(coordinate(i, k) / cell));
+    for (int k = 0; k < d_; ++k) c[k] = cell_of(i, k);
     cells_.emplace_back(key(c), i);
   }
   std::sort(cells_.begin(), cells_.end());
@@ -92,7 +98,7 @@ double Metrics::deepest_penetration(const std::vector<double>& x) const {
   for (int k = 0; k < d_; ++k) offsets *= 3;
   for (int i : balls_) {
     int c[3] = {0, 0, 0};
-    for (int k = 0; k < d_; ++k) c[k] = static_cast<int>(std::floor(coordinate(i, k) / cell));
+    for (int k = 0; k < d_; ++k) c[k] = cell_of(i, k);
     for (int code = 0; code < offsets; ++code) {
       int n_c[3] = {c[0], c[1], c[2]};
       for (int k = 0, r = code; k < d_; ++k, r /= 3) n_c[k] += r % 3 - 1;

@@ -6,6 +6,9 @@
 #include <cstdlib>
 #include <fstream>
 
+#include "motus/compare/explanations.hpp"
+#include "motus/compare/replay.hpp"
+#include "motus/exact/exact_solution.hpp"
 #include "motus/plot/figure.hpp"
 
 namespace motus::compare {
@@ -181,6 +184,29 @@ nlohmann::json summary_json(const ReportContext& c, const std::vector<EngineRun>
     e["notes"] = r.notes;
     j["engines"].push_back(e);
   }
+  if (c.scene && c.scene->mechanical) {
+    const auto exact = exact_answer(*c.scene, runs);
+    j["notice"] = what_to_notice(*c.scene, runs, exact);
+    if (exact) {
+      nlohmann::json x;
+      x["t"] = exact->t;
+      x["source"] = exact->source;
+      x["bodies"] = nlohmann::json::array();
+      for (size_t i = 0; i < exact->position.size(); ++i)
+        x["bodies"].push_back({{"position", exact->position[i]}, {"velocity", exact->velocity[i]}});
+      x["engines"] = nlohmann::json::array();
+      for (const auto& e : exact->engines)
+        x["engines"].push_back({{"engine", e.engine},
+                                {"final_velocities", e.velocity},
+                                {"max_speed_error", e.worst_speed_error},
+                                {"max_speed_error_body", e.worst_body},
+                                {"final_distance", e.worst_position_error}});
+      j["exact"] = x;
+    }
+    j["definitions"] = nlohmann::json::array();
+    for (const auto& d : column_definitions(*c.scene, c.samples, c.momentum_conserved))
+      j["definitions"].push_back({{"column", d.column}, {"meaning", d.meaning}});
+  }
   return j;
 }
 
@@ -217,9 +243,11 @@ std::string write_report(const std::string& folder, const ReportContext& c, cons
   // index.html
   std::ofstream html(folder + "/index.html");
   html << "<!doctype html>\n<html><head><meta charset=\"utf-8\"><title>motus compare: " << html_escape(c.scene_name)
-       << "</title>\n<style>body{font-family:sans-serif;max-width:60em;margin:2em auto;padding:0 1em;color:#222}"
-          "table{border-collapse:collapse}td,th{border:1px solid #ccc;padding:.3em .6em;text-align:right}"
-          "th{background:#f3f3f3}td:first-child,th:first-child{text-align:left}.no{color:#a00}"
+       << "</title>\n<style>body{font-family:sans-serif;max-width:75em;margin:2em auto;padding:0 1em;color:#222}"
+          "table{border-collapse:collapse;margin:.5em 0}td,th{border:1px solid #ccc;padding:.3em .6em;text-align:right;"
+          "white-space:nowrap}th{background:#f3f3f3}td:first-child,th:first-child{text-align:left}.no{color:#a00}"
+          ".wide{overflow-x:auto}.notice{background:#eef4fb;border-left:4px solid #4285d6;padding:.6em .9em}"
+          "dt{font-weight:bold;margin-top:.5em}dd{margin-left:1.5em}.dim{color:#777}"
           "img{max-width:100%}code{background:#f3f3f3;padding:0 .2em}</style></head><body>\n";
   html << "<h1>" << html_escape(c.scene_name) << "</h1>\n<p>" << html_escape(c.description) << "</p>\n";
   html << fmt::format("<p>{} bodies in {} dimensions; dt = {:g} s for {:g} s; motus integrator <code>{}</code>. "
@@ -228,15 +256,20 @@ std::string write_report(const std::string& folder, const ReportContext& c, cons
                       "rounds, the engines taking turns in each: the fastest round, with the median and the spread "
                       "(largest − smallest) / smallest beside it.</p>\n",
                       c.bodies, c.dimensions, c.dt, c.duration, html_escape(c.integrator), c.repeats);
-  html << "<table><tr><th>engine</th><th>energy drift</th><th>max |ΔE|/E₀</th><th>momentum drift</th>"
-          "<th>max penetration [m]</th><th>constraint error</th><th>max distance from motus [m]</th>"
-          "<th>µs per step (min)</th><th>median</th><th>spread</th><th>time / motus</th></tr>\n";
+  const bool exact_known = c.scene && has_exact_solution(*c.scene);
+  if (summary.contains("notice"))
+    html << "<p class=\"notice\"><b>What to notice.</b> " << html_escape(summary["notice"].get<std::string>()) << "</p>\n";
+  const int columns = exact_known ? 11 : 10;
+  html << "<div class=\"wide\"><table><tr><th>engine</th><th>energy drift</th><th>max |ΔE|/E₀</th><th>momentum drift"
+       << (c.momentum_conserved ? "" : "*") << "</th><th>max penetration [m]</th><th>constraint error</th>"
+       << "<th>max distance from motus [m]</th>" << (exact_known ? "<th>max distance from exact [m]</th>" : "")
+       << "<th>µs per step (min)</th><th>median</th><th>spread</th><th>time / motus</th></tr>\n";
   for (const auto& e : summary["engines"]) {
     if (!e["supported"].get<bool>()) {
       std::string why;
       for (const auto& u : e["unsupported"]) why += html_escape(u.get<std::string>()) + "<br>";
-      html << "<tr><td>" << html_escape(e["engine"].get<std::string>()) << "</td><td class=\"no\" colspan=\"10\">" << why
-           << "</td></tr>\n";
+      html << "<tr><td>" << html_escape(e["engine"].get<std::string>()) << "</td><td class=\"no\" colspan=\"" << columns
+           << "\" style=\"white-space:normal;text-align:left\">" << why << "</td></tr>\n";
       continue;
     }
     auto cell = [](const nlohmann::json& v, const char* format) {
@@ -245,13 +278,52 @@ std::string write_report(const std::string& folder, const ReportContext& c, cons
     html << "<tr><td>" << html_escape(e["engine"].get<std::string>()) << "</td><td>" << cell(e["energy_drift"], "{:+.2e}")
          << "</td><td>" << cell(e["max_energy_error"], "{:.2e}") << "</td><td>" << cell(e["momentum_drift"], "{:.2e}")
          << "</td><td>" << cell(e["max_penetration"], "{:.2e}") << "</td><td>" << cell(e["constraint_error"], "{:.2e}")
-         << "</td><td>" << cell(e["max_distance_from_motus"], "{:.2e}") << "</td><td>" << cell(e["us_per_step"], "{:.3g}")
-         << "</td><td>" << cell(e["us_per_step_median"], "{:.3g}") << "</td><td>"
+         << "</td><td>" << cell(e["max_distance_from_motus"], "{:.2e}")
+         << (exact_known ? "</td><td>" + cell(e["max_distance_from_exact"], "{:.2e}") : std::string())
+         << "</td><td>" << cell(e["us_per_step"], "{:.3g}") << "</td><td>" << cell(e["us_per_step_median"], "{:.3g}")
+         << "</td><td>"
          << (e["us_per_step_spread"].is_null() ? std::string("–")
                                                : fmt::format("{:.0f}%", 100 * e["us_per_step_spread"].get<double>()))
          << "</td><td>" << cell(e["time_relative_to_motus"], "{:.2f}×") << "</td></tr>\n";
   }
-  html << "</table>\n";
+  if (!c.momentum_conserved)  // (inside the table: the replay follows it directly)
+    html << "<tr><td class=\"dim\" colspan=\"" << columns + 1
+         << "\" style=\"white-space:normal\">* This scene does not keep its momentum (walls or outside forces act on it): "
+            "that column shows their push, not an engine's error.</td></tr>\n";
+  html << "</table></div>\n";
+  if (c.scene) {  // the engines side by side, played back in the page
+    write_replay(folder, *c.scene, runs);
+    html << replay_section(*c.scene, runs);
+  }
+  if (summary.contains("exact")) {
+    const auto& x = summary["exact"];
+    html << "<h2>The exact answer</h2>\n<p>" << html_escape(x["source"].get<std::string>()) << fmt::format(", at t = {:g} s", x["t"].get<double>())
+         << ": each body's velocity [m/s], then each engine's at the same time.</p>\n<div class=\"wide\"><table><tr><th>body</th><th>exact</th>";
+    for (const auto& e : x["engines"]) html << "<th>" << html_escape(e["engine"].get<std::string>()) << "</th>";
+    html << "</tr>\n";
+    for (size_t i = 0; i < x["bodies"].size(); ++i) {
+      html << "<tr><td>" << i << "</td><td>" << format_vector(x["bodies"][i]["velocity"].get<std::vector<double>>()) << "</td>";
+      for (const auto& e : x["engines"]) html << "<td>" << format_vector(e["final_velocities"][i].get<std::vector<double>>()) << "</td>";
+      html << "</tr>\n";
+    }
+    html << "<tr><td>largest |v − v_exact|</td><td></td>";
+    for (const auto& e : x["engines"]) html << fmt::format("<td>{:.2e} m/s</td>", e["max_speed_error"].get<double>());
+    html << "</tr>\n<tr><td>largest |x − x_exact| at the end</td><td></td>";
+    for (const auto& e : x["engines"]) html << fmt::format("<td>{:.2e} m</td>", e["final_distance"].get<double>());
+    html << "</tr>\n</table></div>\n";
+    if (c.scene && static_cast<long>(x["bodies"].size()) < static_cast<long>(c.scene->mechanical->bodies.size()))
+      html << "<p class=\"dim\">The first " << x["bodies"].size() << " bodies are shown; the last two rows are over all of them.</p>\n";
+  }
+  if (summary.contains("definitions")) {
+    html << "<h2>What the columns mean</h2>\n<dl>\n";
+    for (const auto& d : summary["definitions"])
+      html << "<dt>" << html_escape(d["column"].get<std::string>()) << "</dt><dd>" << html_escape(d["meaning"].get<std::string>())
+           << "</dd>\n";
+    html << "</dl>\n";
+  }
+  if (!c.first_and_last.empty())
+    html << "<h2>At the start and at the end</h2>\n<p><img src=\"" << html_escape(c.first_and_last)
+         << "\" alt=\"every engine at the first and the last instant\"></p>\n";
   if (!c.video.empty() || !c.contact_sheet.empty()) {
     html << "<h2>Side by side</h2>\n";
     if (!c.video.empty())

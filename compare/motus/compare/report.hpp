@@ -11,13 +11,16 @@
 namespace motus::compare {
 
 struct ReportContext {
+  const SceneDescription* scene = nullptr;  // what was run (the definitions, the exact answer, the replay)
   std::string scene_name, scene_file, description;
   std::string integrator;
   double dt = 0, duration = 0;
+  long samples = 0;  // metric samples over the run
   int dimensions = 2;
   long bodies = 0;
   int repeats = 0;  // timing rounds
   std::string video, contact_sheet;  // file names in the folder (--render), or ""
+  std::string first_and_last;        // the engines side by side at the start and the end (file name), or ""
   bool momentum_conserved = false;          // the scene keeps it (no walls, no outside force)
   bool angular_momentum_conserved = false;  // about the origin
 };
@@ -34,8 +37,9 @@ Conserved conserved_quantities(const SceneDescription& scene);
 nlohmann::json summary_json(const ReportContext& context, const std::vector<EngineRun>& runs);
 
 // Writes metrics.csv, summary.json, the figures (energy, and momentum and angular momentum
-// where the scene keeps them: PNG and SVG, drawn by gnuplot, with figures.gp and figures.dat)
-// and index.html into `folder` (which must exist). Returns a line to show the user when the
+// where the scene keeps them: PNG and SVG, drawn by gnuplot, with figures.gp and figures.dat),
+// the replay (replay.js, replay-data.js; when context.scene is set) and index.html into `folder`
+// (which must exist). Returns a line to show the user when the
 // plots could not be made, else an empty string.
 std::string write_report(const std::string& folder, const ReportContext& context, const std::vector<EngineRun>& runs);
 

@@ -200,9 +200,12 @@ template <int D>
 typename BallCollisions<D>::Cell BallCollisions<D>::cell_of(const Point& p) const {
   Cell c;
   for (int k = 0; k < D; ++k)
-    // Truncation, not floor: the padding cell makes every coordinate ≥ 1 before the
-    // clamp, and std::floor is a library call on baseline x86-64.
-    c[k] = std::clamp(static_cast<int>(std::min((p[k] - origin_[k]) * inverse_cell_size_, 1e9)), 1, dims_[k] - 2);
+    // Clamped as a double before the conversion: a ball flung far outside the grid (or a
+    // NaN, which std::max(1.0, NaN) turns into 1) must not overflow the int. Truncation,
+    // not floor: the padding cell makes every coordinate ≥ 1, and std::floor is a library
+    // call on baseline x86-64.
+    c[k] = static_cast<int>(
+        std::min(std::max(1.0, (p[k] - origin_[k]) * inverse_cell_size_), static_cast<double>(dims_[k] - 2)));
   return c;
 }
 

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <string>
 
+#include "motus/exact/free_flight.hpp"
 #include "motus/exact/harmonic.hpp"
 #include "motus/exact/kepler_orbit.hpp"
 #include "motus/exact/pendulum_swing.hpp"
@@ -21,12 +22,12 @@ bool only(const ForceSet& f, bool gravity, bool springs, bool drag, bool central
 
 }  // namespace
 
-const char* exact_solution_names() { return "harmonic, kepler, pendulum, projectile-drag"; }
+const char* exact_solution_names() { return "harmonic, kepler, pendulum, projectile-drag, free-flight"; }
 
 void check_exact_solution(const SceneDescription& scene) {
   if (scene.exact.empty()) return;
   const auto& e = scene.exact;
-  if (e != "harmonic" && e != "kepler" && e != "pendulum" && e != "projectile-drag")
+  if (e != "harmonic" && e != "kepler" && e != "pendulum" && e != "projectile-drag" && e != "free-flight")
     unfit("unknown solution \"" + e + "\" (known: " + exact_solution_names() + ")");
   if (!scene.mechanical) unfit("\"" + e + "\" is the solution of a mechanical scene, not of a first-order system");
   const auto& m = *scene.mechanical;
@@ -55,6 +56,8 @@ void check_exact_solution(const SceneDescription& scene) {
     if (b.position[0] != 0) unfit("\"pendulum\" needs the pendulum started at the bottom (bodies[0].position = [0])");
     if (!(std::abs(b.velocity[0]) < 2 * std::sqrt(p.g / p.length)))
       unfit("\"pendulum\" solves swings only: |bodies[0].velocity| must be below 2*sqrt(g/length)");
+  } else if (e == "free-flight") {
+    check_free_flight(scene);
   } else if (e == "projectile-drag") {
     if (f.gravity.size() != 1 || f.drag.size() != 1 || f.drag[0].body != -1 || !(f.drag[0].coefficient > 0) ||
         !only(f, true, false, true, false, false))
@@ -83,6 +86,7 @@ std::optional<Vector> exact_state(const SceneDescription& scene, double t) {
   const int n = static_cast<int>(m.bodies.size()) * d;
   Vector y(2 * n);
   const double elapsed = t - scene.start_time;
+  if (scene.exact == "free-flight") return free_flight_state(scene, elapsed);
   if (scene.exact == "harmonic") {
     const auto& b = m.bodies[0];
     const auto& s = m.forces.springs[0];

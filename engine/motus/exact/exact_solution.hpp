@@ -5,6 +5,8 @@
 //   "exact": "kepler"          one body in 2-D around one fixed centre of inverse-square gravity
 //   "exact": "pendulum"        one pendulum body started at θ = 0
 //   "exact": "projectile-drag" bodies under uniform gravity and linear drag on every body
+//   "exact": "free-flight"     balls under uniform gravity (or none) in true collisions with each
+//                              other and with planes and boxes, event by event (free_flight.hpp)
 //   "reference": [{"t": ..., "state": [...]}, ...]   states known to high accuracy
 #include <optional>
 

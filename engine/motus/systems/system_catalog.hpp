@@ -25,6 +25,11 @@ struct SystemInfo {
   std::vector<std::string> variables;
   std::vector<ParameterInfo> parameters;
   std::function<std::unique_ptr<FirstOrderSystem>(const std::map<std::string, double>&)> make;
+  // What each variable is, with its unit ("population (people)"), for legends and tables;
+  // empty where the name says it all (x, y, z).
+  std::vector<std::string> meanings = {};
+  // What the independent variable counts: seconds, or World2's calendar years.
+  std::string time_unit = "s";
 };
 
 const std::vector<SystemInfo>& first_order_systems();

@@ -124,8 +124,14 @@ SystemInfo world2_system_info() {
       if (auto it = values.find(f.name); it != values.end()) p.*f.field = it->second;
     return std::make_unique<World2>(p);
   };
-  return {"world2", "Forrester's World2, the Limits to Growth model family", {"P", "NR", "CI", "POL", "CIAF"},
-          std::move(parameters), make};
+  return {"world2",
+          "Forrester's World2, the Limits to Growth model family",
+          {"P", "NR", "CI", "POL", "CIAF"},
+          std::move(parameters),
+          make,
+          {"population (people)", "natural resources (resource units)", "capital investment (capital units)",
+           "pollution (pollution units)", "capital in agriculture (fraction)"},
+          "year"};
 }
 
 }  // namespace motus

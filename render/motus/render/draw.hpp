@@ -71,12 +71,18 @@ void draw_mechanical(Canvas& canvas, const Viewport& viewport, const SceneDescri
 
 // An attractor's trajectory from recording[0] to recording[upto], coloured from dark
 // blue (start) to yellow (now), with a dot at the current state.
+// What a first-order scene's variables are called and mean, and what its time counts.
+struct SeriesLabels {
+  std::vector<std::string> names;     // one per variable
+  std::vector<std::string> meanings;  // empty, or one per variable ("population (people)")
+  std::string time_unit = "s";        // "s", or "year" for World2's calendar years
+};
 void draw_trajectory_3d(Canvas& canvas, const Viewport& viewport, const Recording& recording, size_t upto,
-                        const Camera& camera, const std::vector<std::string>& names, const DrawOptions& options = {});
+                        const Camera& camera, const SeriesLabels& labels, const DrawOptions& options = {});
 
 // Each variable against time up to recording[upto], over the whole run's time axis.
 void draw_time_series(Canvas& canvas, const Viewport& viewport, const Recording& recording, size_t upto,
-                      const std::vector<std::string>& names, const DrawOptions& options = {});
+                      const SeriesLabels& labels, const DrawOptions& options = {});
 
 // Text in the viewport's top-left corner: a title, the time, and (when given) the
 // relative energy drift (E − E₀)/|E₀|.
@@ -85,8 +91,11 @@ struct Overlay {
   double time = 0;
   std::optional<double> energy_drift;
   std::string note;  // a further line (the integrator, say)
+  std::string time_unit = "s";  // "year" (World2) shows the calendar year instead of t = … s
 };
 void draw_overlay(Canvas& canvas, const Viewport& viewport, const Overlay& overlay);
+// A scale bar at the bottom left of an orthographic (2-D) view: a round length in metres.
+void draw_scale_bar(Canvas& canvas, const Viewport& viewport, const Camera& camera);
 // The height of the band the overlay takes at the top of a viewport (fit_camera keeps 2-D
 // scenes below it).
 double overlay_height(const Viewport& viewport);

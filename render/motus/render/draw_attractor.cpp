@@ -11,7 +11,8 @@ namespace motus::render {
 using namespace detail;
 
 void draw_trajectory_3d(Canvas& canvas, const Viewport& v, const Recording& rec, size_t upto, const Camera& cam,
-                        const std::vector<std::string>& names, const DrawOptions&) {
+                        const SeriesLabels& labels, const DrawOptions&) {
+  const auto& names = labels.names;
   if (rec.size() == 0) return;
   upto = std::min(upto, rec.size() - 1);
   begin_3d(canvas, v, cam);
@@ -48,6 +49,20 @@ void draw_trajectory_3d(Canvas& canvas, const Viewport& v, const Recording& rec,
   begin_pixels(canvas, v);
   disc(head[0], head[1], 5, {20, 20, 20, 255}, canvas.supersample());
   disc(head[0], head[1], 3.5, time_color((rec.times[upto] - t0) / (t1 - t0)), canvas.supersample());
+  // The key to the colours: time, from the start to the end of the run, at the bottom right.
+  const double size = overlay_text_size(v), bar = std::min(0.3 * v.width, 160.0), h = 0.55 * size;
+  const double x1 = v.x + v.width - 1.2 * size, x0 = x1 - bar, y0 = v.y + v.height - 2.2 * size;
+  for (int i = 0; i < 64; ++i) {
+    gl_color(time_color((i + 0.5) / 64.0));
+    glRectd(x0 + bar * i / 64.0, y0, x0 + bar * (i + 1) / 64.0 + 0.5, y0 + h);
+  }
+  const Color grey{90, 94, 104, 255};
+  const std::string unit = labels.time_unit == "year" ? "" : " " + labels.time_unit;
+  canvas.text(static_cast<int>(x0), static_cast<int>(y0 + h + 1.1 * size), "t = " + format_number("%g", t0) + unit,
+              {0.8 * size, grey, Align::left});
+  canvas.text(static_cast<int>(x1), static_cast<int>(y0 + h + 1.1 * size), format_number("%g", t1) + unit,
+              {0.8 * size, grey, Align::right});
+  canvas.text(static_cast<int>((x0 + x1) / 2), static_cast<int>(y0 - 0.35 * size), "colour: time", {0.8 * size, grey, Align::center});
 }
 
 }  // namespace motus::render

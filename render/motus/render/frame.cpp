@@ -15,11 +15,24 @@ namespace {
 
 std::vector<std::string> variable_names(const SceneDescription& scene, size_t count) {
   std::vector<std::string> names;
-  if (scene.first_order)
-    if (const auto* info = find_first_order_system(scene.first_order->type)) names = info->variables;
+  if (scene.first_order) {
+    names = scene.first_order->variables;  // the loader's: the catalog's names, or an "equations" system's own
+    if (names.empty())
+      if (const auto* info = find_first_order_system(scene.first_order->type)) names = info->variables;
+  }
   for (size_t i = names.size(); i < count; ++i) names.push_back(std::string(1, 'y').append(std::to_string(i)));
   names.resize(count);
   return names;
+}
+
+SeriesLabels series_labels(const SceneDescription& scene, size_t count) {
+  SeriesLabels labels{variable_names(scene, count), {}, "s"};
+  if (scene.first_order)
+    if (const auto* info = find_first_order_system(scene.first_order->type)) {
+      if (info->meanings.size() == count) labels.meanings = info->meanings;
+      labels.time_unit = info->time_unit;
+    }
+  return labels;
 }
 
 }  // namespace
@@ -146,15 +159,19 @@ void draw_frame(Canvas& canvas, const Viewport& v, const SceneDescription& scene
       for (size_t i = first; i <= index; ++i) frame.trail.push_back(std::span<const double>(rec.states[i]).first(half));
     }
     draw_mechanical(canvas, v, scene, frame, camera, options);
+    // A length to read the picture by, where the view is a flat map in metres (not the pendulum's
+    // or the 1-D spring's own layouts, which draw their own).
+    if (options.overlay && scene.mechanical->dimensions == 2) draw_scale_bar(canvas, v, camera);
     if (index < rec.energies.size() && rec.energies.front() != 0)
       overlay.energy_drift = (rec.energies[index] - rec.energies.front()) / std::abs(rec.energies.front());
   } else {
     const size_t count = rec.states[index].size();
-    const auto names = variable_names(scene, count);
+    const auto labels = series_labels(scene, count);
+    overlay.time_unit = labels.time_unit;
     if (count == 3)
-      draw_trajectory_3d(canvas, v, rec, index, camera, names, options);
+      draw_trajectory_3d(canvas, v, rec, index, camera, labels, options);
     else
-      draw_time_series(canvas, v, rec, index, names, options);
+      draw_time_series(canvas, v, rec, index, labels, options);
   }
   if (options.overlay) draw_overlay(canvas, v, overlay);
 }

@@ -1,5 +1,10 @@
 // The text overlay in a viewport's top-left corner (title, time, energy drift, a note) and the
 // height of its band. Separate: it is drawn over every kind of scene.
+#include <GL/gl.h>
+
+#include <algorithm>
+#include <cmath>
+
 #include "motus/render/draw_primitives.hpp"
 
 namespace motus::render {
@@ -14,17 +19,48 @@ void draw_overlay(Canvas& canvas, const Viewport& v, const Overlay& o) {
   const int x = v.x + static_cast<int>(0.6 * size);
   double y = v.y + 1.3 * size;
   const TextStyle title{size, kInk}, small{0.87 * size, kInk};
+  // A light box behind the text, so that it stays legible over a body, a wall or a trail — and in
+  // a GIF, whose 256 colours would otherwise blur a grey line into its background.
+  const int lines = 1 + (o.energy_drift ? 1 : 0) + (!o.note.empty() && v.width >= 400 ? 1 : 0);
+  const std::string time = o.time_unit == "year" ? "year " + format_number("%.0f", o.time)
+                                                 : "t = " + format_number("%.2f", o.time) + " " + o.time_unit;
+  const std::string first = o.title + "    " + time;
+  int box = text_width(first, title);
+  if (o.energy_drift) box = std::max(box, text_width("\u0394E/|E\u2080| = +0.00e+00", small));
+  if (!o.note.empty() && v.width >= 400) box = std::max(box, text_width(o.note, {0.8 * size, kInk}));
+  begin_pixels(canvas, v);
+  gl_color({255, 255, 255, 255}, 0.78);
+  glRectd(v.x + 0.25 * size, v.y + 0.2 * size, x + box + 0.5 * size, v.y + 0.4 * size + lines * line);
   canvas.text(x, static_cast<int>(y), o.title, title);
   canvas.text(x + text_width(o.title, title) + static_cast<int>(size), static_cast<int>(y),
-              "t = " + format_number("%.2f", o.time), small);
+              time, small);
   if (o.energy_drift) {
     y += line;
     canvas.text(x, static_cast<int>(y), "\u0394E/|E\u2080| = " + format_number("%+.2e", *o.energy_drift), small);
   }
   if (!o.note.empty() && v.width >= 400) {
     y += line;
-    canvas.text(x, static_cast<int>(y), o.note, {0.8 * size, {110, 110, 110, 255}});
+    canvas.text(x, static_cast<int>(y), o.note, {0.8 * size, {70, 74, 84, 255}});
   }
+}
+
+void draw_scale_bar(Canvas& canvas, const Viewport& v, const Camera& camera) {
+  if (camera.is_perspective() || !(camera.scale > 0) || !std::isfinite(camera.scale)) return;
+  // A round length (1, 2 or 5 × 10^k m) about a fifth of the frame wide, at the bottom left.
+  const double target = 0.2 * v.width / camera.scale;
+  const double power = std::pow(10, std::floor(std::log10(target))), m = target / power;
+  const double metres = power * (m < 1.5 ? 1 : m < 3.5 ? 2 : m < 7.5 ? 5 : 10);
+  const double pixels = metres * camera.scale;
+  const double size = overlay_text_size(v);
+  const double x0 = v.x + 0.8 * size, y0 = v.y + v.height - 0.9 * size;
+  begin_pixels(canvas, v);
+  gl_color({255, 255, 255, 255}, 0.78);
+  glRectd(x0 - 0.3 * size, y0 - 1.5 * size, x0 + pixels + 0.3 * size, y0 + 0.5 * size);
+  thick_line(x0, y0, x0 + pixels, y0, 2, kInk);
+  thick_line(x0, y0 - 0.35 * size, x0, y0 + 0.35 * size, 1.5, kInk);
+  thick_line(x0 + pixels, y0 - 0.35 * size, x0 + pixels, y0 + 0.35 * size, 1.5, kInk);
+  canvas.text(static_cast<int>(x0 + pixels / 2), static_cast<int>(y0 - 0.5 * size),
+              format_number("%g", metres) + " m", {0.8 * size, kInk, Align::center});
 }
 
 }  // namespace motus::render

@@ -16,6 +16,7 @@
 #include "motus/scene_error.hpp"
 #include "motus/systems/system_catalog.hpp"
 #include "motus/scene_file/scene_overrides.hpp"
+#include "motus/scene_file/equations_system.hpp"
 
 namespace motus {
 namespace {
@@ -281,11 +282,12 @@ MechanicalDescription read_mechanical(JsonFields& scene) {
 FirstOrderDescription read_first_order(JsonFields system) {
   FirstOrderDescription s;
   s.type = system.string("type");
+  if (s.type == "equations") return read_equations_system(system);  // right-hand sides as expressions
   const SystemInfo* info = find_first_order_system(s.type);
   if (!info) {
     std::string known;
     for (const auto& i : first_order_systems()) known += (known.empty() ? "" : ", ") + i.type;
-    system.fail("type", "unknown system \"" + s.type + "\" (known: " + known + ")");
+    system.fail("type", "unknown system \"" + s.type + "\" (known: " + known + ", equations)");
   }
   for (const auto& p : info->parameters) s.parameters[p.name] = p.default_value;
   if (system.has("parameters")) {
@@ -294,6 +296,7 @@ FirstOrderDescription read_first_order(JsonFields system) {
     parameters.reject_unknown();
   }
   s.initial = system.numbers("initial", static_cast<int>(info->variables.size()));
+  s.variables = info->variables;
   system.reject_unknown();
   return s;
 }

@@ -1,0 +1,258 @@
+#include "stress_command.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <ctime>
+#include <filesystem>
+
+#include "cli_common.hpp"
+#include "interrupt.hpp"
+#include "motus/scene_error.hpp"
+#include "motus/scene_file/scene_file.hpp"
+#include "motus/simulation.hpp"
+#include "progress_bar.hpp"
+#include "stress_page.hpp"
+
+namespace fs = std::filesystem;
+
+namespace motus::cli {
+namespace {
+
+std::string new_stress_folder(const std::string& scene_name) {
+  const std::time_t now = std::time(nullptr);
+  char stamp[32];
+  std::strftime(stamp, sizeof stamp, "%Y%m%d-%H%M%S", std::localtime(&now));
+  const std::string name = safe_file_name(scene_name);
+  std::string path = fmt::format("runs/stress-{}-{}", name, stamp);
+  for (int i = 2; fs::exists(path); ++i) path = fmt::format("runs/stress-{}-{}-{}", name, stamp, i);
+  return path;
+}
+
+std::string number(double x) {
+  if (std::isinf(x)) return "inf";
+  return fmt::format("{:.3g}", x);
+}
+
+void print_tables(const stress::Report& r) {
+  using namespace stress;
+  fmt::print("{}: {} {}, {}-D, dt = {:g} s; sections: {}\n", r.scene_name, r.bodies, r.bodies == 1 ? "body" : "bodies", r.dimensions, r.dt,
+             fmt::join(r.sections, ", "));
+  for (const auto& [section, why] : r.not_applied) fmt::print("  not measured: {}: {}\n", section, why);
+  for (const auto& [integrator, why] : r.cannot_run) fmt::print("  cannot run it: {}: {}\n", integrator, why);
+  const auto blown = fmt::format("blown up: not finite, |E - E0| > {:g} |E0|, or a bound orbit escaping", r.settings.energy_factor);
+  if (!r.stability.empty()) {
+    fmt::print("\nlargest stable step ({} steps a trial; {})\n", r.settings.steps, blown);
+    fmt::print("  {:<20}{:>14}{:>11}  {}\n", "integrator", "largest h", r.omega ? "omega h" : "", "theory (measured/theory)");
+    for (const auto& s : r.stability) {
+      if (!s.skipped.empty()) {
+        fmt::print("  {:<20}{}\n", info(s.integrator).name, s.skipped);
+        continue;
+      }
+      const double z = r.omega ? *r.omega * s.limit : 0;
+      fmt::print("  {:<20}{:>14}{:>11}  {}{}\n", info(s.integrator).name, s.limit > 0 ? fmt::format("{:.6g}", s.limit) : "none",
+                 r.omega && s.limit > 0 ? fmt::format("{:.5f}", z) : "", s.theory.text,
+                 s.theory.z > 0 && s.limit > 0 ? fmt::format(" ({:.5f})", z / s.theory.z) : "");
+    }
+  }
+  if (!r.drift.empty()) {
+    fmt::print("\ndrift over {} steps of {:g} s: largest |E - E0|/|E0|\n", r.settings.drift_steps, r.dt);
+    fmt::print("  {:<20}{:>14}{:>14}  {}\n", "integrator", "first 1 %", "last 10 %", "verdict");
+    for (const auto& d : r.drift)
+      if (d.skipped.empty())
+        fmt::print("  {:<20}{:>14}{:>14}  {}\n", info(d.integrator).name, number(d.first_hundredth_max),
+                   d.blown.empty() ? number(d.last_tenth_max) : "-", d.verdict);
+      else
+        fmt::print("  {:<20}{}\n", info(d.integrator).name, d.skipped);
+  }
+  if (!r.stiffness.empty()) {
+    fmt::print("\nstiffness: {} raised by decades at dt = {:g} s; the first factor that fails\n", r.stiffness_knob, r.dt);
+    for (const auto& s : r.stiffness) {
+      if (!s.skipped.empty()) {
+        fmt::print("  {:<20}{}\n", info(s.integrator).name, s.skipped);
+        continue;
+      }
+      const double t = theory_first_failure(r, s.integrator);
+      fmt::print("  {:<20}{:>10}{}\n", info(s.integrator).name, s.first_failure > 0 ? fmt::format("{:g}", s.first_failure) : "none",
+                 r.omega ? fmt::format("   theory {}", t > 0 ? fmt::format("{:g}", t) : "none") : "");
+    }
+  }
+  if (!r.mass_ratio.empty()) {
+    fmt::print("\nmass ratio 1:R: a head-on pair against the formula, and the scene with every second body R times heavier\n");
+    fmt::print("  {:<18}{:>8}{:>14}{:>14}{:>14}{:>16}\n", "integrator", "R", "pair |dv|/u", "pair energy", "pair momentum", "scene |dE|/E0");
+    for (const auto& m : r.mass_ratio)
+      fmt::print("  {:<18}{:>8g}{:>14}{:>14}{:>14}{:>16}\n", info(m.integrator).name, m.ratio,
+                 m.pair.failed.empty() ? number(m.pair.velocity_error) : "failed", number(m.pair.energy_error),
+                 number(m.pair.momentum_error), m.gas_failed.empty() ? number(m.gas_energy_error) : "failed");
+  }
+  if (!r.speed.empty()) {
+    fmt::print("\nspeed: radii per step; the pair must never pass through each other; the scene's balls must stay in their box\n");
+    fmt::print("  {:<18}{:>8}{:>12}{:>10}{:>10}{:>10}{:>14}\n", "integrator", "radii", "pair order", "in box", "outside",
+               "overlap", "scene |dE|/E0");
+    for (const auto& s : r.speed) {
+      fmt::print("  {:<18}{:>8g}{:>12}{:>10}", info(s.integrator).name, s.radii_per_step,
+                 !s.pair_failed.empty() ? "failed" : s.pair_order_kept ? "kept" : "TUNNELLED", s.pair_inside ? "yes" : "NO");
+      if (s.gas_failed.empty())
+        fmt::print("{:>10}{:>10}{:>14}\n", s.gas_outside, number(s.gas_max_overlap), number(s.gas_energy_error));
+      else
+        fmt::print("  {}\n", one_line(s.gas_failed, 100));
+    }
+  }
+  if (!r.sticks.empty()) {
+    fmt::print("\nsticks between masses 1 and R (verlet): the largest stick error over {:g} s\n", r.settings.duration);
+    for (const auto& s : r.sticks)
+      fmt::print("  {:<20}{:>8g}{:>12}\n", s.variant, s.ratio, s.failed.empty() ? number(s.max_error) : "failed: " + s.failed);
+  }
+}
+
+}  // namespace
+
+CLI::App* add_stress_command(CLI::App& app, StressOptions& o) {
+  auto* c = app.add_subcommand("stress",
+                               "The stability stress test of a scene: the largest stable step of each integrator against "
+                               "theory, the long-run energy drift, stiffness, mass ratios, speed and sticks (as apply); "
+                               "prints tables and writes a page (index.html, CSV, SVG and PNG plots)");
+  c->add_option("scene", o.scene, "Scene file, or the name of a shipped scene (see `motus list`)")->required();
+  c->add_option("--integrators", o.integrators, "Comma-separated integrators (default: every one that can run the scene)")
+      ->delimiter(',');
+  c->add_option("--set", o.sets, "Override a scene field (repeatable), e.g. --set forces[0].stiffness=4")->type_name("PATH=VALUE");
+  c->add_option("--out", o.out, "The page's folder (default: a new folder under runs/); must not exist yet");
+  c->add_option("--steps", o.steps, "Steps of each stability and stiffness trial")->check(CLI::Range(100L, 10000000L))->capture_default_str();
+  c->add_option("--drift-steps", o.drift_steps, "Steps of the long run (10^5 to 10^7 and more)")
+      ->check(CLI::Range(100L, 100000000L))
+      ->capture_default_str();
+  c->add_option("--energy-factor", o.energy_factor, "Blown up: |E - E0| beyond this many times |E0|")->capture_default_str();
+  c->add_option("--duration", o.duration, "Simulated seconds of each mass-ratio and sticks run (at most the scene's)")->capture_default_str();
+  return c;
+}
+
+int stress_command(const StressOptions& o) {
+  const std::string path = resolve_scene_path(o.scene);
+  const SceneDescription scene = load_scene(path, o.sets);
+  if (!scene.mechanical)
+    throw InputError(path + ": is a first-order system (\"" + scene.first_order->type +
+                     "\"); stress measures the energy, contacts and sticks of bodies (motus bench precision measures a "
+                     "system's accuracy)");
+  if (!(o.energy_factor > 1) || !std::isfinite(o.energy_factor)) throw InputError("--energy-factor: must be a finite number > 1");
+  if (!(o.duration > 0) || !std::isfinite(o.duration)) throw InputError("--duration: must be a finite number > 0");
+  checked_step_count(static_cast<double>(o.drift_steps) * scene.dt, scene.dt, "--drift-steps");
+
+  std::vector<Integrator> asked;
+  if (o.integrators.empty()) {
+    for (const auto& i : all_integrators()) asked.push_back(i.id);
+  } else {
+    for (const auto& n : o.integrators) {
+      const auto id = integrator_from_name(n);
+      if (!id) throw InputError("--integrators: unknown integrator \"" + n + "\" (known: " + integrator_names() + ")");
+      if (std::find(asked.begin(), asked.end(), *id) == asked.end()) asked.push_back(*id);
+    }
+  }
+
+  stress::Report report;
+  report.scene_name = scene.name;
+  report.scene_file = path;
+  report.description = scene.description;
+  const auto& m = *scene.mechanical;
+  report.dimensions = m.dimensions;
+  report.bodies = static_cast<long>(m.bodies.size());
+  report.dt = scene.dt;
+  report.settings = {o.steps, o.drift_steps, o.energy_factor, o.duration};
+  report.omega = stress::harmonic_omega(scene);
+  report.stiffness_knob = stress::stiffness_knob(scene);
+
+  std::vector<Integrator> runs;  // the asked integrators that can run this scene
+  for (Integrator i : asked) {
+    try {
+      Simulation check(scene, i);
+      runs.push_back(i);
+    } catch (const SceneError& e) {
+      if (!o.integrators.empty()) report.cannot_run.emplace_back(info(i).name, e.what());
+    }
+  }
+  long balls = 0;
+  for (const auto& b : m.bodies) balls += b.radius > 0;
+  const bool sticks = !m.sticks.empty() || !m.pins.empty();
+  const bool contacts = !m.colliders.empty() || balls >= 2;
+  auto among = [&](std::initializer_list<Integrator> which) {
+    std::vector<Integrator> v;
+    for (Integrator i : runs)
+      if (std::find(which.begin(), which.end(), i) != which.end()) v.push_back(i);
+    return v;
+  };
+  const std::string energy_why = sticks ? "the scene has sticks or pins, whose projection is dissipative: its energy is not an integrator's"
+                                        : "the scene has contacts: between them every step is symplectic Euler's or Verlet's drift";
+  if (!contacts && !sticks) {
+    report.sections = {"stability", "drift"};
+    if (!report.stiffness_knob.empty())
+      report.sections.push_back("stiffness");
+    else
+      report.not_applied.emplace_back("stiffness", "the scene has no spring, gravity or pendulum to stiffen");
+    report.not_applied.emplace_back("mass_ratio", "the scene has no contacts or sticks between bodies");
+    report.not_applied.emplace_back("speed", "the scene has no balls or walls to tunnel through");
+    report.not_applied.emplace_back("sticks", "the scene has no sticks");
+  } else {
+    for (const char* s : {"stability", "drift", "stiffness"}) report.not_applied.emplace_back(s, energy_why);
+    if (contacts && !sticks) {
+      report.sections = {"mass_ratio", "speed"};
+      report.not_applied.emplace_back("sticks", "the scene has no sticks");
+    } else {
+      report.sections = {"sticks"};
+      report.not_applied.emplace_back("mass_ratio", "covered by the sticks section: its sticks join masses 1 and R");
+      report.not_applied.emplace_back("speed", "the scene's sticks and pins, not its contacts, are what it stresses");
+    }
+  }
+  const auto contact_integrators = among({Integrator::SymplecticEuler, Integrator::Verlet});
+  const bool verlet = !among({Integrator::Verlet}).empty();
+  if (report.sections.front() == "sticks" && !verlet) {
+    report.not_applied.emplace_back("sticks", "needs verlet, which --integrators leaves out");
+    report.sections.clear();
+  }
+  if (report.sections.empty() || (contacts && !sticks && contact_integrators.empty()) || (!contacts && !sticks && runs.empty()))
+    throw InputError(path + ": none of the integrators asked for can run the measurements that apply to this scene" +
+                     (report.cannot_run.empty() ? "" : " (" + report.cannot_run.front().first + ": " + report.cannot_run.front().second + ")"));
+
+  const std::string folder = o.out.empty() ? new_stress_folder(scene.name) : o.out;
+  if (fs::exists(folder)) throw InputError(folder + ": already exists; stress never overwrites a page (choose another --out)");
+  PartialFolder partial(folder);
+
+  // The work, counted in units for the progress bar: one unit per integrator and section, or per row.
+  double units = 0;
+  for (const auto& s : report.sections)
+    units += s == "mass_ratio" ? static_cast<double>(contact_integrators.size() * stress::mass_ratios().size())
+             : s == "speed"    ? static_cast<double>(contact_integrators.size() * stress::speeds().size())
+             : s == "sticks"   ? static_cast<double>(stress::stick_variants().size() * stress::mass_ratios().size())
+                               : static_cast<double>(runs.size());
+  ProgressBar progress(0, units, "stress " + scene.name, 256);
+  double done = 0;
+  const stress::Tick tick = [&] { progress.update(done); };
+  const auto& settings = report.settings;
+  for (const auto& section : report.sections) {
+    if (section == "stability")
+      for (Integrator i : runs) report.stability.push_back(stress::measure_stability(scene, i, settings, tick)), ++done;
+    if (section == "drift")
+      for (Integrator i : runs) report.drift.push_back(stress::measure_drift(scene, i, settings, tick)), ++done;
+    if (section == "stiffness")
+      for (Integrator i : runs) report.stiffness.push_back(stress::measure_stiffness(scene, i, settings, tick)), ++done;
+    if (section == "mass_ratio")
+      for (Integrator i : contact_integrators)
+        for (double ratio : stress::mass_ratios()) report.mass_ratio.push_back(stress::measure_mass_ratio(scene, i, ratio, settings, tick)), ++done;
+    if (section == "speed")
+      for (Integrator i : contact_integrators)
+        for (double s : stress::speeds()) report.speed.push_back(stress::measure_speed(scene, i, s, tick)), ++done;
+    if (section == "sticks")
+      for (const auto& variant : stress::stick_variants())
+        for (double ratio : stress::mass_ratios()) report.sticks.push_back(stress::measure_sticks(scene, variant, ratio, settings, tick)), ++done;
+  }
+  progress.finish();
+  stop_if_interrupted();
+
+  const std::string warning = stress::write_page(partial.path(), report);
+  stop_if_interrupted();
+  partial.complete();
+  print_tables(report);
+  fmt::print("\npage: {}/index.html\n", folder);
+  if (!warning.empty()) fmt::print(stderr, "motus: {}\n", warning);
+  return 0;
+}
+
+}  // namespace motus::cli

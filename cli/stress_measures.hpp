@@ -1,0 +1,146 @@
+#pragma once
+// The measurements of `motus stress` (docs/cli.md, "motus stress"): each takes the scene as it
+// was loaded, builds the variants it needs (a step, a stiffness, a mass ratio, a speed) as new
+// scene descriptions, runs them through motus::Simulation and returns plain numbers. The
+// command (stress_command.cpp) chooses which apply; the page (stress_page.cpp) draws them.
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "motus/integrator_name.hpp"
+#include "motus/scene.hpp"
+
+namespace motus::cli::stress {
+
+struct Settings {
+  long steps = 10000;          // steps of one stability or stiffness trial
+  long drift_steps = 100000;   // steps of the long run
+  double energy_factor = 1e6;  // blown up: |E − E0| > energy_factor·|E0|
+  double duration = 1;         // simulated seconds of a mass-ratio or sticks run (at most the scene's)
+};
+
+// Called every step or so: the progress bar, which is also where Ctrl-C is honoured.
+using Tick = std::function<void()>;
+
+// ---- stability: the largest stable step ---------------------------------------------------
+struct StabilityTrial {
+  double h = 0;
+  double max_error = 0;  // the largest |E − E0|/|E0| over the trial (inf when not finite)
+  bool blown = false;
+};
+struct StabilityTheory {
+  double z = 0;           // the limit of ω h; 0 when it is not known
+  bool stable_below = true;  // false: unstable at every h, and z is where a run of the trial's steps first passes the factor
+  std::string text;       // "ωh < 2", "none: ...", "not known for this scene"
+};
+struct StabilityResult {
+  Integrator integrator{};
+  std::string skipped;  // why it was not measured ("" when it was)
+  std::vector<StabilityTrial> trials;  // every step tried, sorted by h
+  double limit = 0;          // the largest h found stable (0: none)
+  double first_blowup = 0;   // the smallest h found to blow up (0: none up to the largest tried)
+  StabilityTheory theory;
+};
+// The theory of integrators.md for x'' = −ω²x. Explicit Euler and midpoint are unstable at every
+// h; for them z is where `steps` steps first take the energy beyond (1 + factor) times its start.
+StabilityTheory stability_theory(Integrator integrator, long steps, double factor);
+// ω when the scene is an undamped harmonic oscillator (exact "harmonic", no damping), else none.
+std::optional<double> harmonic_omega(const SceneDescription& scene);
+StabilityResult measure_stability(const SceneDescription& scene, Integrator integrator, const Settings& settings,
+                                  const Tick& tick);
+
+// ---- drift: the energy error over a long run ---------------------------------------------
+struct DriftSample {
+  long step = 0;
+  double t = 0;
+  double error = 0;       // |E − E0|/|E0| after this step
+  double window_max = 0;  // the largest since the previous sample
+};
+struct DriftResult {
+  Integrator integrator{};
+  std::string skipped;
+  std::vector<DriftSample> samples;  // about 20 a decade of steps, log-spaced
+  long steps = 0;                    // steps run (fewer than asked when it blew up)
+  double first_hundredth_max = 0, last_tenth_max = 0;  // the largest error over the first 1 % and the last 10 % of the run
+  std::string blown;                 // "" or "not finite at t = …", "escaped (E >= 0) at t = …"
+  std::string verdict;               // "bounded", "grows ×…", or the blow-up
+};
+DriftResult measure_drift(const SceneDescription& scene, Integrator integrator, const Settings& settings, const Tick& tick);
+
+// ---- stiffness: the force constant raised by decades at a fixed dt ------------------------
+struct StiffnessRun {
+  double factor = 1;
+  double max_error = 0;
+  bool blown = false;
+};
+struct StiffnessResult {
+  Integrator integrator{};
+  std::string skipped;
+  std::vector<StiffnessRun> runs;
+  double first_failure = 0;  // the first factor that blew up (0: none)
+};
+// What is raised ("" when the scene has no such constant): every spring's k; or μ and G, with the
+// velocities × √factor so that orbits keep their shape; or a pendulum's g.
+std::string stiffness_knob(const SceneDescription& scene);
+SceneDescription stiffened(const SceneDescription& scene, double factor);
+std::vector<double> stiffness_factors();  // 1, 10, …, 10⁸
+StiffnessResult measure_stiffness(const SceneDescription& scene, Integrator integrator, const Settings& settings,
+                                  const Tick& tick);
+
+// ---- mass ratio: collisions between balls of very different mass --------------------------
+struct PairOutcome {
+  double velocity_error = 0;  // max |v − v_formula| / u over both balls
+  double energy_error = 0;    // |KE − KE_formula| / KE0
+  double momentum_error = 0;  // |p − p0| / (m_a u + m_b u)
+  long collisions = 0;        // ball–ball collisions counted (impulses; 0 for verlet's projection)
+  std::string failed;
+};
+struct MassRatioRow {
+  Integrator integrator{};
+  double ratio = 1;
+  PairOutcome pair;          // a head-on pair of masses 1 and ratio, against the textbook formula
+  double gas_energy_error = 0;  // the scene with every second body's mass × ratio: max |E − E0|/|E0|
+  long gas_steps = 0;
+  std::string gas_failed;
+};
+std::vector<double> mass_ratios();  // 1, 10, …, 10⁶
+MassRatioRow measure_mass_ratio(const SceneDescription& scene, Integrator integrator, double ratio,
+                                const Settings& settings, const Tick& tick);
+
+// ---- speed: balls that move many radii per step ------------------------------------------
+struct SpeedRow {
+  Integrator integrator{};
+  double radii_per_step = 1;
+  // A ball shot along a line at a resting ball in a box: they can never pass each other.
+  long pair_steps = 0;
+  bool pair_order_kept = true;   // the moving ball never got past the resting one
+  bool pair_inside = true;       // both stayed in the box
+  long pair_ball_collisions = 0;
+  double pair_energy_error = 0;
+  std::string pair_failed;
+  // The scene's balls, their velocities scaled so that the fastest moves radii_per_step radii a step.
+  long gas_steps = 0;
+  long gas_outside = 0;          // balls found outside their container after a step
+  double gas_max_overlap = 0;    // the deepest overlap of two balls after a step, / their contact distance
+  double gas_energy_error = 0;
+  long gas_collisions = 0;
+  std::string gas_failed;
+};
+std::vector<double> speeds();  // 1, 10, …, 10⁴ radii per step
+SpeedRow measure_speed(const SceneDescription& scene, Integrator integrator, double radii_per_step, const Tick& tick);
+
+// ---- sticks: sticks between masses of very different size ---------------------------------
+struct StickRow {
+  std::string variant;  // "every second body" or "the last body"
+  double ratio = 1;
+  double max_error = 0;    // the largest relative stick-length error over the run
+  double final_error = 0;  // at its end
+  long steps = 0;
+  std::string failed;
+};
+std::vector<std::string> stick_variants();
+StickRow measure_sticks(const SceneDescription& scene, const std::string& variant, double ratio, const Settings& settings,
+                        const Tick& tick);
+
+}  // namespace motus::cli::stress

@@ -1,0 +1,41 @@
+#pragma once
+// The page of `motus stress`: one CSV per section, the figures (plot/, gnuplot: PNG and SVG),
+// summary.json and index.html, written into a folder (docs/cli.md, "motus stress").
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "stress_measures.hpp"
+
+namespace motus::cli::stress {
+
+struct Report {
+  std::string scene_name, scene_file, description;
+  int dimensions = 0;
+  long bodies = 0;
+  double dt = 0;
+  Settings settings;
+  std::optional<double> omega;  // an undamped harmonic oscillator's ω, where theory applies
+  std::string stiffness_knob;
+  std::vector<std::string> sections;                            // measured, in order
+  std::vector<std::pair<std::string, std::string>> not_applied;  // section, why not
+  std::vector<std::pair<std::string, std::string>> cannot_run;   // integrator, why not
+  std::vector<StabilityResult> stability;
+  std::vector<DriftResult> drift;
+  std::vector<StiffnessResult> stiffness;
+  std::vector<MassRatioRow> mass_ratio;
+  std::vector<SpeedRow> speed;
+  std::vector<StickRow> sticks;
+};
+
+// The first factor of stiffness_factors() at which theory says the integrator blows up (0: none
+// known), for an undamped harmonic oscillator: ωh beyond its limit.
+double theory_first_failure(const Report& report, Integrator integrator);
+
+nlohmann::json summary_json(const Report& report);
+// Writes everything into `folder`; returns "" or one line about the plots (gnuplot missing or failed).
+std::string write_page(const std::string& folder, const Report& report);
+
+}  // namespace motus::cli::stress

@@ -1,0 +1,248 @@
+#include "motus/compare/explanations.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "motus/exact/exact_solution.hpp"
+
+namespace motus::compare {
+namespace {
+
+// Two significant digits: enough to compare engines that differ by decades.
+std::string number(double x) {
+  if (x == 0) return "0";
+  return fmt::format("{:.2g}", x);
+}
+
+std::string signed_number(double x) {
+  if (x == 0) return "0";
+  return fmt::format("{:+.2g}", x);
+}
+
+double distance(const std::vector<double>& a, const std::vector<double>& b) {
+  double s = 0;
+  for (size_t k = 0; k < a.size() && k < b.size(); ++k) s += (a[k] - b[k]) * (a[k] - b[k]);
+  return std::sqrt(s);
+}
+
+double length(const std::vector<double>& a) { return distance(a, std::vector<double>(a.size(), 0.0)); }
+
+std::vector<const EngineRun*> supported(const std::vector<EngineRun>& runs) {
+  std::vector<const EngineRun*> out;
+  for (const auto& r : runs)
+    if (r.supported && !r.rows.empty()) out.push_back(&r);
+  return out;
+}
+
+// "; bullet could not run it" for every engine that did not run.
+std::string unsupported_tail(const std::vector<EngineRun>& runs) {
+  std::string names;
+  for (const auto& r : runs)
+    if (!r.supported) names += (names.empty() ? "" : " and ") + r.engine;
+  return names.empty() ? "" : "; " + names + " could not run it";
+}
+
+// "a, b and c"
+std::string joined(const std::vector<std::string>& parts) {
+  std::string out;
+  for (size_t i = 0; i < parts.size(); ++i) out += (i == 0 ? "" : i + 1 == parts.size() ? " and " : ", ") + parts[i];
+  return out;
+}
+
+std::string solution_name(const SceneDescription& scene) {
+  if (scene.exact == "free-flight") {
+    const auto& m = *scene.mechanical;
+    const bool collides = !m.colliders.empty() || std::count_if(m.bodies.begin(), m.bodies.end(),
+                                                                [](const auto& b) { return b.radius > 0; }) > 1;
+    return collides ? "the free-flight solution (true collisions, event by event)" : "the exact parabola x₀ + v₀t + ½gt²";
+  }
+  if (scene.exact == "harmonic") return "the harmonic oscillator's closed form";
+  if (scene.exact == "kepler") return "Kepler's orbit";
+  if (scene.exact == "pendulum") return "the pendulum's elliptic-function solution";
+  if (scene.exact == "projectile-drag") return "the projectile with linear drag, in closed form";
+  return "the scene's reference states";
+}
+
+bool conserves_energy(const SceneDescription& scene) {
+  const auto& m = *scene.mechanical;
+  for (const auto& b : m.bodies)
+    if (b.restitution != 1) return false;
+  for (const auto& p : m.colliders.planes)
+    if (p.restitution != 1) return false;
+  for (const auto& b : m.colliders.boxes)
+    if (b.restitution != 1) return false;
+  for (const auto& s : m.colliders.segments)
+    if (s.restitution != 1) return false;
+  for (const auto& s : m.forces.springs)
+    if (s.damping != 0) return false;
+  return m.forces.drag.empty();
+}
+
+// "ball 4" for a ball, "body 4" for a point mass.
+std::string body_name(const SceneDescription& scene, int i) {
+  return (scene.mechanical->bodies[static_cast<size_t>(i)].radius > 0 ? "ball " : "body ") + std::to_string(i);
+}
+
+// What the exact velocities say, briefly: "ball 4 leaves at (1, 0) m/s and the others rest".
+std::string exact_outcome(const SceneDescription& scene, const ExactAnswer& a) {
+  std::vector<int> moving;
+  for (size_t i = 0; i < a.velocity.size(); ++i)
+    if (length(a.velocity[i]) > 1e-12) moving.push_back(static_cast<int>(i));
+  if (moving.size() == 1 && a.velocity.size() > 2 && a.bodies <= ExactAnswer::kShownBodies)
+    return body_name(scene, moving[0]) + " leaves at " + format_vector(a.velocity[static_cast<size_t>(moving[0])]) +
+           " m/s and the others rest";
+  std::vector<std::string> parts;
+  for (size_t i = 0; i < a.velocity.size() && i < 3; ++i)
+    parts.push_back(body_name(scene, static_cast<int>(i)) + " at " + format_vector(a.velocity[i]) + " m/s");
+  if (a.bodies > 3) parts.push_back("…");
+  return joined(parts);
+}
+
+}  // namespace
+
+std::string format_vector(const std::vector<double>& v) {
+  std::string out = "(";
+  for (size_t k = 0; k < v.size(); ++k) {
+    const double x = std::abs(v[k]) < 5e-13 ? 0.0 : v[k];  // rounding noise reads as 0
+    out += (k ? ", " : "") + fmt::format("{:.3g}", x);
+  }
+  return out + ")";
+}
+
+std::vector<ColumnDefinition> column_definitions(const SceneDescription& scene, long samples, bool momentum_conserved) {
+  std::vector<ColumnDefinition> d;
+  const std::string over = fmt::format("over the {} samples of the run (and its start and end)", samples);
+  d.push_back({"energy drift",
+               "(E_end − E₀) / |E₀|: the total energy at the end against the start, as a fraction (+ gained, − lost). E "
+               "is the kinetic energy ½ m v² plus the potential energy of the scene's forces, computed by the same code "
+               "from every engine's positions and velocities."});
+  d.push_back({"max |ΔE|/E₀", "the largest |E(t) − E₀| / |E₀| " + over + ": an engine can end near E₀ and stray on the way."});
+  d.push_back({"momentum drift",
+               "|p_end − p₀| / scale, where p = Σ m v is the total momentum and the scale is the larger of |p₀| and Σ m "
+               "|v₀| (the momentum in play: in a head-on collision p₀ is 0, and dividing by it would mean nothing). " +
+                   std::string(momentum_conserved
+                                   ? "This scene keeps its momentum exactly (no walls, no outside force), so any change "
+                                     "is the engine's error."
+                                   : "This scene does not keep its momentum (walls or outside forces push on it): the "
+                                     "column shows that push, not an error.")});
+  d.push_back({"max penetration [m]",
+               "the deepest overlap of two balls (r_a + r_b − distance) or of a ball and a wall (radius − height above it) " +
+                   over + ". Exact collisions never overlap; engines that resolve contacts after they happen do."});
+  d.push_back({"constraint error",
+               scene.mechanical->sticks.empty()
+                   ? "the largest |length − rest length| / rest length of a stick; this scene has no sticks (0)."
+                   : "the largest |length − rest length| / rest length of any stick " + over + "."});
+  d.push_back({"max distance from motus [m]",
+               "the farthest any body gets from where motus has it at the same time, " + over +
+                   ": where two engines part ways, not which is right."});
+  if (has_exact_solution(scene))
+    d.push_back({"max distance from exact [m]",
+                 "the same against the exact answer, " + solution_name(scene) + ": the engine's error itself."});
+  d.push_back({"µs per step (min)",
+               "CPU time spent inside the engine's steps, divided by the number of steps, in the fastest of the timing "
+               "rounds: every engine runs the whole scene again in each round, with nothing measured in between, the "
+               "engines taking turns, so that a busy machine slows all of them alike; the run least disturbed is the "
+               "one shown. Compare ratios, not absolute times, on a shared machine."});
+  d.push_back({"median", "the median round's µs per step: how typical the fastest was."});
+  d.push_back({"spread", "(slowest round − fastest round) / fastest round: how much the rounds disagreed."});
+  d.push_back({"time / motus", "µs per step (min) divided by motus's: below 1 is faster than motus."});
+  return d;
+}
+
+std::optional<ExactAnswer> exact_answer(const SceneDescription& scene, const std::vector<EngineRun>& runs) {
+  if (!scene.mechanical || !has_exact_solution(scene)) return std::nullopt;
+  const auto engines = supported(runs);
+  if (engines.empty()) return std::nullopt;
+  const double t = engines.front()->last.t;
+  const auto y = exact_state(scene, t);
+  if (!y) return std::nullopt;
+  ExactAnswer a;
+  a.t = t;
+  a.source = solution_name(scene);
+  a.dimensions = scene.mechanical->dimensions;
+  a.bodies = static_cast<long>(scene.mechanical->bodies.size());
+  const int d = a.dimensions;
+  const Eigen::Index n = y->size() / 2;
+  auto body = [&](const double* data, int i) { return std::vector<double>(data + i * d, data + (i + 1) * d); };
+  const int shown = static_cast<int>(std::min<long>(a.bodies, ExactAnswer::kShownBodies));
+  for (int i = 0; i < shown; ++i) {
+    a.position.push_back(body(y->data(), i));
+    a.velocity.push_back(body(y->data() + n, i));
+  }
+  for (const EngineRun* r : engines) {
+    ExactAnswer::Engine e;
+    e.engine = r->engine;
+    for (int i = 0; i < static_cast<int>(a.bodies); ++i) {
+      const auto v = body(r->last.v.data(), i), x = body(r->last.x.data(), i);
+      const double dv = distance(v, body(y->data() + n, i)), dx = distance(x, body(y->data(), i));
+      if (dv > e.worst_speed_error) e.worst_speed_error = dv, e.worst_body = i;
+      e.worst_position_error = std::max(e.worst_position_error, dx);
+      if (i < shown) e.velocity.push_back(v);
+    }
+    a.engines.push_back(std::move(e));
+  }
+  return a;
+}
+
+std::string what_to_notice(const SceneDescription& scene, const std::vector<EngineRun>& runs,
+                           const std::optional<ExactAnswer>& exact) {
+  const auto engines = supported(runs);
+  if (engines.empty()) return "No engine could run this scene" + unsupported_tail(runs) + ".";
+  const auto& m = *scene.mechanical;
+  const bool collides = !m.colliders.empty() ||
+                        std::count_if(m.bodies.begin(), m.bodies.end(), [](const auto& b) { return b.radius > 0; }) > 1;
+
+  // Collisions with an exact outcome: how far each engine ended from the exact velocities.
+  if (exact && scene.exact == "free-flight" && collides) {
+    std::vector<std::string> parts;
+    for (const auto& e : exact->engines) {
+      if (e.worst_speed_error < 1e-9) {
+        // The right velocities can still come with the wrong positions (a contact found a step late).
+        if (e.worst_position_error > 1e-6)
+          parts.push_back(e.engine + " has its velocities but ends " + number(e.worst_position_error) +
+                          " m from its positions");
+        else
+          parts.push_back(e.engine + " ends on it (within " + number(e.worst_position_error) + " m and " +
+                          number(e.worst_speed_error) + " m/s)");
+        continue;
+      }
+      std::string part = e.engine + " is up to " + number(e.worst_speed_error) + " m/s off";
+      if (e.worst_body < static_cast<int>(exact->velocity.size()))
+        part += " (" + body_name(scene, e.worst_body) + " at " +
+                format_vector(e.velocity[static_cast<size_t>(e.worst_body)]) + " m/s where the exact answer has " +
+                format_vector(exact->velocity[static_cast<size_t>(e.worst_body)]) + ")";
+      parts.push_back(part);
+    }
+    return fmt::format("The exact answer at t = {:g} s: {}; {}{}.", exact->t, exact_outcome(scene, *exact), joined(parts),
+                       unsupported_tail(runs));
+  }
+  // Any other exact answer: the largest distance from it over the run.
+  if (has_exact_solution(scene)) {
+    std::vector<std::string> parts;
+    for (const EngineRun* r : engines)
+      if (r->max_from_exact() >= 0) parts.push_back(r->engine + " " + number(r->max_from_exact()) + " m");
+    if (!parts.empty())
+      return "Against " + solution_name(scene) + ", the farthest each engine strays over the run: " + joined(parts) +
+             unsupported_tail(runs) + ".";
+  }
+  // Sticks: their lengths should not change.
+  if (!m.sticks.empty()) {
+    std::vector<std::string> parts;
+    for (const EngineRun* r : engines) parts.push_back(r->engine + " " + number(r->max_constraint_error()));
+    return "The sticks should keep their lengths; the worst relative length error over the run: " + joined(parts) +
+           unsupported_tail(runs) + ".";
+  }
+  std::vector<std::string> parts;
+  for (const EngineRun* r : engines)
+    parts.push_back(r->engine + " " + signed_number(r->energy_drift()) + " (at worst " + number(r->max_energy_error()) + ")");
+  if (conserves_energy(scene))
+    return "The scene keeps its energy exactly, so every change is the engine's error; relative to E₀: " + joined(parts) +
+           unsupported_tail(runs) + ".";
+  return "The scene loses energy by design (restitution below 1, damping or drag), so compare the engines with each "
+         "other; energy change relative to E₀: " +
+         joined(parts) + unsupported_tail(runs) + ".";
+}
+
+}  // namespace motus::compare

@@ -1,0 +1,52 @@
+#pragma once
+// What the comparison's numbers mean, in words: the definition of every column, the exact answer
+// where the scene has one (and how far each engine ended from it), and one sentence, made from
+// the measured numbers, saying what to notice. The report and the terminal table both use it.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "motus/compare/comparison.hpp"
+#include "motus/scene.hpp"
+
+namespace motus::compare {
+
+struct ColumnDefinition {
+  std::string column;   // as the table heads it
+  std::string meaning;  // what it is and how it is computed, one or two sentences
+};
+
+// The columns of the summary table, defined for this scene (whether it keeps its momentum,
+// whether it has an exact answer, how many samples the maxima are over).
+std::vector<ColumnDefinition> column_definitions(const SceneDescription& scene, long samples, bool momentum_conserved);
+
+// The exact state at the end of the run and each engine's final velocities beside it.
+struct ExactAnswer {
+  double t = 0;
+  std::string source;  // "the free-flight solution (event by event)", "the harmonic oscillator", ...
+  int dimensions = 2;
+  std::vector<std::vector<double>> position, velocity;  // per body (up to kShownBodies)
+  struct Engine {
+    std::string engine;
+    std::vector<std::vector<double>> velocity;  // per body shown
+    double worst_speed_error = 0;               // max over all bodies of |v − v_exact|, m/s
+    int worst_body = 0;
+    double worst_position_error = 0;            // max over all bodies of |x − x_exact| at the end, m
+  };
+  std::vector<Engine> engines;  // the supported ones, in run order
+  long bodies = 0;              // in the scene (the table shows the first kShownBodies)
+  static constexpr int kShownBodies = 8;
+};
+
+// nullopt when the scene has no exact state at the run's end (none declared, or unknown there).
+std::optional<ExactAnswer> exact_answer(const SceneDescription& scene, const std::vector<EngineRun>& runs);
+
+// One sentence from the measured numbers: against the exact answer where there is one, else the
+// sticks' lengths, else the energy (kept exactly by the scene, or lost by design).
+std::string what_to_notice(const SceneDescription& scene, const std::vector<EngineRun>& runs,
+                           const std::optional<ExactAnswer>& exact);
+
+// A vector as "(1, −0.5)" with three significant digits (the report's and the table's style).
+std::string format_vector(const std::vector<double>& v);
+
+}  // namespace motus::compare

@@ -1,0 +1,166 @@
+#include "motus/expressions/expression_system.hpp"
+
+#include <muParser.h>
+
+#include <algorithm>
+#include <cctype>
+#include <set>
+
+namespace motus::expressions {
+namespace {
+
+const mu::Parser& plain_parser() {
+  static const mu::Parser parser;  // muparser's own functions and constants, nothing of ours
+  return parser;
+}
+
+bool is_function(const std::string& name) { return plain_parser().GetFunDef().count(name) > 0; }
+bool is_constant(const std::string& name) { return plain_parser().GetConst().count(name) > 0; }
+
+// muparser's message without its "at position N" (we give a 1-based column instead), starting
+// with a small letter so that it reads on after "syntax error at column N: ".
+std::string plain_message(std::string message) {
+  for (const char* tail : {" found at position ", " at position "}) {
+    const auto at = message.find(tail);
+    if (at != std::string::npos) {
+      auto end = at + std::string(tail).size();
+      while (end < message.size() && std::isdigit(static_cast<unsigned char>(message[end]))) ++end;
+      message.erase(at, end - at);
+    }
+  }
+  while (!message.empty() && (message.back() == '.' || message.back() == ' ')) message.pop_back();
+  if (!message.empty() && message[0] >= 'A' && message[0] <= 'Z' && !(message.size() > 1 && std::isupper(static_cast<unsigned char>(message[1]))))
+    message[0] = static_cast<char>(std::tolower(static_cast<unsigned char>(message[0])));
+  return message.empty() ? "cannot be parsed" : message;
+}
+
+// The first '=' that is an assignment (x = 3, x += 1), not part of ==, !=, <= or >=; npos if none.
+// muparser would assign to the variable, so that one equation changed what the next one sees.
+size_t assignment(const std::string& text) {
+  for (size_t i = 0; i < text.size(); ++i) {
+    if (text[i] != '=') continue;
+    const char before = i > 0 ? text[i - 1] : ' ', after = i + 1 < text.size() ? text[i + 1] : ' ';
+    if (after == '=') {
+      ++i;  // ==
+      continue;
+    }
+    if (before == '<' || before == '>' || before == '!') continue;
+    return i > 0 && std::string("+-*/").find(before) != std::string::npos ? i - 1 : i;
+  }
+  return std::string::npos;
+}
+
+// The first ',' outside parentheses (two expressions in one), or npos.
+size_t top_level_comma(const std::string& text) {
+  int depth = 0;
+  for (size_t i = 0; i < text.size(); ++i) {
+    if (text[i] == '(') ++depth;
+    else if (text[i] == ')') --depth;
+    else if (text[i] == ',' && depth <= 0) return i;
+  }
+  return std::string::npos;
+}
+
+}  // namespace
+
+std::string name_problem(const std::string& name) {
+  if (name.empty()) return "is empty";
+  if (name.size() > 100) return "is longer than 100 characters";
+  const auto identifier_char = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; };
+  if (!(std::isalpha(static_cast<unsigned char>(name[0])) || name[0] == '_') || !std::all_of(name.begin(), name.end(), identifier_char))
+    return "is not a name: use a letter or '_' and then letters, digits or '_'";
+  if (name == "t") return "is the time, which every equation may use as t";
+  if (is_function(name)) return "is one of the functions (" + function_names() + ")";
+  if (is_constant(name)) return "is one of the constants (_pi, _e)";
+  return "";
+}
+
+std::string function_names() {
+  std::string list;
+  for (const auto& [name, callback] : plain_parser().GetFunDef()) list += (list.empty() ? "" : ", ") + name;
+  return list;
+}
+
+struct ExpressionSystem::Parsed {
+  std::vector<double> values;  // the state as the expressions see it; never resized after binding
+  double t = 0;
+  std::vector<mu::Parser> parsers;  // one per equation
+};
+
+ExpressionSystem::ExpressionSystem(const Equations& e) : names_(e.variables), parsed_(std::make_unique<Parsed>()) {
+  const size_t n = e.variables.size();
+  if (n == 0) throw std::invalid_argument("a system needs at least one variable");
+  if (e.right_hand_sides.size() != n)
+    throw std::invalid_argument("a system needs one equation per variable (" + std::to_string(n) + " variables, " +
+                                std::to_string(e.right_hand_sides.size()) + " equations)");
+  std::set<std::string> seen;
+  for (const auto& name : e.variables)
+    if (!name_problem(name).empty() || !seen.insert(name).second) throw std::invalid_argument("variable \"" + name + "\": bad or repeated name");
+  for (const auto& [name, value] : e.parameters)
+    if (!name_problem(name).empty() || !seen.insert(name).second) throw std::invalid_argument("parameter \"" + name + "\": bad or repeated name");
+
+  std::string known;
+  for (const auto& name : e.variables) known += (known.empty() ? "" : ", ") + name;
+  known += ", t";
+  for (const auto& [name, value] : e.parameters) known += ", " + name;
+
+  auto& p = *parsed_;
+  p.values.assign(n, 0.0);
+  p.parsers.resize(n);
+  for (size_t i = 0; i < n; ++i) {
+    const std::string& text = e.right_hand_sides[i];
+    const int index = static_cast<int>(i);
+    const int end_column = static_cast<int>(text.size()) + 1;
+    if (text.find_first_not_of(" \t") == std::string::npos)
+      throw EquationError(index, 0, "is empty: give the right-hand side of " + e.variables[i] + "' = ...");
+    if (const size_t at = assignment(text); at != std::string::npos)
+      throw EquationError(index, static_cast<int>(at) + 1,
+                          "an assignment at column " + std::to_string(at + 1) +
+                              ": an equation is an expression for the derivative (compare with ==)");
+    mu::Parser& parser = p.parsers[i];
+    try {
+      for (size_t k = 0; k < n; ++k) parser.DefineVar(e.variables[k], &p.values[k]);
+      parser.DefineVar("t", &p.t);
+      for (const auto& [name, value] : e.parameters) parser.DefineConst(name, value);  // folded into the bytecode
+      parser.SetExpr(text);
+      int results = 0;
+      parser.Eval(results);  // parses now, once: every later call runs the bytecode
+      if (results != 1) {
+        const size_t comma = top_level_comma(text);
+        const int column = comma == std::string::npos ? 0 : static_cast<int>(comma) + 1;
+        throw EquationError(index, column,
+                            "is " + std::to_string(results) + " expressions" +
+                                (column ? " (a ',' at column " + std::to_string(column) + ")" : "") +
+                                ": an equation is one expression");
+      }
+    } catch (const mu::Parser::exception_type& error) {
+      const int column = std::clamp(error.GetPos() + 1, 1, end_column);
+      const std::string token = error.GetToken();
+      if (error.GetCode() == mu::ecUNASSIGNABLE_TOKEN && !token.empty()) {
+        if (is_function(token))
+          throw EquationError(index, column,
+                              "syntax error at column " + std::to_string(column) + ": the function " + token +
+                                  " needs its arguments in parentheses, as " + token + "(x)");
+        throw EquationError(index, column,
+                            "unknown variable \"" + token + "\" at column " + std::to_string(column) + " (known: " +
+                                known + "; functions: " + function_names() + ")");
+      }
+      if (error.GetCode() == mu::ecEMPTY_EXPRESSION)
+        throw EquationError(index, 0, "is empty: give the right-hand side of " + e.variables[i] + "' = ...");
+      throw EquationError(index, column, "syntax error at column " + std::to_string(column) + ": " + plain_message(error.GetMsg()));
+    }
+  }
+}
+
+ExpressionSystem::~ExpressionSystem() = default;
+
+void ExpressionSystem::derivative(double t, ConstVectorRef y, VectorRef dydt) {
+  ++evaluations;
+  auto& p = *parsed_;
+  p.t = t;
+  const size_t n = p.values.size();
+  for (size_t i = 0; i < n; ++i) p.values[i] = y[static_cast<Eigen::Index>(i)];
+  for (size_t i = 0; i < n; ++i) dydt[static_cast<Eigen::Index>(i)] = p.parsers[i].Eval();
+}
+
+}  // namespace motus::expressions

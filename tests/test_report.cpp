@@ -1,0 +1,115 @@
+// What `motus compare`'s report says in words (docs/cli.md, compare/motus/compare/explanations.hpp):
+// every column defined, the exact answer and each engine's distance from it where the scene has one
+// (head_on, oblique, newtons_cradle, drop, free_fall: "exact": "free-flight"), a sentence of what
+// to notice made from the measured numbers, and the first and last frames as a picture.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include "cli_harness.hpp"
+
+namespace {
+
+using namespace motus_test;
+
+struct Report {
+  nlohmann::json summary;
+  std::string html;
+  fs::path folder;
+};
+
+Report compare(const TempDir& dir, const std::string& scene, std::vector<std::string> extra = {},
+               const std::string& folder = "") {
+  const fs::path out = dir / ("report-" + (folder.empty() ? scene : folder));
+  std::vector<std::string> args = {"compare", scene, "--out", out.string(), "--json"};
+  args.insert(args.end(), extra.begin(), extra.end());
+  const auto r = run_motus(dir, args);
+  EXPECT_EQ(r.status, 0) << r.err;
+  Report report;
+  report.summary = nlohmann::json::parse(r.out);
+  report.html = read_file(out / "index.html");
+  report.folder = out;
+  return report;
+}
+
+const nlohmann::json& engine(const Report& r, const std::string& name) {
+  for (const auto& e : r.summary["engines"])
+    if (e["engine"] == name) return e;
+  throw std::runtime_error("no engine " + name);
+}
+
+bool is_png(const fs::path& file) {
+  const std::string bytes = read_file(file);
+  return bytes.size() > 8 && bytes.compare(0, 8, "\x89PNG\r\n\x1a\n") == 0;
+}
+
+TEST(Report, DefinesEveryColumnOfItsTable) {
+  TempDir dir;
+  const auto r = compare(dir, "ball_gas", {"--set", "lattice.count=100", "--duration", "0.5"});
+  std::vector<std::string> columns;
+  for (const auto& d : r.summary["definitions"]) columns.push_back(d["column"]);
+  for (const char* c : {"energy drift", "max |ΔE|/E₀", "momentum drift", "max penetration [m]", "constraint error",
+                        "max distance from motus [m]", "µs per step (min)", "median", "spread", "time / motus"}) {
+    EXPECT_NE(std::find(columns.begin(), columns.end(), c), columns.end()) << c;
+    EXPECT_NE(r.html.find(std::string("<dt>") + c + "</dt>"), std::string::npos) << c;
+  }
+  // The gas is in a box: its momentum is the walls' push, and the report says so.
+  EXPECT_NE(r.html.find("does not keep its momentum"), std::string::npos);
+  EXPECT_EQ(r.summary.count("exact"), 0u);  // no exact answer for a gas
+  // It keeps its energy: the sentence says so and quotes motus's measured drift.
+  const std::string notice = r.summary["notice"];
+  EXPECT_NE(notice.find("keeps its energy exactly"), std::string::npos) << notice;
+  EXPECT_NE(r.html.find("What to notice"), std::string::npos);
+  EXPECT_TRUE(is_png(r.folder / "first_and_last.png"));
+  EXPECT_NE(r.html.find("first_and_last.png"), std::string::npos);
+}
+
+TEST(Report, NewtonsCradleShowsTheExactAnswerAndEachEnginesDistance) {
+  TempDir dir;
+  const auto r = compare(dir, "newtons_cradle");
+  ASSERT_TRUE(r.summary.contains("exact"));
+  const auto& x = r.summary["exact"];
+  // Equal masses, e = 1, in contact: the last ball leaves at the striker's 1 m/s, the others rest.
+  ASSERT_EQ(x["bodies"].size(), 5u);
+  for (int i = 0; i < 4; ++i) EXPECT_NEAR(x["bodies"][i]["velocity"][0].get<double>(), 0, 1e-15);
+  EXPECT_NEAR(x["bodies"][4]["velocity"][0].get<double>(), 1, 1e-15);
+  for (const auto& e : x["engines"]) EXPECT_TRUE(e.contains("max_speed_error")) << e.dump();
+  // motus's collisions are exact (time of impact within the step, contacts in turn).
+  EXPECT_LT(x["engines"][0]["max_speed_error"].get<double>(), 1e-12);
+  EXPECT_LT(engine(r, "motus")["max_distance_from_exact"].get<double>(), 1e-12);
+  // Each engine has a distance from the exact answer in the table, and the sentence names them all.
+  EXPECT_NE(r.html.find("<th>max distance from exact [m]</th>"), std::string::npos);
+  EXPECT_NE(r.html.find("<h2>The exact answer</h2>"), std::string::npos);
+  const std::string notice = r.summary["notice"];
+  EXPECT_NE(notice.find("ball 4 leaves at (1, 0) m/s and the others rest"), std::string::npos) << notice;
+  for (const auto& e : r.summary["engines"])
+    if (e["supported"].get<bool>()) {
+      EXPECT_NE(notice.find(e["engine"].get<std::string>()), std::string::npos) << notice;
+    }
+}
+
+TEST(Report, EveryCollisionSceneWithAnExactAnswerHasItsColumn) {
+  TempDir dir;
+  for (const char* scene : {"head_on", "oblique", "drop"}) {
+    const auto r = compare(dir, scene);
+    EXPECT_TRUE(r.summary.contains("exact")) << scene;
+    for (const auto& e : r.summary["engines"])
+      if (e["supported"].get<bool>()) {
+        EXPECT_TRUE(e["max_distance_from_exact"].is_number()) << scene << " " << e["engine"];
+      }
+    EXPECT_NE(r.html.find("max distance from exact"), std::string::npos) << scene;
+  }
+}
+
+TEST(Report, FreeFallIsHalfGHTBehindTheParabolaUnderSymplecticEuler) {
+  // Symplectic Euler under a constant g: x_n = x0 + v0 t + ½ g t² + ½ g h t, so the distance from
+  // the parabola grows as ½ g h t — 0.0981 m after T = 2 s at h = 0.01 s; velocity Verlet is exact.
+  TempDir dir;
+  const auto r = compare(dir, "free_fall", {"--engines", "motus"});
+  EXPECT_NEAR(engine(r, "motus")["max_distance_from_exact"].get<double>(), 0.5 * 9.81 * 0.01 * 2, 1e-9);
+  const auto verlet = compare(dir, "free_fall", {"--engines", "motus", "--integrator", "velocity-verlet"}, "verlet");
+  EXPECT_LT(engine(verlet, "motus")["max_distance_from_exact"].get<double>(), 1e-12);
+  EXPECT_NE(r.summary["notice"].get<std::string>().find("parabola"), std::string::npos);
+}
+
+}  // namespace

@@ -1,0 +1,302 @@
+// `motus stress` through the command line (docs/cli.md, "motus stress"):
+//   - on the oscillator (x'' = −x, ω = 1), the measured largest stable steps are within 1 % of
+//     theory: ωh = 2 for both symplectic Eulers and both Verlets, 2√2 for RK4
+//     (tests/reference/integrators.md, "Stability on x'' = −ω²x"); explicit Euler and midpoint, unstable at
+//     every h, pass the blow-up factor where their per-step growth (integrators.md) says a run of that length does;
+//   - on the plotted drift (drift.csv), explicit Euler's energy grows exactly as theory says,
+//     E/E0 = (1 + z²)^n with z = ωh (integrators.md), and the symplectic methods stay bounded: the last
+//     tenth of the run no worse than 1.5 × its first hundredth, and within the bound of their modified
+//     energies (integrators.md: E_max/E_min = (1 + z/2)/(1 − z/2) for symplectic Euler, 1/(1 − z²/4)
+//     for velocity Verlet);
+//   - oscillator, kepler, ball_gas and cloth each produce their page (index.html, CSV, SVG and PNG);
+//   - on ball_gas, symplectic Euler's collisions match the course's 1-D collision formula
+//     (docs/course.md, section 9) at every mass ratio, and nothing tunnels at any speed;
+//   - bad input is one line and exit status 2; Ctrl-C exits 130 and leaves no folder.
+#include <gtest/gtest.h>
+#include <signal.h>
+
+#include <chrono>
+#include <thread>
+
+#include <cmath>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <numbers>
+#include <sstream>
+
+#include "cli_harness.hpp"
+
+namespace {
+
+using namespace motus_test;
+
+// A page made by `motus stress SCENE --out DIR/SCENE` (ctest runs each test in a process of its
+// own, so each test makes the page it looks at).
+struct Page {
+  fs::path folder;
+  Result result;
+  nlohmann::json summary;
+};
+
+Page make_page(const TempDir& dir, const std::string& scene) {
+  Page p;
+  p.folder = dir / scene;
+  p.result = run_motus(dir, {"stress", scene, "--out", p.folder.string()});
+  p.summary = nlohmann::json::parse(read_file(p.folder / "summary.json"), nullptr, false);
+  return p;
+}
+
+void expect_page(const Page& p, const std::vector<std::string>& stems) {
+  ASSERT_EQ(p.result.status, 0) << p.result.err;
+  EXPECT_TRUE(p.result.err.empty()) << p.result.err;
+  EXPECT_NE(p.result.out.find("page: " + p.folder.string() + "/index.html"), std::string::npos) << p.result.out;
+  for (const auto& file : {"index.html", "summary.json", "figures.gp", "figures.dat"})
+    EXPECT_TRUE(fs::is_regular_file(p.folder / file)) << file;
+  for (const auto& stem : stems) {
+    EXPECT_TRUE(fs::is_regular_file(p.folder / (stem + ".csv"))) << stem;
+    for (const char* ext : {".svg", ".png"}) {
+      const fs::path picture = p.folder / (stem + ext);
+      EXPECT_TRUE(fs::is_regular_file(picture)) << picture;
+      if (fs::is_regular_file(picture)) {
+        EXPECT_GT(fs::file_size(picture), 1000u) << picture;
+      }
+    }
+    EXPECT_NE(read_file(p.folder / "index.html").find(stem + ".svg"), std::string::npos) << stem;
+  }
+  ASSERT_FALSE(p.summary.is_discarded());
+  for (const auto& stem : stems) EXPECT_TRUE(p.summary.contains(stem)) << stem;
+}
+
+// ---- the oscillator --------------------------------------------------------------------------
+
+void expect_limits_within_one_percent_of_theory(const Page& p) {
+  ASSERT_EQ(p.summary.at("omega").get<double>(), 1.0);  // scenes/oscillator.json: m = 1, k = 1
+  // Explicit Euler and midpoint have no stable step; their energy grows by 1 + z² and 1 + z⁴/4 a step
+  // (integrators.md), so a trial of N steps passes the blow-up factor F where that growth is (1 + F)^(1/N).
+  const double n = p.summary.at("settings").at("steps").get<double>(), f = p.summary.at("settings").at("energy_factor").get<double>();
+  const double growth = std::expm1(std::log1p(f) / n);
+  const std::map<std::string, double> theory = {
+      {"symplectic-euler", 2}, {"symplectic-euler-x", 2}, {"verlet", 2}, {"velocity-verlet", 2},  // integrators.md: z < 2
+      {"rk4", 2 * std::numbers::sqrt2},                                                             // z ≤ 2√2
+      {"euler", std::sqrt(growth)}, {"midpoint", std::pow(4 * growth, 0.25)},
+  };
+  std::map<std::string, double> measured;
+  for (const auto& s : p.summary.at("stability"))
+    if (s.at("limit_omega_h").is_number()) measured[s.at("integrator").get<std::string>()] = s.at("limit_omega_h").get<double>();
+  for (const auto& [integrator, z] : theory) {
+    ASSERT_TRUE(measured.count(integrator)) << integrator;
+    std::printf("  %-20s measured omega h = %.6f, theory %.6f, relative difference %.2e\n", integrator.c_str(),
+                measured[integrator], z, std::abs(measured[integrator] - z) / z);
+    EXPECT_LT(std::abs(measured[integrator] - z) / z, 0.01) << integrator;  // the issue: within 1 %
+  }
+  // The same numbers are in stability.csv, the table a user opens.
+  const std::string csv = read_file(p.folder / "stability.csv");
+  EXPECT_EQ(csv.rfind("integrator,limit_h,limit_omega_h,theory_omega_h,", 0), 0u) << csv;
+  EXPECT_NE(csv.find("\nvelocity-verlet,"), std::string::npos);
+}
+
+struct DriftRow {
+  long step;
+  double t, error, window_max;
+};
+
+std::map<std::string, std::vector<DriftRow>> read_drift(const fs::path& file) {
+  std::map<std::string, std::vector<DriftRow>> rows;
+  std::istringstream in(read_file(file));
+  std::string line;
+  std::getline(in, line);
+  EXPECT_EQ(line, "integrator,step,t,energy_error,max_energy_error_since_previous_row");
+  while (std::getline(in, line)) {
+    std::istringstream cells(line);
+    std::string name, step, t, error, window;
+    std::getline(cells, name, ',');
+    std::getline(cells, step, ',');
+    std::getline(cells, t, ',');
+    std::getline(cells, error, ',');
+    std::getline(cells, window, ',');
+    rows[name].push_back({std::stol(step), std::stod(t), std::stod(error), std::stod(window)});
+  }
+  return rows;
+}
+
+void expect_euler_grows_and_symplectic_bounded(const Page& p) {
+  const auto rows = read_drift(p.folder / "drift.csv");
+  const long n = p.summary.at("settings").at("drift_steps").get<long>();
+  ASSERT_GE(n, 100000);  // the issue: 10^5 to 10^7 steps
+  const double z = 0.1;  // ω h: scenes/oscillator.json has ω = 1, dt = 0.1
+
+  // Explicit Euler: E/E0 = (1 + z²)^n (integrators.md) at every plotted point, until it overflows.
+  const auto& euler = rows.at("euler");
+  ASSERT_GE(euler.size(), 50u);
+  double previous = 0;
+  for (const auto& r : euler) {
+    if (!std::isfinite(r.error)) break;
+    const double theory = std::pow(1 + z * z, static_cast<double>(r.step)) - 1;
+    EXPECT_NEAR(r.error / theory, 1, 1e-9) << "step " << r.step;
+    EXPECT_GT(r.error, previous) << "step " << r.step;
+    previous = r.error;
+  }
+  EXPECT_GT(previous, 1e100);  // it grew without bound
+
+  // The symplectic ones: bounded over the whole run, within their modified energies' bounds.
+  auto largest = [&](const std::vector<DriftRow>& v, long from, long to) {
+    double m = 0;
+    for (const auto& r : v)
+      if (r.step > from && r.step <= to) m = std::max(m, r.window_max);
+    return m;
+  };
+  const std::map<std::string, double> bound = {
+      {"symplectic-euler", (1 + z / 2) / (1 - z / 2) - 1},  // integrators.md: E_max/E_min
+      {"velocity-verlet", 1 / (1 - z * z / 4) - 1},
+      {"symplectic-euler-x", (1 + z / 2) / (1 - z / 2) - 1},  // its mirror image
+      {"verlet", 1 / (1 - z * z / 4) - 1},                    // the same positions as velocity Verlet
+  };
+  for (const auto& [integrator, b] : bound) {
+    const auto& v = rows.at(integrator);
+    EXPECT_EQ(v.back().step, n) << integrator;  // ran to the end
+    const double first = largest(v, 0, n / 100), last = largest(v, n - n / 10, n), all = largest(v, 0, n);
+    std::printf("  %-20s first hundredth %.4e, last tenth %.4e, bound %.4e\n", integrator.c_str(), first, last, b);
+    EXPECT_LE(last, 1.5 * first) << integrator;  // bounded
+    EXPECT_LE(all, b * (1 + 1e-6)) << integrator;
+  }
+}
+
+TEST(StressPages, OscillatorLimitsWithinOnePercentAndItsDrift) {
+  TempDir dir;
+  const Page p = make_page(dir, "oscillator");
+  expect_page(p, {"stability", "drift", "stiffness"});
+  ASSERT_EQ(p.result.status, 0) << p.result.err;
+  expect_limits_within_one_percent_of_theory(p);
+  expect_euler_grows_and_symplectic_bounded(p);
+}
+
+// ---- the other pages -------------------------------------------------------------------------
+
+TEST(StressPages, KeplerPage) {
+  TempDir dir;
+  const Page p = make_page(dir, "kepler");
+  expect_page(p, {"stability", "drift", "stiffness"});
+  // Explicit Euler's orbit gains energy (integrators.md: until it escapes, which takes longer than this
+  // run); RK4's error grows too; the symplectic ones stay bounded.
+  for (const auto& d : p.summary.at("drift")) {
+    const std::string name = d.at("integrator"), verdict = d.at("verdict");
+    if (name == "euler" || name == "rk4") {
+      EXPECT_TRUE(verdict.rfind("grows", 0) == 0 || verdict.find("escaped") != std::string::npos) << d.dump();
+    }
+    if (name == "symplectic-euler" || name == "velocity-verlet" || name == "verlet") {
+      EXPECT_EQ(verdict, "bounded") << d.dump();
+    }
+  }
+}
+
+TEST(StressPages, BallGasPageCollisionsExactAndNoTunnelling) {
+  TempDir dir;
+  const Page p = make_page(dir, "ball_gas");
+  expect_page(p, {"mass_ratio", "speed"});
+  long rows = 0;
+  for (const auto& m : p.summary.at("mass_ratio")) {
+    if (m.at("integrator") != "symplectic-euler") continue;
+    ++rows;
+    EXPECT_EQ(m.at("pair_failed"), "") << m.dump();
+    // The course's formula (course.md, section 9), with e = 1: to rounding at every ratio.
+    EXPECT_LT(m.at("pair_velocity_error").get<double>(), 1e-12) << m.dump();
+    EXPECT_LT(m.at("pair_energy_error").get<double>(), 1e-12) << m.dump();
+    EXPECT_LT(m.at("pair_momentum_error").get<double>(), 1e-12) << m.dump();
+  }
+  EXPECT_EQ(rows, 7);  // 1:1 to 1:10^6
+  rows = 0;
+  for (const auto& s : p.summary.at("speed")) {
+    if (s.at("integrator") != "symplectic-euler") continue;
+    ++rows;
+    EXPECT_EQ(s.at("pair_failed"), "") << s.dump();
+    EXPECT_TRUE(s.at("pair_order_kept").get<bool>()) << s.dump();  // tunnelling: never
+    EXPECT_TRUE(s.at("pair_inside").get<bool>()) << s.dump();
+    EXPECT_GE(s.at("pair_ball_collisions").get<long>(), 1) << s.dump();
+    if (s.at("gas_failed") == "") {
+      EXPECT_EQ(s.at("gas_outside").get<long>(), 0) << s.dump();
+    }
+  }
+  EXPECT_EQ(rows, 5);  // 1 to 10^4 radii per step
+}
+
+TEST(StressPages, ClothPage) {
+  TempDir dir;
+  const Page p = make_page(dir, "cloth");
+  expect_page(p, {"sticks"});
+  EXPECT_EQ(p.summary.at("sticks").size(), 14u);  // two variants × seven ratios
+  for (const auto& s : p.summary.at("sticks"))
+    if (s.at("ratio").get<double>() == 1) {
+      EXPECT_LT(s.at("max_stick_error").get<double>(), 0.01) << s.dump();  // scene-format.md: within 1 %
+    }
+}
+
+// ---- bad input -------------------------------------------------------------------------------
+
+TEST(StressErrors, BadInputIsOneLineAndExitTwo) {
+  TempDir dir;
+  const std::vector<std::vector<std::string>> cases = {
+      {"stress", "lorenz", "--out", (dir / "a").string()},
+      {"stress", "oscillator", "--integrators", "rk5", "--out", (dir / "b").string()},
+      {"stress", "oscillator", "--energy-factor", "0.5", "--out", (dir / "c").string()},
+      {"stress", "oscillator", "--out", dir.path().string()},  // exists
+      {"stress", "oscillator", "--steps", "10"},
+      {"stress", "ball_gas", "--integrators", "rk4", "--out", (dir / "d").string()},
+  };
+  for (const auto& args : cases) {
+    const Result r = run_motus(dir, args);
+    EXPECT_EQ(r.status, 2) << args[1] << " " << (args.size() > 2 ? args[2] : "") << ": " << r.err;
+    EXPECT_EQ(count_lines(r.err), 1) << r.err;
+    EXPECT_EQ(r.err.rfind("motus: error: ", 0), 0u) << r.err;
+  }
+  EXPECT_FALSE(fs::exists(dir / "a"));
+  EXPECT_FALSE(fs::exists(dir / "d"));
+}
+
+// Ctrl-C while the page is being drawn (a stand-in gnuplot that waits): exit 130, and no folder,
+// neither the page nor its partial one (cli/cli_common.hpp, PartialFolder).
+TEST(StressErrors, AnInterruptedStressExits130AndLeavesNoFolder) {
+  TempDir dir;
+  const fs::path out = dir / "page", bin = dir / "bin";
+  fs::create_directories(bin);
+  write_file(bin / "gnuplot", "#!/bin/sh\ntouch \"$PWD/plotting-started\"\nexec sleep 30\n");
+  fs::permissions(bin / "gnuplot", fs::perms::owner_all);
+  posix_spawnattr_t attributes;
+  posix_spawnattr_init(&attributes);
+  posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETPGROUP);  // its own group, as a shell job is
+  posix_spawnattr_setpgroup(&attributes, 0);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, 1, (dir / "out.txt").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_addopen(&actions, 2, (dir / "err.txt").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  std::vector<std::string> args = {kMotus, "stress", "oscillator", "--out", out.string(), "--steps", "1000", "--drift-steps", "1000"};
+  std::vector<char*> argv;
+  for (auto& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  std::vector<std::string> env_strings = {"PATH=" + bin.string() + ":/usr/bin:/bin"};
+  for (char** e = environ; *e; ++e)
+    if (std::string(*e).rfind("PATH=", 0) != 0) env_strings.push_back(*e);
+  std::vector<char*> envp;
+  for (auto& e : env_strings) envp.push_back(e.data());
+  envp.push_back(nullptr);
+  pid_t pid = 0;
+  ASSERT_EQ(posix_spawn(&pid, kMotus.c_str(), &actions, &attributes, argv.data(), envp.data()), 0);
+  posix_spawn_file_actions_destroy(&actions);
+  posix_spawnattr_destroy(&attributes);
+  bool plotting = false;
+  for (int i = 0; i < 4000 && !plotting; ++i) {
+    for (const auto& e : fs::directory_iterator(dir.path()))
+      if (fs::exists(e.path() / "plotting-started")) plotting = true;
+    if (!plotting) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  ASSERT_TRUE(plotting) << read_file(dir / "err.txt");
+  ::kill(-pid, SIGINT);  // Ctrl-C: the whole foreground group, motus and its plotting program
+  int raw = 0;
+  waitpid(pid, &raw, 0);
+  EXPECT_TRUE(WIFEXITED(raw) && WEXITSTATUS(raw) == 130) << read_file(dir / "err.txt");
+  EXPECT_FALSE(fs::exists(out));
+  for (const auto& e : fs::directory_iterator(dir.path()))
+    EXPECT_TRUE(e.path().filename() == "bin" || e.path().filename() == "out.txt" || e.path().filename() == "err.txt")
+        << "left behind: " << e.path();
+}
+
+}  // namespace
