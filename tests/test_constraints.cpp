@@ -242,6 +242,21 @@ TEST(Projection, OverlappingBallsSeparateMassWeightedThroughTheBroadPhase) {
   EXPECT_LE(p.broad_phase_queries(), 3 * 9);
 }
 
+TEST(Projection, BallsFlungFarBeyondAnyCellStillSeparate) {
+  // Balls 0 and 1 at x = 1e12 (10¹² / 1.5 cells out: past the hash's ±1e6 cells, where the cell
+  // index is clamped rather than cast out of range) overlap by 0.5; ball 2 at −1e300 (past int64's
+  // range as a cell index) touches nobody. The clamped cells still bring the overlapping pair
+  // together: equal masses each take half of the overlap, exactly as near the origin (to the
+  // spacing of doubles at 1e12, 1.2e-4).
+  motus::ConstraintProjection p(2, Vector::Ones(3), {0.5, 0.5, 0.5}, {}, {}, {}, 1);
+  Vector x(6);
+  x << 1e12, 0, 1e12 + 0.5, 0, -1e300, 0;
+  p.project(x);
+  EXPECT_NEAR(x[0], 1e12 - 0.25, 2e-4);
+  EXPECT_NEAR(x[2], 1e12 + 0.75, 2e-4);
+  EXPECT_EQ(x[4], -1e300);
+}
+
 TEST(Projection, OneBallNeedsNoBroadPhase) {
   motus::Colliders walls;
   walls.planes.push_back({{0, 1, 0}, 0, 1});

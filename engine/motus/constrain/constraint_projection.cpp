@@ -36,6 +36,10 @@ constexpr int kShortestSolvedChain = 2;
 // A chain is exact when no stick is off its length by more than this fraction.
 constexpr double kChainTolerance = 1e-12;
 
+// Cells of the ball pairs' hash are numbered within ±this along each axis (1e6 cells: over
+// 100 km for the shipped ragdoll's balls), so that a neighbour's index, ±1, never overflows.
+constexpr double kFarthestCell = 1e6;
+
 // The classic spatial-hash primes (Teschner et al., "Optimized Spatial Hashing for
 // Collision Detection of Deformable Objects", 2003).
 std::uint64_t hash_cell(const std::array<std::int64_t, 3>& c) {
@@ -358,7 +362,14 @@ void ConstraintProjection::find_ball_pairs(ConstVectorRef x) {
   const auto buckets = static_cast<std::uint64_t>(bucket_start_.size() - 1);
   auto cell_of = [&](int i) {
     std::array<std::int64_t, 3> c{0, 0, 0};
-    for (int k = 0; k < d_; ++k) c[k] = static_cast<std::int64_t>(std::floor(x[i * d_ + k] / cell));
+    for (int k = 0; k < d_; ++k) {
+      // Clamped as a double before the cast (a cast of a double beyond int64's range, or of
+      // NaN, is undefined behaviour): a ball flung farther than kFarthestCell cells shares the
+      // edge cell with any other out there, which only makes them candidates the exact
+      // distance test then looks at; NaN (a position no step should make) goes to cell 0.
+      const double cell_index = std::floor(x[i * d_ + k] / cell);
+      c[k] = std::isnan(cell_index) ? 0 : static_cast<std::int64_t>(std::clamp(cell_index, -kFarthestCell, kFarthestCell));
+    }
     return c;
   };
 
