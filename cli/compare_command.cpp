@@ -69,9 +69,9 @@ CLI::App* add_compare_command(CLI::App& app, CompareOptions& o) {
   c->add_option("--samples", o.samples, "Metric samples over the run")->check(CLI::Range(2L, 100000L));
   c->add_option("--repeats", o.repeats,
                 "Timing rounds: every engine runs the scene again this many times, taking turns; the time per step "
-                "is the fastest round's CPU time, with the median and the spread beside it")
-      ->check(CLI::Range(1, 100))
-      ->capture_default_str();
+                "is the fastest round's CPU time, with the median and the spread beside it (default: 5, or as many "
+                "as fit in about 3 s when one round takes longer)")
+      ->check(CLI::Range(1, 100));
   c->add_flag("--json", o.json, "Print the summary as one JSON object instead of the table");
   c->add_flag("--render", o.render,
               "Also draw the same instants of every engine side by side: PNG frames, an MP4 (ffmpeg) and a contact "
@@ -174,7 +174,9 @@ int compare_command(const CompareOptions& o) {
   context.samples = options.samples;
   context.dimensions = scene.mechanical->dimensions;
   context.bodies = static_cast<long>(scene.mechanical->bodies.size());
-  context.repeats = options.repeats;
+  // The rounds run (the default's number is decided by how long the metrics runs took).
+  for (const auto& run : runs)
+    if (run.supported) context.repeats = std::max(context.repeats, static_cast<int>(run.round_seconds.size()));
   const auto conserved = compare::conserved_quantities(scene);
   context.momentum_conserved = conserved.momentum;
   context.angular_momentum_conserved = conserved.angular_momentum;
@@ -239,7 +241,7 @@ int compare_command(const CompareOptions& o) {
     const char* distance_key = exact_known ? "max_distance_from_exact" : "max_distance_from_motus";
     fmt::print("us/step: CPU time per step, the fastest of {} rounds (engines taking turns), the median beside it; "
                "spread = (slowest - fastest) / fastest\n\n",
-               options.repeats);
+               context.repeats);
     fmt::print("{:<8}{:>13}{:>13}{:>13}{:>13}{:>13}{:>13}{:>11}{:>11}{:>8}{:>12}\n", "engine", "energy drift",
                "max |dE|/E0", "momentum", "penetration", "constraint", exact_known ? "from exact" : "from motus",
                "us/step", "median", "spread", "time/motus");

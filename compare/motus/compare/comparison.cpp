@@ -80,9 +80,10 @@ std::vector<EngineRun> run_comparison(const SceneDescription& scene, const Compa
   std::stable_partition(order.begin(), order.end(), [](const std::string& e) { return e == "motus"; });
   std::vector<Snapshot> reference;
   std::vector<EngineRun> runs;
-  const int repeats = std::max(0, options.repeats);
+  // Until the metrics runs say how long a round takes, the progress counts on kMostRounds (auto).
+  int repeats = options.repeats > 0 ? options.repeats : kMostRounds;
   // (in double: no overflow)
-  const double total_steps = static_cast<double>(steps) * static_cast<double>(order.size()) * (1.0 + repeats);
+  double total_steps = static_cast<double>(steps) * static_cast<double>(order.size()) * (1.0 + repeats);
   double done = 0;
   auto make = [&](const std::string& name) -> std::unique_ptr<Backend> {
     const bool plugin = options.plugin && name == options.plugin->name;
@@ -111,7 +112,7 @@ std::vector<EngineRun> run_comparison(const SceneDescription& scene, const Compa
       for (const auto& element : e.elements()) run.unsupported.push_back("not supported by " + name + ": " + element);
       runs.push_back(run);
       metrics_seconds.push_back(0);
-      done += static_cast<double>(steps) * (1.0 + repeats);
+      done += static_cast<double>(steps);
       continue;
     }
     run.settings = backend->settings();
@@ -163,6 +164,7 @@ std::vector<EngineRun> run_comparison(const SceneDescription& scene, const Compa
   std::vector<size_t> timed;
   for (size_t e = 0; e < runs.size(); ++e)
     if (runs[e].supported) timed.push_back(e);
+  total_steps = done + static_cast<double>(steps) * static_cast<double>(timed.size()) * repeats;
   for (int round = 0; round < repeats; ++round) {
     for (size_t turn = 0; turn < timed.size(); ++turn) {
       const size_t e = timed[(turn + static_cast<size_t>(round)) % timed.size()];
@@ -184,6 +186,12 @@ std::vector<EngineRun> run_comparison(const SceneDescription& scene, const Compa
       }
       run.round_seconds.push_back(seconds);
       done += static_cast<double>(steps);
+    }
+    if (round == 0 && options.repeats <= 0) {  // the default: as many rounds as fit (timing.hpp)
+      double first_round = 0;
+      for (size_t e : timed) first_round += runs[e].round_seconds.front();
+      repeats = auto_rounds(first_round);
+      total_steps = done + static_cast<double>(steps) * static_cast<double>(timed.size()) * (repeats - 1);
     }
   }
   return runs;

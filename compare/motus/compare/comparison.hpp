@@ -56,14 +56,15 @@ struct ComparisonOptions {
   double duration = 1;
   long samples = 200;  // metric rows over the run (at most one per step)
   long frame_every = 0;  // keep the state every this many steps, and the last, for pictures (0: none)
-  int repeats = 5;       // timing rounds
+  int repeats = 0;       // timing rounds; 0: auto_rounds (5, fewer for a long scene)
 };
 
 // First every engine runs the scene once with its metrics sampled (untimed): the rows, frames,
 // settings and notes. Then `repeats` timing rounds: in each, every engine builds the scene
 // afresh and runs all its steps with nothing else in between, timed as one block of CPU time;
 // the engines take turns within a round (the round's first engine rotates), so that whatever
-// else the machine is doing falls on all of them alike.
+// else the machine is doing falls on all of them alike. With repeats 0 (the default) the first
+// round's time decides how many there are (auto_rounds, timing.hpp: 5 for a small scene).
 // progress(fraction of all engines' steps done) is called now and then.
 std::vector<EngineRun> run_comparison(const SceneDescription& scene, const ComparisonOptions& options,
                                       const std::function<void(double)>& progress = {});

@@ -5,6 +5,7 @@
 // minimum (the run least disturbed by everything else on the machine) with the median and the
 // largest beside it (how much the rounds disagreed).
 #include <algorithm>
+#include <cmath>
 #include <ctime>
 #include <vector>
 
@@ -35,6 +36,16 @@ inline Timings summarize(std::vector<double> rounds) {
   t.max = rounds.back();
   t.median = n % 2 ? rounds[n / 2] : 0.5 * (rounds[n / 2 - 1] + rounds[n / 2]);
   return t;
+}
+
+// The default number of timing rounds: kMostRounds, or as many as fit in kAutoRoundsBudget CPU
+// seconds when one round (every engine once) takes `seconds_per_round` — at least one. A small
+// scene gets all five and stays well under a second; the cloth's compare (about 1.5 s a round) two.
+constexpr int kMostRounds = 5;
+constexpr double kAutoRoundsBudget = 3.0;
+inline int auto_rounds(double seconds_per_round) {
+  if (!(seconds_per_round > 0)) return kMostRounds;
+  return static_cast<int>(std::clamp(std::floor(kAutoRoundsBudget / seconds_per_round), 1.0, double(kMostRounds)));
 }
 
 }  // namespace motus::compare
