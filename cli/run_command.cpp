@@ -155,7 +155,7 @@ CLI::App* add_run_command(CLI::App& app, RunOptions& o) {
   run->add_option("--repeats", o.repeats,
                   "Run the scene this many times from its start; the time per step is the fastest run's CPU time, "
                   "with the median beside it (the first run is the one reported; default: 5, or as many as fit in "
-                  "about 3 s when one run takes longer)")
+                  "about 1 s when one run takes longer)")
       ->check(CLI::Range(1, 100));
   add_plugin_option(run, o.plugins);
   return run;
@@ -248,7 +248,7 @@ int run_command(const RunOptions& o) {
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count();
   // The other runs: the same scene from its start with the same bookkeeping after every step
   // (the largest stick error, the finiteness check), only the trajectory is not written again.
-  const int rounds = o.repeats > 0 ? o.repeats : compare::auto_rounds(round_seconds.front());
+  const int rounds = o.repeats > 0 ? o.repeats : compare::auto_rounds(round_seconds.front(), compare::kRunBudget);
   if (rounds > 1) progress.phase("timing", duration, rounds * duration);
   for (int round = 1; round < rounds && sim.state().allFinite(); ++round) {
     Simulation again(scene, method, plugins().parts());

@@ -190,7 +190,7 @@ std::vector<EngineRun> run_comparison(const SceneDescription& scene, const Compa
     if (round == 0 && options.repeats <= 0) {  // the default: as many rounds as fit (timing.hpp)
       double first_round = 0;
       for (size_t e : timed) first_round += runs[e].round_seconds.front();
-      repeats = auto_rounds(first_round);
+      repeats = auto_rounds(first_round, kCompareBudget);
       total_steps = done + static_cast<double>(steps) * static_cast<double>(timed.size()) * (repeats - 1);
     }
   }

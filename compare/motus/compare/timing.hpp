@@ -38,14 +38,17 @@ inline Timings summarize(std::vector<double> rounds) {
   return t;
 }
 
-// The default number of timing rounds: kMostRounds, or as many as fit in kAutoRoundsBudget CPU
-// seconds when one round (every engine once) takes `seconds_per_round` — at least one. A small
-// scene gets all five and stays well under a second; the cloth's compare (about 1.5 s a round) two.
+// The default number of timing rounds: kMostRounds, or as many as fit in `budget` CPU seconds
+// when one round takes `seconds_per_round` — at least one. `motus compare` gives a round (every
+// engine once) kCompareBudget: a small scene gets all five and stays well under a second, the
+// cloth (about 1.5 s a round) two; `motus run` gives its runs kRunBudget, so that a run of a
+// quarter of a second is not made to take more than a second.
 constexpr int kMostRounds = 5;
-constexpr double kAutoRoundsBudget = 3.0;
-inline int auto_rounds(double seconds_per_round) {
+constexpr double kCompareBudget = 3.0;
+constexpr double kRunBudget = 1.0;
+inline int auto_rounds(double seconds_per_round, double budget) {
   if (!(seconds_per_round > 0)) return kMostRounds;
-  return static_cast<int>(std::clamp(std::floor(kAutoRoundsBudget / seconds_per_round), 1.0, double(kMostRounds)));
+  return static_cast<int>(std::clamp(std::floor(budget / seconds_per_round), 1.0, double(kMostRounds)));
 }
 
 }  // namespace motus::compare
