@@ -2,78 +2,70 @@
 
 #include <fmt/format.h>
 
-#include <chrono>
 #include <cmath>
 #include <ctime>
 #include <filesystem>
 #include <fstream>
 
 #include "cli_common.hpp"
+#include "interrupt.hpp"
 #include "motus/exact/exact_solution.hpp"
+#include "motus/precision/engine_peers.hpp"
+#include "motus/precision/motus_sweep.hpp"
+#include "motus/precision/odeint_peer.hpp"
+#include "motus/precision/precision_report.hpp"
+#include "motus/precision/targets.hpp"
+#include "motus/scene_file/scene_file.hpp"
 #include "motus/simulation.hpp"
 #include "progress_bar.hpp"
-#include "motus/scene_file/scene_file.hpp"
+
+namespace fs = std::filesystem;
 
 namespace motus::cli {
 namespace {
 
-struct Measurement {
-  std::string integrator;
-  double h_or_tolerance = 0;
-  long steps = 0, evaluations = 0;
-  double error = 0;  // max over the state of |y − y_exact| at the final time
-  double t_end = 0;  // where the run ended (a fixed step may pass the requested end)
-  double seconds = 0;
-};
+const std::vector<std::string> kPeers = {"odeint", "box2d", "bullet"};
 
-Measurement measure(const SceneDescription& scene, const Method& method, double dt, Tolerance tol, double end,
-                    int repeats) {
-  Measurement m;
-  m.integrator = method.name();
-  m.seconds = INFINITY;
-  for (int r = 0; r < repeats; ++r) {
-    Simulation sim(scene, method);
-    const auto began = std::chrono::steady_clock::now();
-    sim.advance(end, dt, tol);
-    m.seconds = std::min(m.seconds, std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count());
-    if (r == 0) {
-      const auto exact = exact_state(scene, sim.time());
-      if (!exact) throw InputError(fmt::format("{}: no reference state at t = {:g}", scene.name, sim.time()));
-      m.error = (sim.state() - *exact).cwiseAbs().maxCoeff();
-      if (!std::isfinite(m.error)) m.error = INFINITY;
-      m.steps = sim.steps();
-      m.t_end = sim.time();
-      m.evaluations = sim.evaluations();
-    }
-  }
-  return m;
-}
-
-std::string default_csv_path(const std::string& scene_name) {
-  std::filesystem::create_directories("runs");
+// A new folder under runs/, never one that exists.
+std::string new_run_folder(const std::string& scene_name) {
   const std::time_t now = std::time(nullptr);
   char stamp[32];
   std::strftime(stamp, sizeof stamp, "%Y%m%d-%H%M%S", std::localtime(&now));
   const std::string name = safe_file_name(scene_name);  // a name is not a path
-  std::string path = fmt::format("runs/precision-{}-{}.csv", name, stamp);
-  for (int i = 2; std::filesystem::exists(path); ++i) path = fmt::format("runs/precision-{}-{}-{}.csv", name, stamp, i);
+  std::string path = fmt::format("runs/precision-{}-{}", name, stamp);
+  for (int i = 2; fs::exists(path); ++i) path = fmt::format("runs/precision-{}-{}-{}", name, stamp, i);
   return path;
+}
+
+std::string microseconds(const std::optional<precision::Fastest>& f) {
+  if (!f) return "-";
+  return fmt::format("{}{:.3g} ({:.3g})", f->at.upper_bound ? "<=" : "", 1e6 * f->at.seconds, 1e6 * f->at.median_seconds);
 }
 
 }  // namespace
 
 CLI::App* add_bench_precision_command(CLI::App& bench, BenchPrecisionOptions& o) {
-  auto* p = bench.add_subcommand("precision", "Run time against error: sweep each integrator's step or tolerance "
-                                              "and measure the final-time error against the scene's exact solution");
+  auto* p = bench.add_subcommand("precision", "Run time against error: sweep each integrator's step or tolerance, "
+                                              "measure the final-time error against the scene's exact solution, and "
+                                              "draw the work-precision diagrams into a run folder");
   p->add_option("scene", o.scene, "A scene with an exact or reference solution (spring, oscillator, kepler, pendulum, lorenz, ...)")
       ->required();
   p->add_option("--integrators", o.integrators, "Comma-separated integrators (default: every one that can run the scene)")
       ->delimiter(',');
-  p->add_option("--levels", o.levels, "Steps halved (or tolerances divided by 10) this many times")->check(CLI::Range(1, 20));
-  p->add_option("--repeats", o.repeats, "Runs per point; the fastest counts")->check(CLI::Range(1, 100));
+  p->add_option("--peers", o.peers, "Comma-separated peers on the same problem: odeint (Boost.Odeint's steppers on the "
+                                    "same right-hand side), box2d, bullet (mechanical scenes, dt = 1/30 ... 1/960)")
+      ->delimiter(',');
+  p->add_option("--levels", o.levels, "Fixed-step methods: h = dt / 2^k for k = 0 ... N-1")->check(CLI::Range(1, 20));
+  p->add_option("--per-decade", o.per_decade, "Adaptive methods: tolerances 1e-3 ... 1e-13, this many per decade")
+      ->check(CLI::Range(1, 10));
+  p->add_option("--repeats", o.repeats, "Timed runs per point, after one untimed run; the fastest counts")
+      ->check(CLI::Range(1, 100));
+  p->add_option("--targets", o.targets, "Comma-separated target errors to read every curve at (default 1e-4 ... 1e-10)")
+      ->delimiter(',');
   p->add_option("--duration", o.duration, "End time (default: the scene's; for reference states, the last one within it)");
   p->add_option("--set", o.sets, "Override a scene field (repeatable)")->type_name("PATH=VALUE");
-  p->add_option("--csv", o.csv, "Write the table here (default: a new file under runs/)");
+  p->add_option("--out", o.out, "The run folder (default: a new folder under runs/); must not exist yet");
+  p->add_option("--csv", o.csv, "Also write the table (precision.csv) here");
   p->add_flag("--overwrite", o.overwrite, "Allow --csv to replace an existing file");
   add_plugin_option(p, o.plugins);
   return p;
@@ -85,9 +77,16 @@ int bench_precision_command(const BenchPrecisionOptions& o) {
   load_plugins(o.plugins);
   if (!has_exact_solution(scene))
     throw InputError(path + ": declares no \"exact\" solution or \"reference\" states to measure error against");
+  if (o.duration && !(*o.duration > 0 && std::isfinite(*o.duration)))
+    throw InputError("--duration: must be a finite number > 0");
+  for (double target : o.targets)
+    if (!(target > 0 && std::isfinite(target))) throw InputError("--targets: every target error must be a finite number > 0");
+  for (const auto& peer : o.peers)
+    if (std::find(kPeers.begin(), kPeers.end(), peer) == kPeers.end())
+      throw InputError("--peers: unknown peer \"" + peer + "\" (known: odeint, box2d, bullet)");
 
   double end = scene.start_time + o.duration.value_or(scene.duration);
-  if (const auto last = last_reference_time(scene)) {
+  if (last_reference_time(scene)) {
     // Only the reference times are known: use the last one within the duration.
     double best = -INFINITY;
     for (const auto& r : scene.reference)
@@ -107,42 +106,120 @@ int bench_precision_command(const BenchPrecisionOptions& o) {
       else throw InputError("--integrators: unknown integrator \"" + name + "\" (known: " + known_integrators() + ")");
     }
   }
+  auto wants = [&](const std::string& peer) { return std::find(o.peers.begin(), o.peers.end(), peer) != o.peers.end(); };
 
-  const std::string csv_path = o.csv.empty() ? default_csv_path(scene.name) : o.csv;
-  if (!o.csv.empty()) check_can_write(csv_path, o.overwrite);
-  std::ofstream csv(csv_path);
-  if (!csv) throw InputError(csv_path + ": cannot be written");
-  csv << "scene,integrator,h,tolerance,steps,evaluations,t_end,error,seconds\n";
+  // Everything that can be refused is refused before anything runs.
+  if (!o.csv.empty()) check_can_write(o.csv, o.overwrite);
+  const std::string folder = o.out.empty() ? new_run_folder(scene.name) : o.out;
+  if (fs::exists(folder)) throw InputError(folder + ": already exists; bench precision never overwrites a run (choose another --out)");
+  PartialFolder partial(folder);
 
-  fmt::print("run time against error: {} to t = {:g}; error = max |y - y_exact| over the state at the end;\n"
-             "seconds = fastest of {} runs\n\n",
-             scene.name, end, o.repeats);
-  fmt::print("{:<20}{:>12}{:>12}{:>14}{:>14}{:>14}\n", "integrator", "h / tol", "steps", "evaluations", "error", "seconds");
-  ProgressBar progress(0, static_cast<double>(chosen.size() * static_cast<size_t>(o.levels)), "bench precision", 1);
+  precision::Sweep sweep;
+  sweep.end = end;
+  sweep.dt = scene.dt;
+  sweep.levels = o.levels;
+  sweep.per_decade = o.per_decade;
+  sweep.repeats = o.repeats;
+  const double fixed_points = o.levels, adaptive_points = 10.0 * o.per_decade + 1;
+  double total = 0;
+  for (const Method& m : chosen) total += m.adaptive() ? adaptive_points : fixed_points;
+  if (wants("odeint")) total += 2 * fixed_points + 2 * adaptive_points;
+  for (const char* engine : {"box2d", "bullet"}) total += wants(engine) ? 6 : 0;
+  ProgressBar progress(0, total, "bench precision", 1);
   double done = 0;
-  for (const Method& method : chosen) {
-    const std::string name = method.name();
-    const bool adaptive = method.adaptive();
-    if (method.needs_mechanical() && !scene.is_mechanical()) {
-      fmt::print("{:<20}  cannot run this scene: symplectic, needs a mechanical scene (bodies)\n", name);
-      done += o.levels;
+  sweep.point_done = [&] {
+    progress.update(++done);
+    stop_if_interrupted();
+  };
+
+  std::vector<precision::Curve> curves;
+  for (const Method& method : chosen) curves.push_back(precision::sweep_motus(scene, method, sweep));
+  std::vector<std::string> versions = {"motus " MOTUS_VERSION};
+  if (wants("odeint")) {
+    for (auto& c : precision::sweep_odeint(scene, sweep)) curves.push_back(std::move(c));
+    versions.push_back(precision::odeint_version());
+  }
+  for (const char* engine : {"box2d", "bullet"}) {
+    if (!wants(engine)) continue;
+    if (!scene.is_mechanical()) {
+      precision::Curve c;
+      c.method = c.engine = engine;
+      c.unsupported = "a first-order system: the engines model bodies";
+      curves.push_back(c);
       continue;
     }
-    for (int level = 0; level < o.levels; ++level) {
-      const double h = adaptive ? scene.dt : scene.dt / std::ldexp(1.0, level);
-      const double tol = std::pow(10.0, -3 - level);
-      const Measurement m = measure(scene, method, h, Tolerance{tol, tol}, end, o.repeats);
-      fmt::print("{:<20}{:>12.3g}{:>12}{:>14}{:>14.3e}{:>14.3e}\n", name, adaptive ? tol : h, m.steps,
-                 m.evaluations, m.error, m.seconds);
-      csv << fmt::format("{},{},{:.17g},{},{},{},{:.17g},{:.6e},{:.6e}\n", scene.name, name, h,
-                         adaptive ? fmt::format("{:g}", tol) : "", m.steps, m.evaluations, m.t_end, m.error, m.seconds);
-      progress.update(++done);
-    }
+    curves.push_back(precision::sweep_engine(scene, engine, sweep));
+    if (!curves.back().description.empty()) versions.push_back(curves.back().description);
   }
   progress.finish();
-  csv.flush();
-  if (!csv) throw std::runtime_error(csv_path + ": could not be written (disk full?)");
-  fmt::print("\ntable written to {}\n", csv_path);
+
+  // The points, method by method.
+  fmt::print("run time against error: {} to t = {:g}; error = max |y - y_exact| over the state at the end;\n"
+             "seconds = fastest of {} timed runs (after one untimed run)\n\n",
+             scene.name, end, o.repeats);
+  fmt::print("{:<38}{:>11}{:>10}{:>13}{:>12}{:>12}\n", "integrator", "h / tol", "steps", "evaluations", "error", "seconds");
+  for (const auto& c : curves) {
+    if (!c.unsupported.empty()) {
+      fmt::print("{:<38}  cannot run this scene: {}\n", c.method, c.unsupported);
+      continue;
+    }
+    for (const auto& p : c.points) {
+      if (!p.failed.empty()) {
+        fmt::print("{:<38}{:>11.3g}  failed: {}\n", c.method, c.adaptive ? p.tolerance : p.h, one_line(p.failed, 120));
+        continue;
+      }
+      fmt::print("{:<38}{:>11.3g}{:>10}{:>13}{:>12.3e}{:>12.3e}\n", c.method, c.adaptive ? p.tolerance : p.h, p.steps,
+                 p.evaluations, p.error, p.seconds);
+    }
+  }
+
+  // The targets table: the fastest of each engine at each target, and motus's against each peer's.
+  const std::vector<double> targets = o.targets.empty() ? precision::default_targets() : o.targets;
+  std::vector<std::string> engines = {"motus"};
+  for (const auto& c : curves)
+    if (std::find(engines.begin(), engines.end(), c.engine) == engines.end()) engines.push_back(c.engine);
+  fmt::print("\ntargets: the fastest method of each engine at each target error, each curve interpolated on log-log "
+             "axes;\nus = microseconds of the fastest runs (the median runs'); <= : the cheapest point is already "
+             "below the target\n{:<8}", "target");
+  for (const auto& e : engines) fmt::print("  {:<30}{:>18}", e, "us");
+  for (size_t k = 1; k < engines.size(); ++k) fmt::print("{:>22}", "motus/" + engines[k]);
+  fmt::print("\n");
+  for (double target : targets) {
+    fmt::print("{:<8g}", target);
+    std::vector<std::optional<precision::Fastest>> best;
+    for (const auto& e : engines) {
+      best.push_back(precision::fastest(curves, e, target));
+      fmt::print("  {:<30}{:>18}", best.back() ? best.back()->method : "not reached", microseconds(best.back()));
+    }
+    for (size_t k = 1; k < engines.size(); ++k)
+      fmt::print("{:>22}", best[0] && best[k] ? fmt::format("{:.2f} ({:.2f})", best[0]->at.seconds / best[k]->at.seconds,
+                                                            best[0]->at.median_seconds / best[k]->at.median_seconds)
+                                              : "-");
+    fmt::print("\n");
+  }
+
+  precision::ReportContext context;
+  context.scene = scene.name;
+  context.file = path;
+  context.description = scene.description;
+  context.start = scene.start_time;
+  context.end = end;
+  context.sweep = sweep;
+  context.targets = targets;
+  context.versions = versions;
+  const std::string warning = precision::write_precision_report(partial.path(), context, curves);
+  if (!warning.empty()) fmt::print(stderr, "motus: {}\n", warning);
+  if (!o.csv.empty()) {
+    std::ofstream csv(o.csv, std::ios::binary);
+    if (!csv) throw InputError(o.csv + ": cannot be written");
+    csv << precision::precision_csv(scene.name, curves);
+    csv.flush();
+    if (!csv) throw std::runtime_error(o.csv + ": could not be written (disk full?)");
+    fmt::print("\ntable written to {}\n", o.csv);
+  }
+  stop_if_interrupted();
+  partial.complete();
+  fmt::print("report: {}/index.html\n", folder);
   return 0;
 }
 

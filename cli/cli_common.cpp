@@ -118,7 +118,7 @@ Method method_for(const std::string& path, const SceneDescription& scene, const 
   }
   if (method->needs_mechanical() && !scene.is_mechanical())  // the file's own integrator was checked by the loader
     throw InputError(path + ": --integrator: " + name + " is symplectic and needs a mechanical scene (bodies); " +
-                     "use euler, midpoint, rk4, rk4-doubling or rk45");
+                     "use euler, midpoint, rk4, rk4-doubling, rk45 or dop853");
   return *method;
 }
 

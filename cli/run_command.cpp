@@ -145,8 +145,8 @@ CLI::App* add_run_command(CLI::App& app, RunOptions& o) {
   run->add_option("--dt", o.dt, "Step size, s (the first step for adaptive integrators; default: the scene's)");
   auto* duration = run->add_option("--duration", o.duration, "Time to integrate, s (default: the scene's)");
   run->add_option("--steps", o.steps, "Number of steps of dt instead of a duration")->excludes(duration);
-  run->add_option("--rtol", o.rtol, "Relative tolerance of rk45 and rk4-doubling (default: the scene's)");
-  run->add_option("--atol", o.atol, "Absolute tolerance of rk45 and rk4-doubling (default: the scene's)");
+  run->add_option("--rtol", o.rtol, "Relative tolerance of rk45, dop853 and rk4-doubling (default: the scene's)");
+  run->add_option("--atol", o.atol, "Absolute tolerance of rk45, dop853 and rk4-doubling (default: the scene's)");
   run->add_option("--set", o.sets, "Override a scene field, e.g. --set bodies[0].mass=2 (repeatable)")
       ->type_name("PATH=VALUE");
   run->add_option("--trajectory", o.trajectory, "Write t, state and energies per output time to this CSV file");

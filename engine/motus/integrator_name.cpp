@@ -9,6 +9,7 @@ const std::vector<IntegratorInfo>& all_integrators() {
       {Integrator::Rk4, "rk4", 4, false, false, "classic fourth-order Runge-Kutta"},
       {Integrator::Rk4Doubling, "rk4-doubling", 5, true, false, "adaptive RK4 by step doubling, with local extrapolation"},
       {Integrator::Rk45, "rk45", 5, true, false, "Dormand-Prince 5(4), adaptive by atol/rtol"},
+      {Integrator::Dop853, "dop853", 8, true, false, "Dormand-Prince 8(5,3), adaptive by atol/rtol: the high-accuracy pair"},
       {Integrator::SymplecticEuler, "symplectic-euler", 1, false, true, "symplectic Euler, velocity first: v += a h; x += v h"},
       {Integrator::SymplecticEulerX, "symplectic-euler-x", 1, false, true, "symplectic Euler, position first: x += v h; v += a(x) h"},
       {Integrator::Verlet, "verlet", 2, false, true, "velocityless (Stormer) Verlet: x' = 2x - x_prev + a h^2"},

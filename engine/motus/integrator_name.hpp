@@ -13,6 +13,7 @@ enum class Integrator {
   Rk4,
   Rk4Doubling,
   Rk45,
+  Dop853,
   SymplecticEuler,
   SymplecticEulerX,
   Verlet,

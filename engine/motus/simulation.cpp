@@ -4,6 +4,7 @@
 #include <stdexcept>
 #include <variant>
 
+#include "motus/integrate/dop853.hpp"
 #include "motus/integrate/euler.hpp"
 #include "motus/integrate/external_stepper.hpp"
 #include "motus/integrate/midpoint.hpp"
@@ -16,14 +17,14 @@
 #include "motus/integrate/verlet.hpp"
 #include "motus/integrate/yoshida4.hpp"
 #include "motus/scene_error.hpp"
-#include "motus/systems/mechanical_as_first_order.hpp"
+#include "motus/systems/concrete_system.hpp"
 #include "motus/systems/system_catalog.hpp"
 
 namespace motus {
 
 struct Simulation::Steppers {
-  std::variant<Euler, Midpoint, Rk4, Rk4Doubling, Rk45, SymplecticEuler, SymplecticEulerX, Verlet, VelocityVerlet,
-               Yoshida4, ExternalFixedStep, ExternalAdaptiveStep, ExternalMechanicalStep>
+  std::variant<Euler, Midpoint, Rk4, Rk4Doubling, Rk45, Dop853, SymplecticEuler, SymplecticEulerX, Verlet,
+               VelocityVerlet, Yoshida4, ExternalFixedStep, ExternalAdaptiveStep, ExternalMechanicalStep>
       any;
 };
 
@@ -31,8 +32,11 @@ namespace {
 
 // The three calling shapes: step(f, t, h, y); try_step(f, t, h, y); step(s, t, h, x, v).
 template <class T>
-constexpr bool is_adaptive =
-    std::is_same_v<T, Rk4Doubling> || std::is_same_v<T, Rk45> || std::is_same_v<T, ExternalAdaptiveStep>;
+constexpr bool is_adaptive = std::is_same_v<T, Rk4Doubling> || std::is_same_v<T, Rk45> || std::is_same_v<T, Dop853> ||
+                              std::is_same_v<T, ExternalAdaptiveStep>;
+template <class T>
+constexpr bool is_external = std::is_same_v<T, ExternalFixedStep> || std::is_same_v<T, ExternalAdaptiveStep> ||
+                              std::is_same_v<T, ExternalMechanicalStep>;
 template <class T>
 constexpr bool is_symplectic = std::is_same_v<T, SymplecticEuler> || std::is_same_v<T, SymplecticEulerX> ||
                                std::is_same_v<T, Verlet> || std::is_same_v<T, VelocityVerlet> ||
@@ -87,7 +91,7 @@ Simulation::Simulation(const SceneDescription& scene, Method method, ExternalPar
     throw SceneError("integrator", method_.name() +
                                        " is symplectic: it needs a mechanical scene (bodies), and this scene is the "
                                        "first-order system \"" + scene.first_order->type +
-                                       "\"; use euler, midpoint, rk4, rk4-doubling or rk45");
+                                       "\"; use euler, midpoint, rk4, rk4-doubling, rk45 or dop853");
 
   auto& any = stepper_->any;
   if (method_.is_external()) {
@@ -105,6 +109,7 @@ Simulation::Simulation(const SceneDescription& scene, Method method, ExternalPar
       case Integrator::Rk4: any.emplace<Rk4>(); break;
       case Integrator::Rk4Doubling: any.emplace<Rk4Doubling>(); break;
       case Integrator::Rk45: any.emplace<Rk45>(); break;
+      case Integrator::Dop853: any.emplace<Dop853>(); break;
       case Integrator::SymplecticEuler: any.emplace<SymplecticEuler>(); break;
       case Integrator::SymplecticEulerX: any.emplace<SymplecticEulerX>(); break;
       case Integrator::Verlet: any.emplace<Verlet>(); break;
@@ -149,7 +154,7 @@ void Simulation::advance(double end_time, double dt, Tolerance tolerance,
         if (!accepted) {
           ++rejected_;
           if (adaptive_h_ < 1e-14 * std::max(1.0, std::abs(t_)))
-            throw std::runtime_error("step size underflow at t = " + std::to_string(t_) +
+            throw StepSizeUnderflow("step size underflow at t = " + std::to_string(t_) +
                                      ": the tolerance cannot be met in double precision");
           continue;
         }
@@ -186,15 +191,21 @@ void Simulation::advance(double end_time, double dt, Tolerance tolerance,
   std::visit(
       [&](auto& stepper) {
         using S = std::decay_t<decltype(stepper)>;
-        if constexpr (!is_symplectic<S>) {
+        if constexpr (is_symplectic<S>) {
+          run(stepper, world_->system());
+        } else if constexpr (is_external<S>) {  // plain functions on arrays: nothing to inline
           if (world_) {
             MechanicalAsFirstOrder as_first_order(world_->system());
             run(stepper, as_first_order);
           } else {
             run(stepper, *first_order_);
           }
+        } else if (world_) {
+          // The system by its concrete type (systems/concrete_system.hpp): direct calls, and
+          // for one body or an attractor stages of a size known at compile time.
+          with_first_order_view(world_->system(), [&](auto& f) { run(stepper, f); });
         } else {
-          run(stepper, world_->system());
+          with_concrete_system(*first_order_, [&](auto& f) { run(stepper, f); });
         }
       },
       stepper_->any);

@@ -6,6 +6,7 @@
 #include <functional>
 #include <memory>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -18,6 +19,13 @@
 #include "motus/world.hpp"
 
 namespace motus {
+
+// An adaptive integrator's step size fell below what double precision can resolve: the
+// tolerance cannot be met (advance() throws it; `motus run` exits 1).
+class StepSizeUnderflow : public std::runtime_error {
+public:
+  using std::runtime_error::runtime_error;
+};
 
 struct Energy {
   double kinetic = 0, potential = 0, total = 0;

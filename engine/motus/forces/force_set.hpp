@@ -21,8 +21,18 @@ struct ForceSet {
   std::vector<MutualGravity> mutual_gravity;
   std::vector<PendulumTorque> pendulums;
 
-  // F += every force at (t, x, v).
-  void add_forces(double t, int d, const Vector& m, ConstVectorRef x, ConstVectorRef v, VectorRef F) const;
+  // F += every force at (t, x, v). Inline, so that a caller that knows d (and, for one body,
+  // the masses' size) at compile time gets loops with known bounds. m: the masses (a Vector,
+  // or a fixed-size vector of one).
+  template <class Masses>
+  void add_forces(double /*t*/, int d, const Masses& m, ConstVectorRef x, ConstVectorRef v, VectorRef F) const {
+    for (const auto& f : gravity) f.add_forces(d, m, x, F);
+    for (const auto& f : springs) f.add_forces(d, x, v, F);
+    for (const auto& f : drag) f.add_forces(d, v, F);
+    for (const auto& f : central_gravity) f.add_forces(d, m, x, F);
+    for (const auto& f : mutual_gravity) f.add_forces(d, m, x, F);
+    for (const auto& f : pendulums) f.add_forces(d, m, x, F);
+  }
   // Total potential energy of the conservative forces (drag has none).
   double potential(int d, const Vector& m, ConstVectorRef x) const;
   bool empty() const;

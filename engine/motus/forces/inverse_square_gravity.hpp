@@ -16,12 +16,19 @@ struct CentralGravity {
   double mu = 1;
   double softening = 0;
 
-  void add_forces(int d, const Vector& m, ConstVectorRef x, VectorRef F) const {
-    const Eigen::Index first = body >= 0 ? body : 0, last = body >= 0 ? body + 1 : m.size();
-    for (Eigen::Index i = first; i < last; ++i) {
+  // Masses, X, Forces: Vectors (or Refs), or fixed-size ones (one body: the loops unroll and the
+  // numbers stay in registers).
+  template <class Masses, class X, class Forces>
+  void add_forces(int d, const Masses& m, const X& x, Forces&& F) const {
+    // Every body, or only `body`: a loop whose bound is known at compile time for one body.
+    for (Eigen::Index i = 0; i < m.size(); ++i) {
+      if (body >= 0 && i != body) continue;
       double r[3] = {0, 0, 0};
       for (int k = 0; k < d; ++k) r[k] = x[i * d + k] - centre[k];
-      const double s2 = r[0] * r[0] + r[1] * r[1] + r[2] * r[2] + softening * softening;
+      // |r|² + ε², leaving out the terms that are exactly 0 (the same sum, fewer additions).
+      double s2 = r[0] * r[0];
+      for (int k = 1; k < d; ++k) s2 += r[k] * r[k];
+      if (softening != 0) s2 += softening * softening;
       const double scale = -mu * m[i] / (s2 * std::sqrt(s2));
       for (int k = 0; k < d; ++k) F[i * d + k] += scale * r[k];
     }
@@ -42,7 +49,8 @@ struct MutualGravity {
   double G = 1;
   double softening = 0;
 
-  void add_forces(int d, const Vector& m, ConstVectorRef x, VectorRef F) const {
+  template <class Masses, class X, class Forces>  // Vectors (or Refs), or fixed-size ones for one body
+  void add_forces(int d, const Masses& m, const X& x, Forces&& F) const {
     for (Eigen::Index i = 0; i < m.size(); ++i)
       for (Eigen::Index j = i + 1; j < m.size(); ++j) {
         double r[3] = {0, 0, 0};

@@ -14,8 +14,10 @@ struct PendulumTorque {
   double g = 9.81;     // m/s²
   double length = 1;   // m
 
-  void add_forces(int d, const Vector& m, ConstVectorRef x, VectorRef F) const {
-    F[body * d] -= m[body] * (g / length) * std::sin(x[body * d]);
+  template <class Masses, class X, class Forces>  // Vectors (or Refs), or fixed-size ones for one body
+  void add_forces(int d, const Masses& m, const X& x, Forces&& F) const {
+    for (Eigen::Index i = 0; i < m.size(); ++i)  // only `body`; a loop of known bound for one body
+      if (i == body) F[i * d] -= m[i] * (g / length) * std::sin(x[i * d]);
   }
   double potential(int d, const Vector& m, ConstVectorRef x) const {
     return m[body] * (g / length) * (1 - std::cos(x[body * d]));

@@ -8,6 +8,7 @@
 // (The Runge–Kutta family is written with plain loops over i: on the course's small
 // systems they beat Eigen's vectorized expressions, which pay set-up costs on three
 // numbers — see bench/bench_integrators.cpp.)
+#include "motus/integrate/stage_vector.hpp"
 #include "motus/systems/first_order_system.hpp"
 
 namespace motus {
@@ -18,11 +19,21 @@ public:
 
   template <FirstOrder System>
   void step(System& f, double t, double h, VectorRef y) {
-    f.derivative(t, y, dydt_);
-    for (Eigen::Index i = 0; i < y.size(); ++i) y[i] += h * dydt_[i];
+    if constexpr (constexpr int N = static_size_of<System>; N == Eigen::Dynamic) {
+      step(f, t, h, y, dydt_);
+    } else {
+      StageVector<N> dydt;
+      step(f, t, h, y, dydt);
+    }
   }
 
 private:
+  template <class System, class Stage>
+  static void step(System& f, double t, double h, VectorRef y, Stage& dydt) {
+    f.derivative(t, y, dydt);
+    for (Eigen::Index i = 0; i < dydt.size(); ++i) y[i] += h * dydt[i];
+  }
+
   Vector dydt_;
 };
 

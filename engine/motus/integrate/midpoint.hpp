@@ -4,6 +4,7 @@
 //   k2 = d(x_n + ½ k1) Δt
 //   x_{n+1} = x_n + k2
 // Here k_i holds d(...) without the factor Δt, which is applied where k_i is used.
+#include "motus/integrate/stage_vector.hpp"
 #include "motus/systems/first_order_system.hpp"
 
 namespace motus {
@@ -11,22 +12,38 @@ namespace motus {
 class Midpoint {
 public:
   void resize(int n) {
-    k1_.resize(n);
-    k2_.resize(n);
-    y_mid_.resize(n);
+    stages_.k1.resize(n);
+    stages_.k2.resize(n);
+    stages_.y_mid.resize(n);
   }
 
   template <FirstOrder System>
   void step(System& f, double t, double h, VectorRef y) {
-    const Eigen::Index n = y.size();
-    f.derivative(t, y, k1_);
-    for (Eigen::Index i = 0; i < n; ++i) y_mid_[i] = y[i] + 0.5 * h * k1_[i];
-    f.derivative(t + 0.5 * h, y_mid_, k2_);
-    for (Eigen::Index i = 0; i < n; ++i) y[i] += h * k2_[i];
+    if constexpr (constexpr int N = static_size_of<System>; N == Eigen::Dynamic) {
+      step(f, t, h, y, stages_);
+    } else {
+      Stages<N> stages;
+      step(f, t, h, y, stages);
+    }
   }
 
 private:
-  Vector k1_, k2_, y_mid_;
+  template <int N>
+  struct Stages {
+    StageVector<N> k1, k2, y_mid;
+  };
+
+  template <class System, int N>
+  static void step(System& f, double t, double h, VectorRef y, Stages<N>& s) {
+    auto& [k1, k2, y_mid] = s;
+    const Eigen::Index n = k1.size();
+    f.derivative(t, y, k1);
+    for (Eigen::Index i = 0; i < n; ++i) y_mid[i] = y[i] + 0.5 * h * k1[i];
+    f.derivative(t + 0.5 * h, y_mid, k2);
+    for (Eigen::Index i = 0; i < n; ++i) y[i] += h * k2[i];
+  }
+
+  Stages<Eigen::Dynamic> stages_;
 };
 
 }  // namespace motus

@@ -6,6 +6,7 @@
 //   k4 = d(x_n + k3) Δt
 //   x_{n+1} = x_n + k1/6 + k2/3 + k3/3 + k4/6
 // Here k_i holds d(...) without the factor Δt, which is applied where k_i is used.
+#include "motus/integrate/stage_vector.hpp"
 #include "motus/systems/first_order_system.hpp"
 
 namespace motus {
@@ -13,28 +14,40 @@ namespace motus {
 class Rk4 {
 public:
   void resize(int n) {
-    k1_.resize(n);
-    k2_.resize(n);
-    k3_.resize(n);
-    k4_.resize(n);
-    y_stage_.resize(n);
+    for (Vector* v : {&stages_.k1, &stages_.k2, &stages_.k3, &stages_.k4, &stages_.y_stage}) v->resize(n);
   }
 
   template <FirstOrder System>
   void step(System& f, double t, double h, VectorRef y) {
-    const Eigen::Index n = y.size();
-    f.derivative(t, y, k1_);
-    for (Eigen::Index i = 0; i < n; ++i) y_stage_[i] = y[i] + 0.5 * h * k1_[i];
-    f.derivative(t + 0.5 * h, y_stage_, k2_);
-    for (Eigen::Index i = 0; i < n; ++i) y_stage_[i] = y[i] + 0.5 * h * k2_[i];
-    f.derivative(t + 0.5 * h, y_stage_, k3_);
-    for (Eigen::Index i = 0; i < n; ++i) y_stage_[i] = y[i] + h * k3_[i];
-    f.derivative(t + h, y_stage_, k4_);
-    for (Eigen::Index i = 0; i < n; ++i) y[i] += h / 6 * (k1_[i] + 2 * k2_[i] + 2 * k3_[i] + k4_[i]);
+    if constexpr (constexpr int N = static_size_of<System>; N == Eigen::Dynamic) {
+      step(f, t, h, y, stages_);
+    } else {
+      Stages<N> stages;
+      step(f, t, h, y, stages);
+    }
   }
 
 private:
-  Vector k1_, k2_, k3_, k4_, y_stage_;
+  template <int N>
+  struct Stages {
+    StageVector<N> k1, k2, k3, k4, y_stage;
+  };
+
+  template <class System, int N>
+  static void step(System& f, double t, double h, VectorRef y, Stages<N>& s) {
+    auto& [k1, k2, k3, k4, y_stage] = s;
+    const Eigen::Index n = k1.size();
+    f.derivative(t, y, k1);
+    for (Eigen::Index i = 0; i < n; ++i) y_stage[i] = y[i] + 0.5 * h * k1[i];
+    f.derivative(t + 0.5 * h, y_stage, k2);
+    for (Eigen::Index i = 0; i < n; ++i) y_stage[i] = y[i] + 0.5 * h * k2[i];
+    f.derivative(t + 0.5 * h, y_stage, k3);
+    for (Eigen::Index i = 0; i < n; ++i) y_stage[i] = y[i] + h * k3[i];
+    f.derivative(t + h, y_stage, k4);
+    for (Eigen::Index i = 0; i < n; ++i) y[i] += h / 6 * (k1[i] + 2 * k2[i] + 2 * k3[i] + k4[i]);
+  }
+
+  Stages<Eigen::Dynamic> stages_;
 };
 
 }  // namespace motus

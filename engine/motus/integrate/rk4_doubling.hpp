@@ -7,6 +7,7 @@
 //   y = y_half + (y_half − y_full)/15, which is fifth order;
 //   grow or shrink h by (1/err)^(1/5).
 #include "motus/integrate/rk4.hpp"
+#include "motus/integrate/stage_vector.hpp"
 #include "motus/integrate/step_size_control.hpp"
 
 namespace motus {
@@ -15,9 +16,7 @@ class Rk4Doubling {
 public:
   void resize(int n) {
     rk4_.resize(n);
-    y_full_.resize(n);
-    y_half_.resize(n);
-    difference_.resize(n);
+    for (Vector* v : {&stages_.y_full, &stages_.y_half, &stages_.difference}) v->resize(n);
   }
   void set_tolerance(Tolerance tol) { tol_ = tol; }
 
@@ -25,24 +24,41 @@ public:
   // becomes the step to try next. Returns whether the step was accepted.
   template <FirstOrder System>
   bool try_step(System& f, double& t, double& h, VectorRef y) {
-    y_full_ = y;
-    rk4_.step(f, t, h, y_full_);
-    y_half_ = y;
-    rk4_.step(f, t, 0.5 * h, y_half_);
-    rk4_.step(f, t + 0.5 * h, 0.5 * h, y_half_);
-    difference_ = (y_half_ - y_full_) / 15;
-    const double err = scaled_error(y, y_half_, difference_, tol_);
+    if constexpr (constexpr int N = static_size_of<System>; N == Eigen::Dynamic) {
+      return try_step(f, t, h, y, stages_);
+    } else {
+      Stages<N> stages;
+      return try_step(f, t, h, y, stages);
+    }
+  }
+
+private:
+  template <int N>
+  struct Stages {
+    StageVector<N> y_full, y_half, difference;
+  };
+
+  template <class System, int N>
+  bool try_step(System& f, double& t, double& h, VectorRef y, Stages<N>& s) {
+    auto& [y_full, y_half, difference] = s;
+    const Eigen::Index n = y_full.size();
+    y_full = y;
+    rk4_.step(f, t, h, y_full);
+    y_half = y;
+    rk4_.step(f, t, 0.5 * h, y_half);
+    rk4_.step(f, t + 0.5 * h, 0.5 * h, y_half);
+    for (Eigen::Index i = 0; i < n; ++i) difference[i] = (y_half[i] - y_full[i]) / 15;
+    const double err = scaled_error(y, y_half, difference, tol_);
     const double h_used = h;
     h = control_.next_step(h, err);
     if (err > 1) return false;
-    y = y_half_ + difference_;
+    for (Eigen::Index i = 0; i < n; ++i) y[i] = y_half[i] + difference[i];
     t += h_used;
     return true;
   }
 
-private:
   Rk4 rk4_;
-  Vector y_full_, y_half_, difference_;
+  Stages<Eigen::Dynamic> stages_;
   Tolerance tol_;
   StepSizeController control_{4};
 };

@@ -35,7 +35,7 @@ public:
   // The step to try next after a step of size h had scaled error err.
   double next_step(double h, double err) {
     const bool accepted = err <= 1;
-    double factor = err == 0 ? max_growth : safety * std::pow(err, exponent_);
+    double factor = err == 0 ? max_growth : safety * power_of(err);
     factor = std::clamp(factor, max_shrink, max_growth);
     if (accepted && rejected_last_) factor = std::min(factor, 1.0);
     rejected_last_ = !accepted;
@@ -47,6 +47,13 @@ public:
   double max_growth = 5.0;  // fac_max
 
 private:
+  // err^exponent; err^(−1/8) (dop853) as three square roots, the same to rounding and cheaper
+  // than pow, which otherwise costs a tenth of a dop853 step on a small system.
+  double power_of(double err) const {
+    if (exponent_ == -1.0 / 8) return 1 / std::sqrt(std::sqrt(std::sqrt(err)));
+    return std::pow(err, exponent_);
+  }
+
   double exponent_;
   bool rejected_last_ = false;
 };

@@ -10,7 +10,8 @@ namespace motus {
 
 class ThreeVariableSystem : public FirstOrderSystem {
 public:
-  int size() const final { return 3; }
+  static constexpr int static_size = 3;
+  int size() const final { return static_size; }
   std::vector<std::string> variable_names() const final { return {"x", "y", "z"}; }
 };
 

@@ -36,4 +36,14 @@ concept FirstOrder = requires(S& s, double t, const Vector& y, Vector& dydt) {
   s.derivative(t, y, dydt);
 };
 
+// A system that knows its number of variables at compile time says so with
+// `static constexpr int static_size` (the attractors: 3; one body in d dimensions: 2d). An
+// integrator then keeps its stages in fixed-size arrays on the stack, which the compiler holds
+// in registers, instead of Vectors sized once by resize(); Eigen::Dynamic when it does not.
+template <class S>
+inline constexpr int static_size_of = Eigen::Dynamic;
+template <class S>
+  requires requires { S::static_size; }
+inline constexpr int static_size_of<S> = S::static_size;
+
 }  // namespace motus

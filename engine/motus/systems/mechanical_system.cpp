@@ -15,6 +15,7 @@ MechanicalSystem::MechanicalSystem(int dimensions, std::vector<double> masses, F
   inverse_mass_ = mass_.cwiseInverse();
   coordinate_inverse_mass_.resize(static_cast<Eigen::Index>(masses.size()) * d_);
   for (Eigen::Index i = 0; i < mass_.size(); ++i) coordinate_inverse_mass_.segment(i * d_, d_).setConstant(inverse_mass_[i]);
+  one_mass_[0] = mass_.size() > 0 ? mass_[0] : 1.0;
 }
 
 void MechanicalSystem::acceleration(double t, ConstVectorRef x, ConstVectorRef v, VectorRef a) {

@@ -100,12 +100,14 @@ std::string draw(const std::vector<Figure>& figures, const std::string& folder) 
                      quoted(s.name + (f.y_scale == Scale::log ? ": exactly 0 throughout" : ": no finite point"));
         continue;
       }
+      const std::string pt = std::to_string(s.point_type);
       plot_line += (k ? ", " : "plot ") + quoted("figures.dat") + " index " + std::to_string(blocks[k]) + " using 1:2 with " +
-                   (s.style == "points" ? "points pt 7 ps 0.8" : s.style == "linespoints" ? "linespoints pt 7 ps 0.6 lw 1.5"
-                                                                                          : "lines lw 1.8") +
-                   colour + " title " + quoted(s.name);
+                   (s.style == "points"        ? "points pt " + pt + " ps 0.8"
+                    : s.style == "linespoints" ? "linespoints pt " + pt + " ps 0.6 lw 1.5"
+                                               : std::string("lines lw 1.8")) +
+                   (s.dashed ? " dt 2" : "") + colour + " title " + quoted(s.name);
     }
-    gp << "set autoscale\nunset label 2\n";
+    gp << "set autoscale\nunset label 2\nset key " << f.key << " Left reverse box opaque\n";
     // The whole run on the x axis, also where a line has gaps (exact values on a log axis).
     if (x_high > x_low && f.x_scale == Scale::linear)
       gp << "set xrange [" << number(x_low) << ":" << number(x_high) << "]\n";

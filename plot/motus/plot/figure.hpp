@@ -17,6 +17,8 @@ struct Series {
   std::string name;             // the legend's entry
   std::vector<double> x, y;     // points that are not finite (or ≤ 0 on a log axis) leave a gap
   std::string style = "lines";  // "lines", "linespoints" or "points"
+  bool dashed = false;          // a dashed line (a peer beside motus's own, say)
+  int point_type = 7;           // gnuplot's point type for "linespoints" and "points" (7: a disc)
 };
 
 struct Figure {
@@ -26,6 +28,7 @@ struct Figure {
   double symlog_threshold = 1e-16;  // where a symlog axis turns linear
   std::vector<Series> series;
   std::string note;  // a line under the title (what to look at), or ""
+  std::string key = "top left";  // where the legend goes (gnuplot's words: "top right", "outside right top")
   int width = 900, height = 480;
 };
 

@@ -321,7 +321,7 @@ SceneDescription read_scene(const nlohmann::json& document, const std::string& s
   const auto id = integrator_from_name(scene.integrator);
   if (!id) f.fail("integrator", "unknown integrator \"" + scene.integrator + "\" (known: " + integrator_names() + ")");
   if (info(*id).needs_mechanical && !scene.mechanical)
-    f.fail("integrator", scene.integrator + " is symplectic and needs a mechanical scene (bodies); use euler, midpoint, rk4, rk4-doubling or rk45");
+    f.fail("integrator", scene.integrator + " is symplectic and needs a mechanical scene (bodies); use euler, midpoint, rk4, rk4-doubling, rk45 or dop853");
   scene.dt = f.positive("dt");
   scene.duration = f.positive("duration");
   scene.start_time = f.number("start_time", 0);

@@ -1,0 +1,105 @@
+#include "motus/precision/motus_sweep.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "motus/exact/exact_solution.hpp"
+#include "motus/precision/run_times.hpp"
+#include "motus/scene_error.hpp"
+#include "motus/simulation.hpp"
+
+namespace motus::precision {
+
+std::vector<double> fixed_steps(const Sweep& sweep) {
+  std::vector<double> h;
+  for (int k = 0; k < sweep.levels; ++k) h.push_back(sweep.dt / std::ldexp(1.0, k));
+  return h;
+}
+
+std::vector<double> tolerances(const Sweep& sweep) {
+  std::vector<double> tol;
+  for (int j = 0; j <= 10 * sweep.per_decade; ++j) tol.push_back(std::pow(10.0, -3.0 - static_cast<double>(j) / sweep.per_decade));
+  return tol;
+}
+
+std::vector<double> engine_steps() { return {1.0 / 30, 1.0 / 60, 1.0 / 120, 1.0 / 240, 1.0 / 480, 1.0 / 960}; }
+
+Vector true_state(const SceneDescription& scene, double t) {
+  const auto exact = exact_state(scene, t);
+  if (!exact) throw std::invalid_argument(scene.name + ": no reference state at t = " + std::to_string(t));
+  return *exact;
+}
+
+double state_error(const SceneDescription& scene, const Vector& y, double t) {
+  const double error = (y - true_state(scene, t)).cwiseAbs().maxCoeff();
+  return std::isfinite(error) ? error : INFINITY;
+}
+
+namespace {
+
+Point measure(const SceneDescription& scene, const Method& method, double h, double tol, double end, int repeats) {
+  Point p;
+  p.h = h;
+  p.tolerance = method.adaptive() ? tol : 0;
+  RunTimes times;
+  // One untimed run (its numbers are the point's), then the timed ones.
+  for (int r = 0; r <= repeats; ++r) {
+    Simulation sim(scene, method);
+    const auto began = std::chrono::steady_clock::now();
+    try {
+      sim.advance(end, h, Tolerance{tol, tol});
+    } catch (const StepSizeUnderflow& e) {  // the tolerance cannot be met: no point here
+      p.failed = e.what();
+      return p;
+    }
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count();
+    if (r == 0) {
+      p.t_end = sim.time();
+      p.error = state_error(scene, sim.state(), sim.time());
+      p.steps = sim.steps();
+      p.evaluations = sim.evaluations();
+      if (repeats == 0) times.add(seconds);
+    } else {
+      times.add(seconds);
+    }
+  }
+  p.seconds = times.fastest();
+  p.median_seconds = times.median();
+  return p;
+}
+
+}  // namespace
+
+Curve sweep_motus(const SceneDescription& scene, const Method& method, const Sweep& sweep) {
+  Curve c;
+  c.method = method.name();
+  c.engine = method.is_external() ? c.method.substr(0, c.method.find(':')) : "motus";
+  c.description = method.description();
+  c.adaptive = method.adaptive();
+  if (method.needs_mechanical() && !scene.is_mechanical()) {
+    c.unsupported = "symplectic: needs a mechanical scene (bodies)";
+    return c;
+  }
+  try {
+    Simulation refused(scene, method);  // collisions or constraints the method cannot run
+  } catch (const SceneError& e) {
+    c.unsupported = e.what();
+    return c;
+  }
+  if (c.adaptive) {
+    for (double tol : tolerances(sweep)) {
+      c.points.push_back(measure(scene, method, sweep.dt, tol, sweep.end, sweep.repeats));
+      if (sweep.point_done) sweep.point_done();
+    }
+  } else {
+    for (double h : fixed_steps(sweep)) {
+      c.points.push_back(measure(scene, method, h, 0, sweep.end, sweep.repeats));
+      if (sweep.point_done) sweep.point_done();
+    }
+  }
+  return c;
+}
+
+}  // namespace motus::precision

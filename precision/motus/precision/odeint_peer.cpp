@@ -1,0 +1,257 @@
+#include "motus/precision/odeint_peer.hpp"
+
+#include <boost/numeric/odeint.hpp>
+#include <boost/version.hpp>
+
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <optional>
+#include <type_traits>
+
+#include "motus/precision/motus_sweep.hpp"
+#include "motus/precision/run_times.hpp"
+#include "motus/scene_error.hpp"
+#include "motus/simulation.hpp"
+#include "motus/systems/concrete_system.hpp"
+
+// Boost.Odeint 1.74's controlled_runge_kutta copies a default-made stepper, whose std::array work
+// arrays are not set yet (they are written before they are read): GCC 12 warns about the copy,
+// attributing it to this file. Only that warning is silenced, only here.
+#pragma GCC diagnostic ignored "-Wuninitialized"
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+
+namespace motus::precision {
+namespace {
+
+namespace ode = boost::numeric::odeint;
+
+// A state as Odeint keeps it: a std::array of N numbers, or a std::vector.
+template <int N>
+using OdeintState = std::conditional_t<N == Eigen::Dynamic, std::vector<double>, std::array<double, static_cast<size_t>(N == Eigen::Dynamic ? 1 : N)>>;
+
+template <class State>
+State make_state(const Vector& y) {
+  State s{};
+  if constexpr (requires { s.resize(0); }) s.resize(static_cast<size_t>(y.size()));
+  for (size_t i = 0; i < s.size(); ++i) s[i] = y[static_cast<Eigen::Index>(i)];
+  return s;
+}
+
+template <class State>
+Vector to_vector(const State& s) {
+  Vector y(static_cast<Eigen::Index>(s.size()));
+  for (size_t i = 0; i < s.size(); ++i) y[static_cast<Eigen::Index>(i)] = s[i];
+  return y;
+}
+
+template <class State>
+Eigen::Map<const Vector> view(const State& s) {
+  return Eigen::Map<const Vector>(s.data(), static_cast<Eigen::Index>(s.size()));
+}
+template <class State>
+Eigen::Map<Vector> view(State& s) {
+  return Eigen::Map<Vector>(s.data(), static_cast<Eigen::Index>(s.size()));
+}
+
+// motus's system, called the way Odeint calls a system: f(x, dxdt, t).
+template <class System>
+struct SameRightHandSide {
+  System* f;
+  template <class State>
+  void operator()(const State& x, State& dxdt, double t) const {
+    f->derivative(t, view(x), view(dxdt));
+  }
+};
+
+// The derivative evaluations a system has counted.
+template <class System>
+long& evaluations_of(System& f) {
+  if constexpr (requires { f.mechanical(); }) return f.mechanical().evaluations;
+  else return f.evaluations;
+}
+
+struct Outcome {
+  Vector state;
+  double t_end = 0;
+  long steps = 0;
+};
+
+// One point: an untimed run whose numbers it reports, then `repeats` timed ones; `run` integrates
+// from a fresh initial state and returns the outcome.
+template <class Run>
+Point measure(const SceneDescription& scene, long& evaluations, double h, double tol, int repeats, Run run) {
+  Point p;
+  p.h = h;
+  p.tolerance = tol;
+  RunTimes times;
+  for (int r = 0; r <= repeats; ++r) {
+    const long before = evaluations;
+    const auto began = std::chrono::steady_clock::now();
+    Outcome o;
+    try {
+      o = run();
+    } catch (const std::exception& e) {  // Odeint gave up (too many step size adjustments)
+      p.failed = std::string("odeint: ") + e.what();
+      return p;
+    }
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count();
+    if (r == 0) {
+      p.t_end = o.t_end;
+      p.steps = o.steps;
+      p.evaluations = evaluations - before;
+      p.error = state_error(scene, o.state, o.t_end);
+      if (repeats == 0) times.add(seconds);
+    } else {
+      times.add(seconds);
+    }
+  }
+  p.seconds = times.fastest();
+  p.median_seconds = times.median();
+  return p;
+}
+
+Curve curve(const std::string& name, const std::string& description, bool adaptive) {
+  Curve c;
+  c.method = "odeint:" + name;
+  c.engine = "odeint";
+  c.description = description;
+  c.adaptive = adaptive;
+  return c;
+}
+
+// The three Runge–Kutta steppers on the first-order system f (y = [x; v] for point masses).
+template <class System>
+void runge_kutta(const SceneDescription& scene, System& f, const Vector& y0, const Sweep& sweep,
+                 std::vector<Curve>& curves) {
+  using State = OdeintState<static_size_of<System>>;
+  const SameRightHandSide<System> rhs{&f};
+  long& evaluations = evaluations_of(f);
+  const double t0 = scene.start_time, end = sweep.end;
+
+  Curve rk4 = curve("runge_kutta4", "Odeint's classic fourth-order Runge-Kutta, fixed step", false);
+  for (double h : fixed_steps(sweep)) {
+    const long n = fixed_step_count(end - t0, h);
+    rk4.points.push_back(measure(scene, evaluations, h, 0, sweep.repeats, [&] {
+      ode::runge_kutta4<State> stepper;
+      State x = make_state<State>(y0);
+      double t = t0;
+      for (long i = 0; i < n; ++i) {
+        stepper.do_step(rhs, x, t, h);
+        t = t0 + static_cast<double>(i + 1) * h;
+      }
+      return Outcome{to_vector(x), t, n};
+    }));
+    if (sweep.point_done) sweep.point_done();
+  }
+  curves.push_back(std::move(rk4));
+
+  auto controlled = [&](Curve c, auto make_stepper) {
+    for (double tol : tolerances(sweep)) {
+      c.points.push_back(measure(scene, evaluations, sweep.dt, tol, sweep.repeats, [&] {
+        auto stepper = make_stepper(tol);
+        State x = make_state<State>(y0);
+        const long steps = static_cast<long>(ode::integrate_adaptive(stepper, rhs, x, t0, end, sweep.dt));
+        return Outcome{to_vector(x), end, steps};
+      }));
+      if (sweep.point_done) sweep.point_done();
+    }
+    curves.push_back(std::move(c));
+  };
+  // What make_controlled(tol, tol, stepper) makes.
+  auto controller = []<class Stepper>(double tol) {
+    using Controlled = ode::controlled_runge_kutta<Stepper>;
+    return Controlled(typename Controlled::error_checker_type(tol, tol));
+  };
+  controlled(curve("runge_kutta_dopri5", "Odeint's Dormand-Prince 5(4), controlled (as make_controlled)", true),
+             [&](double tol) { return controller.template operator()<ode::runge_kutta_dopri5<State>>(tol); });
+  controlled(curve("runge_kutta_fehlberg78", "Odeint's Runge-Kutta-Fehlberg 7(8), controlled (as make_controlled)", true),
+             [&](double tol) { return controller.template operator()<ode::runge_kutta_fehlberg78<State>>(tol); });
+}
+
+// McLachlan's symplectic RKN on point masses: q = x, p = v, dq/dt = p, dp/dt = a(q).
+template <int D>  // one body in D dimensions, or D = Eigen::Dynamic: any number of bodies
+void symplectic_rkn(const SceneDescription& scene, MechanicalSystem& system, const Vector& y0, const Sweep& sweep,
+                    Curve& c) {
+  using Coor = OdeintState<D>;
+  const Eigen::Index n = y0.size() / 2;
+  const Coor zero = make_state<Coor>(Vector::Zero(n));  // the forces do not read velocities
+  auto acceleration = [&](const Coor& q, Coor& dpdt) {
+    if constexpr (D == Eigen::Dynamic)
+      system.acceleration(0, view(q), view(zero), view(dpdt));
+    else
+      system.acceleration_of_one_body<D>(0, q.data(), zero.data(), dpdt.data());
+  };
+  const double t0 = scene.start_time;
+  for (double h : fixed_steps(sweep)) {
+    const long steps = fixed_step_count(sweep.end - t0, h);
+    c.points.push_back(measure(scene, system.evaluations, h, 0, sweep.repeats, [&] {
+      ode::symplectic_rkn_sb3a_mclachlan<Coor> stepper;
+      Coor q = make_state<Coor>(y0.head(n)), p = make_state<Coor>(y0.tail(n));
+      double t = t0;
+      for (long i = 0; i < steps; ++i) {
+        stepper.do_step(acceleration, std::make_pair(std::ref(q), std::ref(p)), t, h);
+        t = t0 + static_cast<double>(i + 1) * h;
+      }
+      Vector y(2 * n);
+      y << to_vector(q), to_vector(p);
+      return Outcome{y, t, steps};
+    }));
+    if (sweep.point_done) sweep.point_done();
+  }
+}
+
+}  // namespace
+
+std::string odeint_version() {
+  return "Boost.Odeint, Boost " + std::to_string(BOOST_VERSION / 100000) + "." + std::to_string(BOOST_VERSION / 100 % 1000) +
+         "." + std::to_string(BOOST_VERSION % 100);
+}
+
+std::vector<Curve> sweep_odeint(const SceneDescription& scene, const Sweep& sweep) {
+  // A simulation owns the system, built exactly as for motus's own runs; only its system and
+  // initial state are used.
+  std::optional<Simulation> built;
+  try {
+    built.emplace(scene, Integrator::Rk4);
+  } catch (const SceneError& e) {  // collisions or constraints: a Runge–Kutta method cannot run them
+    std::vector<Curve> curves;
+    for (const char* name : {"runge_kutta4", "runge_kutta_dopri5", "runge_kutta_fehlberg78", "symplectic_rkn_sb3a_mclachlan"}) {
+      Curve c = curve(name, "", false);
+      c.unsupported = std::string("the scene's collisions or constraints: ") + e.what();
+      curves.push_back(std::move(c));
+    }
+    return curves;
+  }
+  Simulation& sim = *built;
+  const Vector y0 = sim.state();
+  std::vector<Curve> curves;
+  auto run = [&](auto& f) { runge_kutta(scene, f, y0, sweep, curves); };
+  if (MechanicalSystem* m = sim.mechanical_system()) with_first_order_view(*m, run);
+  else with_concrete_system(*sim.first_order_system(), run);
+
+  Curve rkn = curve("symplectic_rkn_sb3a_mclachlan",
+                    "Odeint's symplectic Runge-Kutta-Nystrom of order 4 (McLachlan), fixed step", false);
+  if (MechanicalSystem* m = sim.mechanical_system()) {
+    const ForceSet& f = m->forces();
+    bool damped = !f.drag.empty();
+    for (const auto& s : f.springs) damped = damped || s.damping != 0;
+    if (damped) {
+      rkn.unsupported = "forces that depend on velocity (drag, damping): dq/dt = p, dp/dt = a(q) only";
+    } else if (m->particles() == 1 && m->dimensions() == 1) {
+      symplectic_rkn<1>(scene, *m, y0, sweep, rkn);
+    } else if (m->particles() == 1 && m->dimensions() == 2) {
+      symplectic_rkn<2>(scene, *m, y0, sweep, rkn);
+    } else if (m->particles() == 1 && m->dimensions() == 3) {
+      symplectic_rkn<3>(scene, *m, y0, sweep, rkn);
+    } else {
+      symplectic_rkn<Eigen::Dynamic>(scene, *m, y0, sweep, rkn);
+    }
+  } else {
+    rkn.unsupported = "symplectic: needs a mechanical scene (bodies)";
+  }
+  curves.push_back(std::move(rkn));
+  return curves;
+}
+
+}  // namespace motus::precision

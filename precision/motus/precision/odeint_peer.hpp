@@ -1,0 +1,30 @@
+#pragma once
+// Boost.Odeint as a peer of motus's integrators (docs/peers.md): its steppers on the same
+// right-hand side motus integrates — the scene's system by its concrete type, exactly as
+// Simulation steps it (systems/concrete_system.hpp) — with the state in a std::array when its size
+// is known at compile time (Odeint at its fastest), else in a std::vector:
+//   odeint:runge_kutta4                   fixed step, the classic RK4
+//   odeint:runge_kutta_dopri5             controlled (make_controlled), Dormand–Prince 5(4)
+//   odeint:runge_kutta_fehlberg78         controlled, Runge–Kutta–Fehlberg 7(8)
+//   odeint:symplectic_rkn_sb3a_mclachlan  fixed step, McLachlan's symplectic RKN of order 4: point
+//                                         masses whose forces do not depend on velocities
+// A controlled stepper's rtol = atol = tol is in Odeint's own error norm (the largest
+// |e_i| / (atol + rtol (|y_i| + h |y'_i|))), not motus's: a tolerance means something else, which is
+// why the diagrams set errors reached against work, never tolerances.
+#include <string>
+#include <vector>
+
+#include "motus/precision/work_precision.hpp"
+#include "motus/scene.hpp"
+
+namespace motus::precision {
+
+// One curve per Odeint method: fixed-step ones at Sweep::fixed_steps, controlled ones at
+// Sweep::tolerances (first step dt). A method that cannot run the scene comes back with
+// `unsupported` set.
+std::vector<Curve> sweep_odeint(const SceneDescription& scene, const Sweep& sweep);
+
+// "Boost.Odeint 1.74 (Boost 1.74.0)".
+std::string odeint_version();
+
+}  // namespace motus::precision

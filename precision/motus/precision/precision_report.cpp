@@ -1,0 +1,203 @@
+#include "motus/precision/precision_report.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+#include <fstream>
+#include <stdexcept>
+
+#include "motus/plot/figure.hpp"
+#include "motus/precision/targets.hpp"
+
+namespace motus::precision {
+namespace {
+
+std::string html_escape(const std::string& text) {
+  std::string out;
+  for (char c : text) {
+    switch (c) {
+      case '<': out += "&lt;"; break;
+      case '>': out += "&gt;"; break;
+      case '&': out += "&amp;"; break;
+      case '"': out += "&quot;"; break;
+      default: out += c;
+    }
+  }
+  return out;
+}
+
+std::string csv_text(const std::string& text) {
+  std::string out;
+  for (char c : text) out += c == ',' || c == '\n' || c == '\r' ? ';' : c;
+  return out;
+}
+
+void write_file(const std::string& path, const std::string& text) {
+  std::ofstream out(path, std::ios::binary);
+  out << text;
+  out.flush();
+  if (!out) throw std::runtime_error(path + ": could not be written (disk full?)");
+}
+
+// Microseconds, or "–".
+std::string micro(const std::optional<AtTarget>& at) {
+  if (!at) return "–";
+  return fmt::format("{}{:.3g} ({:.3g})", at->upper_bound ? "≤ " : "", 1e6 * at->seconds, 1e6 * at->median_seconds);
+}
+
+std::vector<plot::Figure> diagrams(const ReportContext& c, const std::vector<Curve>& curves) {
+  plot::Figure time, work;
+  time.stem = "error_against_time";
+  time.title = c.scene + ": error against run time";
+  time.x_label = "run time [s] (the fastest of " + std::to_string(c.sweep.repeats) + " runs)";
+  work.stem = "error_against_evaluations";
+  work.title = c.scene + ": error against derivative evaluations";
+  work.x_label = "derivative (force) evaluations";
+  for (plot::Figure* f : {&time, &work}) {
+    f->y_label = "max |y - y_exact| at the end";
+    f->x_scale = f->y_scale = plot::Scale::log;
+    f->width = 1100;
+    f->height = 620;
+    f->key = "outside right top";
+    f->note = "down and to the left is better; dashed: the peers (Odeint on the same right-hand side, Box2D and "
+              "Bullet with semi-implicit Euler)";
+  }
+  int motus_index = 0, peer_index = 0;
+  for (const Curve& curve : curves) {
+    if (!curve.unsupported.empty() || curve.points.empty()) continue;
+    const bool peer = curve.engine != "motus";
+    plot::Series s{curve.method, {}, {}};
+    s.style = "linespoints";
+    s.dashed = peer;
+    s.point_type = peer ? 5 + 2 * (peer_index++ % 4) : 7;  // squares, triangles, … for the peers
+    if (!peer) ++motus_index;
+    plot::Series e = s;
+    for (const Point& p : curve.points) {
+      if (!p.failed.empty()) continue;
+      s.x.push_back(p.seconds);
+      s.y.push_back(p.error);
+      e.x.push_back(static_cast<double>(p.evaluations));
+      e.y.push_back(p.error);
+    }
+    time.series.push_back(std::move(s));
+    work.series.push_back(std::move(e));
+  }
+  return {time, work};
+}
+
+}  // namespace
+
+std::string precision_csv(const std::string& scene, const std::vector<Curve>& curves) {
+  std::string csv = "scene,integrator,h,tolerance,steps,evaluations,t_end,error,seconds,engine,failed,median_seconds\n";
+  for (const Curve& c : curves)
+    for (const Point& p : c.points)
+      csv += fmt::format("{},{},{:.17g},{},{},{},{:.17g},{:.6e},{:.6e},{},{},{:.6e}\n", scene, c.method, p.h,
+                         c.adaptive ? fmt::format("{:.6g}", p.tolerance) : "", p.steps, p.evaluations, p.t_end,
+                         p.failed.empty() ? p.error : NAN, p.failed.empty() ? p.seconds : NAN, c.engine,
+                         csv_text(p.failed), p.failed.empty() ? p.median_seconds : NAN);
+  return csv;
+}
+
+std::string write_precision_report(const std::string& folder, const ReportContext& c, const std::vector<Curve>& curves) {
+  write_file(folder + "/precision.csv", precision_csv(c.scene, curves));
+
+  // targets.csv: every curve read at every target.
+  std::string targets = "target,integrator,engine,seconds,median_seconds,evaluations,upper_bound\n";
+  for (double target : c.targets)
+    for (const Curve& curve : curves) {
+      const auto at = at_target(curve, target);
+      if (at)
+        targets += fmt::format("{:g},{},{},{:.6e},{:.6e},{:.1f},{}\n", target, curve.method, curve.engine, at->seconds,
+                               at->median_seconds, at->evaluations, at->upper_bound ? "yes" : "no");
+    }
+  write_file(folder + "/targets.csv", targets);
+
+  const std::string warning = plot::draw(diagrams(c, curves), folder);
+
+  std::vector<std::string> engines;  // the engines present, motus first
+  for (const Curve& curve : curves)
+    if (std::find(engines.begin(), engines.end(), curve.engine) == engines.end()) engines.push_back(curve.engine);
+
+  std::string html;
+  html += "<!doctype html>\n<html><head><meta charset=\"utf-8\"><title>motus bench precision: " + html_escape(c.scene) +
+          "</title>\n<style>body{font-family:sans-serif;max-width:72em;margin:2em auto;padding:0 1em;color:#222}"
+          "table{border-collapse:collapse;margin:1em 0}td,th{border:1px solid #ccc;padding:.3em .6em;text-align:right}"
+          "th{background:#f3f3f3}td:first-child,th:first-child{text-align:left}.no{color:#a00}.best{font-weight:bold}"
+          "img{max-width:100%}code{background:#f3f3f3;padding:0 .2em}</style></head><body>\n";
+  html += "<h1>" + html_escape(c.scene) + ": run time against error</h1>\n<p>" + html_escape(c.description) + "</p>\n";
+  html += fmt::format(
+      "<p>From t = {:g} to t = {:g}; error = the largest |y − y<sub>exact</sub>| over the state (positions and "
+      "velocities, or y) where the run ended, against the scene's exact solution or reference states. Fixed-step "
+      "methods take h = dt/2<sup>k</sup> (dt = {:g}, k = 0 … {}), adaptive ones rtol = atol = 10<sup>−3</sup> … "
+      "10<sup>−13</sup>, {} per decade, first step dt; Box2D and Bullet run at dt = 1/30 … 1/960 s. Each point is one "
+      "untimed run and then the fastest of {} timed runs, all in one process; only ratios within this run mean "
+      "anything on another machine.</p>\n",
+      c.start, c.end, c.sweep.dt, c.sweep.levels - 1, c.sweep.per_decade, c.sweep.repeats);
+
+  // The fastest of each engine at each target.
+  html += "<h2>Targets: the fastest method at each target error</h2>\n<p>Each method's curve read at the target, "
+          "interpolated on log–log axes between the two points that bracket it (≤: the method's cheapest point is "
+          "already below the target). µs: from the fastest runs of each point, the median runs' in brackets; the "
+          "ratios likewise.</p>\n<table><tr><th>target error</th>";
+  for (const auto& e : engines) html += "<th>" + html_escape(e) + " fastest</th><th>µs</th>";
+  for (size_t k = 1; k < engines.size(); ++k) html += "<th>motus ÷ " + html_escape(engines[k]) + "</th>";
+  html += "</tr>\n";
+  for (double target : c.targets) {
+    html += fmt::format("<tr><td>{:g}</td>", target);
+    std::vector<std::optional<Fastest>> best;
+    for (const auto& e : engines) {
+      best.push_back(fastest(curves, e, target));
+      html += best.back() ? "<td>" + html_escape(best.back()->method) + "</td><td>" + micro(best.back()->at) + "</td>"
+                          : "<td class=\"no\">not reached</td><td>–</td>";
+    }
+    for (size_t k = 1; k < engines.size(); ++k)
+      html += engines[0] == "motus" && best[0] && best[k]
+                  ? fmt::format("<td>{:.2f} ({:.2f})</td>", best[0]->at.seconds / best[k]->at.seconds,
+                                best[0]->at.median_seconds / best[k]->at.median_seconds)
+                  : "<td>–</td>";
+    html += "</tr>\n";
+  }
+  html += "</table>\n";
+
+  if (warning.empty()) {
+    html += "<h2>Error against run time</h2><p><a href=\"error_against_time.png\"><img src=\"error_against_time.svg\" "
+            "alt=\"error against run time, one line per method\"></a></p>\n";
+    html += "<h2>Error against derivative evaluations</h2><p><a href=\"error_against_evaluations.png\"><img "
+            "src=\"error_against_evaluations.svg\" alt=\"error against derivative evaluations, one line per "
+            "method\"></a></p>\n";
+  } else {
+    html += "<p class=\"no\">" + html_escape(warning) + "</p>\n";
+  }
+
+  html += "<h2>Every method at every target</h2>\n<table><tr><th>method</th>";
+  for (double target : c.targets) html += fmt::format("<th>{:g}: µs (median)</th>", target);
+  html += "</tr>\n";
+  for (const Curve& curve : curves) {
+    html += "<tr><td>" + html_escape(curve.method) + "</td>";
+    if (!curve.unsupported.empty()) {
+      html += fmt::format("<td class=\"no\" colspan=\"{}\">cannot run this scene: {}</td></tr>\n", c.targets.size(),
+                          html_escape(curve.unsupported));
+      continue;
+    }
+    for (double target : c.targets) html += "<td>" + micro(at_target(curve, target)) + "</td>";
+    html += "</tr>\n";
+  }
+  html += "</table>\n<h2>The methods</h2>\n<ul>\n";
+  for (const Curve& curve : curves)
+    html += "<li><code>" + html_escape(curve.method) + "</code>: " + html_escape(curve.description) + "</li>\n";
+  html += "</ul>\n<p>Engines: ";
+  for (size_t i = 0; i < c.versions.size(); ++i) html += (i ? "; " : "") + html_escape(c.versions[i]);
+  html += ". Odeint's steppers call motus's own right-hand side (the scene's system by its concrete type), with the "
+          "state in a std::array where its size is known at compile time; their tolerances are in Odeint's error "
+          "norm, so only errors reached are compared. Box2D and Bullet integrate with semi-implicit Euler: their "
+          "lines lie along motus's <code>symplectic-euler</code>, error ∝ dt.</p>\n";
+  html += "<p>Data: <a href=\"precision.csv\">precision.csv</a> (every point), <a href=\"targets.csv\">targets.csv</a> "
+          "(every method at every target); the diagrams are redrawn by <code>gnuplot figures.gp</code> in this "
+          "folder.</p>\n</body></html>\n";
+  write_file(folder + "/index.html", html);
+  return warning;
+}
+
+}  // namespace motus::precision

@@ -1,0 +1,42 @@
+#include "motus/precision/targets.hpp"
+
+#include <cmath>
+
+namespace motus::precision {
+
+std::optional<AtTarget> at_target(const Curve& curve, double target) {
+  // The points that were measured, cheapest first (the sweep's order).
+  std::vector<const Point*> points;
+  for (const Point& p : curve.points)
+    if (p.failed.empty() && p.seconds > 0 && std::isfinite(p.seconds) && p.evaluations > 0) points.push_back(&p);
+  // An adaptive method's error is not monotone in its tolerance (dop853 on Kepler reaches 3e-7 at
+  // rtol 1e-6 and 6e-7 at 1e-8): read the curve where it goes below the target for good, after its
+  // last point above it, never at a lucky dip.
+  long last_above = -1;
+  for (size_t i = 0; i < points.size(); ++i)
+    if (!(points[i]->error <= target)) last_above = static_cast<long>(i);
+  if (points.empty() || last_above == static_cast<long>(points.size()) - 1) return std::nullopt;
+  const Point& p = *points[static_cast<size_t>(last_above + 1)];
+  if (last_above < 0 || p.error <= 0 || !std::isfinite(points[static_cast<size_t>(last_above)]->error))
+    return AtTarget{p.seconds, p.median_seconds, static_cast<double>(p.evaluations), last_above < 0};
+  const Point& previous = *points[static_cast<size_t>(last_above)];
+  // log t = log t0 + f (log t1 − log t0), f = (log E − log e0) / (log e1 − log e0)
+  const double f = std::log(target / previous.error) / std::log(p.error / previous.error);
+  auto between = [f](double a, double b) { return std::exp(std::log(a) + f * std::log(b / a)); };
+  return AtTarget{between(previous.seconds, p.seconds), between(previous.median_seconds, p.median_seconds),
+                  between(static_cast<double>(previous.evaluations), static_cast<double>(p.evaluations)), false};
+}
+
+std::optional<Fastest> fastest(const std::vector<Curve>& curves, const std::string& engine, double target) {
+  std::optional<Fastest> best;
+  for (const Curve& c : curves) {
+    if (c.engine != engine) continue;
+    const auto at = at_target(c, target);
+    if (at && (!best || at->seconds < best->at.seconds)) best = Fastest{c.method, *at};
+  }
+  return best;
+}
+
+std::vector<double> default_targets() { return {1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10}; }
+
+}  // namespace motus::precision

@@ -1,0 +1,36 @@
+#pragma once
+// A curve read at a target error: the run time (and evaluations) a method needs to reach it,
+// interpolated on log–log axes between the two points of its sweep that bracket the target where
+// the curve goes below it for good — the point after the last one above the target, and that one.
+// A curve whose every point is below the target gives its first (cheapest) point's time as an
+// upper bound; one that ends above the target gives nothing.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "motus/precision/work_precision.hpp"
+
+namespace motus::precision {
+
+struct AtTarget {
+  double seconds = 0;         // from the points' fastest runs
+  double median_seconds = 0;  // from the points' median runs
+  double evaluations = 0;
+  bool upper_bound = false;  // the cheapest point was already below the target
+};
+
+std::optional<AtTarget> at_target(const Curve& curve, double target);
+
+struct Fastest {
+  std::string method;
+  AtTarget at;
+};
+
+// The fastest curve at the target among those whose engine is `engine` (motus's own methods:
+// "motus"; a plug-in's: its name; "odeint", "box2d", "bullet").
+std::optional<Fastest> fastest(const std::vector<Curve>& curves, const std::string& engine, double target);
+
+// Every decade from 1e-4 to 1e-10 (the targets).
+std::vector<double> default_targets();
+
+}  // namespace motus::precision

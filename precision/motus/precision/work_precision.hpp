@@ -1,0 +1,49 @@
+#pragma once
+// Work against precision (docs/cli.md, `motus bench precision`): every method of a run — motus's
+// own integrators, Odeint's steppers, Box2D and Bullet — is one Curve of Points, each point one
+// step size or tolerance with the error it reached at the end time, the work it took
+// (derivative evaluations) and its run time.
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace motus::precision {
+
+struct Point {
+  double h = 0;          // the step; for an adaptive method the first step tried
+  double tolerance = 0;  // rtol = atol of an adaptive method; 0 for a fixed-step one
+  long steps = 0;        // accepted steps
+  long evaluations = 0;  // derivative (force) evaluations, rejected attempts included
+  double t_end = 0;      // where the run ended, at which the error is taken
+  double error = 0;      // max over the state of |y − y_exact| at t_end (inf when it blew up)
+  double seconds = 0;    // the fastest of the timed runs
+  double median_seconds = 0;  // their median
+  std::string failed;    // why this point could not be measured, or ""
+};
+
+struct Curve {
+  std::string method;       // "dop853", "odeint:runge_kutta_fehlberg78", "box2d", "student:rk4"
+  std::string engine;       // "motus", "odeint", "box2d", "bullet", or a plug-in's name
+  std::string description;  // one line
+  bool adaptive = false;
+  std::string unsupported;  // why the method cannot run this scene, or ""
+  std::vector<Point> points;
+};
+
+// What every method sweeps, and how each point is timed.
+struct Sweep {
+  double end = 0;      // the end time (the scene starts at its start_time)
+  double dt = 0;       // the scene's step: fixed steps dt/2^k, and the first step of adaptive runs
+  int levels = 8;      // fixed-step methods: h = dt / 2^k, k = 0 … levels − 1
+  int per_decade = 3;  // adaptive methods: rtol = atol = 10^(−3 − j/per_decade) down to 1e-13
+  int repeats = 9;     // timed runs per point (after one untimed run); the fastest counts
+  std::function<void()> point_done;  // called after every point (a progress bar), may be empty
+};
+
+std::vector<double> fixed_steps(const Sweep& sweep);
+std::vector<double> tolerances(const Sweep& sweep);
+
+// The peers' steps (Box2D and Bullet run at the frame rates of games): 1/30, 1/60, … 1/960 s.
+std::vector<double> engine_steps();
+
+}  // namespace motus::precision
