@@ -1,6 +1,14 @@
 #pragma once
 // Google Benchmark's console output, plus ratios between benchmarks of the same run
 // (speed claims are ratios measured side by side, never absolute times).
+//
+// Times are CPU time (what Google Benchmark measures for the process besides wall time), so
+// that time the process spends waiting for a core on a busy machine is not counted — or, for a
+// benchmark that times itself (UseManualTime), the time it measured. With
+// repetitions (motus's programs run 5 by default, interleaved in a random order:
+// --benchmark_repetitions, --benchmark_enable_random_interleaving), each benchmark shows its
+// mean, median, minimum, standard deviation and coefficient of variation over them, and each
+// ratio is taken between the fastest repetitions, with the ratio of the medians beside it.
 #include <benchmark/benchmark.h>
 
 #include <map>
@@ -20,12 +28,22 @@ public:
   void Finalize() override;
 
 private:
-  std::map<std::string, double> ns_per_iteration_;
+  // CPU ns per iteration of each benchmark: every repetition, and the aggregates "min" and
+  // "median" when there were repetitions.
+  std::map<std::string, std::vector<double>> ns_per_iteration_;
+  std::map<std::string, double> min_, median_;
   struct Ratio {
     std::string label, numerator, denominator;
     double numerator_per;
   };
   std::vector<Ratio> ratios_;
 };
+
+// benchmark::Initialize with motus's defaults for what the command line does not set: 5
+// repetitions, interleaved in a random order, only the aggregates (and each ratio) printed.
+void initialize(int* argc, char** argv);
+
+// Adds the minimum over the repetitions to a benchmark's statistics (of its times and counters).
+benchmark::internal::Benchmark* with_min(benchmark::internal::Benchmark* b);
 
 }  // namespace motus::bench

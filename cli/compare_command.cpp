@@ -67,6 +67,11 @@ CLI::App* add_compare_command(CLI::App& app, CompareOptions& o) {
   c->add_option("--set", o.sets, "Override a scene field (repeatable), e.g. --set lattice.count=10000")->type_name("PATH=VALUE");
   c->add_option("--out", o.out, "Report folder (default: a new folder under runs/); must not exist yet");
   c->add_option("--samples", o.samples, "Metric samples over the run")->check(CLI::Range(2L, 100000L));
+  c->add_option("--repeats", o.repeats,
+                "Timing rounds: every engine runs the scene again this many times, taking turns; the time per step "
+                "is the fastest round's CPU time, with the median and the spread beside it (default: 5, or as many "
+                "as fit in about 3 s when one round takes longer)")
+      ->check(CLI::Range(1, 100));
   c->add_flag("--json", o.json, "Print the summary as one JSON object instead of the table");
   c->add_flag("--render", o.render,
               "Also draw the same instants of every engine side by side: PNG frames, an MP4 (ffmpeg) and a contact "
@@ -124,6 +129,7 @@ int compare_command(const CompareOptions& o) {
   if (!(options.dt > 0) || !std::isfinite(options.dt)) throw InputError("--dt: must be a finite number > 0");
   if (!(options.duration > 0) || !std::isfinite(options.duration)) throw InputError("--duration: must be a finite number > 0");
   options.samples = o.samples;
+  options.repeats = o.repeats;
   checked_step_count(options.duration, options.dt, o.duration ? "--duration" : o.dt ? "--dt" : "dt/duration");
   int panel_width = 0, panel_height = 0;
   {
@@ -168,6 +174,9 @@ int compare_command(const CompareOptions& o) {
   context.samples = options.samples;
   context.dimensions = scene.mechanical->dimensions;
   context.bodies = static_cast<long>(scene.mechanical->bodies.size());
+  // The rounds run (the default's number is decided by how long the metrics runs took).
+  for (const auto& run : runs)
+    if (run.supported) context.repeats = std::max(context.repeats, static_cast<int>(run.round_seconds.size()));
   const auto conserved = compare::conserved_quantities(scene);
   context.momentum_conserved = conserved.momentum;
   context.angular_momentum_conserved = conserved.angular_momentum;
@@ -224,24 +233,32 @@ int compare_command(const CompareOptions& o) {
   if (o.json) {
     fmt::print("{}\n", summary.dump(2));
   } else {
-    fmt::print("{}: {} bodies, {}-D, dt = {:g} s, {:g} s ({} steps); motus integrator {}\n\n", scene.name,
+    fmt::print("{}: {} bodies, {}-D, dt = {:g} s, {:g} s ({} steps); motus integrator {}\n", scene.name,
                context.bodies, context.dimensions, options.dt, options.duration,
                fixed_step_count(options.duration, options.dt), integrator_name);
     // Where the scene has an exact answer, the distance from it matters more than from motus.
     const bool exact_known = has_exact_solution(scene);
     const char* distance_key = exact_known ? "max_distance_from_exact" : "max_distance_from_motus";
-    fmt::print("{:<8}{:>13}{:>13}{:>13}{:>13}{:>13}{:>13}{:>11}{:>12}\n", "engine", "energy drift", "max |dE|/E0",
-               "momentum", "penetration", "constraint", exact_known ? "from exact" : "from motus", "us/step", "time/motus");
+    fmt::print("us/step: CPU time per step, the fastest of {} rounds (engines taking turns), the median beside it; "
+               "spread = (slowest - fastest) / fastest\n\n",
+               context.repeats);
+    fmt::print("{:<8}{:>13}{:>13}{:>13}{:>13}{:>13}{:>13}{:>11}{:>11}{:>8}{:>12}\n", "engine", "energy drift",
+               "max |dE|/E0", "momentum", "penetration", "constraint", exact_known ? "from exact" : "from motus",
+               "us/step", "median", "spread", "time/motus");
     for (const auto& e : summary["engines"]) {
       if (!e["supported"].get<bool>()) {
         for (const auto& u : e["unsupported"]) fmt::print("{:<8}{}\n", e["engine"].get<std::string>(), u.get<std::string>());
         continue;
       }
-      fmt::print("{:<8}{:>13}{:>13}{:>13}{:>13}{:>13}{:>13}{:>11}{:>12}\n", e["engine"].get<std::string>(),
+      fmt::print("{:<8}{:>13}{:>13}{:>13}{:>13}{:>13}{:>13}{:>11}{:>11}{:>8}{:>12}\n", e["engine"].get<std::string>(),
                  format_or_dash(e["energy_drift"], "{:+.2e}"), format_or_dash(e["max_energy_error"], "{:.2e}"),
                  format_or_dash(e["momentum_drift"], "{:.2e}"), format_or_dash(e["max_penetration"], "{:.2e}"),
                  format_or_dash(e["constraint_error"], "{:.2e}"), format_or_dash(e[distance_key], "{:.2e}"),
-                 format_or_dash(e["us_per_step"], "{:.2f}"), format_or_dash(e["time_relative_to_motus"], "{:.2f}x"));
+                 format_or_dash(e["us_per_step"], "{:.2f}"), format_or_dash(e["us_per_step_median"], "{:.2f}"),
+                 e["us_per_step_spread"].is_null()
+                     ? std::string("-")
+                     : fmt::format("{:.0f}%", 100 * e["us_per_step_spread"].get<double>()),
+                 format_or_dash(e["time_relative_to_motus"], "{:.2f}x"));
     }
     for (const auto& e : summary["engines"])
       for (const auto& n : e["notes"]) fmt::print("note ({}): {}\n", e["engine"].get<std::string>(), n.get<std::string>());

@@ -18,6 +18,7 @@ struct CompareOptions {
   std::vector<std::string> plugins;  // --plugin
   std::string out;
   long samples = 200;
+  int repeats = 0;  // timing rounds (0: the default, compare::auto_rounds)
   bool json = false;
   bool render = false;
   std::string size = "480x360";  // each panel, with --render

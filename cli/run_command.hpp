@@ -19,6 +19,7 @@ struct RunOptions {
   std::string trajectory;
   bool overwrite = false;
   bool json = false;
+  int repeats = 0;  // runs timed, the first the one reported (0: the default, compare::auto_rounds)
 };
 
 CLI::App* add_run_command(CLI::App& app, RunOptions& options);

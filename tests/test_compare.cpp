@@ -4,6 +4,10 @@
 // test_compare_box2d.cpp and test_compare_bullet.cpp (sources: tests/reference/peers.md).
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
+#include <cstdio>
+#include <vector>
+
 #include "cli_harness.hpp"
 
 namespace {
@@ -46,6 +50,52 @@ TEST(Compare, HeadOnInThreeEnginesWritesTheReport) {
   // metrics.csv: a header and 201 samples per engine (t0 and 200 more: the default --samples).
   const std::string csv = read_file(out / "metrics.csv");
   EXPECT_EQ(count_lines(csv), 1 + 3 * 201);
+}
+
+TEST(Compare, RepeatsAreTimingRoundsSummarizedByTheirMinimumAndMedian) {
+  // --repeats 3: every engine's three rounds are in the JSON, and the time per step is their
+  // minimum, with the median and the spread (max − min)/min beside it (docs/cli.md).
+  TempDir dir;
+  const Result r = run_motus(dir, {"compare", scene("head_on"), "--out", (dir / "r").string(), "--json", "--repeats", "3"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j.at("repeats"), 3);
+  for (const char* name : {"motus", "box2d", "bullet"}) {
+    const auto& e = *engine(j, name);
+    std::vector<double> rounds = e.at("us_per_step_rounds").get<std::vector<double>>();
+    ASSERT_EQ(rounds.size(), 3u) << name;
+    std::sort(rounds.begin(), rounds.end());
+    EXPECT_EQ(e.at("us_per_step").get<double>(), rounds[0]) << name;
+    EXPECT_EQ(e.at("us_per_step_median").get<double>(), rounds[1]) << name;
+    EXPECT_EQ(e.at("us_per_step_max").get<double>(), rounds[2]) << name;
+    EXPECT_DOUBLE_EQ(e.at("us_per_step_spread").get<double>(), (rounds[2] - rounds[0]) / rounds[0]) << name;
+  }
+  // Without --repeats a scene this small gets the five rounds (the default: as many as fit in 3 s).
+  const Result d = run_motus(dir, {"compare", scene("head_on"), "--out", (dir / "d").string(), "--json"});
+  ASSERT_EQ(d.status, 0) << d.err;
+  EXPECT_EQ(nlohmann::json::parse(d.out).at("repeats"), 5);
+}
+
+TEST(Compare, OnTheStickScenesMotusKeepsItsSticksAtLeastAsWellAsBothPeers) {
+  // Issue 13: on cloth, rope, ragdoll and stick_pendulum, motus's largest stick error (every
+  // step sampled) is at most each peer's, measured in the same run by the same metrics code.
+  for (const char* name : {"cloth", "rope", "ragdoll", "stick_pendulum"}) {
+    TempDir dir;
+    const Result r = run_motus(dir, {"compare", scene(name), "--out", (dir / "r").string(), "--json", "--repeats", "1",
+                                     "--samples", "100000"});
+    ASSERT_EQ(r.status, 0) << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    const double mine = engine(j, "motus")->at("constraint_error").get<double>();
+    std::printf("  %s: largest stick error motus %.2e", name, mine);
+    for (const char* peer : {"box2d", "bullet"}) {
+      const auto& e = *engine(j, peer);
+      if (!e.at("supported").get<bool>()) continue;  // (Box2D: the 3-D cloth)
+      const double theirs = e.at("constraint_error").get<double>();
+      std::printf(", %s %.2e", peer, theirs);
+      EXPECT_LE(mine, theirs) << name << " against " << peer;
+    }
+    std::printf("\n");
+  }
 }
 
 TEST(Compare, ABox2dCannotRunA3dSceneAndSaysSo) {

@@ -29,7 +29,8 @@ struct MechanicalDescription {
   Colliders colliders;                 // static walls; none: no collision detection at all
   std::vector<StickConstraint> sticks; // Verlet distance constraints
   std::vector<PinConstraint> pins;     // bodies held at fixed points
-  int constraint_iterations = 10;      // projection sweeps per step
+  int constraint_iterations = 10;      // projection sweeps per projection
+  int constraint_substeps = 1;         // Verlet steps of dt/n per step of dt, each with its projection
 };
 
 struct FirstOrderDescription {

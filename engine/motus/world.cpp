@@ -39,10 +39,18 @@ World::World(const MechanicalDescription& scene, const Method& method, ExternalP
       throw SceneError("integrator", name +
                                          " cannot run sticks and pins: they are projected on velocityless Verlet; "
                                          "use verlet");
+    substeps_ = scene.constraint_substeps;
+    if (substeps_ < 1)
+      throw SceneError("constraint_substeps", "must be at least 1 (" + std::to_string(substeps_) + " given)");
+    // One projection per step sweeps in the scene's order (Jakobsen's sweep, to the last bit);
+    // substeps sweep in colours, whose error falls with the substeps where the scene's order's
+    // does not (docs/course.md, section 10).
+    const SweepOrder order = substeps_ > 1 ? SweepOrder::colours : SweepOrder::scene;
     Vector inverse_mass = system_.masses().cwiseInverse();
     constraints_ = std::make_unique<ConstraintProjection>(scene.dimensions, inverse_mass, radius, scene.sticks,
-                                                          scene.pins, scene.colliders, scene.constraint_iterations);
+                                                          scene.pins, scene.colliders, scene.constraint_iterations, order);
     project_contacts_ = contacts;
+    velocity_dependent_forces_ = !f.drag.empty() || !f.springs.empty();
     if (parts.constraints) use_external_projection(scene, *parts.constraints);
     return;
   }

@@ -1,7 +1,6 @@
 #include "motus/compare/comparison.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 
 #include "motus/compare/backends/motus_backend.hpp"
@@ -14,6 +13,12 @@ namespace {
 double relative(double change, double scale) { return scale != 0 ? change / std::abs(scale) : change; }
 
 }  // namespace
+
+Timings EngineRun::microseconds_per_step() const {
+  std::vector<double> per_step;
+  for (double seconds : round_seconds) per_step.push_back(steps ? 1e6 * seconds / static_cast<double>(steps) : 0);
+  return summarize(per_step);
+}
 
 double EngineRun::energy_drift() const { return relative(rows.back().total - rows.front().total, rows.front().total); }
 
@@ -75,22 +80,38 @@ std::vector<EngineRun> run_comparison(const SceneDescription& scene, const Compa
   std::stable_partition(order.begin(), order.end(), [](const std::string& e) { return e == "motus"; });
   std::vector<Snapshot> reference;
   std::vector<EngineRun> runs;
-  const double total_steps = static_cast<double>(steps) * static_cast<double>(order.size());  // (in double: no overflow)
+  // Until the metrics runs say how long a round takes, the progress counts on kMostRounds (auto).
+  int repeats = options.repeats > 0 ? options.repeats : kMostRounds;
+  // (in double: no overflow)
+  double total_steps = static_cast<double>(steps) * static_cast<double>(order.size()) * (1.0 + repeats);
   double done = 0;
+  auto make = [&](const std::string& name) -> std::unique_ptr<Backend> {
+    const bool plugin = options.plugin && name == options.plugin->name;
+    return plugin ? std::make_unique<MotusBackend>(name, options.plugin->version, options.plugin->parts)
+                  : make_backend(name);
+  };
+  auto method_of = [&](const std::string& name) {
+    const bool plugin = options.plugin && name == options.plugin->name;
+    return plugin ? options.plugin->method.value_or(options.method) : options.method;
+  };
+
+  // The metrics run of each engine (how long it took decides only how often a timing round
+  // may stop its clock to report progress).
+  std::vector<double> metrics_seconds;
   for (const auto& name : order) {
+    const double metrics_began = cpu_seconds();
     EngineRun run;
     run.engine = name;
     run.scale_of_momentum = scale;
-    const bool plugin = options.plugin && name == options.plugin->name;
-    std::unique_ptr<Backend> backend =
-        plugin ? std::make_unique<MotusBackend>(name, options.plugin->version, options.plugin->parts) : make_backend(name);
+    std::unique_ptr<Backend> backend = make(name);
     run.version = backend->version();
     try {
-      backend->build(scene, plugin ? options.plugin->method.value_or(options.method) : options.method, options.dt);
+      backend->build(scene, method_of(name), options.dt);
     } catch (const Unsupported& e) {
       run.supported = false;
       for (const auto& element : e.elements()) run.unsupported.push_back("not supported by " + name + ": " + element);
       runs.push_back(run);
+      metrics_seconds.push_back(0);
       done += static_cast<double>(steps);
       continue;
     }
@@ -118,12 +139,10 @@ std::vector<EngineRun> run_comparison(const SceneDescription& scene, const Compa
     if (options.frame_every > 0) keep_frame();
     size_t index = 1;
     for (long i = 0; i < steps;) {
-      // Time a batch of steps between two samples (or frames); the clock is read twice per batch.
+      // Step to the next sample (or frame).
       long batch = std::min(every - i % every, steps - i);
       if (options.frame_every > 0) batch = std::min(batch, options.frame_every - i % options.frame_every);
-      const auto began = std::chrono::steady_clock::now();
       for (long b = 0; b < batch; ++b) backend->step();
-      run.step_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count();
       i += batch;
       backend->read(s);
       if (i % every == 0 || i == steps) {
@@ -138,6 +157,42 @@ std::vector<EngineRun> run_comparison(const SceneDescription& scene, const Compa
     run.notes = backend->notes();  // after the run: limits that bit during it
     done += static_cast<double>(steps);
     runs.push_back(std::move(run));
+    metrics_seconds.push_back(cpu_seconds() - metrics_began);
+  }
+
+  // The timing rounds: a fresh world each, only its steps timed.
+  std::vector<size_t> timed;
+  for (size_t e = 0; e < runs.size(); ++e)
+    if (runs[e].supported) timed.push_back(e);
+  total_steps = done + static_cast<double>(steps) * static_cast<double>(timed.size()) * repeats;
+  for (int round = 0; round < repeats; ++round) {
+    for (size_t turn = 0; turn < timed.size(); ++turn) {
+      const size_t e = timed[(turn + static_cast<size_t>(round)) % timed.size()];
+      EngineRun& run = runs[e];
+      std::unique_ptr<Backend> backend = make(run.engine);
+      backend->build(scene, method_of(run.engine), options.dt);
+      // One block of steps; a long run (a quarter of a second or more) in twenty, to show
+      // progress, where reading the clock twenty times costs nothing next to the blocks.
+      const long blocks = progress && metrics_seconds[e] > 0.25 ? 20 : 1;
+      const long block_steps = std::max(1L, (steps + blocks - 1) / blocks);
+      double seconds = 0;
+      for (long i = 0; i < steps;) {
+        const long block = std::min(block_steps, steps - i);
+        const double began = cpu_seconds();
+        for (long b = 0; b < block; ++b) backend->step();
+        seconds += cpu_seconds() - began;
+        i += block;
+        if (progress) progress((done + static_cast<double>(i)) / total_steps);
+      }
+      run.round_seconds.push_back(seconds);
+      done += static_cast<double>(steps);
+    }
+    if (round == 0 && options.repeats <= 0) {  // the default: as many rounds as fit (timing.hpp)
+      double first_round = 0;
+      for (size_t e : timed) first_round += runs[e].round_seconds.front();
+      repeats = auto_rounds(first_round, kCompareBudget);
+      total_steps = done + static_cast<double>(steps) * static_cast<double>(timed.size()) * (repeats - 1);
+    }
   }
   return runs;
 }

@@ -8,6 +8,7 @@
 
 #include "motus/compare/backends/backend.hpp"
 #include "motus/compare/metrics.hpp"
+#include "motus/compare/timing.hpp"
 
 namespace motus::compare {
 
@@ -21,7 +22,8 @@ struct EngineRun {
   std::vector<double> frame_energies;    // total energy of each frame
   Snapshot last;                         // the state at the end of the run
   long steps = 0;
-  double step_seconds = 0;  // wall time inside step() only, not in the metrics
+  // CPU seconds of all `steps` step() calls, one number per timing round (timing.hpp).
+  std::vector<double> round_seconds;
 
   // Summaries (meaningful when supported and rows is not empty).
   double energy_drift() const;       // (E_end − E_0)/|E_0|
@@ -31,7 +33,8 @@ struct EngineRun {
   double max_constraint_error() const;
   double max_from_motus() const;     // m
   double max_from_exact() const;     // m; −1 when the scene has no analytic solution
-  double microseconds_per_step() const { return steps ? 1e6 * step_seconds / static_cast<double>(steps) : 0; }
+  // Microseconds per step over the timing rounds: min, median, max (0 without rounds).
+  Timings microseconds_per_step() const;
 
   double scale_of_momentum = 0;  // Σ m|v_0|, set by run_comparison
 };
@@ -53,8 +56,15 @@ struct ComparisonOptions {
   double duration = 1;
   long samples = 200;  // metric rows over the run (at most one per step)
   long frame_every = 0;  // keep the state every this many steps, and the last, for pictures (0: none)
+  int repeats = 0;       // timing rounds; 0: auto_rounds (5, fewer for a long scene)
 };
 
+// First every engine runs the scene once with its metrics sampled (untimed): the rows, frames,
+// settings and notes. Then `repeats` timing rounds: in each, every engine builds the scene
+// afresh and runs all its steps with nothing else in between, timed as one block of CPU time;
+// the engines take turns within a round (the round's first engine rotates), so that whatever
+// else the machine is doing falls on all of them alike. With repeats 0 (the default) the first
+// round's time decides how many there are (auto_rounds, timing.hpp: 5 for a small scene).
 // progress(fraction of all engines' steps done) is called now and then.
 std::vector<EngineRun> run_comparison(const SceneDescription& scene, const ComparisonOptions& options,
                                       const std::function<void(double)>& progress = {});

@@ -140,10 +140,14 @@ std::vector<ColumnDefinition> column_definitions(const SceneDescription& scene, 
   if (has_exact_solution(scene))
     d.push_back({"max distance from exact [m]",
                  "the same against the exact answer, " + solution_name(scene) + ": the engine's error itself."});
-  d.push_back({"µs per step",
-               "wall time spent inside the engine's step (the metrics are measured outside it), divided by the number "
-               "of steps; one run on a shared machine, so compare ratios, not absolute times."});
-  d.push_back({"time / motus", "µs per step divided by motus's: below 1 is faster than motus."});
+  d.push_back({"µs per step (min)",
+               "CPU time spent inside the engine's steps, divided by the number of steps, in the fastest of the timing "
+               "rounds: every engine runs the whole scene again in each round, with nothing measured in between, the "
+               "engines taking turns, so that a busy machine slows all of them alike; the run least disturbed is the "
+               "one shown. Compare ratios, not absolute times, on a shared machine."});
+  d.push_back({"median", "the median round's µs per step: how typical the fastest was."});
+  d.push_back({"spread", "(slowest round − fastest round) / fastest round: how much the rounds disagreed."});
+  d.push_back({"time / motus", "µs per step (min) divided by motus's: below 1 is faster than motus."});
   return d;
 }
 

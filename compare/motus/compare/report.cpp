@@ -133,7 +133,9 @@ nlohmann::json summary_json(const ReportContext& c, const std::vector<EngineRun>
   j["duration"] = c.duration;
   j["dimensions"] = c.dimensions;
   j["bodies"] = c.bodies;
+  j["repeats"] = c.repeats;
   const EngineRun* motus = find_motus(runs);
+  const Timings motus_time = motus ? motus->microseconds_per_step() : Timings{};
   j["engines"] = nlohmann::json::array();
   for (const auto& r : runs) {
     nlohmann::json e;
@@ -150,10 +152,20 @@ nlohmann::json summary_json(const ReportContext& c, const std::vector<EngineRun>
       e["constraint_error"] = r.max_constraint_error();
       e["max_distance_from_motus"] = motus ? nlohmann::json(r.max_from_motus()) : nlohmann::json(nullptr);
       e["max_distance_from_exact"] = r.max_from_exact() >= 0 ? nlohmann::json(r.max_from_exact()) : nlohmann::json(nullptr);
-      e["us_per_step"] = r.microseconds_per_step();
-      e["time_relative_to_motus"] =
-          motus && motus->microseconds_per_step() > 0 ? nlohmann::json(r.microseconds_per_step() / motus->microseconds_per_step())
-                                                      : nlohmann::json(nullptr);
+      // CPU time per step over the timing rounds: the minimum, and the median and largest beside it.
+      const Timings time = r.microseconds_per_step();
+      auto or_null = [&](double x) { return time.rounds > 0 ? nlohmann::json(x) : nlohmann::json(nullptr); };
+      e["us_per_step"] = or_null(time.min);
+      e["us_per_step_median"] = or_null(time.median);
+      e["us_per_step_max"] = or_null(time.max);
+      e["us_per_step_spread"] = or_null(time.spread());
+      nlohmann::json rounds = nlohmann::json::array();
+      for (double seconds : r.round_seconds) rounds.push_back(r.steps ? 1e6 * seconds / static_cast<double>(r.steps) : 0.0);
+      e["us_per_step_rounds"] = rounds;
+      const bool ratio = time.rounds > 0 && motus_time.min > 0;
+      e["time_relative_to_motus"] = ratio ? nlohmann::json(time.min / motus_time.min) : nlohmann::json(nullptr);
+      e["time_relative_to_motus_median"] =
+          ratio && motus_time.median > 0 ? nlohmann::json(time.median / motus_time.median) : nlohmann::json(nullptr);
       e["energy"] = {{"initial", r.rows.front().total}, {"final", r.rows.back().total}};
       e["momentum"] = {{"initial", r.rows.front().momentum}, {"final", r.rows.back().momentum}};
     }
@@ -229,16 +241,18 @@ std::string write_report(const std::string& folder, const ReportContext& c, cons
   html << "<h1>" << html_escape(c.scene_name) << "</h1>\n<p>" << html_escape(c.description) << "</p>\n";
   html << fmt::format("<p>{} bodies in {} dimensions; dt = {:g} s for {:g} s; motus integrator <code>{}</code>. "
                       "Every engine runs the same parsed scene in one process; every metric is computed by the same "
-                      "code from each engine's positions and velocities.</p>\n",
-                      c.bodies, c.dimensions, c.dt, c.duration, html_escape(c.integrator));
+                      "code from each engine's positions and velocities. Times are CPU time per step over {} timing "
+                      "rounds, the engines taking turns in each: the fastest round, with the median and the spread "
+                      "(largest − smallest) / smallest beside it.</p>\n",
+                      c.bodies, c.dimensions, c.dt, c.duration, html_escape(c.integrator), c.repeats);
   const bool exact_known = c.scene && has_exact_solution(*c.scene);
   if (summary.contains("notice"))
     html << "<p class=\"notice\"><b>What to notice.</b> " << html_escape(summary["notice"].get<std::string>()) << "</p>\n";
-  const int columns = exact_known ? 9 : 8;
+  const int columns = exact_known ? 11 : 10;
   html << "<div class=\"wide\"><table><tr><th>engine</th><th>energy drift</th><th>max |ΔE|/E₀</th><th>momentum drift"
        << (c.momentum_conserved ? "" : "*") << "</th><th>max penetration [m]</th><th>constraint error</th>"
        << "<th>max distance from motus [m]</th>" << (exact_known ? "<th>max distance from exact [m]</th>" : "")
-       << "<th>µs per step</th><th>time / motus</th></tr>\n";
+       << "<th>µs per step (min)</th><th>median</th><th>spread</th><th>time / motus</th></tr>\n";
   for (const auto& e : summary["engines"]) {
     if (!e["supported"].get<bool>()) {
       std::string why;
@@ -255,8 +269,11 @@ std::string write_report(const std::string& folder, const ReportContext& c, cons
          << "</td><td>" << cell(e["max_penetration"], "{:.2e}") << "</td><td>" << cell(e["constraint_error"], "{:.2e}")
          << "</td><td>" << cell(e["max_distance_from_motus"], "{:.2e}")
          << (exact_known ? "</td><td>" + cell(e["max_distance_from_exact"], "{:.2e}") : std::string())
-         << "</td><td>" << cell(e["us_per_step"], "{:.2f}") << "</td><td>" << cell(e["time_relative_to_motus"], "{:.2f}×")
-         << "</td></tr>\n";
+         << "</td><td>" << cell(e["us_per_step"], "{:.3g}") << "</td><td>" << cell(e["us_per_step_median"], "{:.3g}")
+         << "</td><td>"
+         << (e["us_per_step_spread"].is_null() ? std::string("–")
+                                               : fmt::format("{:.0f}%", 100 * e["us_per_step_spread"].get<double>()))
+         << "</td><td>" << cell(e["time_relative_to_motus"], "{:.2f}×") << "</td></tr>\n";
   }
   if (!c.momentum_conserved)  // (inside the table: the replay follows it directly)
     html << "<tr><td class=\"dim\" colspan=\"" << columns + 1

@@ -18,6 +18,7 @@ struct ReportContext {
   long samples = 0;  // metric samples over the run
   int dimensions = 2;
   long bodies = 0;
+  int repeats = 0;  // timing rounds
   std::string video, contact_sheet;  // file names in the folder (--render), or ""
   std::string first_and_last;        // the engines side by side at the start and the end (file name), or ""
   bool momentum_conserved = false;          // the scene keeps it (no walls, no outside force)

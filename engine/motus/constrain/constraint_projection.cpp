@@ -5,6 +5,8 @@
 #include <cstdint>
 #include <string>
 
+#include "motus/constrain/stick_chains.hpp"
+#include "motus/constrain/sweep_order.hpp"
 #include "motus/scene_error.hpp"
 
 // Jakobsen's relaxation ("Advanced Character Physics", 2001), as the course's fabric and
@@ -28,6 +30,16 @@ namespace {
 // cells seldom share a bucket.
 constexpr int kBucketsPerBall = 2;
 
+// Chains of at least this many sticks are solved directly; a single stick is exact after one
+// projection anyway, so it stays in the sweep.
+constexpr int kShortestSolvedChain = 2;
+// A chain is exact when no stick is off its length by more than this fraction.
+constexpr double kChainTolerance = 1e-12;
+
+// Cells of the ball pairs' hash are numbered within ±this along each axis (1e6 cells: over
+// 100 km for the shipped ragdoll's balls), so that a neighbour's index, ±1, never overflows.
+constexpr double kFarthestCell = 1e6;
+
 // The classic spatial-hash primes (Teschner et al., "Optimized Spatial Hashing for
 // Collision Detection of Deformable Objects", 2003).
 std::uint64_t hash_cell(const std::array<std::int64_t, 3>& c) {
@@ -39,7 +51,7 @@ std::uint64_t hash_cell(const std::array<std::int64_t, 3>& c) {
 
 ConstraintProjection::ConstraintProjection(int dimensions, const Vector& inverse_mass, std::vector<double> radius,
                                            std::vector<StickConstraint> sticks, std::vector<PinConstraint> pins,
-                                           const Colliders& colliders, int iterations)
+                                           const Colliders& colliders, int iterations, SweepOrder order)
     : d_(dimensions), inverse_mass_(inverse_mass), radius_(std::move(radius)), sticks_(std::move(sticks)),
       pins_(std::move(pins)), colliders_(colliders), iterations_(iterations) {
   const int n = static_cast<int>(inverse_mass_.size());
@@ -61,7 +73,26 @@ ConstraintProjection::ConstraintProjection(int dimensions, const Vector& inverse
   for (size_t p = 0; p < pins_.size(); ++p) check_body(pins_[p].body, "pins[" + std::to_string(p) + "].body");
   // A pinned body is infinitely heavy: sticks and contacts move only its partners.
   for (const auto& p : pins_) inverse_mass_[p.body] = 0;
-
+  // Chains of sticks are solved directly (chain_solver.hpp); the other sticks are swept in
+  // groups that share no body (sweep_order.hpp).
+  std::vector<StickChain> chains = find_stick_chains(sticks_, inverse_mass_, kShortestSolvedChain);
+  std::vector<char> in_chain(sticks_.size(), 0);
+  for (const auto& c : chains)
+    for (int s : c.sticks) in_chain[static_cast<size_t>(s)] = 1;
+  chains_ = ChainSolver(d_, inverse_mass_, sticks_, std::move(chains));
+  const StickGroups groups = sweep_groups(sticks_, n, order);
+  sweep_group_start_.push_back(0);
+  for (int g = 0; g < groups.groups(); ++g) {
+    for (int u = groups.group_start[static_cast<size_t>(g)]; u < groups.group_start[static_cast<size_t>(g) + 1]; ++u) {
+      const auto index = static_cast<size_t>(groups.order[static_cast<size_t>(u)]);
+      const StickConstraint& stick = sticks_[index];
+      const double wa = inverse_mass_[stick.a], wb = inverse_mass_[stick.b];
+      if (wa + wb == 0 || in_chain[index]) continue;  // both ends pinned: nothing may move
+      sweep_sticks_.push_back({stick.a, stick.b, stick.length, wa / (wa + wb), wb / (wa + wb)});
+    }
+    if (sweep_group_start_.back() != static_cast<int>(sweep_sticks_.size()))
+      sweep_group_start_.push_back(static_cast<int>(sweep_sticks_.size()));
+  }
 
   // Walls, in the one form the sweep needs: a box container is its 2·d inward faces.
   for (const auto& p : colliders_.planes) {
@@ -113,15 +144,21 @@ bool ConstraintProjection::pinned(int body) const { return inverse_mass_[body] =
 void ConstraintProjection::project(VectorRef x) {
   place_pins(x);  // first, so the sticks pull towards where the pins really are
   if (balls_.size() >= 2) find_ball_pairs(x);
+  // Once the chains are exact, a sweep with nothing else to do would change nothing.
+  const bool only_chains = sweep_sticks_.empty() && walls_.empty() && colliders_.segments.empty() && pairs_.empty();
   for (int sweep = 0; sweep < iterations_; ++sweep) {
     project_sticks(x);
+    const bool chains_exact = chains_.iterate(x.data(), kChainTolerance);
+    if (only_chains && chains_exact) break;
     project_walls(x);
     project_ball_pairs(x);
   }
   // Walls win: a sweep's last ball pushes may have nudged a body into a wall, and while a
   // stick a little off its length is only stretchiness, a body seen through the floor is
   // a bug. (Sweeps are what make sticks and contacts agree; this only settles who is last.)
-  project_walls(x);
+  // With no ball pairs and a single plane the sweep's own wall pass was already last, and a
+  // second would change nothing.
+  if (!pairs_.empty() || !colliders_.segments.empty() || walls_.size() > 1) project_walls(x);
   place_pins(x);  // last, exactly: nothing above moves a body of inverse mass 0, but be sure
   remember_segment_sides(x);
 }
@@ -142,22 +179,71 @@ void ConstraintProjection::place_pins(VectorRef x) const {
 // centre of mass stays where it was and the projection adds no momentum.
 namespace {
 
-// One sweep over the sticks, with the dimension known at compile time: this is the
-// inner loop of a cloth (thousands of sticks, tens of sweeps, every step).
-template <int D>
-void project_sticks_in(const std::vector<StickConstraint>& sticks, const Vector& inverse_mass, double* x) {
-  using P = Eigen::Matrix<double, D, 1>;
-  for (const auto& s : sticks) {
-    const double wa = inverse_mass[s.a], wb = inverse_mass[s.b];
-    const double w = wa + wb;
-    if (w == 0) continue;  // both ends pinned: nothing may move
-    Eigen::Map<P> xa(x + D * s.a), xb(x + D * s.b);
-    const P delta = xb - xa;
-    const double length = delta.norm();
-    if (length == 0) continue;  // the two ends coincide: no direction to push along
-    const double stretch = (length - s.length) / (length * w);
-    xa += (stretch * wa) * delta;
-    xb -= (stretch * wb) * delta;
+// One stick: with Δ = x_b − x_a and d = |Δ|, the correction (d − L)/d · Δ, shared by the
+// precomputed inverse-mass shares.
+template <int D, class Stick>
+inline void project_stick(const Stick& s, double* x) {
+  double* xa = x + D * s.a;
+  double* xb = x + D * s.b;
+  double delta[D];
+  double length2 = 0;
+  for (int k = 0; k < D; ++k) {
+    delta[k] = xb[k] - xa[k];
+    length2 += delta[k] * delta[k];
+  }
+  if (length2 == 0) return;  // the two ends coincide: no direction to push along
+  const double length = std::sqrt(length2);
+  const double stretch = (length - s.length) / length;
+  const double move_a = stretch * s.share_a, move_b = stretch * s.share_b;
+  for (int k = 0; k < D; ++k) {
+    xa[k] += move_a * delta[k];
+    xb[k] -= move_b * delta[k];
+  }
+}
+
+// Two sticks of one group (no body in common) at once, in the two lanes of a SIMD
+// register (Eigen's Array2d: SSE2 on x86-64): the same arithmetic, so the same numbers as
+// one at a time, for one square root and one division of two lanes.
+template <int D, class Stick>
+inline void project_stick_pair(const Stick& s, const Stick& t, double* x) {
+  using Lanes = Eigen::Array2d;
+  double* xa0 = x + D * s.a;
+  double* xb0 = x + D * s.b;
+  double* xa1 = x + D * t.a;
+  double* xb1 = x + D * t.b;
+  Lanes delta[D];
+  Lanes length2 = Lanes::Zero();
+  for (int k = 0; k < D; ++k) {
+    delta[k] = Lanes(xb0[k], xb1[k]) - Lanes(xa0[k], xa1[k]);
+    length2 += delta[k] * delta[k];
+  }
+  if (length2[0] == 0 || length2[1] == 0) {  // (rare) coincident ends: one at a time
+    project_stick<D>(s, x);
+    project_stick<D>(t, x);
+    return;
+  }
+  const Lanes length = length2.sqrt();
+  const Lanes stretch = (length - Lanes(s.length, t.length)) / length;
+  const Lanes move_a = stretch * Lanes(s.share_a, t.share_a), move_b = stretch * Lanes(s.share_b, t.share_b);
+  for (int k = 0; k < D; ++k) {
+    const Lanes da = move_a * delta[k], db = move_b * delta[k];
+    xa0[k] += da[0];
+    xa1[k] += da[1];
+    xb0[k] -= db[0];
+    xb1[k] -= db[1];
+  }
+}
+
+// One sweep over the sticks, group by group, with the dimension known at compile time:
+// this is the inner loop of a cloth (thousands of sticks, every step).
+template <int D, class Stick>
+void project_sticks_in(const std::vector<Stick>& sticks, const std::vector<int>& group_start, double* x) {
+  const Stick* stick = sticks.data();
+  for (size_t g = 0; g + 1 < group_start.size(); ++g) {
+    int u = group_start[g];
+    const int end = group_start[g + 1];
+    for (; u + 1 < end; u += 2) project_stick_pair<D>(stick[u], stick[u + 1], x);
+    if (u < end) project_stick<D>(stick[u], x);
   }
 }
 
@@ -165,25 +251,46 @@ void project_sticks_in(const std::vector<StickConstraint>& sticks, const Vector&
 
 void ConstraintProjection::project_sticks(VectorRef x) const {
   switch (d_) {
-    case 1: project_sticks_in<1>(sticks_, inverse_mass_, x.data()); break;
-    case 2: project_sticks_in<2>(sticks_, inverse_mass_, x.data()); break;
-    default: project_sticks_in<3>(sticks_, inverse_mass_, x.data()); break;
+    case 1: project_sticks_in<1>(sweep_sticks_, sweep_group_start_, x.data()); break;
+    case 2: project_sticks_in<2>(sweep_sticks_, sweep_group_start_, x.data()); break;
+    default: project_sticks_in<3>(sweep_sticks_, sweep_group_start_, x.data()); break;
   }
 }
 
+namespace {
+
+// Every free body against every wall, wall by wall, with the dimension known at compile time
+// (a cloth's floor: 400 bodies, every sweep). Each body meets the walls in the scene's order.
+template <int D, class Wall>
+void project_planes_in(const std::vector<Wall>& walls, const Vector& inverse_mass, const std::vector<double>& radius,
+                       double* x) {
+  const auto n = static_cast<size_t>(radius.size());
+  for (const Wall& wall : walls)
+    for (size_t i = 0; i < n; ++i) {
+      if (inverse_mass[static_cast<Eigen::Index>(i)] == 0) continue;  // pinned: the pin wins
+      double* xi = x + D * i;
+      double height = -wall.offset - radius[i];  // n·x − offset − r: < 0 means inside the wall
+      for (int k = 0; k < D; ++k) height += wall.normal[k] * xi[k];
+      if (height < 0)
+        for (int k = 0; k < D; ++k) xi[k] -= height * wall.normal[k];
+    }
+}
+
+}  // namespace
+
 void ConstraintProjection::project_walls(VectorRef x) const {
-  if (walls_.empty() && colliders_.segments.empty()) return;
+  if (!walls_.empty()) {
+    switch (d_) {
+      case 1: project_planes_in<1>(walls_, inverse_mass_, radius_, x.data()); break;
+      case 2: project_planes_in<2>(walls_, inverse_mass_, radius_, x.data()); break;
+      default: project_planes_in<3>(walls_, inverse_mass_, radius_, x.data()); break;
+    }
+  }
+  if (colliders_.segments.empty()) return;
   const int n = static_cast<int>(radius_.size());
   for (int i = 0; i < n; ++i) {
-    if (inverse_mass_[i] == 0) continue;  // pinned: the pin wins
+    if (inverse_mass_[i] == 0) continue;
     auto xi = x.segment(i * d_, d_);
-    const double r = radius_[i];
-    for (const Wall& wall : walls_) {
-      double height = -wall.offset - r;  // n·x − offset − r: < 0 means inside the wall
-      for (int k = 0; k < d_; ++k) height += wall.normal[k] * xi[k];
-      if (height < 0)
-        for (int k = 0; k < d_; ++k) xi[k] -= height * wall.normal[k];
-    }
     for (size_t j = 0; j < colliders_.segments.size(); ++j) project_segment(j, i, xi);
   }
 }
@@ -255,7 +362,14 @@ void ConstraintProjection::find_ball_pairs(ConstVectorRef x) {
   const auto buckets = static_cast<std::uint64_t>(bucket_start_.size() - 1);
   auto cell_of = [&](int i) {
     std::array<std::int64_t, 3> c{0, 0, 0};
-    for (int k = 0; k < d_; ++k) c[k] = static_cast<std::int64_t>(std::floor(x[i * d_ + k] / cell));
+    for (int k = 0; k < d_; ++k) {
+      // Clamped as a double before the cast (a cast of a double beyond int64's range, or of
+      // NaN, is undefined behaviour): a ball flung farther than kFarthestCell cells shares the
+      // edge cell with any other out there, which only makes them candidates the exact
+      // distance test then looks at; NaN (a position no step should make) goes to cell 0.
+      const double cell_index = std::floor(x[i * d_ + k] / cell);
+      c[k] = std::isnan(cell_index) ? 0 : static_cast<std::int64_t>(std::clamp(cell_index, -kFarthestCell, kFarthestCell));
+    }
     return c;
   };
 

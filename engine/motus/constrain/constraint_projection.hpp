@@ -3,18 +3,23 @@
 // Physics"; the course's fabric-and-ragdoll demo, docs/course.md section 10): after the Verlet step moves every
 // body, positions are projected back onto the constraints, a fixed number of sweeps:
 //   each stick:  move its two ends along the stick, in proportion to their inverse
-//                masses, until it has its rest length;
+//                masses, until it has its rest length (in groups that share no body:
+//                sweep_order.hpp); a chain of sticks instead gets one Newton iteration
+//                on all its sticks at once, until it is exact (chain_solver.hpp);
 //   each wall:   push a body that is inside a wall back to its surface;
 //   each pair of overlapping balls: push them apart, mass-weighted;
 //   then the walls once more (no body ends a step inside a wall), and
 //   each pin:    put the body back on its point (pins go last, so they never move).
-// The velocity is then what Verlet always implies: (x_{n+1} − x_n)/Δt.
+// The sweeps stop early when only chains are left and they are exact. The velocity is then
+// what Verlet always implies: (x_{n+1} − x_n)/Δt.
 #include <array>
 #include <utility>
 #include <vector>
 
 #include "motus/collide/colliders.hpp"
+#include "motus/constrain/chain_solver.hpp"
 #include "motus/constrain/constraints.hpp"
+#include "motus/constrain/sweep_order.hpp"
 #include "motus/vector.hpp"
 
 namespace motus {
@@ -23,9 +28,10 @@ class ConstraintProjection {
 public:
   ConstraintProjection(int dimensions, const Vector& inverse_mass, std::vector<double> radius,
                        std::vector<StickConstraint> sticks, std::vector<PinConstraint> pins,
-                       const Colliders& colliders, int iterations);
+                       const Colliders& colliders, int iterations, SweepOrder order = SweepOrder::scene);
 
-  // `iterations` sweeps over sticks, walls and ball pairs, then the pins.
+  // `iterations` sweeps over sticks, walls and ball pairs, then the pins. `order`: the scene's
+  // (its exact numbers) or colours (for substeps).
   void project(VectorRef x);
   // Only the contacts between balls, `iterations` sweeps (after a projection from outside,
   // which moves sticks, pins and walls but not balls against each other).
@@ -62,6 +68,18 @@ private:
   Vector inverse_mass_;  // pinned bodies count as infinitely heavy
   std::vector<double> radius_;
   std::vector<StickConstraint> sticks_;
+  // The sticks as the sweep reads them: group by group (sweep_order.hpp), each with its
+  // ends' shares of a correction, w_a/(w_a + w_b) and w_b/(w_a + w_b), worked out once
+  // (pins never change, so neither do they); sticks between two pinned bodies are left out.
+  struct SweepStick {
+    int a, b;
+    double length, share_a, share_b;
+  };
+  std::vector<SweepStick> sweep_sticks_;
+  std::vector<int> sweep_group_start_;  // group g: sweep_sticks_[start[g] .. start[g + 1])
+  // Chains of two or more sticks (a rope) are not swept but solved all at once, one Newton
+  // iteration per sweep until they are exact (chain_solver.hpp).
+  ChainSolver chains_;
   std::vector<PinConstraint> pins_;
   Colliders colliders_;
   int iterations_;

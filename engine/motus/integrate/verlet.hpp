@@ -18,7 +18,6 @@ public:
   void resize(int n) {
     a_.resize(n);
     x_previous_.resize(n);
-    x_next_.resize(n);
     started_ = false;
   }
   // Forget p_{n−1} (call after changing x or v from outside).
@@ -39,15 +38,22 @@ public:
       x_previous_ = x - h * v + (0.5 * h * h) * a_;
       started_ = true;
     }
-    x_next_ = 2 * x - x_previous_ + (h * h) * a_;
-    x_previous_ = x;
-    x = x_next_;
+    // p_{n+1} = 2 p_n − p_{n−1} + a_n Δt², and p_n becomes the previous position: one pass.
+    const double h2 = h * h;
+    double* p = x.data();
+    double* p_previous = x_previous_.data();
+    const double* a = a_.data();
+    for (Eigen::Index i = 0; i < x.size(); ++i) {
+      const double p_n = p[i];
+      p[i] = (2 * p_n - p_previous[i]) + h2 * a[i];
+      p_previous[i] = p_n;
+    }
     s.acceleration(t + h, x, v, a_);
     v = (x - x_previous_) / h + (0.5 * h) * a_;
   }
 
 private:
-  Vector a_, x_previous_, x_next_;
+  Vector a_, x_previous_;
   bool started_ = false;
 };
 

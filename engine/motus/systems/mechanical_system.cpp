@@ -13,6 +13,8 @@ MechanicalSystem::MechanicalSystem(int dimensions, std::vector<double> masses, F
   for (double m : masses)
     if (!(m > 0)) throw std::invalid_argument("every mass must be > 0");
   inverse_mass_ = mass_.cwiseInverse();
+  coordinate_inverse_mass_.resize(static_cast<Eigen::Index>(masses.size()) * d_);
+  for (Eigen::Index i = 0; i < mass_.size(); ++i) coordinate_inverse_mass_.segment(i * d_, d_).setConstant(inverse_mass_[i]);
   one_mass_[0] = mass_.size() > 0 ? mass_[0] : 1.0;
 }
 
@@ -20,7 +22,7 @@ void MechanicalSystem::acceleration(double t, ConstVectorRef x, ConstVectorRef v
   ++evaluations;
   a.setZero();
   forces_.add_forces(t, d_, mass_, x, v, a);  // a holds F for now
-  for (int i = 0; i < particles(); ++i) a.segment(i * d_, d_) *= inverse_mass_[i];
+  a.array() *= coordinate_inverse_mass_.array();  // a_ik = F_ik · (1/m_i), in one pass
 }
 
 double MechanicalSystem::kinetic_energy(ConstVectorRef v) const {

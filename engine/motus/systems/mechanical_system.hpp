@@ -96,6 +96,7 @@ private:
   int d_;
   Vector mass_;
   Vector inverse_mass_;
+  Vector coordinate_inverse_mass_;  // 1/m_i for each of body i's coordinates
   Eigen::Matrix<double, 1, 1> one_mass_;  // the first body's mass, for acceleration_of_one_body
   ForceSet forces_;
 };

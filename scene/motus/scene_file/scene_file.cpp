@@ -273,6 +273,9 @@ MechanicalDescription read_mechanical(JsonFields& scene) {
   const long iterations = scene.integer("constraint_iterations", 10);
   if (iterations < 1 || iterations > 10000) scene.fail("constraint_iterations", "must be from 1 to 10000");
   m.constraint_iterations = static_cast<int>(iterations);
+  const long substeps = scene.integer("constraint_substeps", 1);
+  if (substeps < 1 || substeps > 10000) scene.fail("constraint_substeps", "must be from 1 to 10000");
+  m.constraint_substeps = static_cast<int>(substeps);
   return m;
 }
 
