@@ -94,9 +94,8 @@ SceneDescription cloth_scene(bool with_ground = true, int rows = 20, int columns
   return verlet_scene("cloth", m, 10);
 }
 
-// scenes/rope.json.
-SceneDescription rope_scene() {
-  MechanicalDescription m = with_gravity(120);
+// scenes/rope.json's rope: 20 sticks of 0.1 m from (0, 2), horizontal, the first particle pinned.
+void add_shipped_rope(MechanicalDescription& m) {
   motus::RopeGenerator r;
   r.segments = 20;
   r.segment_length = 0.1;
@@ -104,6 +103,12 @@ SceneDescription rope_scene() {
   r.origin = {0, 2, 0};
   r.direction = {1, 0, 0};
   motus::add_rope(m, r);
+}
+
+// scenes/rope.json.
+SceneDescription rope_scene() {
+  MechanicalDescription m = with_gravity(120);
+  add_shipped_rope(m);
   return verlet_scene("rope", m, 10);
 }
 
@@ -730,13 +735,7 @@ TEST(ChainSolver, APinAtEachEndStaysExactAndTheChainIsSolved) {
   // and no projection can make them. Hung slack between pins 1.8 m apart instead, and started
   // from a straight line, the chain solver makes every stick exact and leaves both pins.
   MechanicalDescription m = with_gravity(50);
-  motus::RopeGenerator r;
-  r.segments = 20;
-  r.segment_length = 0.1;
-  r.mass = 0.05;
-  r.origin = {0, 2, 0};
-  r.direction = {1, 0, 0};
-  motus::add_rope(m, r);
+  add_shipped_rope(m);
   m.pins.push_back({20, {1.8, 2, 0}});
   for (int i = 0; i <= 20; ++i) m.bodies[static_cast<size_t>(i)].position[0] = 0.09 * i;  // squeezed onto the line
   m.bodies[10].position[1] = 1.9;  // and the middle pulled down, so there is a way to bend
