@@ -8,15 +8,19 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <signal.h>
+
 #include <cerrno>
 #include <cstring>
 
 #include <algorithm>
+#include <chrono>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 namespace motus_test {
@@ -67,6 +71,27 @@ struct Result {
   std::string out, err;
 };
 
+// This process's environment with `environment` ("NAME=value") replacing or adding its names;
+// under the sanitizers, where their reports go.
+inline std::vector<std::string> child_environment(const std::vector<std::string>& environment) {
+  std::vector<std::string> env_strings;
+  for (char** e = environ; *e; ++e) {
+    const std::string entry = *e, name = entry.substr(0, entry.find('='));
+    const bool replaced = std::any_of(environment.begin(), environment.end(),
+                                      [&](const std::string& mine) { return mine.substr(0, mine.find('=')) == name; });
+    if (!replaced) env_strings.push_back(entry);
+  }
+  env_strings.insert(env_strings.end(), environment.begin(), environment.end());
+#ifdef MOTUS_SANITIZE
+  // Under the sanitizers their reports go to files (docs/testing.md), so that a test counting
+  // the lines of motus's standard error counts motus's own.
+  env_strings.push_back("ASAN_OPTIONS=log_path=" MOTUS_SANITIZER_LOGS "/asan");
+  env_strings.push_back("UBSAN_OPTIONS=print_stacktrace=1:log_path=" MOTUS_SANITIZER_LOGS "/ubsan");
+  env_strings.push_back("LSAN_OPTIONS=suppressions=" MOTUS_LSAN_SUPPRESSIONS);
+#endif
+  return env_strings;
+}
+
 // Runs PROGRAM ARGS... directly (no shell), with standard input from /dev/null and standard
 // output and error captured in files of `dir`. `environment` entries ("NAME=value") are set
 // on top of this process's environment.
@@ -83,22 +108,7 @@ inline Result run_program(const TempDir& dir, const std::string& program, const 
   std::vector<char*> argv;
   for (auto& a : argv_strings) argv.push_back(a.data());
   argv.push_back(nullptr);
-  // This environment, with `environment` replacing (or adding) its names.
-  std::vector<std::string> env_strings;
-  for (char** e = environ; *e; ++e) {
-    const std::string entry = *e, name = entry.substr(0, entry.find('='));
-    const bool replaced = std::any_of(environment.begin(), environment.end(),
-                                      [&](const std::string& mine) { return mine.substr(0, mine.find('=')) == name; });
-    if (!replaced) env_strings.push_back(entry);
-  }
-  env_strings.insert(env_strings.end(), environment.begin(), environment.end());
-#ifdef MOTUS_SANITIZE
-  // Under the sanitizers their reports go to files (docs/testing.md), so that a test counting
-  // the lines of motus's standard error counts motus's own.
-  env_strings.push_back("ASAN_OPTIONS=log_path=" MOTUS_SANITIZER_LOGS "/asan");
-  env_strings.push_back("UBSAN_OPTIONS=print_stacktrace=1:log_path=" MOTUS_SANITIZER_LOGS "/ubsan");
-  env_strings.push_back("LSAN_OPTIONS=suppressions=" MOTUS_LSAN_SUPPRESSIONS);
-#endif
+  std::vector<std::string> env_strings = child_environment(environment);
   std::vector<char*> envp;
   for (auto& e : env_strings) envp.push_back(e.data());
   envp.push_back(nullptr);
@@ -123,6 +133,59 @@ inline Result run_program(const TempDir& dir, const std::string& program, const 
 inline Result run_motus(const TempDir& dir, const std::vector<std::string>& args,
                         const std::vector<std::string>& environment = {}) {
   return run_program(dir, kMotus, args, environment);
+}
+
+// Ctrl-C in the middle of drawing: runs `motus ARGS...` in a process group of its own (as a
+// shell runs a job), with a stand-in for gnuplot first on PATH (dir/bin/gnuplot) that leaves a
+// mark, "plotting-started", in the folder it is started in and then waits; as soon as a folder
+// of `dir` has the mark, the whole group gets SIGINT. The result as run_program gives it (its
+// output in dir/stdout.txt and dir/stderr.txt), or status -1 when no plotting began in 20 s.
+inline Result interrupt_motus_while_plotting(const TempDir& dir, const std::vector<std::string>& args) {
+  const fs::path bin = dir / "bin", out = dir / "stdout.txt", err = dir / "stderr.txt";
+  fs::create_directories(bin);
+  write_file(bin / "gnuplot", "#!/bin/sh\ntouch \"$PWD/plotting-started\"\nexec sleep 30\n");
+  fs::permissions(bin / "gnuplot", fs::perms::owner_all);
+  posix_spawnattr_t attributes;
+  posix_spawnattr_init(&attributes);
+  posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETPGROUP);
+  posix_spawnattr_setpgroup(&attributes, 0);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
+  posix_spawn_file_actions_addopen(&actions, 1, out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_addopen(&actions, 2, err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  std::vector<std::string> argv_strings = {kMotus};
+  argv_strings.insert(argv_strings.end(), args.begin(), args.end());
+  std::vector<char*> argv;
+  for (auto& a : argv_strings) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  std::vector<std::string> env_strings = child_environment({"PATH=" + bin.string() + ":/usr/bin:/bin"});
+  std::vector<char*> envp;
+  for (auto& e : env_strings) envp.push_back(e.data());
+  envp.push_back(nullptr);
+  pid_t pid = 0;
+  const int spawned = posix_spawn(&pid, kMotus.c_str(), &actions, &attributes, argv.data(), envp.data());
+  posix_spawn_file_actions_destroy(&actions);
+  posix_spawnattr_destroy(&attributes);
+  Result r;
+  if (spawned != 0) {
+    r.err = kMotus + ": cannot be started: " + std::strerror(spawned);
+    return r;
+  }
+  bool plotting = false;
+  for (int i = 0; i < 4000 && !plotting; ++i) {
+    for (const auto& e : fs::directory_iterator(dir.path()))
+      if (fs::exists(e.path() / "plotting-started")) plotting = true;
+    if (!plotting) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  ::kill(-pid, plotting ? SIGINT : SIGKILL);  // Ctrl-C: the whole foreground group, motus and its plotting
+  int raw = 0;
+  while (waitpid(pid, &raw, 0) < 0 && errno == EINTR) {
+  }
+  r.status = !plotting ? -1 : WIFEXITED(raw) ? WEXITSTATUS(raw) : WIFSIGNALED(raw) ? 128 + WTERMSIG(raw) : -1;
+  r.out = read_file(out);
+  r.err = (plotting ? "" : "no plotting began within 20 s\n") + read_file(err);
+  return r;
 }
 
 inline long count_lines(const std::string& s) { return std::count(s.begin(), s.end(), '\n'); }

@@ -5,7 +5,6 @@
 // numbers in them come from the geometry of the case (worked out beside it) or from the limits
 // the docs state.
 #include <gtest/gtest.h>
-#include <signal.h>
 #include <spawn.h>
 #include <sys/resource.h>
 #include <sys/stat.h>
@@ -16,7 +15,6 @@
 #include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
-#include <thread>
 
 #include "cli_harness.hpp"
 #include "motus/scene_file/scene_file.hpp"
@@ -294,48 +292,13 @@ TEST(Hardening, AFullDiskIsAFailureNamingTheFile) {
 //     stand-in for gnuplot that waits, so that the Ctrl-C surely comes while it runs.
 TEST(Hardening, AnInterruptedCompareExits130AndLeavesNoFolder) {
   TempDir dir;
-  const fs::path out = dir / "report", bin = dir / "bin";
-  fs::create_directories(bin);
-  write_file(bin / "gnuplot", "#!/bin/sh\ntouch \"$PWD/plotting-started\"\nexec sleep 30\n");
-  fs::permissions(bin / "gnuplot", fs::perms::owner_all);
-  pid_t pid = 0;
-  posix_spawnattr_t attributes;
-  posix_spawnattr_init(&attributes);
-  posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETPGROUP);  // its own group, as a shell job is
-  posix_spawnattr_setpgroup(&attributes, 0);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, 1, (dir / "out.txt").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_addopen(&actions, 2, (dir / "err.txt").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  std::vector<std::string> args = {kMotus, "compare", "head_on", "--out", out.string()};
-  std::vector<char*> argv;
-  for (auto& a : args) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  std::vector<std::string> env_strings = {"PATH=" + bin.string() + ":/usr/bin:/bin"};
-  for (char** e = environ; *e; ++e)
-    if (std::string(*e).rfind("PATH=", 0) != 0) env_strings.push_back(*e);
-  std::vector<char*> envp;
-  for (auto& e : env_strings) envp.push_back(e.data());
-  envp.push_back(nullptr);
-  ASSERT_EQ(posix_spawn(&pid, kMotus.c_str(), &actions, &attributes, argv.data(), envp.data()), 0);
-  posix_spawn_file_actions_destroy(&actions);
-  posix_spawnattr_destroy(&attributes);
-  // Wait for the plotting to start (the stand-in leaves a mark in the report's partial folder).
-  bool plotting = false;
-  for (int i = 0; i < 2000 && !plotting; ++i) {
-    for (const auto& e : fs::directory_iterator(dir.path()))
-      if (fs::exists(e.path() / "plotting-started")) plotting = true;
-    if (!plotting) std::this_thread::sleep_for(std::chrono::milliseconds(5));
-  }
-  ASSERT_TRUE(plotting) << read_file(dir / "err.txt");
-  ::kill(-pid, SIGINT);  // Ctrl-C: the whole foreground group, motus and its plotting program
-  int raw = 0;
-  waitpid(pid, &raw, 0);
-  EXPECT_TRUE(WIFEXITED(raw) && WEXITSTATUS(raw) == 130) << read_file(dir / "err.txt");
+  const fs::path out = dir / "report";
+  const Result r = interrupt_motus_while_plotting(dir, {"compare", "head_on", "--out", out.string()});
+  EXPECT_EQ(r.status, 130) << r.err;
   EXPECT_FALSE(fs::exists(out));
   for (const auto& e : fs::directory_iterator(dir.path()))
     EXPECT_EQ(e.path().filename().string().find(".report.partial"), std::string::npos) << e.path();
-  EXPECT_NE(read_file(dir / "err.txt").find("interrupted"), std::string::npos);
+  EXPECT_NE(r.err.find("interrupted"), std::string::npos);
 }
 
 // 17. Sizes that would be allowed but unusable are refused with the limit named (docs: at most

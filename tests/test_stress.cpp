@@ -13,10 +13,6 @@
 //     (docs/course.md, section 9) at every mass ratio, and nothing tunnels at any speed;
 //   - bad input is one line and exit status 2; Ctrl-C exits 130 and leaves no folder.
 #include <gtest/gtest.h>
-#include <signal.h>
-
-#include <chrono>
-#include <thread>
 
 #include <cmath>
 #include <map>
@@ -256,46 +252,14 @@ TEST(StressErrors, BadInputIsOneLineAndExitTwo) {
 // neither the page nor its partial one (cli/cli_common.hpp, PartialFolder).
 TEST(StressErrors, AnInterruptedStressExits130AndLeavesNoFolder) {
   TempDir dir;
-  const fs::path out = dir / "page", bin = dir / "bin";
-  fs::create_directories(bin);
-  write_file(bin / "gnuplot", "#!/bin/sh\ntouch \"$PWD/plotting-started\"\nexec sleep 30\n");
-  fs::permissions(bin / "gnuplot", fs::perms::owner_all);
-  posix_spawnattr_t attributes;
-  posix_spawnattr_init(&attributes);
-  posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETPGROUP);  // its own group, as a shell job is
-  posix_spawnattr_setpgroup(&attributes, 0);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, 1, (dir / "out.txt").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_addopen(&actions, 2, (dir / "err.txt").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  std::vector<std::string> args = {kMotus, "stress", "oscillator", "--out", out.string(), "--steps", "1000", "--drift-steps", "1000"};
-  std::vector<char*> argv;
-  for (auto& a : args) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  std::vector<std::string> env_strings = {"PATH=" + bin.string() + ":/usr/bin:/bin"};
-  for (char** e = environ; *e; ++e)
-    if (std::string(*e).rfind("PATH=", 0) != 0) env_strings.push_back(*e);
-  std::vector<char*> envp;
-  for (auto& e : env_strings) envp.push_back(e.data());
-  envp.push_back(nullptr);
-  pid_t pid = 0;
-  ASSERT_EQ(posix_spawn(&pid, kMotus.c_str(), &actions, &attributes, argv.data(), envp.data()), 0);
-  posix_spawn_file_actions_destroy(&actions);
-  posix_spawnattr_destroy(&attributes);
-  bool plotting = false;
-  for (int i = 0; i < 4000 && !plotting; ++i) {
-    for (const auto& e : fs::directory_iterator(dir.path()))
-      if (fs::exists(e.path() / "plotting-started")) plotting = true;
-    if (!plotting) std::this_thread::sleep_for(std::chrono::milliseconds(5));
-  }
-  ASSERT_TRUE(plotting) << read_file(dir / "err.txt");
-  ::kill(-pid, SIGINT);  // Ctrl-C: the whole foreground group, motus and its plotting program
-  int raw = 0;
-  waitpid(pid, &raw, 0);
-  EXPECT_TRUE(WIFEXITED(raw) && WEXITSTATUS(raw) == 130) << read_file(dir / "err.txt");
+  const fs::path out = dir / "page";
+  const Result r = interrupt_motus_while_plotting(
+      dir, {"stress", "oscillator", "--out", out.string(), "--steps", "1000", "--drift-steps", "1000"});
+  EXPECT_EQ(r.status, 130) << r.err;
   EXPECT_FALSE(fs::exists(out));
   for (const auto& e : fs::directory_iterator(dir.path()))
-    EXPECT_TRUE(e.path().filename() == "bin" || e.path().filename() == "out.txt" || e.path().filename() == "err.txt")
+    EXPECT_TRUE(e.path().filename() == "bin" || e.path().filename() == "stdout.txt" ||
+                e.path().filename() == "stderr.txt")
         << "left behind: " << e.path();
 }
 
