@@ -50,18 +50,18 @@ CLI::App* add_bench_precision_command(CLI::App& bench, BenchPrecisionOptions& o)
                                               "draw the work-precision diagrams into a run folder");
   p->add_option("scene", o.scene, "A scene with an exact or reference solution (spring, oscillator, kepler, pendulum, lorenz, ...)")
       ->required();
-  p->add_option("--integrators", o.integrators, "Comma-separated integrators (default: every one that can run the scene)")
-      ->delimiter(',');
-  p->add_option("--peers", o.peers, "Comma-separated peers on the same problem: odeint (Boost.Odeint's steppers on the "
-                                    "same right-hand side), box2d, bullet (mechanical scenes, dt = 1/30 ... 1/960)")
-      ->delimiter(',');
+  add_list_option(p, "--integrators", o.integrators,
+                  "Comma-separated integrators (default: every one that can run the scene)");
+  add_list_option(p, "--peers", o.peers,
+                  "Comma-separated peers on the same problem: odeint (Boost.Odeint's steppers on the "
+                  "same right-hand side), box2d, bullet (mechanical scenes, dt = 1/30 ... 1/960)");
   p->add_option("--levels", o.levels, "Fixed-step methods: h = dt / 2^k for k = 0 ... N-1")->check(CLI::Range(1, 20));
   p->add_option("--per-decade", o.per_decade, "Adaptive methods: tolerances 1e-3 ... 1e-13, this many per decade")
       ->check(CLI::Range(1, 10));
   p->add_option("--repeats", o.repeats, "Timed runs per point, after one untimed run; the fastest counts")
       ->check(CLI::Range(1, 100));
-  p->add_option("--targets", o.targets, "Comma-separated target errors to read every curve at (default 1e-4 ... 1e-10)")
-      ->delimiter(',');
+  add_list_option(p, "--targets", o.targets,
+                  "Comma-separated target errors to read every curve at (default 1e-4 ... 1e-10)");
   p->add_option("--duration", o.duration, "End time (default: the scene's; for reference states, the last one within it)");
   p->add_option("--set", o.sets, "Override a scene field (repeatable)")->type_name("PATH=VALUE");
   p->add_option("--out", o.out, "The run folder (default: a new folder under runs/); must not exist yet");

@@ -1,6 +1,7 @@
 #pragma once
 // What the `motus` subcommands share: finding scenes, the exit codes, and the one-line
 // error for input that cannot be used.
+#include <algorithm>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -43,6 +44,38 @@ std::string scenes_directory();
 std::string resolve_scene_path(const std::string& argument);
 // Every shipped scene file, sorted.
 std::vector<std::string> shipped_scenes();
+
+// A comma-separated list option (--engines motus,box2d; repeatable, the lists joined).
+// CLI11's own splitting drops empty items, so "motus,,box2d" would quietly run two engines:
+// here an empty item, like a value that is not a T, is a parse error (one line, exit 2).
+template <class T>
+CLI::Option* add_list_option(CLI::App* command, const std::string& name, std::vector<T>& values,
+                             const std::string& help) {
+  auto* option = command->add_option_function<std::vector<std::string>>(
+      name,
+      [&values, name](const std::vector<std::string>& given) {
+        values.clear();
+        for (const std::string& list : given) {
+          size_t from = 0;
+          for (;;) {
+            const size_t comma = std::min(list.find(',', from), list.size());
+            const std::string item = list.substr(from, comma - from);
+            if (item.empty()) throw CLI::ValidationError(name, "an empty item in \"" + list + "\"");
+            T value{};
+            if (!CLI::detail::lexical_cast(item, value))
+              throw CLI::ValidationError(name, "\"" + item + "\" is not a " + std::string(CLI::detail::type_name<T>()));
+            values.push_back(std::move(value));
+            if (comma == list.size()) break;
+            from = comma + 1;
+          }
+        }
+      },
+      help);
+  option->type_name(std::string(CLI::detail::type_name<T>()) + ",...")
+      ->expected(1)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+  return option;
+}
 
 // The plug-ins of this process (--plugin FILE.so, repeatable on run, render, compare,
 // bench precision and list), loaded by load_plugins.

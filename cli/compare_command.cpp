@@ -56,10 +56,9 @@ CLI::App* add_compare_command(CLI::App& app, CompareOptions& o) {
                                "Run one scene in motus, Box2D 2.4 and Bullet 3 with the same dt and the same metrics; "
                                "print the table and write a report folder (metrics CSV/JSON, plots, index.html)");
   c->add_option("scene", o.scene, "Scene file, or the name of a shipped scene (see `motus list`)")->required();
-  c->add_option("--engines", o.engines,
-                "Comma-separated engines: motus, box2d, bullet, and a loaded plug-in's name (default: motus, the "
-                "plug-in, box2d, bullet)")
-      ->delimiter(',');
+  add_list_option(c, "--engines", o.engines,
+                  "Comma-separated engines: motus, box2d, bullet, and a loaded plug-in's name (default: motus, the "
+                  "plug-in, box2d, bullet)");
   add_plugin_option(c, o.plugins);
   c->add_option("--integrator", o.integrator, "motus's integrator (default: the scene's); the peers integrate their own way");
   c->add_option("--dt", o.dt, "Step size, s (default: the scene's)");

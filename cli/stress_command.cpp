@@ -113,8 +113,8 @@ CLI::App* add_stress_command(CLI::App& app, StressOptions& o) {
                                "theory, the long-run energy drift, stiffness, mass ratios, speed and sticks (as apply); "
                                "prints tables and writes a page (index.html, CSV, SVG and PNG plots)");
   c->add_option("scene", o.scene, "Scene file, or the name of a shipped scene (see `motus list`)")->required();
-  c->add_option("--integrators", o.integrators, "Comma-separated integrators (default: every one that can run the scene)")
-      ->delimiter(',');
+  add_list_option(c, "--integrators", o.integrators,
+                  "Comma-separated integrators (default: every one that can run the scene)");
   c->add_option("--set", o.sets, "Override a scene field (repeatable), e.g. --set forces[0].stiffness=4")->type_name("PATH=VALUE");
   c->add_option("--out", o.out, "The page's folder (default: a new folder under runs/); must not exist yet");
   c->add_option("--steps", o.steps, "Steps of each stability and stiffness trial")->check(CLI::Range(100L, 10000000L))->capture_default_str();

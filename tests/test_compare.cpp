@@ -161,6 +161,8 @@ TEST(Compare, BadInputIsOneLineAndExitTwo) {
   for (const std::vector<std::string>& args :
        {std::vector<std::string>{"compare", scene("lorenz")},                                    // first-order: no bodies
         std::vector<std::string>{"compare", scene("head_on"), "--engines", "motus,havok"},      // unknown engine
+        std::vector<std::string>{"compare", scene("head_on"), "--engines", "motus,,box2d"},     // an empty name
+        std::vector<std::string>{"compare", scene("head_on"), "--engines", "motus,"},           // a trailing comma
         std::vector<std::string>{"compare", scene("head_on"), "--integrator", "rk4"},           // rk4 cannot collide
         std::vector<std::string>{"compare", scene("head_on"), "--set", "bodies[0].mass=-1"}}) {  // a bad scene
     const Result r = run_motus(dir, args);

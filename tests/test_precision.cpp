@@ -260,6 +260,7 @@ TEST(BenchPrecisionCommand, BadPeersAndFlagsAreOneLineExitTwo) {
   fs::create_directories(dir / "exists");
   for (const std::vector<std::string>& extra :
        {std::vector<std::string>{"--peers", "odeint,nosuch"}, std::vector<std::string>{"--peers", ""},
+        std::vector<std::string>{"--peers", "box2d,,odeint"}, std::vector<std::string>{"--targets", "1e-4,,1e-6"},
         std::vector<std::string>{"--targets", "0"}, std::vector<std::string>{"--targets", "abc"},
         std::vector<std::string>{"--per-decade", "0"}, std::vector<std::string>{"--levels", "0"},
         std::vector<std::string>{"--repeats", "0"}, std::vector<std::string>{"--duration", "-1"},

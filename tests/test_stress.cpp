@@ -233,6 +233,7 @@ TEST(StressErrors, BadInputIsOneLineAndExitTwo) {
   const std::vector<std::vector<std::string>> cases = {
       {"stress", "lorenz", "--out", (dir / "a").string()},
       {"stress", "oscillator", "--integrators", "rk5", "--out", (dir / "b").string()},
+      {"stress", "oscillator", "--integrators", "euler,", "--out", (dir / "e").string()},  // an empty name
       {"stress", "oscillator", "--energy-factor", "0.5", "--out", (dir / "c").string()},
       {"stress", "oscillator", "--out", dir.path().string()},  // exists
       {"stress", "oscillator", "--steps", "10"},
@@ -246,6 +247,7 @@ TEST(StressErrors, BadInputIsOneLineAndExitTwo) {
   }
   EXPECT_FALSE(fs::exists(dir / "a"));
   EXPECT_FALSE(fs::exists(dir / "d"));
+  EXPECT_FALSE(fs::exists(dir / "e"));
 }
 
 // Ctrl-C while the page is being drawn (a stand-in gnuplot that waits): exit 130, and no folder,
