@@ -29,8 +29,20 @@ std::string number(double x) {
   return text;
 }
 
-// The colours of motus's engines and lines (the same palette as the renders' bodies).
-const char* kColours[] = {"#4285d6", "#e67832", "#46aa64", "#cd465a", "#9164c8", "#28aab4", "#dcb428", "#966e50"};
+// The colours of motus's engines and lines: the renders' eight body colours first, then a
+// darker eight, so that a figure of up to sixteen lines (a work-precision diagram's methods
+// and peers) gives each its own colour.
+const char* kColours[] = {"#4285d6", "#e67832", "#46aa64", "#cd465a", "#9164c8", "#28aab4", "#dcb428", "#966e50",
+                          "#1f3f7a", "#a04010", "#2a6e3c", "#8b1e2e", "#5a3a8a", "#1a6e75", "#8a7010", "#4a3428"};
+
+// Line k's colour; lines 17 to 32 take the colours again, dotted (gnuplot's dash type 3) or,
+// when the series is dashed on purpose (a peer beside motus's own), dash-dotted (4). So no
+// two of a figure's first 32 lines look the same (no figure motus draws has more).
+std::string line_style(size_t k, bool dashed) {
+  const std::string colour = std::string(" lc rgb '") + kColours[k % std::size(kColours)] + "'";
+  if ((k / std::size(kColours)) % 2 == 1) return colour + (dashed ? " dt 4" : " dt 3");
+  return colour + (dashed ? " dt 2" : "");
+}
 
 void axis(std::ostream& gp, const char* name, Scale scale, double threshold) {
   gp << "unset logscale " << name << "\nunset nonlinear " << name << "\n";
@@ -94,7 +106,7 @@ std::string draw(const std::vector<Figure>& figures, const std::string& folder) 
     std::string plot_line;
     for (size_t k = 0; k < f.series.size(); ++k) {
       const auto& s = f.series[k];
-      const std::string colour = std::string(" lc rgb '") + kColours[k % std::size(kColours)] + "'";
+      const std::string colour = line_style(k, s.dashed);
       if (blocks[k] < 0) {
         plot_line += (k ? ", " : "plot ") + std::string("1/0 with lines lw 1.8") + colour + " title " +
                      quoted(s.name + (f.y_scale == Scale::log ? ": exactly 0 throughout" : ": no finite point"));
@@ -105,7 +117,7 @@ std::string draw(const std::vector<Figure>& figures, const std::string& folder) 
                    (s.style == "points"        ? "points pt " + pt + " ps 0.8"
                     : s.style == "linespoints" ? "linespoints pt " + pt + " ps 0.6 lw 1.5"
                                                : std::string("lines lw 1.8")) +
-                   (s.dashed ? " dt 2" : "") + colour + " title " + quoted(s.name);
+                   colour + " title " + quoted(s.name);
     }
     gp << "set autoscale\nunset label 2\nset key " << f.key << " Left reverse box opaque\n";
     // The whole run on the x axis, also where a line has gaps (exact values on a log axis).

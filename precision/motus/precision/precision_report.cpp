@@ -40,7 +40,8 @@ std::vector<plot::Figure> diagrams(const ReportContext& c, const std::vector<Cur
   plot::Figure time, work;
   time.stem = "error_against_time";
   time.title = c.scene + ": error against run time";
-  time.x_label = "run time [s] (the fastest of " + std::to_string(c.sweep.repeats) + " runs)";
+  time.x_label = c.sweep.repeats == 1 ? std::string("run time [s] (one timed run)")
+                                       : "run time [s] (the fastest of " + std::to_string(c.sweep.repeats) + " runs)";
   work.stem = "error_against_evaluations";
   work.title = c.scene + ": error against derivative evaluations";
   work.x_label = "derivative (force) evaluations";

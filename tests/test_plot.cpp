@@ -1,0 +1,62 @@
+// The figures' script (plot/motus/plot/figure.cpp) as gnuplot reads it: every line of a figure
+// drawn in a style of its own, so a work-precision diagram's twenty methods and peers can be
+// told apart by their looks, and not only by the order of the legend.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <set>
+#include <sstream>
+#include <string>
+
+#include <unistd.h>
+
+#include "motus/plot/figure.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string read_file(const fs::path& p) {
+  std::ifstream in(p);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+TEST(Figures, EveryLineOfAFigureHasItsOwnStyleUpTo32) {
+  const fs::path folder = fs::temp_directory_path() / ("motus-test-plot-" + std::to_string(::getpid()));
+  fs::create_directories(folder);
+  motus::plot::Figure f;
+  f.stem = "many";
+  f.title = "32 lines";
+  for (int k = 0; k < 32; ++k) {
+    motus::plot::Series s;
+    s.name = "line " + std::to_string(k);
+    s.x = {0, 1};
+    s.y = {double(k), double(k + 1)};
+    s.dashed = k % 5 == 0;  // some are peers, drawn dashed
+    f.series.push_back(s);
+  }
+  (void)motus::plot::draw({f}, folder.string());  // gnuplot or not, the script is written
+  const std::string script = read_file(folder / "figures.gp");
+  // Each series' style: what stands between "with lines lw 1.8" and its title.
+  const std::regex one(R"(with lines lw 1\.8((?: dt \d)?) lc rgb '(#[0-9a-f]{6})'((?: dt \d)?) title 'line (\d+)')");
+  std::set<std::string> styles;
+  std::set<int> seen;
+  const std::string png_part = script.substr(0, script.find("set terminal svg"));
+  for (auto it = std::sregex_iterator(png_part.begin(), png_part.end(), one); it != std::sregex_iterator(); ++it) {
+    const std::smatch& m = *it;
+    styles.insert(m[1].str() + m[2].str() + m[3].str());
+    seen.insert(std::stoi(m[4].str()));
+    if (std::stoi(m[4].str()) % 5 == 0) {
+      EXPECT_FALSE(m[3].str().empty() && m[1].str().empty()) << m[0] << ": a peer is dashed";
+    }
+  }
+  EXPECT_EQ(seen.size(), 32u) << script;
+  EXPECT_EQ(styles.size(), 32u) << "two lines share a colour and a dash pattern:\n" << script;
+  fs::remove_all(folder);
+}
+
+}  // namespace
