@@ -3,31 +3,20 @@
 // told apart by their looks, and not only by the order of the legend.
 #include <gtest/gtest.h>
 
-#include <filesystem>
-#include <fstream>
 #include <regex>
 #include <set>
-#include <sstream>
 #include <string>
 
-#include <unistd.h>
-
+#include "cli_harness.hpp"
 #include "motus/plot/figure.hpp"
 
 namespace {
 
-namespace fs = std::filesystem;
-
-std::string read_file(const fs::path& p) {
-  std::ifstream in(p);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using motus_test::read_file;
+using motus_test::TempDir;
 
 TEST(Figures, EveryLineOfAFigureHasItsOwnStyleUpTo32) {
-  const fs::path folder = fs::temp_directory_path() / ("motus-test-plot-" + std::to_string(::getpid()));
-  fs::create_directories(folder);
+  TempDir folder;
   motus::plot::Figure f;
   f.stem = "many";
   f.title = "32 lines";
@@ -39,7 +28,7 @@ TEST(Figures, EveryLineOfAFigureHasItsOwnStyleUpTo32) {
     s.dashed = k % 5 == 0;  // some are peers, drawn dashed
     f.series.push_back(s);
   }
-  (void)motus::plot::draw({f}, folder.string());  // gnuplot or not, the script is written
+  (void)motus::plot::draw({f}, folder.path().string());  // gnuplot or not, the script is written
   const std::string script = read_file(folder / "figures.gp");
   // Each series' style: what stands between "with lines lw 1.8" and its title.
   const std::regex one(R"(with lines lw 1\.8((?: dt \d)?) lc rgb '(#[0-9a-f]{6})'((?: dt \d)?) title 'line (\d+)')");
@@ -56,7 +45,6 @@ TEST(Figures, EveryLineOfAFigureHasItsOwnStyleUpTo32) {
   }
   EXPECT_EQ(seen.size(), 32u) << script;
   EXPECT_EQ(styles.size(), 32u) << "two lines share a colour and a dash pattern:\n" << script;
-  fs::remove_all(folder);
 }
 
 }  // namespace
