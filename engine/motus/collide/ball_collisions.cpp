@@ -25,6 +25,14 @@ constexpr double kOverlapSlack = 1e-12;
 // in one level; beyond it, in two (see build_grid).
 constexpr int kSmallGrid = 1 << 17;
 
+// With more balls than this (their x and v alone fill most of a 1 MB L2 cache), the passes
+// that jump around — the pair search's rows above, and the events — fetch what they will
+// need from memory ahead of time. Below it everything is in cache and a prefetch only costs.
+constexpr int kPrefetchFrom = 1 << 14;
+// The pair search fetches the balls this far ahead in each row above (about one memory
+// latency ahead: a ball costs ~50 cycles there).
+constexpr int kPairPrefetch = 16;
+
 }  // namespace
 
 template <int D>
@@ -79,6 +87,7 @@ void BallCollisions<D>::drift(VectorRef x, VectorRef v, double h) {
   v_ = v.data();
   h_ = h;
   events_.clear();
+  initial_events_.clear();
   events_this_step_ = 0;
 
   // A ball that may move farther than the largest radius in this step is fast; the
@@ -116,15 +125,27 @@ void BallCollisions<D>::drift(VectorRef x, VectorRef v, double h) {
   for (int k = 0; k < D; ++k) grid_low_[k] = low[k], grid_high_[k] = high[k];
   sweep_ = std::sqrt(slow_speed2) * h;
   if (balls_.size() >= 2) build_grid();
+  initial_search_ = true;
   find_initial_events();
+  initial_search_ = false;
+  std::sort(initial_events_.begin(), initial_events_.end());
 
   const long limit = 1000 + 100 * static_cast<long>(n_);
-  while (!events_.empty()) {
-    std::pop_heap(events_.begin(), events_.end(), std::greater<>());
-    const Event e = events_.back();
-    events_.pop_back();
-    if (state_[e.i].collision_count != e.count_i) continue;  // stale: i has collided since
-    if (e.other >= 0 && state_[e.other].collision_count != e.count_other) continue;
+  size_t next = 0;  // of initial_events_
+  for (;;) {
+    Event e;
+    if (!events_.empty() && (next == initial_events_.size() || events_.front() < initial_events_[next])) {
+      std::pop_heap(events_.begin(), events_.end(), std::greater<>());
+      e = events_.back();
+      events_.pop_back();
+    } else if (next < initial_events_.size()) {
+      e = initial_events_[next++];
+      if (n_ >= kPrefetchFrom) fetch_ahead(next);
+    } else {
+      break;
+    }
+    if (state_[e.i].collisions_this_step != e.count_i) continue;  // stale: i has collided since
+    if (e.other >= 0 && state_[e.other].collisions_this_step != e.count_other) continue;
     if (++events_this_step_ > limit)
       throw std::runtime_error("more than " + std::to_string(limit) +
                                " collisions in one step: the scene cannot settle (overlapping bodies?)");
@@ -310,8 +331,59 @@ void BallCollisions<D>::for_cells_in_box(const Point& low, const Point& high, Vi
 
 template <int D>
 void BallCollisions<D>::push(double t, int i, int other) {
-  events_.push_back({t, i, other, state_[i].collision_count, other >= 0 ? state_[other].collision_count : 0u});
+  if (initial_search_) {  // (no body has collided yet this step: no need to look)
+    initial_events_.push_back({t, i, other, 0, 0});
+    return;
+  }
+  events_.push_back(
+      {t, i, other, state_[i].collisions_this_step, other >= 0 ? state_[other].collisions_this_step : 0u});
   std::push_heap(events_.begin(), events_.end(), std::greater<>());
+}
+
+template <int D>
+void BallCollisions<D>::fetch_ahead(size_t next) {
+  // In four stages, each reading what the one before it fetched: the event 16 ahead fetches
+  // its bodies (their data and cells), 8 ahead the starts of their neighbour cells, 4 ahead
+  // those cells' lists of balls, 2 ahead the neighbours' data. By the time an event is
+  // resolved, its find_events finds all of it in cache.
+  for (int stage = 0; stage < 4; ++stage) {
+    const size_t ahead = next + (size_t{16} >> stage) - 1;
+    if (ahead < initial_events_.size()) prefetch_event(initial_events_[ahead], stage);
+  }
+}
+
+template <int D>
+void BallCollisions<D>::prefetch_event(const Event& e, int stage) {
+  for (const int i : {e.i, e.other}) {
+    if (i < 0) break;  // a wall
+    if (stage == 0) {
+      __builtin_prefetch(&state_[static_cast<size_t>(i)]);
+      __builtin_prefetch(x_ + D * i);
+      __builtin_prefetch(v_ + D * i);
+      __builtin_prefetch(&ball_cell_[static_cast<size_t>(i)]);
+      continue;
+    }
+    // Only a ball in the grid has a cell (fast balls search along their path; points not at all).
+    if (radius_[static_cast<size_t>(i)] <= 0 || state_[static_cast<size_t>(i)].fast) continue;
+    const int c = ball_cell_[static_cast<size_t>(i)];
+    for (const int offset : neighbour_offsets_) {
+      const int m = c + offset;
+      if (stage == 1) {
+        __builtin_prefetch(&cell_start_[static_cast<size_t>(m - 1)]);
+        __builtin_prefetch(&cell_start_[static_cast<size_t>(m + 2)]);
+      } else if (stage == 2) {
+        __builtin_prefetch(&sorted_[static_cast<size_t>(cell_start_[m - 1])]);
+        __builtin_prefetch(&sorted_[static_cast<size_t>(cell_start_[m + 2])]);
+      } else {
+        for (int u = cell_start_[m - 1], end = cell_start_[m + 2]; u < end; ++u) {
+          const int k = sorted_[static_cast<size_t>(u)];
+          __builtin_prefetch(&state_[static_cast<size_t>(k)]);
+          __builtin_prefetch(x_ + D * k);
+          __builtin_prefetch(v_ + D * k);
+        }
+      }
+    }
+  }
 }
 
 template <int D>
@@ -348,8 +420,8 @@ template <int D>
 void BallCollisions<D>::find_initial_events() {
   // Walls, at the start of the step (every body at local time 0). Bodies outside the
   // grid (points, fast balls) and every general plane or segment: body by body. The
-  // faces of box containers: only the balls in the layer of cells next to the face,
-  // because a ball two cells in is more than r + sweep away from it.
+  // faces of box containers: in the pair search below, and only for the balls outside the
+  // "inner box", farther than r + sweep from every face (which none of them can reach).
   const bool grid = balls_.size() >= 2;
   const bool general_walls =
       !segments_.empty() || std::any_of(planes_.begin(), planes_.end(), [](const Plane& p) { return p.axis < 0; });
@@ -368,21 +440,16 @@ void BallCollisions<D>::find_initial_events() {
       if (!state_[i].fast) walls_one_by_one(i, !grid);
   }
   for (int i : points_) walls_one_by_one(i, true);
-  if (grid) {
-    for (size_t w = 0; w < planes_.size(); ++w) {
-      const Plane& plane = planes_[w];
-      if (plane.axis < 0) continue;
-      const int a = plane.axis;
-      const bool low_face = plane.sign > 0;
-      const bool all_inside = low_face ? grid_low_[a] >= plane.offset : grid_high_[a] <= -plane.offset;
-      Point from = origin_ + Point::Constant(1.5 * cell_size_), to;
-      for (int k = 0; k < D; ++k) to[k] = origin_[k] + (dims_[k] - 1.5) * cell_size_;
-      if (all_inside) {
-        if (low_face) to[a] = from[a];
-        else from[a] = to[a];
-      }
-      for_cells_in_box(from, to, [&](int i) { initial_plane_event(i, static_cast<int>(w)); });
-    }
+  Point inner_low = Point::Constant(-INFINITY), inner_high = Point::Constant(INFINITY);
+  bool box_faces = false;
+  for (const Plane& plane : planes_) {
+    if (plane.axis < 0) continue;
+    // A slow ball moves at most sweep in the step, so a face is out of its reach when the
+    // ball's centre is more than r + sweep inside it (twice sweep: a margin for rounding).
+    const double reach = max_radius_ + 2 * sweep_;
+    box_faces = true;
+    if (plane.sign > 0) inner_low[plane.axis] = std::max(inner_low[plane.axis], plane.offset + reach);
+    else inner_high[plane.axis] = std::min(inner_high[plane.axis], -plane.offset - reach);
   }
 
   // Slow pairs: each ball against the later balls of its own cell and the balls of its
@@ -395,9 +462,15 @@ void BallCollisions<D>::find_initial_events() {
   const bool uniform = uniform_radius_;
   const int* sorted = sorted_.data();
   const int* cell_start = cell_start_.data();
+  const int slow_count = static_cast<int>(sorted_.size());
+  const bool prefetch = slow_count >= kPrefetchFrom;
   for (size_t s = 0; s < sorted_.size(); ++s) {
     const int i = sorted[s];
     Point p_i = Eigen::Map<const Point>(x + D * i);
+    if (box_faces && !((p_i.array() > inner_low.array()).all() && (p_i.array() < inner_high.array()).all())) {
+      initial_face_events(i);  // near a face of a box (a fraction of the balls)
+      p_i = position(i);       // (it may have been a hair inside a face)
+    }
     const Point v_i = Eigen::Map<const Point>(v + D * i);
     const double r_i = uniform ? max_radius_ : radius[i];
     auto test = [&](int k) {
@@ -421,9 +494,16 @@ void BallCollisions<D>::find_initial_events() {
     const int c = ball_cell_[i];
     // The later balls of its own cell and of the next cell along x.
     for (int u = static_cast<int>(s) + 1; u < cell_start[c + 2]; ++u) test(sorted[u]);
-    // The rows above: three cells each.
+    // The rows above: three cells each. (Here the search meets a ball for the first time in
+    // the step — its own row's balls were the row above of the row before — so at 10^6 balls
+    // these are the misses; the balls further along are fetched ahead.)
     for (int offset : forward_rows_) {
       const int m = c + offset;
+      if (const int ahead = cell_start[m + 2] + kPairPrefetch; prefetch && ahead < slow_count) {
+        const int k = sorted[ahead];
+        __builtin_prefetch(x + D * k);
+        __builtin_prefetch(v + D * k);
+      }
       for (int u = cell_start[m - 1]; u < cell_start[m + 2]; ++u) test(sorted[u]);
     }
   }
@@ -431,6 +511,12 @@ void BallCollisions<D>::find_initial_events() {
   counters_.cell_queries += static_cast<long>(sorted_.size() * (forward_rows_.size() + 1));
   // Fast balls look along their whole path (and at each other).
   for (size_t a = 0; a < fast_.size(); ++a) find_events(fast_[a], 0, -1);
+}
+
+template <int D>
+void BallCollisions<D>::initial_face_events(int i) {
+  for (size_t w = 0; w < planes_.size(); ++w)
+    if (planes_[w].axis >= 0) initial_plane_event(i, static_cast<int>(w));
 }
 
 template <int D>
@@ -611,8 +697,6 @@ void BallCollisions<D>::resolve(const Event& e) {
         restitution = 0;
       collide(i, k, Point(d / distance), restitution);
     }
-    ++state_[i].collision_count;
-    ++state_[k].collision_count;
     ++state_[i].collisions_this_step;
     ++state_[k].collisions_this_step;
     ++counters_.ball_collisions;
@@ -628,7 +712,6 @@ void BallCollisions<D>::resolve(const Event& e) {
     double restitution = restitution_[i] * wall_e;
     if (restitution < 1 && state_[i].collisions_this_step >= kCollapseLimit) restitution = 0;
     bounce(i, wall_normal(i, w), restitution);
-    ++state_[i].collision_count;
     ++state_[i].collisions_this_step;
     ++counters_.wall_collisions;
     mark_fast_if_needed(i, e.t);
