@@ -25,7 +25,7 @@ constexpr double kOverlapSlack = 1e-12;
 // in one level; beyond it, in two (see build_grid).
 constexpr int kSmallGrid = 1 << 17;
 
-// With more balls than this (their x and v alone fill most of a 1 MB L2 cache), the passes
+// From this many bodies on (their x and v alone fill most of a 1 MB L2 cache), the passes
 // that jump around — the pair search's rows above, and the events — fetch what they will
 // need from memory ahead of time. Below it everything is in cache and a prefetch only costs.
 constexpr int kPrefetchFrom = 1 << 14;
@@ -421,7 +421,7 @@ void BallCollisions<D>::find_initial_events() {
   // Walls, at the start of the step (every body at local time 0). Bodies outside the
   // grid (points, fast balls) and every general plane or segment: body by body. The
   // faces of box containers: in the pair search below, and only for the balls outside the
-  // "inner box", farther than r + sweep from every face (which none of them can reach).
+  // "inner box", farther than r + 2·sweep from every face (which none of them can reach).
   const bool grid = balls_.size() >= 2;
   const bool general_walls =
       !segments_.empty() || std::any_of(planes_.begin(), planes_.end(), [](const Plane& p) { return p.axis < 0; });
@@ -442,11 +442,11 @@ void BallCollisions<D>::find_initial_events() {
   for (int i : points_) walls_one_by_one(i, true);
   Point inner_low = Point::Constant(-INFINITY), inner_high = Point::Constant(INFINITY);
   bool box_faces = false;
+  // A slow ball moves at most sweep in the step, so a face is out of its reach when the
+  // ball's centre is more than r + sweep inside it (twice sweep: a margin for rounding).
+  const double reach = max_radius_ + 2 * sweep_;
   for (const Plane& plane : planes_) {
     if (plane.axis < 0) continue;
-    // A slow ball moves at most sweep in the step, so a face is out of its reach when the
-    // ball's centre is more than r + sweep inside it (twice sweep: a margin for rounding).
-    const double reach = max_radius_ + 2 * sweep_;
     box_faces = true;
     if (plane.sign > 0) inner_low[plane.axis] = std::max(inner_low[plane.axis], plane.offset + reach);
     else inner_high[plane.axis] = std::min(inner_high[plane.axis], -plane.offset - reach);
@@ -463,7 +463,7 @@ void BallCollisions<D>::find_initial_events() {
   const int* sorted = sorted_.data();
   const int* cell_start = cell_start_.data();
   const int slow_count = static_cast<int>(sorted_.size());
-  const bool prefetch = slow_count >= kPrefetchFrom;
+  const bool prefetch = n_ >= kPrefetchFrom;  // (the same test as the events')
   for (size_t s = 0; s < sorted_.size(); ++s) {
     const int i = sorted[s];
     Point p_i = Eigen::Map<const Point>(x + D * i);
