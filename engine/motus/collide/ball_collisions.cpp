@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <functional>
 #include <stdexcept>
 #include <string>
@@ -32,6 +33,11 @@ constexpr int kPrefetchFrom = 1 << 14;
 // The pair search fetches the balls this far ahead in each row above (about one memory
 // latency ahead: a ball costs ~50 cycles there).
 constexpr int kPairPrefetch = 16;
+
+// The pair search lists this many candidate pairs before it tests them (a few kB: in L1),
+// copying each range of balls kWindow at a time (a longer range is copied one by one).
+constexpr int kBatch = 256;
+constexpr int kWindow = 8;
 
 }  // namespace
 
@@ -247,7 +253,8 @@ void BallCollisions<D>::build_grid() {
     });
     int sum = 0;  // (in a register: the running sum is one long dependency chain)
     for (int c = 2; c < cells + 2; ++c) cell_start_[c] = sum += cell_start_[c];
-    sorted_.resize(static_cast<size_t>(slow));
+    sorted_.resize(static_cast<size_t>(slow) + kWindow);  // (padding: the pair search copies kWindow at a time)
+    slow_count_ = static_cast<int>(slow);
     for_slow([&](int i) { sorted_[cell_start_[ball_cell_[i] + 1]++] = i; });
     return;
   }
@@ -267,7 +274,8 @@ void BallCollisions<D>::build_grid() {
   by_block_.resize(static_cast<size_t>(slow));
   for_slow([&](int i) { by_block_[block_start_[(ball_cell_[i] >> kBlockBits) + 1]++] = {i, ball_cell_[i]}; });
   // Level two, block by block.
-  sorted_.resize(static_cast<size_t>(slow));
+  sorted_.resize(static_cast<size_t>(slow) + kWindow);
+  slow_count_ = static_cast<int>(slow);
   cell_start_.resize(static_cast<size_t>(cells) + 2);
   local_count_.resize(kBlock);
   int* count = local_count_.data();
@@ -452,63 +460,136 @@ void BallCollisions<D>::find_initial_events() {
     else inner_high[plane.axis] = std::min(inner_high[plane.axis], -plane.offset - reach);
   }
 
-  // Slow pairs: each ball against the later balls of its own cell and the balls of its
-  // forward neighbour cells. This is the hot loop of a step: it keeps ball i in
-  // registers and decides most pairs ("not approaching") without a square root.
+  // Slow pairs: each ball against the later balls of its own cell and of the next cell along
+  // x, and the balls of its forward rows. This is the hot loop of a step, done a batch of
+  // balls at a time in three passes so that no branch in it depends on the balls but rare ones:
+  //   1. list the batch's candidate pairs: each range of sorted_ is copied kWindow entries
+  //      at once, whatever its length, and the list's end moves on by that length;
+  //   2. test every candidate with sphere_sphere_impact's early "no" (not approaching, or
+  //      still apart when the step ends), computed without a branch: about one in a hundred
+  //      remains, with the pairs that overlap;
+  //   3. those get the exact time of impact and their events.
+  // (Pair by pair, the ends of the ranges' loops and "approaching?" were branches the
+  // processor could not predict — one or two a ball in 2-D, about five in 3-D — and after each
+  // the loads that missed the cache started over. The candidates are listed in the order a
+  // pair-by-pair search tests them, so the events and every number are the same.)
   long tests = 0;
   const double* x = x_;  // local copies: the compiler need not reload them after a push
   const double* v = v_;
   const double* radius = radius_.data();
   const bool uniform = uniform_radius_;
+  const bool early_no = rules_ == nullptr;  // (a plug-in's time of impact decides every approaching pair)
+  const double h = h_;
   const int* sorted = sorted_.data();
   const int* cell_start = cell_start_.data();
-  const int slow_count = static_cast<int>(sorted_.size());
+  const int slow_count = slow_count_;
+  const int rows = static_cast<int>(forward_rows_.size());
+  const int* forward_rows = forward_rows_.data();
   const bool prefetch = n_ >= kPrefetchFrom;  // (the same test as the events')
-  for (size_t s = 0; s < sorted_.size(); ++s) {
-    const int i = sorted[s];
-    Point p_i = Eigen::Map<const Point>(x + D * i);
-    if (box_faces && !((p_i.array() > inner_low.array()).all() && (p_i.array() < inner_high.array()).all())) {
-      initial_face_events(i);  // near a face of a box (a fraction of the balls)
-      p_i = position(i);       // (it may have been a hair inside a face)
+  // A batch's list has room for kBatch pairs and one more ball's ranges at kWindow each.
+  const size_t room = static_cast<size_t>(kBatch + (rows + 1) * kWindow);
+  if (candidate_i_.size() < room) candidate_i_.resize(room), candidate_k_.resize(room), hits_.resize(room);
+  int* ci = candidate_i_.data();
+  int* ck = candidate_k_.data();
+  int* hits = hits_.data();
+  int n = 0;  // candidates listed in this batch
+  auto list = [&](int i, int from, int to) {
+    const int count = to - from;
+    if (count <= kWindow) [[likely]] {
+      std::memcpy(ck + n, sorted + from, sizeof(int) * kWindow);  // (sorted_ has kWindow entries of padding)
+      for (int w = 0; w < kWindow; ++w) ci[n + w] = i;
+      n += count;
+      return;
     }
-    const Point v_i = Eigen::Map<const Point>(v + D * i);
-    const double r_i = uniform ? max_radius_ : radius[i];
-    auto test = [&](int k) {
-      ++tests;
-      Point dp = Eigen::Map<const Point>(x + D * k) - p_i;
-      const double R = r_i + (uniform ? max_radius_ : radius[k]);  // (one stream fewer when all radii agree)
-      double dp_dp = dp.squaredNorm();
-      if (dp_dp < R * R * (1 - kOverlapSlack)) {  // overlapping: move apart first (rare)
-        separate(i, k);
-        p_i = position(i);
-        dp = position(k) - p_i;
-        dp_dp = dp.squaredNorm();
-      }
-      const Point dv = Eigen::Map<const Point>(v + D * k) - v_i;
-      const double dp_dv = dp.dot(dv);
-      if (dp_dv >= 0) return;  // not approaching
-      const double toi = rules_ ? outside_balls_impact(p_i, v_i, r_i, position(k), velocity(k), radius[k], h_)
-                                : sphere_sphere_impact(dp_dp, dp_dv, dv.squaredNorm(), R, h_);
+    // A crowded range (a dense pack): the list grows.
+    if (candidate_i_.size() < static_cast<size_t>(n + count) + room) {
+      const size_t grown = 2 * (static_cast<size_t>(n + count) + room);
+      candidate_i_.resize(grown), candidate_k_.resize(grown), hits_.resize(grown);
+      ci = candidate_i_.data(), ck = candidate_k_.data(), hits = hits_.data();
+    }
+    for (int u = from; u < to; ++u) ci[n] = i, ck[n] = sorted[u], ++n;
+  };
+  // Pass 2 over candidates [from, to): those left for pass 3, in order.
+  auto filter = [&](int from, int to) {
+    int left = 0;
+    for (int q = from; q < to; ++q) {
+      const int i = ci[q], k = ck[q];
+      const Point dp = Eigen::Map<const Point>(x + D * k) - Eigen::Map<const Point>(x + D * i);
+      const Point dv = Eigen::Map<const Point>(v + D * k) - Eigen::Map<const Point>(v + D * i);
+      const double R = uniform ? max_radius_ + max_radius_ : radius[i] + radius[k];  // (one stream fewer)
+      const double dp_dp = dp.squaredNorm(), dp_dv = dp.dot(dv), dv_dv = dv.squaredNorm();
+      const bool overlap = dp_dp < R * R * (1 - kOverlapSlack);
+      const bool still_closing = dp_dv + dv_dv * h <= 0;
+      const bool apart_at_end = dp_dp - R * R + h * (2 * dp_dv + dv_dv * h) > 0;
+      // (& and |, not && and ||: both sides are cheap, and a branch here is what this avoids)
+      const bool no = (dp_dv >= 0) | (early_no & still_closing & apart_at_end);
+      hits[left] = q;
+      left += overlap | !no;
+    }
+    return left;
+  };
+  // Pass 3: the exact test of candidate q. Overlapping balls are moved apart first (rare);
+  // then the rest of the batch must be tested again from where they now are.
+  auto exact = [&](int q) {
+    const int i = ci[q], k = ck[q];
+    const double R = uniform ? max_radius_ + max_radius_ : radius[i] + radius[k];
+    Point dp = position(k) - position(i);
+    double dp_dp = dp.squaredNorm();
+    const bool moved = dp_dp < R * R * (1 - kOverlapSlack);
+    if (moved) {
+      separate(i, k);
+      dp = position(k) - position(i);
+      dp_dp = dp.squaredNorm();
+    }
+    const Point dv = velocity(k) - velocity(i);
+    const double dp_dv = dp.dot(dv);
+    if (dp_dv < 0) {
+      const double toi = rules_ ? outside_balls_impact(position(i), velocity(i), radius[i], position(k), velocity(k),
+                                                       radius[k], h)
+                                : sphere_sphere_impact(dp_dp, dp_dv, dv.squaredNorm(), R, h);
       if (toi != kNoImpact) push(toi, i, k);
-    };
-    const int c = ball_cell_[i];
-    // The later balls of its own cell and of the next cell along x.
-    for (int u = static_cast<int>(s) + 1; u < cell_start[c + 2]; ++u) test(sorted[u]);
-    // The rows above: three cells each. (Here the search meets a ball for the first time in
-    // the step — its own row's balls were the row above of the row before — so at 10^6 balls
-    // these are the misses; the balls further along are fetched ahead.)
-    for (int offset : forward_rows_) {
-      const int m = c + offset;
-      if (const int ahead = cell_start[m + 2] + kPairPrefetch; prefetch && ahead < slow_count) {
-        const int k = sorted[ahead];
-        __builtin_prefetch(x + D * k);
-        __builtin_prefetch(v + D * k);
+    }
+    return moved;
+  };
+  for (int s = 0; s < slow_count;) {
+    // Pass 1: a batch of balls' candidates.
+    n = 0;
+    for (; s < slow_count && n < kBatch; ++s) {
+      const int i = sorted[s];
+      if (box_faces) {
+        const Point p_i = Eigen::Map<const Point>(x + D * i);
+        if (!((p_i.array() > inner_low.array()).all() && (p_i.array() < inner_high.array()).all()))
+          initial_face_events(i);  // near a face of a box (a fraction of the balls; it may move a hair out of it)
       }
-      for (int u = cell_start[m - 1]; u < cell_start[m + 2]; ++u) test(sorted[u]);
+      const int c = ball_cell_[i];
+      list(i, s + 1, cell_start[c + 2]);
+      // The rows above: three cells each. (Here the search meets a ball for the first time in
+      // the step — its own row's balls were the row above of the row before — so at 10^6 balls
+      // these are the misses; the balls further along are fetched ahead.)
+      for (int r = 0; r < rows; ++r) {
+        const int m = c + forward_rows[r];
+        if (const int ahead = cell_start[m + 2] + kPairPrefetch; prefetch && ahead < slow_count) {
+          const int k = sorted[ahead];
+          __builtin_prefetch(x + D * k);
+          __builtin_prefetch(v + D * k);
+        }
+        list(i, cell_start[m - 1], cell_start[m + 2]);
+      }
+    }
+    tests += n;
+    // Passes 2 and 3.
+    for (int from = 0; from < n;) {
+      const int left = filter(from, n);
+      from = n;
+      for (int j = 0; j < left; ++j)
+        if (exact(hits[j])) {
+          from = hits[j] + 1;
+          break;
+        }
     }
   }
   counters_.pair_tests += tests;
-  counters_.cell_queries += static_cast<long>(sorted_.size() * (forward_rows_.size() + 1));
+  counters_.cell_queries += static_cast<long>(slow_count) * (rows + 1);
   // Fast balls look along their whole path (and at each other).
   for (size_t a = 0; a < fast_.size(); ++a) find_events(fast_[a], 0, -1);
 }

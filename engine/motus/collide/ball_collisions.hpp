@@ -152,6 +152,8 @@ private:
   double cell_size_ = 1, inverse_cell_size_ = 1;
   Cell dims_{}, stride_{};
   std::vector<int> cell_start_, sorted_, ball_cell_;
+  int slow_count_ = 0;  // the balls in the grid (sorted_ has padding after them)
+  std::vector<int> candidate_i_, candidate_k_, hits_;  // the pair search's batch (find_initial_events)
   struct Placed {
     int ball, cell;
   };
