@@ -37,7 +37,7 @@ constexpr int kPairPrefetch = 16;
 // The pair search lists this many candidate pairs before it tests them (a few kB: in L1),
 // copying each range of balls kWindow at a time (a longer range is copied one by one).
 constexpr int kBatch = 256;
-constexpr int kWindow = 8;
+constexpr int kWindow = 4;
 
 }  // namespace
 
