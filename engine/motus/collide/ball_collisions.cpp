@@ -284,14 +284,13 @@ void BallCollisions<D>::build_grid() {
     const int from = block_start_[b], to = block_start_[b + 1];
     std::fill(count, count + block_cells, 0);
     for (int s = from; s < to; ++s) ++count[by_block_[s].cell & (kBlock - 1)];
+    // Cell j's insertion point is starts[j + 1], which placing moves on to cell j + 1's start
+    // (as in the one-level sort; one store a cell). The block's last one is the next block's first start.
     int* starts = cell_start_.data() + first_cell;
-    int run = from;  // count[j] becomes cell j's insertion point
-    for (int j = 0; j < block_cells; ++j) {
-      const int here = count[j];
-      starts[j] = count[j] = run;
-      run += here;
-    }
-    for (int s = from; s < to; ++s) sorted_[count[by_block_[s].cell & (kBlock - 1)]++] = by_block_[s].ball;
+    starts[0] = from;
+    int run = from;
+    for (int j = 0; j < block_cells; ++j) starts[j + 1] = run, run += count[j];
+    for (int s = from; s < to; ++s) sorted_[starts[(by_block_[s].cell & (kBlock - 1)) + 1]++] = by_block_[s].ball;
   }
   cell_start_[cells] = cell_start_[cells + 1] = static_cast<int>(slow);
 }
