@@ -467,13 +467,15 @@ void BallCollisions<D>::find_initial_events() {
   //   1. list the batch's candidate pairs: each range of sorted_ is copied kWindow entries
   //      at once, whatever its length, and the list's end moves on by that length;
   //   2. test every candidate with sphere_sphere_impact's early "no" (not approaching, or
-  //      still apart when the step ends), computed without a branch: about one in a hundred
-  //      remains, with the pairs that overlap;
+  //      still apart when the step ends), computed without a branch: the few left are the
+  //      pairs that may touch within the step, and those that overlap;
   //   3. those get the exact time of impact and their events.
-  // (Pair by pair, the ends of the ranges' loops and "approaching?" were branches the
-  // processor could not predict — one or two a ball in 2-D, about five in 3-D — and after each
-  // the loads that missed the cache started over. The candidates are listed in the order a
-  // pair-by-pair search tests them, so the events and every number are the same.)
+  // (Pair by pair, the ends of the ranges' loops — two ranges a ball in 2-D, five in 3-D — and
+  // "approaching?" were branches the processor could not predict, and after each the loads
+  // that missed the cache started over. The candidates are listed in the order a pair-by-pair
+  // search tests them, with the same arithmetic, so the events are the same; only a ball's
+  // nudge out of a face it is a hair inside now comes before its batch's tests, not before
+  // its own.)
   long tests = 0;
   const double* x = x_;  // local copies: the compiler need not reload them after a push
   const double* v = v_;
