@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <numbers>
 
@@ -236,6 +237,65 @@ TEST(Containment, BouncingBallsStayInTheirBox) {
     ++steps;
   });
   EXPECT_EQ(steps, motus::fixed_step_count(scene.duration, scene.dt));
+}
+
+TEST(Containment, SmallBallsBesideABigOneNeverOverlapAndKeepTheirEnergy) {
+  // One big ball among many small ones: the grid's cells are sized for the big one (at
+  // least its diameter), so each cell holds dozens of small balls — every range the pair
+  // search lists is crowded, far past the few it copies at once. No contact may be missed
+  // for that: no two balls overlap by 1 % of the smaller radius (all pairs, by brute force),
+  // every ball stays in the box, and e = 1 keeps kinetic energy but for rounding.
+  for (int d : {2, 3}) {
+    const double side = d == 2 ? 24 : 8, big = d == 2 ? 3 : 2, small = 0.1, spacing = 0.8;
+    SceneDescription scene;
+    MechanicalDescription m;
+    m.dimensions = d;
+    std::uint64_t random = 7;
+    m.bodies.push_back({100, std::vector<double>(static_cast<size_t>(d), side / 2), std::vector<double>(static_cast<size_t>(d), 0.5), big, 1});
+    const int per_side = static_cast<int>(side / spacing);
+    for (int n = 0; n < static_cast<int>(std::pow(per_side, d)); ++n) {
+      std::vector<double> p(static_cast<size_t>(d)), v(static_cast<size_t>(d));
+      for (int k = 0, index = n; k < d; ++k, index /= per_side) p[static_cast<size_t>(k)] = spacing * (index % per_side + 0.5);
+      double from_centre = 0;
+      for (int k = 0; k < d; ++k) from_centre += std::pow(p[static_cast<size_t>(k)] - side / 2, 2);
+      if (std::sqrt(from_centre) < big + spacing) continue;  // (room for the big ball)
+      for (int k = 0; k < d; ++k) v[static_cast<size_t>(k)] = 2 * motus::splitmix64_uniform(random) - 1;
+      m.bodies.push_back({1, p, v, small, 1});
+    }
+    motus::BoxCollider box;
+    for (int k = 0; k < d; ++k) box.min[k] = 0, box.max[k] = side;
+    m.colliders.boxes.push_back(box);
+    scene.mechanical = m;
+    scene.integrator = "symplectic-euler";
+    scene.dt = 1.0 / 60;
+    const auto& bodies = scene.mechanical->bodies;
+    const int n = static_cast<int>(bodies.size());
+    Simulation sim(scene, Integrator::SymplecticEuler);
+    const double e0 = sim.energy()->kinetic;
+    long steps = 0;
+    sim.advance(120 * scene.dt, scene.dt, {}, [&](const Simulation& s) {
+      const Vector& y = s.state();
+      for (int i = 0; i < n; ++i) {
+        const double r = bodies[static_cast<size_t>(i)].radius;
+        for (int k = 0; k < d; ++k) {
+          ASSERT_GE(y[d * i + k], box.min[k] + r * (1 - 1e-9)) << d << "-D, ball " << i;
+          ASSERT_LE(y[d * i + k], box.max[k] - r * (1 - 1e-9)) << d << "-D, ball " << i;
+        }
+        for (int j = i + 1; j < n; ++j) {
+          const double R = r + bodies[static_cast<size_t>(j)].radius;
+          ASSERT_GT((y.segment(d * i, d) - y.segment(d * j, d)).norm(), R - 0.01 * small)
+              << d << "-D, balls " << i << ", " << j << " at t = " << s.time();
+        }
+      }
+      ++steps;
+    });
+    EXPECT_EQ(steps, 120);
+    const auto& c = sim.world()->collision_counters();
+    EXPECT_GT(c.ball_collisions, 100) << d << "-D";  // contacts, or the test says nothing
+    const double impulses = static_cast<double>(c.ball_collisions + c.wall_collisions);
+    EXPECT_LT(std::abs(sim.energy()->kinetic - e0) / e0, 4 * impulses * std::numeric_limits<double>::epsilon())
+        << d << "-D: " << impulses << " impulses";
+  }
 }
 
 // ---- only what the scene needs, by counting
