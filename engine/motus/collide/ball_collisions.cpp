@@ -373,7 +373,7 @@ void BallCollisions<D>::prefetch_event(const Event& e, int stage) {
       continue;
     }
     // Only a ball in the grid has a cell (fast balls search along their path; points not at all).
-    if (radius_[static_cast<size_t>(i)] <= 0 || state_[static_cast<size_t>(i)].fast) continue;
+    if (radius_of(i) <= 0 || state_[static_cast<size_t>(i)].fast) continue;
     const int c = ball_cell_[static_cast<size_t>(i)];
     for (const int offset : neighbour_offsets_) {
       const int m = c + offset;
@@ -407,7 +407,7 @@ void BallCollisions<D>::separate(int i, int k) {
   } else {
     n[0] = 1;  // coincident centres: any direction will do
   }
-  const double depth = radius_[i] + radius_[k] - distance;
+  const double depth = radius_of(i) + radius_of(k) - distance;
   position(i) -= (depth * inverse_mass_[i] / w) * n;
   position(k) += (depth * inverse_mass_[k] / w) * n;
   ++counters_.position_corrections;
@@ -418,9 +418,9 @@ void BallCollisions<D>::test_pair(int i, int k, double t) {
   ++counters_.pair_tests;
   const Point dp = position_at(k, t) - position_at(i, t);
   const Point dv = velocity(k) - velocity(i);
-  const double R = radius_[i] + radius_[k];
-  const double toi = rules_ ? outside_balls_impact(position_at(i, t), velocity(i), radius_[i], position_at(k, t),
-                                                   velocity(k), radius_[k], h_ - t)
+  const double R = radius_of(i) + radius_of(k);
+  const double toi = rules_ ? outside_balls_impact(position_at(i, t), velocity(i), radius_of(i), position_at(k, t),
+                                                   velocity(k), radius_of(k), h_ - t)
                             : sphere_sphere_impact(dp.squaredNorm(), dp.dot(dv), dv.squaredNorm(), R, h_ - t);
   if (toi != kNoImpact) push(t + toi, i, k);
 }
@@ -439,7 +439,7 @@ void BallCollisions<D>::find_initial_events() {
       if (faces_too || planes_[w].axis < 0) initial_plane_event(i, static_cast<int>(w));
     for (size_t g = 0; g < segments_.size(); ++g) {
       separate_from_walls(i);
-      const double toi = segment_impact(segments_[g], position(i), velocity(i), radius_[i], h_, nullptr);
+      const double toi = segment_impact(segments_[g], position(i), velocity(i), radius_of(i), h_, nullptr);
       if (toi != kNoImpact) push(toi, i, -1 - static_cast<int>(planes_.size() + g));
     }
   };
@@ -610,7 +610,7 @@ void BallCollisions<D>::initial_plane_event(int i, int w) {
   const Plane& plane = planes_[static_cast<size_t>(w)];
   auto p = position(i);
   const auto u = velocity(i);
-  double gap = (plane.axis >= 0 ? plane.sign * p[plane.axis] : plane.normal.dot(p)) - plane.offset - radius_[i];
+  double gap = (plane.axis >= 0 ? plane.sign * p[plane.axis] : plane.normal.dot(p)) - plane.offset - radius_of(i);
   if (gap < 0) {  // rounding (or the scene) left it a hair inside the wall
     p -= gap * plane.normal;
     gap = 0;
@@ -618,14 +618,14 @@ void BallCollisions<D>::initial_plane_event(int i, int w) {
   }
   const double closing = plane.axis >= 0 ? plane.sign * u[plane.axis] : plane.normal.dot(u);
   if (gap + closing * h_ > 0) return;  // does not reach it this step
-  const double toi = rules_ ? outside_plane_impact(p, u, radius_[i], plane, h_) : sphere_plane_impact(gap, closing, h_);
+  const double toi = rules_ ? outside_plane_impact(p, u, radius_of(i), plane, h_) : sphere_plane_impact(gap, closing, h_);
   if (toi != kNoImpact) push(toi, i, -1 - w);
 }
 
 template <int D>
 void BallCollisions<D>::find_events(int i, double t, int exclude) {
   find_wall_events(i, t);
-  if (radius_[i] <= 0 || balls_.size() < 2) return;
+  if (radius_of(i) <= 0 || balls_.size() < 2) return;
   if (!state_[i].fast) {
     // Its possible partners started in the neighbouring cells, or are fast.
     const int c = ball_cell_[i];
@@ -640,7 +640,7 @@ void BallCollisions<D>::find_events(int i, double t, int exclude) {
   } else {
     // A fast ball's partners started anywhere near its remaining path.
     const Point p = position_at(i, t), q = p + velocity(i) * (h_ - t);
-    const double margin = radius_[i] + max_radius_ + sweep_;
+    const double margin = radius_of(i) + max_radius_ + sweep_;
     for_cells_in_box(p.cwiseMin(q).array() - margin, p.cwiseMax(q).array() + margin, [&](int k) {
       if (k != i && k != exclude && !state_[k].fast) test_pair(i, k, t);
     });
@@ -653,7 +653,7 @@ template <int D>
 void BallCollisions<D>::find_wall_events(int i, double t) {
   const Point p = position_at(i, t);
   const Point u = velocity(i);
-  const double r = radius_[i], horizon = h_ - t;
+  const double r = radius_of(i), horizon = h_ - t;
   for (size_t w = 0; w < planes_.size(); ++w) {
     const Plane& plane = planes_[w];
     double gap, closing;
@@ -736,7 +736,7 @@ template <int D>
 void BallCollisions<D>::separate_from_walls(int i) {
   for (const Plane& plane : planes_) {  // (rounding can leave a body a hair inside a wall)
     const double gap = (plane.axis >= 0 ? plane.sign * position(i)[plane.axis] : plane.normal.dot(position(i))) -
-                       plane.offset - radius_[i];
+                       plane.offset - radius_of(i);
     if (gap < 0) {
       position(i) -= gap * plane.normal;
       ++counters_.position_corrections;
@@ -748,8 +748,8 @@ void BallCollisions<D>::separate_from_walls(int i) {
       const double reach = std::clamp(along.dot(position(i) - s.a) / along.squaredNorm(), 0.0, 1.0);
       const Point d = position(i) - (s.a + reach * along);
       const double distance = d.norm();
-      if (distance < radius_[i] && distance > 0) {
-        position(i) += (radius_[i] - distance) / distance * d;
+      if (distance < radius_of(i) && distance > 0) {
+        position(i) += (radius_of(i) - distance) / distance * d;
         ++counters_.position_corrections;
       }
     }
@@ -758,7 +758,7 @@ void BallCollisions<D>::separate_from_walls(int i) {
 
 template <int D>
 void BallCollisions<D>::mark_fast_if_needed(int i, double t) {
-  if (state_[i].fast || radius_[i] <= 0) return;
+  if (state_[i].fast || radius_of(i) <= 0) return;
   if (state_[i].travelled + velocity(i).norm() * (h_ - t) > sweep_) {
     state_[i].fast = true;
     fast_.push_back(i);
