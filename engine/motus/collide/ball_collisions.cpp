@@ -370,6 +370,8 @@ void BallCollisions<D>::prefetch_event(const Event& e, int stage) {
       __builtin_prefetch(x_ + D * i);
       __builtin_prefetch(v_ + D * i);
       __builtin_prefetch(&ball_cell_[static_cast<size_t>(i)]);
+      __builtin_prefetch(&inverse_mass_[i]);  // (the impulse's)
+      __builtin_prefetch(&restitution_[static_cast<size_t>(i)]);
       continue;
     }
     // Only a ball in the grid has a cell (fast balls search along their path; points not at all).
