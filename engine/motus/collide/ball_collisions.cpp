@@ -164,7 +164,15 @@ void BallCollisions<D>::drift(VectorRef x, VectorRef v, double h) {
   // part of the step the bodies that collided have already moved; then clear what this
   // step marked.
   x += h * v;
-  for (int i : moved_) {
+  const bool fetch = n_ >= kPrefetchFrom;  // (the pass over x has pushed the moved bodies out of cache)
+  for (size_t m = 0; m < moved_.size(); ++m) {
+    if (const size_t ahead = m + 8; fetch && ahead < moved_.size()) {
+      const int k = moved_[ahead];
+      __builtin_prefetch(x_ + D * k);
+      __builtin_prefetch(v_ + D * k);
+      __builtin_prefetch(&state_[static_cast<size_t>(k)]);
+    }
+    const int i = moved_[m];
     position(i) -= velocity(i) * state_[i].local_time;
     state_[i].local_time = 0;
     state_[i].travelled = 0;
