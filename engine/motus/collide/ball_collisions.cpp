@@ -360,9 +360,9 @@ void BallCollisions<D>::push(double t, int i, int other) {
 template <int D>
 void BallCollisions<D>::fetch_ahead(size_t next) {
   // In four stages, each reading what the one before it fetched: the event 16 ahead fetches
-  // its bodies (their data and cells), 8 ahead the starts of their neighbour cells, 4 ahead
-  // those cells' lists of balls, 2 ahead the neighbours' data. By the time an event is
-  // resolved, its find_events finds all of it in cache.
+  // its bodies (their data, cells, masses and restitutions), 8 ahead the starts of their
+  // neighbour cells, 4 ahead those cells' lists of balls, 2 ahead the neighbours' data. By
+  // the time an event is resolved, its find_events finds all of it in cache.
   for (int stage = 0; stage < 4; ++stage) {
     const size_t ahead = next + (size_t{16} >> stage) - 1;
     if (ahead < initial_events_.size()) prefetch_event(initial_events_[ahead], stage);
