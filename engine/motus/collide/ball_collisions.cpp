@@ -529,7 +529,7 @@ void BallCollisions<D>::find_initial_events() {
       const int i = ci[q], k = ck[q];
       const Point dp = Eigen::Map<const Point>(x + D * k) - Eigen::Map<const Point>(x + D * i);
       const Point dv = Eigen::Map<const Point>(v + D * k) - Eigen::Map<const Point>(v + D * i);
-      const double R = uniform ? max_radius_ + max_radius_ : radius[i] + radius[k];  // (one stream fewer)
+      const double R = uniform ? max_radius_ + max_radius_ : radius[i] + radius[k];  // (radius_of, kept in registers)
       const double dp_dp = dp.squaredNorm(), dp_dv = dp.dot(dv), dv_dv = dv.squaredNorm();
       const bool overlap = dp_dp < R * R * (1 - kOverlapSlack);
       const bool still_closing = dp_dv + dv_dv * h <= 0;
@@ -545,7 +545,7 @@ void BallCollisions<D>::find_initial_events() {
   // then the rest of the batch must be tested again from where they now are.
   auto exact = [&](int q) {
     const int i = ci[q], k = ck[q];
-    const double R = uniform ? max_radius_ + max_radius_ : radius[i] + radius[k];
+    const double R = radius_of(i) + radius_of(k);
     Point dp = position(k) - position(i);
     double dp_dp = dp.squaredNorm();
     const bool moved = dp_dp < R * R * (1 - kOverlapSlack);
@@ -557,8 +557,8 @@ void BallCollisions<D>::find_initial_events() {
     const Point dv = velocity(k) - velocity(i);
     const double dp_dv = dp.dot(dv);
     if (dp_dv < 0) {
-      const double toi = rules_ ? outside_balls_impact(position(i), velocity(i), radius[i], position(k), velocity(k),
-                                                       radius[k], h)
+      const double toi = rules_ ? outside_balls_impact(position(i), velocity(i), radius_of(i), position(k), velocity(k),
+                                                       radius_of(k), h)
                                 : sphere_sphere_impact(dp_dp, dp_dv, dv.squaredNorm(), R, h);
       if (toi != kNoImpact) push(toi, i, k);
     }
