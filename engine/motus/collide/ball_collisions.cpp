@@ -27,19 +27,30 @@ constexpr double kOverlapSlack = 1e-12;
 constexpr int kSmallGrid = 1 << 17;
 
 // From this many bodies on (their x and v alone fill most of a 1 MB L2 cache), the passes
-// that jump around — the pair search's rows above, and the events — fetch what they will
-// need from memory ahead of time. Below it everything is in cache and a prefetch only costs.
+// that jump around — the listed pairs, and the events — fetch what they will need from
+// memory ahead of time. Below it everything is in cache and a prefetch only costs.
 constexpr int kPrefetchFrom = 1 << 14;
-// The pair search fetches the balls this far ahead in each row above (about one memory
-// latency ahead), and those rows' cell starts and lists of balls a few cache lines further.
-// (In 3-D the rows of the plane above are a plane's worth of balls ahead — at 10^6 balls,
-// out of L2 — and the processor's own prefetching does not keep up with ~20 streams.)
+// The listed pairs' balls are fetched this many pairs ahead (about one memory latency ahead):
+// a pair's second ball may be a row (in 3-D a plane) of balls away from its first.
 constexpr int kPairPrefetch = 32;
 
-// The pair search lists this many candidate pairs before it tests them (a few kB: in L1),
-// copying each range of balls kWindow at a time (a longer range is copied one by one).
+// Building the lists goes through the grid's candidates this many at a time (a few kB: in L1),
+// copying each range of balls kWindow at a time (a longer range is copied one by one); each
+// step tests the listed pairs this many at a time.
 constexpr int kBatch = 256;
 constexpr int kWindow = 4;
+
+// The lists' skin covers about this many steps of the fastest slow ball: a wider skin lists
+// more pairs to test every step, a narrower one builds the lists more often. (Eight was the
+// fastest in bench_collisions' gases, 2-D and 3-D, from 10^3 to 10^6 balls; four and sixteen
+// were slower at every size.) It is at most the largest radius, unless a slow ball moves farther
+// than half of that in one step: a skin of twice the step's sweep holds for that step.
+constexpr double kSkinSteps = 8;
+
+// A correction of a ball's position larger than this fraction of the grid's cell takes the
+// ball off the lists (it may now be near balls that are not on them); smaller ones (rounding)
+// count against the lists' half skin, as the distance the ball moved.
+constexpr double kNudge = 1e-9;
 
 }  // namespace
 
@@ -98,41 +109,17 @@ void BallCollisions<D>::drift(VectorRef x, VectorRef v, double h) {
   initial_events_.clear();
   events_this_step_ = 0;
 
-  // A ball that may move farther than the largest radius in this step is fast; the
-  // grid's cells are sized for the slow ones, and cover their extent.
-  // (The extent in locals, and no call in the loop — the fast balls are listed after it, when
-  // there are any: otherwise the compiler keeps the extent in memory, a store and a reload
-  // per ball, and this pass costs 8 cycles a ball instead of ~5.)
-  double slow_speed2 = 0;
-  const double limit2 = max_radius_ * max_radius_ / (h * h);
-  double low[D], high[D];
-  for (int k = 0; k < D; ++k) low[k] = INFINITY, high[k] = -INFINITY;
-  const double* x_start = x_;
-  const double* v_start = v_;
-  bool any_fast = false;
-  for (int i : balls_) {
-    const double speed2 = Eigen::Map<const Point>(v_start + D * i).squaredNorm();
-    if (speed2 <= limit2) [[likely]] {
-      slow_speed2 = std::max(slow_speed2, speed2);
-      for (int k = 0; k < D; ++k) {
-        const double p = x_start[D * i + k];
-        low[k] = std::min(low[k], p);  // (Eigen's cwiseMin and cwiseMax are these, element by element)
-        high[k] = std::max(high[k], p);
-      }
-    } else {
-      any_fast = true;
-    }
+  // A ball that may move farther than the largest radius in this step is fast. The others
+  // move at most sweep_ (until a contact speeds one up: then it turns fast for the rest of the step).
+  sweep_ = fastest_slow_speed(h) * h;
+  // Balls that left the lists since they were built are fast every step until the next build.
+  if (lists_hold()) {
+    for (int i : fast_) make_fast(i);
+    for (int i : escaped_)
+      if (!state_[i].fast) state_[i].fast = true, fast_.push_back(i);
+  } else {
+    build_lists();
   }
-  if (any_fast) {
-    for (int i : balls_)
-      if (!(Eigen::Map<const Point>(v_start + D * i).squaredNorm() <= limit2)) {  // (a NaN speed too)
-        state_[i].fast = true;
-        fast_.push_back(i);
-      }
-  }
-  for (int k = 0; k < D; ++k) grid_low_[k] = low[k], grid_high_[k] = high[k];
-  sweep_ = std::sqrt(slow_speed2) * h;
-  if (balls_.size() >= 2) build_grid();
   initial_search_ = true;
   find_initial_events();
   initial_search_ = false;
@@ -181,14 +168,110 @@ void BallCollisions<D>::drift(VectorRef x, VectorRef v, double h) {
   moved_.clear();
   for (int i : fast_) state_[i].fast = false;
   fast_.clear();
+  // What the balls still on the lists may have moved: at most sweep_ each this step (faster
+  // ones turned fast, and left them), and the small corrections.
+  moved_since_build_ += sweep_ + nudged_;
+  nudged_ = 0;
+}
+
+template <int D>
+double BallCollisions<D>::fastest_slow_speed(double h) {
+  // The fastest slow ball's speed, and the fast balls. (Branch-free and, when every body is a
+  // ball, over the velocities in order: the compiler vectorises it.)
+  const double limit2 = max_radius_ * max_radius_ / (h * h);
+  const double* v = v_;
+  auto speed2 = [v](int i) {
+    double s2 = 0;
+    for (int k = 0; k < D; ++k) s2 += v[D * i + k] * v[D * i + k];
+    return s2;
+  };
+  double slowest2 = 0;
+  long fast = 0;
+  auto take = [&](double s2) {
+    const bool slow = s2 <= limit2;  // (a NaN speed is fast)
+    slowest2 = std::max(slowest2, slow ? s2 : 0.0);
+    fast += !slow;
+  };
+  if (points_.empty()) {
+    for (int i = 0; i < n_; ++i) take(speed2(i));
+  } else {
+    for (int i : balls_) take(speed2(i));
+  }
+  if (fast > 0)
+    for (int i : balls_)
+      if (!(speed2(i) <= limit2)) state_[i].fast = true, fast_.push_back(i);
+  return std::sqrt(slowest2);
+}
+
+template <int D>
+bool BallCollisions<D>::lists_hold() const {
+  // Built, on these positions; no ball still on them may have come within reach of one that is
+  // not on its list by the end of this step; and few enough balls have left them that their
+  // searches along their paths cost less than a new build.
+  return lists_built_ && lists_x_ == x_ && moved_since_build_ + sweep_ <= 0.5 * skin_ &&
+         escaped_.size() <= 8 + balls_.size() / 4096;
+}
+
+template <int D>
+void BallCollisions<D>::build_lists() {
+  for (int i : escaped_) state_[i].escaped = false;
+  escaped_.clear();
+  for (int i : fast_) state_[i].escaped = true, escaped_.push_back(i);  // not in the grid, nor on the lists
+  skin_ = std::max(std::min(2 * kSkinSteps * sweep_, max_radius_), 2 * sweep_);
+  moved_since_build_ = 0;
+  lists_built_ = true;
+  lists_x_ = x_;
+  // One pass over the slow balls: their extent, for the grid, and the faces of boxes they are
+  // near: a ball farther inside a face than r + skin/2 cannot reach it before the next build.
+  near_faces_.clear();
+  double low[D], high[D];
+  for (int k = 0; k < D; ++k) low[k] = INFINITY, high[k] = -INFINITY;
+  const double reach = max_radius_ + 0.5 * skin_ + kNudge * (2 * max_radius_ + skin_);
+  const bool faces = std::any_of(planes_.begin(), planes_.end(), [](const Plane& p) { return p.axis >= 0; });
+  auto take = [&](int i) {
+    for (int k = 0; k < D; ++k) {
+      const double p = x_[D * i + k];
+      low[k] = std::min(low[k], p);  // (Eigen's cwiseMin and cwiseMax are these, element by element)
+      high[k] = std::max(high[k], p);
+    }
+    if (faces)
+      for (size_t w = 0; w < planes_.size(); ++w) {
+        const Plane& plane = planes_[w];
+        if (plane.axis >= 0 && plane.sign * x_[D * i + plane.axis] - plane.offset < reach)
+          near_faces_.push_back({i, static_cast<int>(w)});
+      }
+  };
+  if (fast_.empty()) {  // (most steps: every ball is slow, without reading its flag)
+    for (int i : balls_) take(i);
+  } else {
+    for (int i : balls_)
+      if (!state_[i].fast) take(i);
+  }
+  for (int k = 0; k < D; ++k) grid_low_[k] = low[k], grid_high_[k] = high[k];
+  pair_i_.clear();
+  pair_k_.clear();
+  if (balls_.size() >= 2) {
+    build_grid();
+    list_pairs();
+  }
+  // Both ways, by ball: ball i's neighbours, for the searches after its contacts.
+  neighbour_start_.assign(static_cast<size_t>(n_) + 2, 0);
+  int* start = neighbour_start_.data();
+  for (size_t q = 0; q < pair_i_.size(); ++q) ++start[pair_i_[q] + 2], ++start[pair_k_[q] + 2];
+  for (int b = 2; b < n_ + 2; ++b) start[b] += start[b - 1];
+  neighbours_.resize(2 * pair_i_.size());
+  for (size_t q = 0; q < pair_i_.size(); ++q) {
+    neighbours_[static_cast<size_t>(start[pair_i_[q] + 1]++)] = pair_k_[q];
+    neighbours_[static_cast<size_t>(start[pair_k_[q] + 1]++)] = pair_i_[q];
+  }
 }
 
 template <int D>
 void BallCollisions<D>::build_grid() {
   ++counters_.grid_builds;
-  // Two slow balls that meet within h started at most r_a + r_b + 2·sweep apart, so
-  // with cells this big they are in the same or neighbouring cells.
-  cell_size_ = 2 * max_radius_ + 2 * sweep_;
+  // Two balls on the lists that were within r_a + r_b + skin at the build are in the same or
+  // neighbouring cells.
+  cell_size_ = 2 * max_radius_ + skin_;
   const long slow = static_cast<long>(balls_.size() - fast_.size());
   if (slow == 0) grid_low_ = grid_high_ = Point::Zero();
   const Point low = grid_low_, high = grid_high_;
@@ -219,10 +302,9 @@ void BallCollisions<D>::build_grid() {
   }
   // The neighbour cells as rows, each given by the index offset of its middle cell: three
   // cells side by side along x are consecutive in the sorted array, so a row is one range
-  // of balls (in the order that visiting its cells one by one would give). All 3^(D-1)
-  // rows; and the "forward" half (last non-zero step +1), which visits every pair of
-  // neighbouring cells once. In 2-D that is the rest of the ball's own row and one row above.
-  neighbour_offsets_.clear();
+  // of balls (in the order that visiting its cells one by one would give). The "forward"
+  // half of the 3^(D-1) rows (last non-zero step +1) visits every pair of neighbouring cells
+  // once. In 2-D that is the rest of the ball's own row and one row above.
   forward_rows_.clear();
   int total = 1;
   for (int k = 0; k < D; ++k) total *= 3;
@@ -232,7 +314,6 @@ void BallCollisions<D>::build_grid() {
       offset += (c % 3 - 1) * stride_[k];
       if (k > 0 && c % 3 != 1) leading = c % 3 - 1;
     }
-    if (code % 3 == 1) neighbour_offsets_.push_back(offset);
     if (leading > 0 && code % 3 == 1) forward_rows_.push_back(offset);  // the middle cell of a row above
   }
 
@@ -359,11 +440,11 @@ void BallCollisions<D>::push(double t, int i, int other) {
 
 template <int D>
 void BallCollisions<D>::fetch_ahead(size_t next) {
-  // In four stages, each reading what the one before it fetched: the event 16 ahead fetches
-  // its bodies (their data, cells, masses and restitutions), 8 ahead the starts of their
-  // neighbour cells, 4 ahead those cells' lists of balls, 2 ahead the neighbours' data. By
-  // the time an event is resolved, its find_events finds all of it in cache.
-  for (int stage = 0; stage < 4; ++stage) {
+  // In three stages, each reading what the one before it fetched: the event 16 ahead fetches
+  // its bodies (their data, lists' starts, masses and restitutions), 8 ahead their lists, 4
+  // ahead their neighbours' data. By the time an event is resolved, its find_events finds all
+  // of it in cache.
+  for (int stage = 0; stage < 3; ++stage) {
     const size_t ahead = next + (size_t{16} >> stage) - 1;
     if (ahead < initial_events_.size()) prefetch_event(initial_events_[ahead], stage);
   }
@@ -373,33 +454,22 @@ template <int D>
 void BallCollisions<D>::prefetch_event(const Event& e, int stage) {
   for (const int i : {e.i, e.other}) {
     if (i < 0) break;  // a wall
+    const auto b = static_cast<size_t>(i);
     if (stage == 0) {
-      __builtin_prefetch(&state_[static_cast<size_t>(i)]);
+      __builtin_prefetch(&state_[b]);
       __builtin_prefetch(x_ + D * i);
       __builtin_prefetch(v_ + D * i);
-      __builtin_prefetch(&ball_cell_[static_cast<size_t>(i)]);
+      __builtin_prefetch(&neighbour_start_[b]);
       __builtin_prefetch(&inverse_mass_[i]);  // (the impulse's)
-      __builtin_prefetch(&restitution_[static_cast<size_t>(i)]);
-      continue;
-    }
-    // Only a ball in the grid has a cell (fast balls search along their path; points not at all).
-    if (radius_of(i) <= 0 || state_[static_cast<size_t>(i)].fast) continue;
-    const int c = ball_cell_[static_cast<size_t>(i)];
-    for (const int offset : neighbour_offsets_) {
-      const int m = c + offset;
-      if (stage == 1) {
-        __builtin_prefetch(&cell_start_[static_cast<size_t>(m - 1)]);
-        __builtin_prefetch(&cell_start_[static_cast<size_t>(m + 2)]);
-      } else if (stage == 2) {
-        __builtin_prefetch(&sorted_[static_cast<size_t>(cell_start_[m - 1])]);
-        __builtin_prefetch(&sorted_[static_cast<size_t>(cell_start_[m + 2])]);
-      } else {
-        for (int u = cell_start_[m - 1], end = cell_start_[m + 2]; u < end; ++u) {
-          const int k = sorted_[static_cast<size_t>(u)];
-          __builtin_prefetch(&state_[static_cast<size_t>(k)]);
-          __builtin_prefetch(x_ + D * k);
-          __builtin_prefetch(v_ + D * k);
-        }
+      __builtin_prefetch(&restitution_[b]);
+    } else if (stage == 1) {
+      __builtin_prefetch(&neighbours_[static_cast<size_t>(neighbour_start_[b])]);
+    } else {
+      for (int u = neighbour_start_[b], end = neighbour_start_[b + 1]; u < end; ++u) {
+        const int k = neighbours_[static_cast<size_t>(u)];
+        __builtin_prefetch(&state_[static_cast<size_t>(k)]);
+        __builtin_prefetch(x_ + D * k);
+        __builtin_prefetch(v_ + D * k);
       }
     }
   }
@@ -420,7 +490,25 @@ void BallCollisions<D>::separate(int i, int k) {
   const double depth = radius_of(i) + radius_of(k) - distance;
   position(i) -= (depth * inverse_mass_[i] / w) * n;
   position(k) += (depth * inverse_mass_[k] / w) * n;
+  moved_apart(i, depth * inverse_mass_[i] / w);
+  moved_apart(k, depth * inverse_mass_[k] / w);
   ++counters_.position_corrections;
+}
+
+template <int D>
+void BallCollisions<D>::moved_apart(int i, double distance) {
+  if (radius_of(i) <= 0) return;  // (a point is on no list)
+  if (distance > kNudge * cell_size_) {
+    make_fast(i);  // it may now be near balls that are not on its list
+  } else {
+    nudged_ += distance;
+  }
+}
+
+template <int D>
+void BallCollisions<D>::make_fast(int i) {
+  if (!state_[i].fast) state_[i].fast = true, fast_.push_back(i);
+  if (!state_[i].escaped) state_[i].escaped = true, escaped_.push_back(i);
 }
 
 template <int D>
@@ -436,75 +524,25 @@ void BallCollisions<D>::test_pair(int i, int k, double t) {
 }
 
 template <int D>
-void BallCollisions<D>::find_initial_events() {
-  // Walls, at the start of the step (every body at local time 0). Bodies outside the
-  // grid (points, fast balls) and every general plane or segment: body by body. The
-  // faces of box containers: in the pair search below, and only for the balls outside the
-  // "inner box", farther than r + 2·sweep from every face (which none of them can reach).
-  const bool grid = balls_.size() >= 2;
-  const bool general_walls =
-      !segments_.empty() || std::any_of(planes_.begin(), planes_.end(), [](const Plane& p) { return p.axis < 0; });
-  auto walls_one_by_one = [&](int i, bool faces_too) {
-    for (size_t w = 0; w < planes_.size(); ++w)
-      if (faces_too || planes_[w].axis < 0) initial_plane_event(i, static_cast<int>(w));
-    for (size_t g = 0; g < segments_.size(); ++g) {
-      separate_from_walls(i);
-      const double toi = segment_impact(segments_[g], position(i), velocity(i), radius_of(i), h_, nullptr);
-      if (toi != kNoImpact) push(toi, i, -1 - static_cast<int>(planes_.size() + g));
-    }
-  };
-  for (int i : fast_) separate_from_walls(i);  // their events come with find_events below
-  if (!grid || general_walls) {
-    for (int i : balls_)
-      if (!state_[i].fast) walls_one_by_one(i, !grid);
-  }
-  for (int i : points_) walls_one_by_one(i, true);
-  Point inner_low = Point::Constant(-INFINITY), inner_high = Point::Constant(INFINITY);
-  bool box_faces = false;
-  // A slow ball moves at most sweep in the step, so a face is out of its reach when the
-  // ball's centre is more than r + sweep inside it (twice sweep: a margin for rounding).
-  const double reach = max_radius_ + 2 * sweep_;
-  for (const Plane& plane : planes_) {
-    if (plane.axis < 0) continue;
-    box_faces = true;
-    if (plane.sign > 0) inner_low[plane.axis] = std::max(inner_low[plane.axis], plane.offset + reach);
-    else inner_high[plane.axis] = std::min(inner_high[plane.axis], -plane.offset - reach);
-  }
-
-  // Slow pairs: each ball against the later balls of its own cell and of the next cell along
-  // x, and the balls of its forward rows. This is the hot loop of a step, done a batch of
-  // balls at a time in three passes so that no branch in it depends on the balls but rare ones:
-  //   1. list the batch's candidate pairs: each range of sorted_ is copied kWindow entries
-  //      at once, whatever its length, and the list's end moves on by that length;
-  //   2. test every candidate with sphere_sphere_impact's early "no" (not approaching, or
-  //      still apart when the step ends), computed without a branch: the few left are the
-  //      pairs that may touch within the step, and those that overlap;
-  //   3. those get the exact time of impact and their events.
-  // (Pair by pair, the ends of the ranges' loops — two ranges a ball in 2-D, five in 3-D — and
-  // "approaching?" were branches the processor could not predict, and after each the loads
-  // that missed the cache started over. The candidates are listed in the order a pair-by-pair
-  // search tests them, with the same arithmetic, so the events are the same; only a ball's
-  // nudge out of a face it is a hair inside now comes before its batch's tests, not before
-  // its own.)
-  long tests = 0;
-  const double* x = x_;  // local copies: the compiler need not reload them after a push
-  const double* v = v_;
-  const double* radius = radius_.data();
-  const bool uniform = uniform_radius_;
-  const bool early_no = rules_ == nullptr;  // (a plug-in's time of impact decides every approaching pair)
-  const double h = h_;
+void BallCollisions<D>::list_pairs() {
+  // Every pair of slow balls closer than r_a + r_b + skin, from the grid: each ball against the
+  // later balls of its own cell and of the next cell along x, and the balls of its forward rows.
+  // Batch by batch, branch-free: list the batch's candidates (each range of sorted_ copied
+  // kWindow entries at once, whatever its length, the list's end moved on by that length),
+  // then keep those within reach.
   const int* sorted = sorted_.data();
   const int* cell_start = cell_start_.data();
-  const int slow_count = slow_count_;
   const int rows = static_cast<int>(forward_rows_.size());
   const int* forward_rows = forward_rows_.data();
-  const bool prefetch = n_ >= kPrefetchFrom;  // (the same test as the events')
+  const double* x = x_;
+  const double* radius = radius_.data();
+  const bool uniform = uniform_radius_;
+  const double margin = skin_ + kNudge * cell_size_;  // (rounding in positions must not cut a pair)
   // A batch's list has room for kBatch pairs and one more ball's ranges at kWindow each.
   const size_t room = static_cast<size_t>(kBatch + (rows + 1) * kWindow);
-  if (candidate_i_.size() < room) candidate_i_.resize(room), candidate_k_.resize(room), hits_.resize(room);
+  if (candidate_i_.size() < room) candidate_i_.resize(room), candidate_k_.resize(room);
   int* ci = candidate_i_.data();
   int* ck = candidate_k_.data();
-  int* hits = hits_.data();
   int n = 0;  // candidates listed in this batch
   auto list = [&](int i, int from, int to) {
     const int count = to - from;
@@ -517,15 +555,102 @@ void BallCollisions<D>::find_initial_events() {
     // A crowded range (a dense pack): the list grows.
     if (candidate_i_.size() < static_cast<size_t>(n + count) + room) {
       const size_t grown = 2 * (static_cast<size_t>(n + count) + room);
-      candidate_i_.resize(grown), candidate_k_.resize(grown), hits_.resize(grown);
-      ci = candidate_i_.data(), ck = candidate_k_.data(), hits = hits_.data();
+      candidate_i_.resize(grown), candidate_k_.resize(grown);
+      ci = candidate_i_.data(), ck = candidate_k_.data();
     }
     for (int u = from; u < to; ++u) ci[n] = i, ck[n] = sorted[u], ++n;
   };
-  // Pass 2 over candidates [from, to): those left for pass 3, in order.
-  auto filter = [&](int from, int to) {
+  size_t kept = 0;
+  auto keep_within_reach = [&] {
+    if (pair_i_.size() < kept + static_cast<size_t>(n)) {
+      const size_t grown = 2 * (kept + static_cast<size_t>(n));
+      pair_i_.resize(grown), pair_k_.resize(grown);
+    }
+    int* pi = pair_i_.data() + kept;
+    int* pk = pair_k_.data() + kept;
+    int m = 0;
+    for (int q = 0; q < n; ++q) {
+      const int i = ci[q], k = ck[q];
+      const double reach = (uniform ? max_radius_ + max_radius_ : radius[i] + radius[k]) + margin;
+      const double d2 = (Eigen::Map<const Point>(x + D * k) - Eigen::Map<const Point>(x + D * i)).squaredNorm();
+      pi[m] = i, pk[m] = k;
+      m += d2 < reach * reach;
+    }
+    kept += static_cast<size_t>(m);
+  };
+  for (int s = 0; s < slow_count_;) {
+    n = 0;
+    for (; s < slow_count_ && n < kBatch; ++s) {
+      const int i = sorted[s];
+      const int c = ball_cell_[i];
+      list(i, s + 1, cell_start[c + 2]);
+      for (int r = 0; r < rows; ++r) {
+        const int m = c + forward_rows[r];
+        list(i, cell_start[m - 1], cell_start[m + 2]);  // a row: three cells side by side
+      }
+    }
+    keep_within_reach();
+  }
+  counters_.cell_queries += static_cast<long>(slow_count_) * (rows + 1);
+  pair_i_.resize(kept);
+  pair_k_.resize(kept);
+}
+
+template <int D>
+void BallCollisions<D>::find_initial_events() {
+  // Walls, at the start of the step (every body at local time 0). Bodies outside the
+  // lists (points, fast balls) and every general plane or segment: body by body. The
+  // faces of box containers: only for the balls listed near them.
+  const bool lists = balls_.size() >= 2;
+  const bool general_walls =
+      !segments_.empty() || std::any_of(planes_.begin(), planes_.end(), [](const Plane& p) { return p.axis < 0; });
+  auto walls_one_by_one = [&](int i, bool faces_too) {
+    for (size_t w = 0; w < planes_.size(); ++w)
+      if (faces_too || planes_[w].axis < 0) initial_plane_event(i, static_cast<int>(w));
+    for (size_t g = 0; g < segments_.size(); ++g) {
+      separate_from_walls(i);
+      const double toi = segment_impact(segments_[g], position(i), velocity(i), radius_of(i), h_, nullptr);
+      if (toi != kNoImpact) push(toi, i, -1 - static_cast<int>(planes_.size() + g));
+    }
+  };
+  for (size_t a = 0; a < fast_.size(); ++a) separate_from_walls(fast_[a]);  // their events come with find_events below
+  if (!lists || general_walls) {
+    for (int i : balls_)
+      if (!state_[i].fast) walls_one_by_one(i, !lists);
+  }
+  for (int i : points_) walls_one_by_one(i, true);
+  if (lists)
+    for (const auto& [i, w] : near_faces_)
+      if (!state_[i].fast) initial_plane_event(i, w);
+
+  // The listed pairs, a batch at a time in two passes, so that no branch depends on the balls
+  // but rare ones:
+  //   1. test every pair with sphere_sphere_impact's early "no" (not approaching, or still
+  //      apart when the step ends), computed without a branch: the few left are the pairs that
+  //      may touch within the step, and those that overlap;
+  //   2. those get the exact time of impact and their events.
+  // Overlapping balls are moved apart first (rare); then the rest of the batch is tested again
+  // from where they now are.
+  const double* x = x_;  // local copies: the compiler need not reload them after a push
+  const double* v = v_;
+  const double* radius = radius_.data();
+  const bool uniform = uniform_radius_;
+  const bool early_no = rules_ == nullptr;  // (a plug-in's time of impact decides every approaching pair)
+  const double h = h_;
+  const int* ci = pair_i_.data();
+  const int* ck = pair_k_.data();
+  const int pairs = static_cast<int>(pair_i_.size());
+  const bool prefetch = n_ >= kPrefetchFrom;
+  if (hits_.size() < static_cast<size_t>(kBatch)) hits_.resize(kBatch);
+  int* hits = hits_.data();
+  auto filter = [&](int from, int to) {  // pass 1 over pairs [from, to): those left for pass 2, in order
     int left = 0;
     for (int q = from; q < to; ++q) {
+      if (prefetch && q + kPairPrefetch < pairs) {  // (the pairs are known ahead: their balls are fetched ahead)
+        const int a = ci[q + kPairPrefetch], b = ck[q + kPairPrefetch];
+        __builtin_prefetch(x + D * a), __builtin_prefetch(v + D * a);
+        __builtin_prefetch(x + D * b), __builtin_prefetch(v + D * b);
+      }
       const int i = ci[q], k = ck[q];
       const Point dp = Eigen::Map<const Point>(x + D * k) - Eigen::Map<const Point>(x + D * i);
       const Point dv = Eigen::Map<const Point>(v + D * k) - Eigen::Map<const Point>(v + D * i);
@@ -541,9 +666,7 @@ void BallCollisions<D>::find_initial_events() {
     }
     return left;
   };
-  // Pass 3: the exact test of candidate q. Overlapping balls are moved apart first (rare);
-  // then the rest of the batch must be tested again from where they now are.
-  auto exact = [&](int q) {
+  auto exact = [&](int q) {  // pass 2 for pair q; true when it moved the balls apart
     const int i = ci[q], k = ck[q];
     const double R = radius_of(i) + radius_of(k);
     Point dp = position(k) - position(i);
@@ -564,38 +687,11 @@ void BallCollisions<D>::find_initial_events() {
     }
     return moved;
   };
-  for (int s = 0; s < slow_count;) {
-    // Pass 1: a batch of balls' candidates.
-    n = 0;
-    for (; s < slow_count && n < kBatch; ++s) {
-      const int i = sorted[s];
-      if (box_faces) {
-        const Point p_i = Eigen::Map<const Point>(x + D * i);
-        if (!((p_i.array() > inner_low.array()).all() && (p_i.array() < inner_high.array()).all()))
-          initial_face_events(i);  // near a face of a box (a fraction of the balls; it may move a hair out of it)
-      }
-      const int c = ball_cell_[i];
-      list(i, s + 1, cell_start[c + 2]);
-      // The rows above: three cells each. (Here the search meets a ball for the first time in
-      // the step — its own row's balls were the row above of the row before — so at 10^6 balls
-      // these are the misses; the balls further along are fetched ahead.)
-      for (int r = 0; r < rows; ++r) {
-        const int m = c + forward_rows[r];
-        if (const int ahead = cell_start[m + 2] + kPairPrefetch; prefetch && ahead < slow_count) {
-          const int k = sorted[ahead];
-          __builtin_prefetch(x + D * k);
-          __builtin_prefetch(v + D * k);
-          __builtin_prefetch(sorted + ahead + 64);
-          __builtin_prefetch(cell_start + m + 96);
-        }
-        list(i, cell_start[m - 1], cell_start[m + 2]);
-      }
-    }
-    tests += n;
-    // Passes 2 and 3.
-    for (int from = 0; from < n;) {
-      const int left = filter(from, n);
-      from = n;
+  for (int batch = 0; batch < pairs; batch += kBatch) {
+    const int end = std::min(pairs, batch + kBatch);
+    for (int from = batch; from < end;) {
+      const int left = filter(from, end);
+      from = end;
       for (int j = 0; j < left; ++j)
         if (exact(hits[j])) {
           from = hits[j] + 1;
@@ -603,16 +699,10 @@ void BallCollisions<D>::find_initial_events() {
         }
     }
   }
-  counters_.pair_tests += tests;
-  counters_.cell_queries += static_cast<long>(slow_count) * (rows + 1);
-  // Fast balls look along their whole path (and at each other).
+  counters_.pair_tests += pairs;
+  // Fast balls look along their whole path (and at each other). (By index: a ball moved apart
+  // above turned fast and joined them.)
   for (size_t a = 0; a < fast_.size(); ++a) find_events(fast_[a], 0, -1);
-}
-
-template <int D>
-void BallCollisions<D>::initial_face_events(int i) {
-  for (size_t w = 0; w < planes_.size(); ++w)
-    if (planes_[w].axis >= 0) initial_plane_event(i, static_cast<int>(w));
 }
 
 template <int D>
@@ -623,6 +713,7 @@ void BallCollisions<D>::initial_plane_event(int i, int w) {
   double gap = (plane.axis >= 0 ? plane.sign * p[plane.axis] : plane.normal.dot(p)) - plane.offset - radius_of(i);
   if (gap < 0) {  // rounding (or the scene) left it a hair inside the wall
     p -= gap * plane.normal;
+    moved_apart(i, -gap);
     gap = 0;
     ++counters_.position_corrections;
   }
@@ -637,20 +728,16 @@ void BallCollisions<D>::find_events(int i, double t, int exclude) {
   find_wall_events(i, t);
   if (radius_of(i) <= 0 || balls_.size() < 2) return;
   if (!state_[i].fast) {
-    // Its possible partners started in the neighbouring cells, or are fast.
-    const int c = ball_cell_[i];
-    for (int offset : neighbour_offsets_) {
-      counters_.cell_queries += 3;
-      const int m = c + offset;
-      for (int u = cell_start_[m - 1], end = cell_start_[m + 2]; u < end; ++u) {
-        const int k = sorted_[u];
-        if (k != i && k != exclude && !state_[k].fast) test_pair(i, k, t);
-      }
+    // Its possible partners are on its list, or are fast.
+    for (int u = neighbour_start_[i], end = neighbour_start_[i + 1]; u < end; ++u) {
+      const int k = neighbours_[u];
+      if (k != exclude && !state_[k].fast) test_pair(i, k, t);
     }
   } else {
-    // A fast ball's partners started anywhere near its remaining path.
+    // A fast ball's partners are anywhere near its remaining path: within half the skin of
+    // where the grid has them.
     const Point p = position_at(i, t), q = p + velocity(i) * (h_ - t);
-    const double margin = radius_of(i) + max_radius_ + sweep_;
+    const double margin = radius_of(i) + max_radius_ + 0.5 * skin_ + kNudge * cell_size_;
     for_cells_in_box(p.cwiseMin(q).array() - margin, p.cwiseMax(q).array() + margin, [&](int k) {
       if (k != i && k != exclude && !state_[k].fast) test_pair(i, k, t);
     });
@@ -749,6 +836,7 @@ void BallCollisions<D>::separate_from_walls(int i) {
                        plane.offset - radius_of(i);
     if (gap < 0) {
       position(i) -= gap * plane.normal;
+      moved_apart(i, -gap);
       ++counters_.position_corrections;
     }
   }
@@ -760,6 +848,7 @@ void BallCollisions<D>::separate_from_walls(int i) {
       const double distance = d.norm();
       if (distance < radius_of(i) && distance > 0) {
         position(i) += (radius_of(i) - distance) / distance * d;
+        moved_apart(i, radius_of(i) - distance);
         ++counters_.position_corrections;
       }
     }
@@ -769,10 +858,7 @@ void BallCollisions<D>::separate_from_walls(int i) {
 template <int D>
 void BallCollisions<D>::mark_fast_if_needed(int i, double t) {
   if (state_[i].fast || radius_of(i) <= 0) return;
-  if (state_[i].travelled + velocity(i).norm() * (h_ - t) > sweep_) {
-    state_[i].fast = true;
-    fast_.push_back(i);
-  }
+  if (state_[i].travelled + velocity(i).norm() * (h_ - t) > sweep_) make_fast(i);  // (and off the lists)
 }
 
 template <int D>

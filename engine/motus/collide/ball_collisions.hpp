@@ -5,15 +5,22 @@
 // happen at the same instant (Newton's cradle) are resolved one after another, exactly.
 //
 // One step, for time h, given the velocities the integrator's kick left:
-//   1. find every contact that can happen within h: a uniform grid over the balls'
-//      start positions, with cells large enough that two balls which can meet within h
-//      are in neighbouring cells (the broad phase: O(N), not O(N²)); balls moving
-//      farther than a radius in one step are "fast" and query the cells along their path;
+//   1. find every contact that can happen within h. The candidates are the pairs of a
+//      neighbour list (a "Verlet list", as in molecular dynamics): every two balls that were
+//      closer than r_a + r_b + skin when the list was built. A ball that has moved less than
+//      skin/2 since then cannot touch a ball off its list, so the list serves step after step
+//      until the fastest ball may have used up that half skin; then it is built again, from a
+//      uniform grid whose cells (2·r_max + skin) put every two balls within reach in
+//      neighbouring cells (the broad phase: O(N), not O(N²)). Balls that may have left their
+//      list's reach — fast ones, moving farther than a radius in one step, and balls pushed
+//      apart — are "fast": they query the grid's cells along their path until the next build;
 //   2. take the earliest contact, move its two bodies to that time, apply the impulse
-//      (impulse.hpp), and look again for the contacts of just those two;
+//      (impulse.hpp), and look again for the contacts of just those two (their lists);
 //   3. repeat until no contact is left within h; move everything to the end of the step.
 // Overlap found at the start of a step (from the scene, or rounding) is removed by
 // moving positions apart along the normal, mass-weighted; velocities are not touched.
+// The lists assume that only this drift moves the bodies: a drift given other arrays
+// builds them again.
 #include <array>
 #include <vector>
 
@@ -93,14 +100,19 @@ private:
   template <class Visit>
   void for_cells_in_box(const Point& low, const Point& high, Visit&& visit);
 
+  double fastest_slow_speed(double h);
+  bool lists_hold() const;
+  void build_lists();
+  void list_pairs();
   void find_initial_events();
   void initial_plane_event(int i, int wall);
-  [[gnu::noinline]] void initial_face_events(int i);  // (out of the pair search's loop, which it would crowd)
   void find_events(int i, double t, int exclude);
   void find_wall_events(int i, double t);
   void test_pair(int i, int k, double t);
   void separate(int i, int k);
   void separate_from_walls(int i);
+  void moved_apart(int i, double distance);
+  void make_fast(int i);
   double segment_impact(const Segment& s, const Point& p, const Point& u, double r, double horizon, Point* normal) const;
   Point wall_normal(int i, int wall);
   void push(double t, int i, int other);
@@ -137,7 +149,8 @@ private:
   struct BallState {
     double local_time = 0, travelled = 0;
     unsigned collisions_this_step = 0;  // events carry it to detect staleness
-    bool fast = false;
+    bool fast = false;     // searches along its path this step (not by its list)
+    bool escaped = false;  // off the lists until they are built again: fast every step
   };
   std::vector<BallState> state_;
   std::vector<int> fast_, balls_, points_, moved_;
@@ -162,7 +175,22 @@ private:
   };
   std::vector<int> block_start_, local_count_;  // the sort's first level, and its second's counts
   std::vector<Placed> by_block_;
-  std::vector<int> forward_rows_, neighbour_offsets_;
+  std::vector<int> forward_rows_;
+
+  // The neighbour lists (see the top). Built from the grid, with the balls where they were
+  // then; the grid is kept with them, for the fast balls' searches.
+  double skin_ = 0;
+  double moved_since_build_ = 0;  // the most any ball still on the lists may have moved since
+  double nudged_ = 0;             // this step's position corrections too small to take a ball off
+  bool lists_built_ = false;
+  const double* lists_x_ = nullptr;  // the positions' array they were built on
+  std::vector<int> pair_i_, pair_k_;  // every pair of balls within reach, once, in the grid's order
+  std::vector<int> neighbour_start_, neighbours_;  // both ways, by ball: ball i's are [start[i], start[i + 1])
+  struct NearFace {
+    int ball, wall;
+  };
+  std::vector<NearFace> near_faces_;  // box faces within a ball's reach
+  std::vector<int> escaped_;
 };
 
 extern template class BallCollisions<1>;
