@@ -133,4 +133,31 @@ TEST(NeighbourLists, ADriftGivenAnotherArrayOfPositionsBuildsThemAgain) {
   EXPECT_DOUBLE_EQ(u[1], 0.05);
 }
 
+TEST(NeighbourLists, ABallAContactSpeedsUpPastTheOthersShortensTheListsLife) {
+  // How long the lists last comes from how fast the slow balls are; with no forces the next
+  // step does not read every velocity again but takes the contacts' new speeds into account.
+  // A line of five balls of radius 0.5, steps of 1 s, no walls: A (10^6 kg) at 0.05 m/s, the
+  // fastest at the start, and then B (1 kg), C (10^-6 kg), E (10^-12 kg) at rest, each hit late
+  // in a step (t = 0.9, 1.9, 2.9 s) by the one before and sent off at twice its speed (heavy on
+  // light, e = 1): E leaves at 0.4 m/s, eight times A's speed and still below a radius per step,
+  // so it stays on the lists. T (1 kg) waits 0.6 m beyond E, outside E's reach when the lists
+  // were built (skin 0.5 m); E reaches it at t = 4.4 s and bounces back. Lists kept as long as
+  // A's speed alone allows (until t = 5 s) let E pass into T (they end 0.76 m apart, three contacts).
+  motus::Vector inverse_mass(5);
+  inverse_mass << 1e-6, 1, 1e6, 1e12, 1;
+  motus::BallCollisions<1> collisions(inverse_mass, {0.5, 0.5, 0.5, 0.5, 0.5}, {1, 1, 1, 1, 1},
+                                      motus::Colliders{});
+  motus::Vector x(5), v(5);
+  x << 0, 1.045, 2.145, 3.345, 4.945;  // surface gaps 0.045, 0.1, 0.2 and 0.6 m
+  v << 0.05, 0, 0, 0, 0;
+  for (int step = 0; step < 5; ++step) collisions.drift(x, v, 1.0, false);
+  for (int i = 0; i + 1 < 5; ++i) EXPECT_GE(x[i + 1] - x[i], 1 - 1e-12) << "balls " << i << " and " << i + 1;
+  // Five contacts: A–B, B–C, C–E, E–T, and E, on its way back at 0.4 m/s, off C, coming at
+  // 0.2 m/s, which sends it forward at 2 · 0.2 + 0.4 = 0.8 m/s (to within the light balls'
+  // masses, 10^-6 of the speeds). T has taken 2 · 10^-12 · 0.4 kg m/s.
+  EXPECT_EQ(collisions.counters().ball_collisions, 5);
+  EXPECT_NEAR(v[3], 0.8, 1e-5);
+  EXPECT_NEAR(v[4], 8e-13, 1e-17);
+}
+
 }  // namespace

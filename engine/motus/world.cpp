@@ -106,10 +106,10 @@ void World::project(VectorRef x) {
                  "constraint projection", external_projection_->error, external_projection_->self);
 }
 
-void World::drift_with_collisions(VectorRef x, VectorRef v, double h) {
+void World::drift_with_collisions(VectorRef x, VectorRef v, double h, bool kicked) {
   std::visit(
       [&](auto& c) {
-        if constexpr (!std::is_same_v<std::decay_t<decltype(c)>, std::monostate>) c.drift(x, v, h);
+        if constexpr (!std::is_same_v<std::decay_t<decltype(c)>, std::monostate>) c.drift(x, v, h, kicked);
       },
       collisions_);
 }

@@ -55,7 +55,7 @@ public:
   double constraint_error(ConstVectorRef x) const;
 
 private:
-  void drift_with_collisions(VectorRef x, VectorRef v, double h);
+  void drift_with_collisions(VectorRef x, VectorRef v, double h, bool kicked);
   void project(VectorRef x);
   void use_external_projection(const MechanicalDescription& scene, const ExternalConstraintRules& rules);
 
@@ -85,7 +85,7 @@ inline void World::step(Stepper& stepper, double t, double h, VectorRef x, Vecto
   if constexpr (std::is_same_v<Stepper, SymplecticEuler>) {
     if (has_collisions()) {
       if (has_forces_) stepper.kick(system_, t, h, x, v);
-      drift_with_collisions(x, v, h);
+      drift_with_collisions(x, v, h, has_forces_);
       return;
     }
   }

@@ -101,7 +101,7 @@ void BallCollisions<D>::advance(int i, double t) {
 }
 
 template <int D>
-void BallCollisions<D>::drift(VectorRef x, VectorRef v, double h) {
+void BallCollisions<D>::drift(VectorRef x, VectorRef v, double h, bool kicked) {
   x_ = x.data();
   v_ = v.data();
   h_ = h;
@@ -111,8 +111,17 @@ void BallCollisions<D>::drift(VectorRef x, VectorRef v, double h) {
 
   // A ball that may move farther than the largest radius in this step is fast. The others
   // move at most sweep_ (until a contact speeds one up: then it turns fast for the rest of the step).
-  sweep_ = fastest_slow_speed(h) * h;
   // Balls that left the lists since they were built are fast every step until the next build.
+  // Unless something but the last drift has changed the velocities (or the arrays, or the step),
+  // the speeds the contacts left are known: every ball a contact made fast has left the lists,
+  // and the bound on the others holds. Otherwise, and before a build, a look at every velocity.
+  const bool speeds_known = !kicked && speeds_v_ == v_ && speeds_h_ == h;
+  sweep_ = slow_speed_bound_ * h;
+  if (!speeds_known || !lists_hold()) {
+    slow_speed_bound_ = fastest_slow_speed(h);
+    speeds_v_ = v_, speeds_h_ = h;
+    sweep_ = slow_speed_bound_ * h;
+  }
   if (lists_hold()) {
     for (int i : fast_) make_fast(i);
     for (int i : escaped_)
@@ -152,6 +161,8 @@ void BallCollisions<D>::drift(VectorRef x, VectorRef v, double h) {
   // step marked.
   x += h * v;
   const bool fetch = n_ >= kPrefetchFrom;  // (the pass over x has pushed the moved bodies out of cache)
+  const double limit2 = max_radius_ * max_radius_ / (h * h);
+  double fastest2 = slow_speed_bound_ * slow_speed_bound_;
   for (size_t m = 0; m < moved_.size(); ++m) {
     if (const size_t ahead = m + 8; fetch && ahead < moved_.size()) {
       const int k = moved_[ahead];
@@ -164,7 +175,18 @@ void BallCollisions<D>::drift(VectorRef x, VectorRef v, double h) {
     state_[i].local_time = 0;
     state_[i].travelled = 0;
     state_[i].collisions_this_step = 0;
+    // Its speed now: a contact may have made it the fastest slow ball, or fast (off the lists).
+    // (Points, radius 0, are not on the lists and do not count, as in fastest_slow_speed.)
+    if (radius_of(i) <= 0) continue;
+    const double speed2 = velocity(i).squaredNorm();
+    if (speed2 <= limit2) {
+      fastest2 = std::max(fastest2, speed2);
+    } else if (!state_[i].escaped) {  // (a NaN speed too)
+      state_[i].escaped = true;
+      escaped_.push_back(i);
+    }
   }
+  slow_speed_bound_ = std::sqrt(fastest2);
   moved_.clear();
   for (int i : fast_) state_[i].fast = false;
   fast_.clear();
@@ -647,9 +669,11 @@ void BallCollisions<D>::find_initial_events() {
     int left = 0;
     for (int q = from; q < to; ++q) {
       if (prefetch && q + kPairPrefetch < pairs) {  // (the pairs are known ahead: their balls are fetched ahead)
-        const int a = ci[q + kPairPrefetch], b = ck[q + kPairPrefetch];
-        __builtin_prefetch(x + D * a), __builtin_prefetch(v + D * a);
-        __builtin_prefetch(x + D * b), __builtin_prefetch(v + D * b);
+        for (const int b : {ci[q + kPairPrefetch], ck[q + kPairPrefetch]}) {
+          // (both ends: in 3-D a ball's 24 bytes straddle two cache lines three times in eight)
+          __builtin_prefetch(x + D * b), __builtin_prefetch(x + D * b + (D - 1));
+          __builtin_prefetch(v + D * b), __builtin_prefetch(v + D * b + (D - 1));
+        }
       }
       const int i = ci[q], k = ck[q];
       const Point dp = Eigen::Map<const Point>(x + D * k) - Eigen::Map<const Point>(x + D * i);

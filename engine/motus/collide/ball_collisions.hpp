@@ -9,7 +9,9 @@
 //      neighbour list (a "Verlet list", as in molecular dynamics): every two balls that were
 //      closer than r_a + r_b + skin when the list was built. A ball that has moved less than
 //      skin/2 since then cannot touch a ball off its list, so the list serves step after step
-//      until the fastest ball may have used up that half skin; then it is built again, from a
+//      until the fastest ball may have used up that half skin (with no kick between steps,
+//      only contacts change speeds: the fastest is known without reading every velocity);
+//      then it is built again, from a
 //      uniform grid whose cells (2·r_max + skin) put every two balls within reach in
 //      neighbouring cells (the broad phase: O(N), not O(N²)). Balls that may have left their
 //      list's reach — fast ones, moving farther than a radius in one step, and balls pushed
@@ -53,8 +55,11 @@ public:
                  const Colliders& colliders, const ExternalCollisionRules* rules = nullptr);
 
   // Moves every body for time h on straight lines from x with velocities v, resolving
-  // every contact at its time of impact. x and v hold N·D numbers.
-  void drift(VectorRef x, VectorRef v, double h);
+  // every contact at its time of impact. x and v hold N·D numbers. `kicked`: whether anything
+  // but the last drift has changed v since (a kick; the first drift always looks at every
+  // speed). When nothing has, only the contacts have changed speeds, and the step need not
+  // read every ball's velocity to know how far the slow ones can go.
+  void drift(VectorRef x, VectorRef v, double h, bool kicked = true);
 
   const CollisionCounters& counters() const { return counters_; }
 
@@ -176,6 +181,12 @@ private:
   std::vector<int> block_start_, local_count_;  // the sort's first level, and its second's counts
   std::vector<Placed> by_block_;
   std::vector<int> forward_rows_;
+
+  // The fastest a slow ball can be now: exact after a look at every velocity, then raised by
+  // each contact's new speeds (so never less than the truth) until the next look.
+  double slow_speed_bound_ = 0;
+  const double* speeds_v_ = nullptr;  // the velocities' array it was found on, and the step it took
+  double speeds_h_ = 0;
 
   // The neighbour lists (see the top). Built from the grid, with the balls where they were
   // then; the grid is kept with them, for the fast balls' searches.
