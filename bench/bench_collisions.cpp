@@ -8,7 +8,9 @@
 // Also: the course's spring stepped through the full world (motus::Simulation) against
 // the bare symplectic-Euler loop on the same system (target: within 1.10x).
 //
-//   build/bench/bench_collisions [--benchmark_filter=BallGas] [--benchmark_repetitions=5]
+//   build/bench/bench_collisions [--benchmark_filter=BallGas/] [--benchmark_repetitions=5
+//       --benchmark_enable_random_interleaving=true]   (the sizes in random order: a noisy
+//       machine's slow spells then fall on all of them alike)
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
