@@ -75,7 +75,9 @@ BallCollisions<D>::BallCollisions(const Vector& inverse_mass, std::vector<double
     const double length = n.norm();
     planes_.push_back({n / length, p.offset / length, p.restitution, -1, 0});
   }
-  for (const auto& b : colliders.boxes)  // a container: one inward-facing plane per face
+  // A container: one inward-facing plane per face (after the general planes: build_lists
+  // looks at the faces alone).
+  for (const auto& b : colliders.boxes)
     for (int k = 0; k < D; ++k) {
       Point n = Point::Zero();
       n[k] = 1;
@@ -243,32 +245,32 @@ void BallCollisions<D>::build_lists() {
   moved_since_build_ = 0;
   lists_built_ = true;
   lists_x_ = x_;
-  // One pass over the slow balls: their extent, for the grid, and the faces of boxes they are
-  // near: a ball farther inside a face than r + skin/2 cannot reach it before the next build.
-  near_faces_.clear();
+  // One pass over the slow balls for their extent, for the grid, and one for the faces of
+  // boxes they are near: a ball farther inside a face than r + skin/2 cannot reach it before
+  // the next build. (Apart, and from locals: the first then runs in registers, and the
+  // second reloads nothing after a push_back.)
+  const double* x = x_;
   double low[D], high[D];
   for (int k = 0; k < D; ++k) low[k] = INFINITY, high[k] = -INFINITY;
-  const double reach = max_radius_ + 0.5 * skin_ + kNudge * (2 * max_radius_ + skin_);
-  const bool faces = std::any_of(planes_.begin(), planes_.end(), [](const Plane& p) { return p.axis >= 0; });
-  auto take = [&](int i) {
+  for_slow([x, &low, &high](int i) {
     for (int k = 0; k < D; ++k) {
-      const double p = x_[D * i + k];
+      const double p = x[D * i + k];
       low[k] = std::min(low[k], p);  // (Eigen's cwiseMin and cwiseMax are these, element by element)
       high[k] = std::max(high[k], p);
     }
-    if (faces)
-      for (size_t w = 0; w < planes_.size(); ++w) {
-        const Plane& plane = planes_[w];
-        if (plane.axis >= 0 && plane.sign * x_[D * i + plane.axis] - plane.offset < reach)
-          near_faces_.push_back({i, static_cast<int>(w)});
-      }
-  };
-  if (fast_.empty()) {  // (most steps: every ball is slow, without reading its flag)
-    for (int i : balls_) take(i);
-  } else {
-    for (int i : balls_)
-      if (!state_[i].fast) take(i);
-  }
+  });
+  near_faces_.clear();
+  const Plane* planes = planes_.data();
+  const int plane_count = static_cast<int>(planes_.size());
+  // (A box's faces follow the general planes: see the constructor.)
+  const int first_face = static_cast<int>(
+      std::find_if(planes_.begin(), planes_.end(), [](const Plane& p) { return p.axis >= 0; }) - planes_.begin());
+  const double reach = max_radius_ + 0.5 * skin_ + kNudge * (2 * max_radius_ + skin_);
+  if (first_face < plane_count)
+    for_slow([this, x, planes, first_face, plane_count, reach](int i) {
+      for (int w = first_face; w < plane_count; ++w)
+        if (planes[w].sign * x[D * i + planes[w].axis] - planes[w].offset < reach) near_faces_.push_back({i, w});
+    });
   for (int k = 0; k < D; ++k) grid_low_[k] = low[k], grid_high_[k] = high[k];
   pair_i_.clear();
   pair_k_.clear();
@@ -348,15 +350,6 @@ void BallCollisions<D>::build_grid() {
   // within a cell the balls keep balls_'s order (as a one-level sort would leave them),
   // and the events come in the same order. Afterwards cell c holds sorted_[cell_start_[c]
   // .. cell_start_[c + 1]).
-  // (Most steps have no fast ball: then every ball is slow, without reading its flag.)
-  auto for_slow = [&](auto&& f) {
-    if (fast_.empty()) {
-      for (int i : balls_) f(i);
-    } else {
-      for (int i : balls_)
-        if (!state_[i].fast) f(i);
-    }
-  };
   if (cells <= kSmallGrid) {
     // Cells that fit in cache: one level (zero, count, sum, place — each at cache speed).
     cell_start_.assign(static_cast<size_t>(cells) + 2, 0);

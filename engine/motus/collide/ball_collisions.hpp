@@ -105,6 +105,17 @@ private:
   template <class Visit>
   void for_cells_in_box(const Point& low, const Point& high, Visit&& visit);
 
+  // Calls f(i) for every slow ball, in balls_'s order. (Most steps have no fast ball: then
+  // every ball is slow, without reading its flag.)
+  template <class F>
+  void for_slow(F&& f) const {
+    if (fast_.empty()) {
+      for (int i : balls_) f(i);
+    } else {
+      for (int i : balls_)
+        if (!state_[i].fast) f(i);
+    }
+  }
   double fastest_slow_speed(double h);
   bool lists_hold() const;
   void build_lists();
