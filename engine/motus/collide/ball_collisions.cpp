@@ -113,7 +113,6 @@ void BallCollisions<D>::drift(VectorRef x, VectorRef v, double h, bool kicked) {
 
   // A ball that may move farther than the largest radius in this step is fast. The others
   // move at most sweep_ (until a contact speeds one up: then it turns fast for the rest of the step).
-  // Balls that left the lists since they were built are fast every step until the next build.
   // Unless something but the last drift has changed the velocities (or the arrays, or the step),
   // the speeds the contacts left are known: every ball a contact made fast has left the lists,
   // and the bound on the others holds. Otherwise, and before a build, a look at every velocity.
@@ -124,6 +123,7 @@ void BallCollisions<D>::drift(VectorRef x, VectorRef v, double h, bool kicked) {
     speeds_v_ = v_, speeds_h_ = h;
     sweep_ = slow_speed_bound_ * h;
   }
+  // Balls that left the lists since they were built are fast every step until the next build.
   if (lists_hold()) {
     for (int i : fast_) make_fast(i);
     for (int i : escaped_)

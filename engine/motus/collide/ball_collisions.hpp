@@ -11,11 +11,11 @@
 //      skin/2 since then cannot touch a ball off its list, so the list serves step after step
 //      until the fastest ball may have used up that half skin (with no kick between steps,
 //      only contacts change speeds: the fastest is known without reading every velocity);
-//      then it is built again, from a
-//      uniform grid whose cells (2·r_max + skin) put every two balls within reach in
-//      neighbouring cells (the broad phase: O(N), not O(N²)). Balls that may have left their
-//      list's reach — fast ones, moving farther than a radius in one step, and balls pushed
-//      apart — are "fast": they query the grid's cells along their path until the next build;
+//      then it is built again, from a uniform grid whose cells (2·r_max + skin) put every two
+//      balls within reach in neighbouring cells (the broad phase: O(N), not O(N²)). Balls
+//      that may have left their list's reach — fast ones, moving farther than a radius in one
+//      step, and balls pushed apart — are "fast": they query the grid's cells along their path
+//      until the next build;
 //   2. take the earliest contact, move its two bodies to that time, apply the impulse
 //      (impulse.hpp), and look again for the contacts of just those two (their lists);
 //   3. repeat until no contact is left within h; move everything to the end of the step.
