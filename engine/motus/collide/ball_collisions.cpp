@@ -8,6 +8,7 @@
 #include <string>
 
 #include "motus/collide/impulse.hpp"
+#include "motus/collide/sort_by_time.hpp"
 #include "motus/collide/time_of_impact.hpp"
 
 namespace motus {
@@ -134,7 +135,7 @@ void BallCollisions<D>::drift(VectorRef x, VectorRef v, double h, bool kicked) {
   initial_search_ = true;
   find_initial_events();
   initial_search_ = false;
-  std::sort(initial_events_.begin(), initial_events_.end());
+  sort_by_time(initial_events_, h, by_slice_, slice_start_);
 
   const long limit = 1000 + 100 * static_cast<long>(n_);
   size_t next = 0;  // of initial_events_

@@ -170,11 +170,13 @@ private:
   };
   std::vector<BallState> state_;
   std::vector<int> fast_, balls_, points_, moved_;
-  // The contacts found at the start of a step (nearly all of a step's) are sorted once and
+  // The contacts found at the start of a step (nearly all of a step's) are sorted once (sort_by_time.hpp) and
   // taken in order; those found after a contact go into a heap, and the two are merged.
   // Known in advance, the next events' bodies are fetched from memory before they are
   // needed: at 10^6 balls each is a few cache misses, one after another.
   std::vector<Event> initial_events_, events_;
+  std::vector<Event> by_slice_;  // (sort_by_time's buffers)
+  std::vector<int> slice_start_;
   bool initial_search_ = false;  // pushes go to initial_events_
   long events_this_step_ = 0;
 
