@@ -96,11 +96,13 @@ BallCollisions<D>::BallCollisions(const Vector& inverse_mass, std::vector<double
 
 template <int D>
 void BallCollisions<D>::advance(int i, double t) {
-  const double dt = t - state_[i].local_time;
-  if (dt <= 0) return;
+  // From where it is to t: back, if no contact has touched it yet (it is at the step's end).
+  const double dt = t - h_ + state_[i].lag;
+  if (dt == 0) return;
   position(i) += velocity(i) * dt;
-  state_[i].travelled += velocity(i).norm() * dt;
-  state_[i].local_time = t;
+  const bool untouched = state_[i].collisions_this_step == 0;
+  state_[i].travelled = untouched ? velocity(i).norm() * t : state_[i].travelled + velocity(i).norm() * dt;
+  state_[i].lag = h_ - t;
 }
 
 template <int D>
@@ -159,11 +161,9 @@ void BallCollisions<D>::drift(VectorRef x, VectorRef v, double h, bool kicked) {
     resolve(e);
   }
 
-  // Everybody to the end of the step: x += v h for all (one vectorised pass), less the
-  // part of the step the bodies that collided have already moved; then clear what this
-  // step marked.
-  x += h * v;
-  const bool fetch = n_ >= kPrefetchFrom;  // (the pass over x has pushed the moved bodies out of cache)
+  // Everybody to the end of the step: the pair pass moved every body there; those that
+  // collided since go on from their last contact. Then clear what this step marked.
+  const bool fetch = n_ >= kPrefetchFrom;
   const double limit2 = max_radius_ * max_radius_ / (h * h);
   double fastest2 = slow_speed_bound_ * slow_speed_bound_;
   for (size_t m = 0; m < moved_.size(); ++m) {
@@ -174,8 +174,8 @@ void BallCollisions<D>::drift(VectorRef x, VectorRef v, double h, bool kicked) {
       __builtin_prefetch(&state_[static_cast<size_t>(k)]);
     }
     const int i = moved_[m];
-    position(i) -= velocity(i) * state_[i].local_time;
-    state_[i].local_time = 0;
+    position(i) += velocity(i) * state_[i].lag;
+    state_[i].lag = 0;
     state_[i].travelled = 0;
     state_[i].collisions_this_step = 0;
     // Its speed now: a contact may have made it the fastest slow ball, or fast (off the lists).
@@ -278,6 +278,16 @@ void BallCollisions<D>::build_lists() {
   if (balls_.size() >= 2) {
     build_grid();
     list_pairs();
+  }
+  // The pair pass's frontiers (see frontier_), from the last batch back.
+  const int batches = static_cast<int>((pair_i_.size() + kBatch - 1) / kBatch);
+  frontier_.resize(static_cast<size_t>(batches) + 1);
+  frontier_[static_cast<size_t>(batches)] = n_;
+  for (int b = batches - 1; b >= 0; --b) {
+    int lowest = frontier_[static_cast<size_t>(b) + 1];
+    for (size_t q = static_cast<size_t>(b) * kBatch, end = std::min(pair_i_.size(), q + kBatch); q < end; ++q)
+      lowest = std::min({lowest, pair_i_[q], pair_k_[q]});
+    frontier_[static_cast<size_t>(b)] = lowest;
   }
   // Both ways, by ball: ball i's neighbours, for the searches after its contacts.
   neighbour_start_.assign(static_cast<size_t>(n_) + 2, 0);
@@ -705,6 +715,19 @@ void BallCollisions<D>::find_initial_events() {
     }
     return moved;
   };
+  // Every body goes to the end of the step as soon as no pair left has it (frontier_): while
+  // the pass is over its neighbourhood, in cache, rather than in a pass of its own over every
+  // body after the events. The bodies go in ranges of their numbers (vectorised); in a gas
+  // whose numbers follow space (a lattice's) the frontier lags the pass by a row of balls
+  // (in 3-D a plane).
+  const int* frontier = frontier_.data();
+  int advanced = 0;  // bodies [0, advanced) are at the step's end
+  auto advance_to = [&](int until) {
+    if (until <= advanced) return;
+    Eigen::Map<Eigen::VectorXd>(x_ + D * advanced, D * (until - advanced)) +=
+        h * Eigen::Map<const Eigen::VectorXd>(v + D * advanced, D * (until - advanced));
+    advanced = until;
+  };
   for (int batch = 0; batch < pairs; batch += kBatch) {
     const int end = std::min(pairs, batch + kBatch);
     for (int from = batch; from < end;) {
@@ -716,7 +739,9 @@ void BallCollisions<D>::find_initial_events() {
           break;
         }
     }
+    advance_to(frontier[batch / kBatch + 1]);
   }
+  advance_to(n_);
   counters_.pair_tests += pairs;
   // Fast balls look along their whole path (and at each other). (By index: a ball moved apart
   // above turned fast and joined them.)

@@ -15,10 +15,11 @@
 //      balls within reach in neighbouring cells (the broad phase: O(N), not O(N²)). Balls
 //      that may have left their list's reach — fast ones, moving farther than a radius in one
 //      step, and balls pushed apart — are "fast": they query the grid's cells along their path
-//      until the next build;
+//      until the next build. As soon as no listed pair left to test has a body, it is moved
+//      to the end of the step (a body no contact touches needs nothing more: BallState::lag);
 //   2. take the earliest contact, move its two bodies to that time, apply the impulse
 //      (impulse.hpp), and look again for the contacts of just those two (their lists);
-//   3. repeat until no contact is left within h; move everything to the end of the step.
+//   3. repeat until no contact is left within h; move the bodies that collided on to the end.
 // Overlap found at the start of a step (from the scene, or rounding) is removed by
 // moving positions apart along the normal, mass-weighted; velocities are not touched.
 // The lists assume that only this drift moves the bodies: a drift given other arrays
@@ -96,7 +97,8 @@ private:
   double radius_of(int i) const { return uniform_radius_ ? max_radius_ : radius_[static_cast<size_t>(i)]; }
   auto position(int i) { return Eigen::Map<Point>(x_ + D * i); }
   auto velocity(int i) { return Eigen::Map<Point>(v_ + D * i); }
-  Point position_at(int i, double t) { return position(i) + velocity(i) * (t - state_[i].local_time); }
+  // Where body i is at time t of the step (once the pair pass has moved it: see BallState::lag).
+  Point position_at(int i, double t) { return position(i) + velocity(i) * (t - h_ + state_[i].lag); }
   void advance(int i, double t);
 
   void build_grid();
@@ -163,7 +165,13 @@ private:
   // What a contact reads and writes of a body besides x and v, side by side: one cache
   // line per body rather than one per array (at 10^6 balls each is a miss).
   struct BallState {
-    double local_time = 0, travelled = 0;
+    // How long before the step's end the time of its x is. The pair pass moves the bodies to
+    // the end of the step as soon as no pair is left to test with them (while their x and v
+    // are still in cache: no pass of its own over every body), so a body no contact has
+    // touched is at the end, lag 0; a contact moves its bodies back to its time. (Until the
+    // pair pass has moved it, a body's x is at the step's start.)
+    double lag = 0;
+    double travelled = 0;  // since the step's start
     unsigned collisions_this_step = 0;  // events carry it to detect staleness
     bool fast = false;     // searches along its path this step (not by its list)
     bool escaped = false;  // off the lists until they are built again: fast every step
@@ -209,6 +217,9 @@ private:
   bool lists_built_ = false;
   const double* lists_x_ = nullptr;  // the positions' array they were built on
   std::vector<int> pair_i_, pair_k_;  // every pair of balls within reach, once, in the grid's order
+  // From the pair pass's batch b on, no pair has a body numbered below frontier_[b]: those are
+  // moved to the end of the step after batch b − 1. (frontier_[batches] = every body.)
+  std::vector<int> frontier_;
   std::vector<int> neighbour_start_, neighbours_;  // both ways, by ball: ball i's are [start[i], start[i + 1])
   struct NearFace {
     int ball, wall;
