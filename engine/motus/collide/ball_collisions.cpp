@@ -48,6 +48,13 @@ constexpr int kWindow = 4;
 // than half of that in one step: a skin of twice the step's sweep holds for that step.
 constexpr double kSkinSteps = 8;
 
+// A build sorts the pairs of each of the pair pass's batches into this many classes by their
+// gap then (0 to skin, in equal parts): a pair whose balls were a gap g apart cannot touch
+// until they have closed it, so a step tests only the classes the balls can have closed by its
+// end — the nearest on the lists' first step, all of them on their last (about two thirds of
+// the pairs over the lists' life).
+constexpr int kGapClasses = 4;
+
 // A correction of a ball's position larger than this fraction of the grid's cell takes the
 // ball off the lists (it may now be near balls that are not on them); smaller ones (rounding)
 // count against the lists' half skin, as the distance the ball moved.
@@ -279,8 +286,38 @@ void BallCollisions<D>::build_lists() {
     build_grid();
     list_pairs();
   }
-  // The pair pass's frontiers (see frontier_), from the last batch back.
+  // Each of the pair pass's batches by gap class (see kGapClasses): a stable counting sort.
+  // A pair's class: how many of the classes' lower ends (r_a + r_b + c · width) its distance reaches.
   const int batches = static_cast<int>((pair_i_.size() + kBatch - 1) / kBatch);
+  class_start_.resize(static_cast<size_t>(batches) * (kGapClasses + 1));
+  const double class_width = skin_ / kGapClasses;
+  for (int b = 0; b < batches; ++b) {
+    const int from = b * kBatch, to = std::min(static_cast<int>(pair_i_.size()), from + kBatch);
+    int count[kGapClasses + 1] = {};
+    unsigned char gap_class[kBatch];
+    for (int q = from; q < to; ++q) {
+      const int i = pair_i_[static_cast<size_t>(q)], k = pair_k_[static_cast<size_t>(q)];
+      const double R = radius_of(i) + radius_of(k);
+      const double d2 = pair_d2_[static_cast<size_t>(q)];
+      int c = 0;
+      for (int u = 1; u < kGapClasses; ++u) c += d2 >= (R + u * class_width) * (R + u * class_width);
+      gap_class[q - from] = static_cast<unsigned char>(c);
+      ++count[c + 1];
+    }
+    int* starts = class_start_.data() + static_cast<size_t>(b) * (kGapClasses + 1);
+    starts[0] = from;
+    for (int c = 1; c <= kGapClasses; ++c) starts[c] = starts[c - 1] + count[c];
+    int at[kGapClasses];
+    for (int c = 0; c < kGapClasses; ++c) at[c] = starts[c] - from;
+    int block_i[kBatch], block_k[kBatch];
+    for (int q = from; q < to; ++q) {
+      const int c = gap_class[q - from];
+      block_i[at[c]] = pair_i_[static_cast<size_t>(q)], block_k[at[c]] = pair_k_[static_cast<size_t>(q)], ++at[c];
+    }
+    std::copy(block_i, block_i + (to - from), pair_i_.begin() + from);
+    std::copy(block_k, block_k + (to - from), pair_k_.begin() + from);
+  }
+  // The pair pass's frontiers (see frontier_), from the last batch back.
   frontier_.resize(static_cast<size_t>(batches) + 1);
   frontier_[static_cast<size_t>(batches)] = n_;
   for (int b = batches - 1; b >= 0; --b) {
@@ -590,16 +627,17 @@ void BallCollisions<D>::list_pairs() {
   auto keep_within_reach = [&] {
     if (pair_i_.size() < kept + static_cast<size_t>(n)) {
       const size_t grown = 2 * (kept + static_cast<size_t>(n));
-      pair_i_.resize(grown), pair_k_.resize(grown);
+      pair_i_.resize(grown), pair_k_.resize(grown), pair_d2_.resize(grown);
     }
     int* pi = pair_i_.data() + kept;
     int* pk = pair_k_.data() + kept;
+    double* pd = pair_d2_.data() + kept;
     int m = 0;
     for (int q = 0; q < n; ++q) {
       const int i = ci[q], k = ck[q];
       const double reach = (uniform ? max_radius_ + max_radius_ : radius[i] + radius[k]) + margin;
       const double d2 = (Eigen::Map<const Point>(x + D * k) - Eigen::Map<const Point>(x + D * i)).squaredNorm();
-      pi[m] = i, pk[m] = k;
+      pi[m] = i, pk[m] = k, pd[m] = d2;
       m += d2 < reach * reach;
     }
     kept += static_cast<size_t>(m);
@@ -669,11 +707,14 @@ void BallCollisions<D>::find_initial_events() {
   const bool prefetch = n_ >= kPrefetchFrom;
   if (hits_.size() < static_cast<size_t>(kBatch)) hits_.resize(kBatch);
   int* hits = hits_.data();
-  auto filter = [&](int from, int to) {  // pass 1 over pairs [from, to): those left for pass 2, in order
+  // Pass 1 over pairs [from, to): those left for pass 2, in order. The pairs tested after them
+  // start at `next` (the next batch's): the pairs are known ahead, and their balls fetched ahead.
+  auto filter = [&](int from, int to, int next) {
     int left = 0;
     for (int q = from; q < to; ++q) {
-      if (prefetch && q + kPairPrefetch < pairs) {  // (the pairs are known ahead: their balls are fetched ahead)
-        for (const int b : {ci[q + kPairPrefetch], ck[q + kPairPrefetch]}) {
+      const int ahead = q + kPairPrefetch < to ? q + kPairPrefetch : q + kPairPrefetch - to + next;
+      if (prefetch && ahead < pairs) {
+        for (const int b : {ci[ahead], ck[ahead]}) {
           // (both ends: in 3-D a ball's 24 bytes straddle two cache lines three times in eight)
           __builtin_prefetch(x + D * b), __builtin_prefetch(x + D * b + (D - 1));
           __builtin_prefetch(v + D * b), __builtin_prefetch(v + D * b + (D - 1));
@@ -715,6 +756,15 @@ void BallCollisions<D>::find_initial_events() {
     }
     return moved;
   };
+  // The gap classes the balls can have closed by the end of this step: each ball still on the
+  // lists has moved at most moved_since_build_ + sweep_ (and this step's small corrections),
+  // so the two of a pair together twice that. (Rounding in the gaps: the nudge's margin. With a
+  // plug-in's rules, every listed pair: its time of impact is asked of all of them.)
+  const double closed = 2 * (moved_since_build_ + sweep_ + nudged_) + 4 * kNudge * cell_size_;
+  const double class_width = skin_ / kGapClasses;
+  const int classes = rules_ || !(class_width > 0)
+                          ? kGapClasses
+                          : static_cast<int>(std::min<double>(kGapClasses, std::floor(closed / class_width) + 1));
   // Every body goes to the end of the step as soon as no pair left has it (frontier_): while
   // the pass is over its neighbourhood, in cache, rather than in a pass of its own over every
   // body after the events. The bodies go in ranges of their numbers (vectorised); in a gas
@@ -728,10 +778,12 @@ void BallCollisions<D>::find_initial_events() {
         h * Eigen::Map<const Eigen::VectorXd>(v + D * advanced, D * (until - advanced));
     advanced = until;
   };
+  long tested = 0;
   for (int batch = 0; batch < pairs; batch += kBatch) {
-    const int end = std::min(pairs, batch + kBatch);
+    const int end = class_start_[static_cast<size_t>(batch / kBatch) * (kGapClasses + 1) + classes];
+    tested += end - batch;
     for (int from = batch; from < end;) {
-      const int left = filter(from, end);
+      const int left = filter(from, end, batch + kBatch);
       from = end;
       for (int j = 0; j < left; ++j)
         if (exact(hits[j])) {
@@ -742,7 +794,7 @@ void BallCollisions<D>::find_initial_events() {
     advance_to(frontier[batch / kBatch + 1]);
   }
   advance_to(n_);
-  counters_.pair_tests += pairs;
+  counters_.pair_tests += tested;
   // Fast balls look along their whole path (and at each other). (By index: a ball moved apart
   // above turned fast and joined them.)
   for (size_t a = 0; a < fast_.size(); ++a) find_events(fast_[a], 0, -1);

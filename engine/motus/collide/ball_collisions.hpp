@@ -216,7 +216,12 @@ private:
   double nudged_ = 0;             // this step's position corrections too small to take a ball off
   bool lists_built_ = false;
   const double* lists_x_ = nullptr;  // the positions' array they were built on
-  std::vector<int> pair_i_, pair_k_;  // every pair of balls within reach, once, in the grid's order
+  // Every pair of balls within reach, once, in the grid's order by batch of the pair pass
+  // (kBatch), and within a batch by gap class: the batch's class c is [class_start_[b·(K+1) + c],
+  // class_start_[b·(K+1) + c + 1]).
+  std::vector<int> pair_i_, pair_k_;
+  std::vector<double> pair_d2_;  // (a build's: the pairs' squared distances then, for their classes)
+  std::vector<int> class_start_;
   // From the pair pass's batch b on, no pair has a body numbered below frontier_[b]: those are
   // moved to the end of the step after batch b − 1. (frontier_[batches] = every body.)
   std::vector<int> frontier_;
