@@ -287,16 +287,20 @@ void BallCollisions<D>::build_lists() {
     list_pairs();
   }
   // Each of the pair pass's batches by gap class (see kGapClasses): a stable counting sort.
-  // A pair's class: how many of the classes' lower ends (r_a + r_b + c · width) its distance reaches.
+  // A pair's class: how many of the classes' lower ends (r_a + r_b + c · width) its distance
+  // reaches. And each batch's lowest body number, for the pass's frontiers (see frontier_).
   const int batches = static_cast<int>((pair_i_.size() + kBatch - 1) / kBatch);
   class_start_.resize(static_cast<size_t>(batches) * (kGapClasses + 1));
+  frontier_.resize(static_cast<size_t>(batches) + 1);
   const double class_width = skin_ / kGapClasses;
   for (int b = 0; b < batches; ++b) {
     const int from = b * kBatch, to = std::min(static_cast<int>(pair_i_.size()), from + kBatch);
     int count[kGapClasses + 1] = {};
     unsigned char gap_class[kBatch];
+    int lowest = n_;
     for (int q = from; q < to; ++q) {
       const int i = pair_i_[static_cast<size_t>(q)], k = pair_k_[static_cast<size_t>(q)];
+      lowest = std::min({lowest, i, k});
       const double R = radius_of(i) + radius_of(k);
       const double d2 = pair_d2_[static_cast<size_t>(q)];
       int c = 0;
@@ -316,16 +320,12 @@ void BallCollisions<D>::build_lists() {
     }
     std::copy(block_i, block_i + (to - from), pair_i_.begin() + from);
     std::copy(block_k, block_k + (to - from), pair_k_.begin() + from);
-  }
-  // The pair pass's frontiers (see frontier_), from the last batch back.
-  frontier_.resize(static_cast<size_t>(batches) + 1);
-  frontier_[static_cast<size_t>(batches)] = n_;
-  for (int b = batches - 1; b >= 0; --b) {
-    int lowest = frontier_[static_cast<size_t>(b) + 1];
-    for (size_t q = static_cast<size_t>(b) * kBatch, end = std::min(pair_i_.size(), q + kBatch); q < end; ++q)
-      lowest = std::min({lowest, pair_i_[q], pair_k_[q]});
     frontier_[static_cast<size_t>(b)] = lowest;
   }
+  // The frontiers: the lowest of each batch and of every batch after it.
+  frontier_[static_cast<size_t>(batches)] = n_;
+  for (int b = batches - 1; b >= 0; --b)
+    frontier_[static_cast<size_t>(b)] = std::min(frontier_[static_cast<size_t>(b)], frontier_[static_cast<size_t>(b) + 1]);
   // Both ways, by ball: ball i's neighbours, for the searches after its contacts.
   neighbour_start_.assign(static_cast<size_t>(n_) + 2, 0);
   int* start = neighbour_start_.data();

@@ -178,8 +178,9 @@ private:
   };
   std::vector<BallState> state_;
   std::vector<int> fast_, balls_, points_, moved_;
-  // The contacts found at the start of a step (nearly all of a step's) are sorted once (sort_by_time.hpp) and
-  // taken in order; those found after a contact go into a heap, and the two are merged.
+  // The contacts found at the start of a step (nearly all of a step's) are sorted once
+  // (sort_by_time.hpp) and taken in order; those found after a contact go into a heap, and
+  // the two are merged.
   // Known in advance, the next events' bodies are fetched from memory before they are
   // needed: at 10^6 balls each is a few cache misses, one after another.
   std::vector<Event> initial_events_, events_;

@@ -5,8 +5,8 @@
 // so the events, and the run, do not depend on which sort was used.
 //
 // A big ball gas finds thousands of contacts at the start of a step (about one ball in a
-// hundred has one); one std::sort of them all is n log n, and at a million balls it cost
-// as much as all the step's drift of the bodies that touched.
+// hundred has one); one std::sort of them all is n log n: at a million balls 0.7–0.8 cycles
+// per ball-step, against 0.2 by slices (bench_collisions' gas, timed by phase).
 #include <algorithm>
 #include <cstddef>
 #include <vector>
