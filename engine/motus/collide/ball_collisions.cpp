@@ -70,6 +70,8 @@ BallCollisions<D>::BallCollisions(const Vector& inverse_mass, std::vector<double
       restitution_(std::move(restitution)) {
   for (int i = 0; i < n_; ++i) {
     if (i > 0 && radius_[i] != radius_[0]) uniform_radius_ = false;
+    if (i > 0 && inverse_mass_[i] != inverse_mass_[0]) uniform_inverse_mass_ = false;
+    if (i > 0 && restitution_[i] != restitution_[0]) uniform_restitution_ = false;
     max_radius_ = std::max(max_radius_, radius_[i]);
     if (radius_[i] > 0) {
       balls_.push_back(i);
@@ -253,20 +255,11 @@ void BallCollisions<D>::build_lists() {
   moved_since_build_ = 0;
   lists_built_ = true;
   lists_x_ = x_;
-  // One pass over the slow balls for their extent, for the grid, and one for the faces of
-  // boxes they are near: a ball farther inside a face than r + skin/2 cannot reach it before
-  // the next build. (Apart, and from locals: the first then runs in registers, and the
-  // second reloads nothing after a push_back.)
-  const double* x = x_;
-  double low[D], high[D];
-  for (int k = 0; k < D; ++k) low[k] = INFINITY, high[k] = -INFINITY;
-  for_slow([x, &low, &high](int i) {
-    for (int k = 0; k < D; ++k) {
-      const double p = x[D * i + k];
-      low[k] = std::min(low[k], p);  // (Eigen's cwiseMin and cwiseMax are these, element by element)
-      high[k] = std::max(high[k], p);
-    }
-  });
+  // One pass over the slow balls for their extent, for the grid, and for the faces of boxes
+  // they are near: a ball farther inside a face than r + skin/2 cannot reach it before the
+  // next build. Most balls are near no face: a window per axis, inside every face's reach
+  // (widened by a rounding's worth: the face's own test decides), lets them by with 2·D
+  // comparisons and no branch; the few outside it are tested face by face.
   near_faces_.clear();
   const Plane* planes = planes_.data();
   const int plane_count = static_cast<int>(planes_.size());
@@ -274,11 +267,33 @@ void BallCollisions<D>::build_lists() {
   const int first_face = static_cast<int>(
       std::find_if(planes_.begin(), planes_.end(), [](const Plane& p) { return p.axis >= 0; }) - planes_.begin());
   const double reach = max_radius_ + 0.5 * skin_ + kNudge * (2 * max_radius_ + skin_);
-  if (first_face < plane_count)
-    for_slow([this, x, planes, first_face, plane_count, reach](int i) {
+  double inner_low[D], inner_high[D];
+  for (int k = 0; k < D; ++k) inner_low[k] = -INFINITY, inner_high[k] = INFINITY;
+  for (int w = first_face; w < plane_count; ++w) {
+    const int k = planes[w].axis;
+    const double bound = planes[w].sign * planes[w].offset + planes[w].sign * reach;  // where its reach ends
+    const double rounding = 1e-12 * (std::abs(bound) + reach);
+    if (planes[w].sign > 0) {
+      inner_low[k] = std::max(inner_low[k], bound + rounding);
+    } else {
+      inner_high[k] = std::min(inner_high[k], bound - rounding);
+    }
+  }
+  const double* x = x_;
+  double low[D], high[D];
+  for (int k = 0; k < D; ++k) low[k] = INFINITY, high[k] = -INFINITY;
+  for_slow([&](int i) {
+    bool outside = false;
+    for (int k = 0; k < D; ++k) {
+      const double p = x[D * i + k];
+      low[k] = std::min(low[k], p);  // (Eigen's cwiseMin and cwiseMax are these, element by element)
+      high[k] = std::max(high[k], p);
+      outside |= (p < inner_low[k]) | (p > inner_high[k]);
+    }
+    if (outside) [[unlikely]]
       for (int w = first_face; w < plane_count; ++w)
         if (planes[w].sign * x[D * i + planes[w].axis] - planes[w].offset < reach) near_faces_.push_back({i, w});
-    });
+  });
   for (int k = 0; k < D; ++k) grid_low_[k] = low[k], grid_high_[k] = high[k];
   pair_i_.clear();
   pair_k_.clear();
@@ -523,8 +538,8 @@ void BallCollisions<D>::prefetch_event(const Event& e, int stage) {
       __builtin_prefetch(x_ + D * i);
       __builtin_prefetch(v_ + D * i);
       __builtin_prefetch(&neighbour_start_[b]);
-      __builtin_prefetch(&inverse_mass_[i]);  // (the impulse's)
-      __builtin_prefetch(&restitution_[b]);
+      if (!uniform_inverse_mass_) __builtin_prefetch(&inverse_mass_[i]);  // (the impulse's)
+      if (!uniform_restitution_) __builtin_prefetch(&restitution_[b]);
     } else if (stage == 1) {
       __builtin_prefetch(&neighbours_[static_cast<size_t>(neighbour_start_[b])]);
     } else {
@@ -540,7 +555,7 @@ void BallCollisions<D>::prefetch_event(const Event& e, int stage) {
 
 template <int D>
 void BallCollisions<D>::separate(int i, int k) {
-  const double w = inverse_mass_[i] + inverse_mass_[k];
+  const double w = inverse_mass_of(i) + inverse_mass_of(k);
   if (w == 0) return;
   const Point d = position(k) - position(i);
   const double distance = d.norm();
@@ -551,10 +566,10 @@ void BallCollisions<D>::separate(int i, int k) {
     n[0] = 1;  // coincident centres: any direction will do
   }
   const double depth = radius_of(i) + radius_of(k) - distance;
-  position(i) -= (depth * inverse_mass_[i] / w) * n;
-  position(k) += (depth * inverse_mass_[k] / w) * n;
-  moved_apart(i, depth * inverse_mass_[i] / w);
-  moved_apart(k, depth * inverse_mass_[k] / w);
+  position(i) -= (depth * inverse_mass_of(i) / w) * n;
+  position(k) += (depth * inverse_mass_of(k) / w) * n;
+  moved_apart(i, depth * inverse_mass_of(i) / w);
+  moved_apart(k, depth * inverse_mass_of(k) / w);
   ++counters_.position_corrections;
 }
 
@@ -715,9 +730,10 @@ void BallCollisions<D>::find_initial_events() {
       const int ahead = q + kPairPrefetch < to ? q + kPairPrefetch : q + kPairPrefetch - to + next;
       if (prefetch && ahead < pairs) {
         for (const int b : {ci[ahead], ck[ahead]}) {
-          // (both ends: in 3-D a ball's 24 bytes straddle two cache lines three times in eight)
-          __builtin_prefetch(x + D * b), __builtin_prefetch(x + D * b + (D - 1));
-          __builtin_prefetch(v + D * b), __builtin_prefetch(v + D * b + (D - 1));
+          __builtin_prefetch(x + D * b), __builtin_prefetch(v + D * b);
+          // (and the other end in 3-D, where a ball's 24 bytes straddle two cache lines three times
+          // in eight; in 2-D its 16 bytes are in one line: the arrays are 16-byte aligned)
+          if constexpr (D == 3) __builtin_prefetch(x + D * b + (D - 1)), __builtin_prefetch(v + D * b + (D - 1));
         }
       }
       const int i = ci[q], k = ck[q];
@@ -968,7 +984,7 @@ void BallCollisions<D>::resolve(const Event& e) {
     const Point d = position(k) - position(i);
     const double distance = d.norm();
     if (distance > 0) {
-      double restitution = restitution_[i] * restitution_[k];
+      double restitution = restitution_of(i) * restitution_of(k);
       if (restitution < 1 &&
           (state_[i].collisions_this_step >= kCollapseLimit || state_[k].collisions_this_step >= kCollapseLimit))
         restitution = 0;
@@ -986,7 +1002,7 @@ void BallCollisions<D>::resolve(const Event& e) {
     const double wall_e = w < static_cast<int>(planes_.size())
                               ? planes_[static_cast<size_t>(w)].restitution
                               : segments_[static_cast<size_t>(w) - planes_.size()].restitution;
-    double restitution = restitution_[i] * wall_e;
+    double restitution = restitution_of(i) * wall_e;
     if (restitution < 1 && state_[i].collisions_this_step >= kCollapseLimit) restitution = 0;
     bounce(i, wall_normal(i, w), restitution);
     ++state_[i].collisions_this_step;
@@ -1017,11 +1033,11 @@ double BallCollisions<D>::outside_plane_impact(const Point& p, const Point& v, d
 template <int D>
 void BallCollisions<D>::collide(int i, int k, const Point& n, double e) {
   if (!rules_) {
-    collide_balls(velocity(i), velocity(k), inverse_mass_[i], inverse_mass_[k], n, e);
+    collide_balls(velocity(i), velocity(k), inverse_mass_of(i), inverse_mass_of(k), n, e);
     return;
   }
-  check_external(rules_->collide_balls(rules_->self, D, v_ + D * i, v_ + D * k, 1 / inverse_mass_[i],
-                                       1 / inverse_mass_[k], n.data(), e),
+  check_external(rules_->collide_balls(rules_->self, D, v_ + D * i, v_ + D * k, 1 / inverse_mass_of(i),
+                                       1 / inverse_mass_of(k), n.data(), e),
                  "impulse between two balls", rules_->error, rules_->self);
 }
 

@@ -92,9 +92,13 @@ private:
   };
   using Cell = std::array<int, D>;
 
-  // (Most scenes' balls are all alike: then the event path reads no radius from memory — at
-  // 10^6 balls each would be one more cache miss per neighbour.)
+  // (Most scenes' balls are all alike: then the event path reads no radius, mass or
+  // restitution from memory — at 10^6 balls each would be one more cache miss per body.)
   double radius_of(int i) const { return uniform_radius_ ? max_radius_ : radius_[static_cast<size_t>(i)]; }
+  double inverse_mass_of(int i) const { return uniform_inverse_mass_ ? inverse_mass_[0] : inverse_mass_[i]; }
+  double restitution_of(int i) const {
+    return uniform_restitution_ ? restitution_[0] : restitution_[static_cast<size_t>(i)];
+  }
   auto position(int i) { return Eigen::Map<Point>(x_ + D * i); }
   auto velocity(int i) { return Eigen::Map<Point>(v_ + D * i); }
   // Where body i is at time t of the step (once the pair pass has moved it: see BallState::lag).
@@ -153,6 +157,7 @@ private:
   std::vector<double> radius_, restitution_;
   double max_radius_ = 0;
   bool uniform_radius_ = true;  // every body's radius is max_radius_
+  bool uniform_inverse_mass_ = true, uniform_restitution_ = true;  // every body's is body 0's
   std::vector<Plane> planes_;
   std::vector<Segment> segments_;
   CollisionCounters counters_;
