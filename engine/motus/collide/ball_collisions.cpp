@@ -732,7 +732,8 @@ void BallCollisions<D>::find_initial_events() {
         for (const int b : {ci[ahead], ck[ahead]}) {
           __builtin_prefetch(x + D * b), __builtin_prefetch(v + D * b);
           // (and the other end in 3-D, where a ball's 24 bytes straddle two cache lines three times
-          // in eight; in 2-D its 16 bytes are in one line: the arrays are 16-byte aligned)
+          // in eight. In 2-D its 16 bytes are in one line when the array is 16-byte aligned, as an
+          // Eigen vector's storage is; a Ref to an odd offset would only lose a prefetch in four.)
           if constexpr (D == 3) __builtin_prefetch(x + D * b + (D - 1)), __builtin_prefetch(v + D * b + (D - 1));
         }
       }
