@@ -195,9 +195,9 @@ int main(int argc, char** argv) {
     reporter.add_ratio(std::string("ball gas at ") + n + ": 3-D / 2-D per ball (target <= 1.5)", gas("3d", n),
                        gas("2d", n));
   for (const std::string d : {"2d", "3d"})
-    for (const char* n : {"100000", "1000000"})
-      reporter.add_ratio("ball gas " + std::string(d == "2d" ? "2-D" : "3-D") + " at " + n +
-                             ": numbered at random / in the lattice's order",
+    for (const auto& [n, power] : {std::pair{"100000", "10^5"}, std::pair{"1000000", "10^6"}})
+      reporter.add_ratio("ball gas " + std::string(d == "2d" ? "2-D" : "3-D") + " at " + power +
+                             ": numbered at random / lattice's order",
                          gas(d + "_numbered_at_random", n), gas(d, n));
   benchmark::RunSpecifiedBenchmarks(&reporter);
   benchmark::Shutdown();
