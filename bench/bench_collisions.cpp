@@ -17,7 +17,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdint>
 #include <ctime>
 #include <memory>
 #include <string>
@@ -42,11 +41,7 @@ SceneDescription ball_gas(long count, int dimensions, bool numbered_at_random = 
   BallLattice lattice;
   lattice.count = count;
   add_ball_lattice(m, lattice);
-  if (numbered_at_random) {
-    std::uint64_t seed = 11;  // Fisher–Yates with SplitMix64: the same order on every machine
-    for (size_t i = m.bodies.size() - 1; i > 0; --i)
-      std::swap(m.bodies[i], m.bodies[static_cast<size_t>(splitmix64_uniform(seed) * static_cast<double>(i + 1))]);
-  }
+  if (numbered_at_random) shuffle_bodies(m.bodies, 11);
   scene.mechanical = std::move(m);
   scene.integrator = "symplectic-euler";
   scene.dt = 1.0 / 60;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 namespace motus {
 
@@ -11,6 +12,11 @@ double splitmix64_uniform(std::uint64_t& state) {
   z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
   z ^= z >> 31;
   return static_cast<double>(z >> 11) * 0x1.0p-53;  // the top 53 bits: every double in [0, 1) on a 2^-53 grid
+}
+
+void shuffle_bodies(std::vector<BodyDescription>& bodies, std::uint64_t seed) {
+  for (size_t i = bodies.size(); i-- > 1;)
+    std::swap(bodies[i], bodies[static_cast<size_t>(splitmix64_uniform(seed) * static_cast<double>(i + 1))]);
 }
 
 void add_ball_lattice(MechanicalDescription& scene, const BallLattice& lattice) {

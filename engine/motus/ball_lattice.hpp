@@ -5,6 +5,7 @@
 // gives the same balls on every machine and in every engine.
 #include <array>
 #include <cstdint>
+#include <vector>
 
 #include "motus/scene.hpp"
 
@@ -27,5 +28,10 @@ void add_ball_lattice(MechanicalDescription& scene, const BallLattice& lattice);
 
 // Uniform in [0, 1) from a SplitMix64 state (which it advances).
 double splitmix64_uniform(std::uint64_t& state);
+
+// The bodies in a random order (Fisher–Yates with SplitMix64: the same order from the same seed
+// on every machine), so that a body's number no longer tells where it is — as in a scene that
+// lists its balls by hand. (Sticks and pins name bodies by number: for scenes without them.)
+void shuffle_bodies(std::vector<BodyDescription>& bodies, std::uint64_t seed);
 
 }  // namespace motus
