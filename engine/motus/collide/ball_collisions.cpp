@@ -295,21 +295,48 @@ void BallCollisions<D>::build_lists() {
         if (planes[w].sign * x[D * i + planes[w].axis] - planes[w].offset < reach) near_faces_.push_back({i, w});
   });
   for (int k = 0; k < D; ++k) grid_low_[k] = low[k], grid_high_[k] = high[k];
-  pair_i_.clear();
-  pair_k_.clear();
+  pair_count_ = 0;
+  listed_ = 0;
+  gap_sorted_ = 0;
   if (balls_.size() >= 2) {
-    build_grid();
-    list_pairs();
+    build_grid();             // (a big grid lists most of its pairs as it sorts: see build_grid)
+    list_pairs(slow_count_);  // (the rest)
   }
-  // Each of the pair pass's batches by gap class (see kGapClasses): a stable counting sort.
-  // A pair's class: how many of the classes' lower ends (r_a + r_b + c · width) its distance
-  // reaches. And each batch's lowest body number, for the pass's frontiers (see frontier_).
-  const int batches = static_cast<int>((pair_i_.size() + kBatch - 1) / kBatch);
-  class_start_.resize(static_cast<size_t>(batches) * (kGapClasses + 1));
-  frontier_.resize(static_cast<size_t>(batches) + 1);
+  sort_by_gap(true);
+  const int batches = gap_sorted_;
+  if (frontier_.size() < static_cast<size_t>(batches) + 1) frontier_.resize(static_cast<size_t>(batches) + 1);
+  // The frontiers: the lowest of each batch and of every batch after it.
+  frontier_[static_cast<size_t>(batches)] = n_;
+  for (int b = batches - 1; b >= 0; --b)
+    frontier_[static_cast<size_t>(b)] = std::min(frontier_[static_cast<size_t>(b)], frontier_[static_cast<size_t>(b) + 1]);
+  // Both ways, by ball: ball i's neighbours, for the searches after its contacts.
+  neighbour_start_.assign(static_cast<size_t>(n_) + 2, 0);
+  int* start = neighbour_start_.data();
+  const size_t pairs = static_cast<size_t>(pair_count_);
+  for (size_t q = 0; q < pairs; ++q) ++start[pair_i_[q] + 2], ++start[pair_k_[q] + 2];
+  for (int b = 2; b < n_ + 2; ++b) start[b] += start[b - 1];
+  if (neighbours_.size() < 2 * pairs) neighbours_.resize(2 * pairs);
+  for (size_t q = 0; q < pairs; ++q) {
+    neighbours_[static_cast<size_t>(start[pair_i_[q] + 1]++)] = pair_k_[q];
+    neighbours_[static_cast<size_t>(start[pair_k_[q] + 1]++)] = pair_i_[q];
+  }
+}
+
+template <int D>
+void BallCollisions<D>::sort_by_gap(bool last) {
+  // Each of the pair pass's batches by gap class (see kGapClasses): a stable counting sort, as
+  // soon as the batch is listed (its pairs still in cache). A pair's class: how many of the
+  // classes' lower ends (r_a + r_b + c · width) its distance reaches. And each batch's lowest
+  // body number, for the pass's frontiers (see frontier_).
   const double class_width = skin_ / kGapClasses;
-  for (int b = 0; b < batches; ++b) {
-    const int from = b * kBatch, to = std::min(static_cast<int>(pair_i_.size()), from + kBatch);
+  for (;;) {
+    const int b = gap_sorted_, from = b * kBatch, to = std::min(pair_count_, from + kBatch);
+    if (to - from < kBatch && !(last && to > from)) return;
+    // (Grown, never shrunk: once warm, a build allocates nothing.)
+    if (class_start_.size() < static_cast<size_t>(b + 1) * (kGapClasses + 1)) {
+      class_start_.resize(2 * static_cast<size_t>(b + 1) * (kGapClasses + 1));
+      frontier_.resize(2 * static_cast<size_t>(b + 1) + 1);
+    }
     int count[kGapClasses + 1] = {};
     unsigned char gap_class[kBatch];
     int lowest = n_;
@@ -336,20 +363,7 @@ void BallCollisions<D>::build_lists() {
     std::copy(block_i, block_i + (to - from), pair_i_.begin() + from);
     std::copy(block_k, block_k + (to - from), pair_k_.begin() + from);
     frontier_[static_cast<size_t>(b)] = lowest;
-  }
-  // The frontiers: the lowest of each batch and of every batch after it.
-  frontier_[static_cast<size_t>(batches)] = n_;
-  for (int b = batches - 1; b >= 0; --b)
-    frontier_[static_cast<size_t>(b)] = std::min(frontier_[static_cast<size_t>(b)], frontier_[static_cast<size_t>(b) + 1]);
-  // Both ways, by ball: ball i's neighbours, for the searches after its contacts.
-  neighbour_start_.assign(static_cast<size_t>(n_) + 2, 0);
-  int* start = neighbour_start_.data();
-  for (size_t q = 0; q < pair_i_.size(); ++q) ++start[pair_i_[q] + 2], ++start[pair_k_[q] + 2];
-  for (int b = 2; b < n_ + 2; ++b) start[b] += start[b - 1];
-  neighbours_.resize(2 * pair_i_.size());
-  for (size_t q = 0; q < pair_i_.size(); ++q) {
-    neighbours_[static_cast<size_t>(start[pair_i_[q] + 1]++)] = pair_k_[q];
-    neighbours_[static_cast<size_t>(start[pair_k_[q] + 1]++)] = pair_i_[q];
+    ++gap_sorted_;
   }
 }
 
@@ -403,6 +417,7 @@ void BallCollisions<D>::build_grid() {
     }
     if (leading > 0 && code % 3 == 1) forward_rows_.push_back(offset);  // the middle cell of a row above
   }
+  max_forward_ = forward_rows_.empty() ? 0 : *std::max_element(forward_rows_.begin(), forward_rows_.end());
 
   // Counting sort by cell. Big grids in two levels, so that the cells' array is written once and
   // never read back while sorting: first by block of kBlock consecutive cells (few
@@ -413,6 +428,9 @@ void BallCollisions<D>::build_grid() {
   // within a cell the balls keep balls_'s order (as a one-level sort would leave them),
   // and the events come in the same order. Afterwards cell c holds sorted_[cell_start_[c]
   // .. cell_start_[c + 1]).
+  // A big grid's pairs are listed as its blocks are placed, a few blocks behind (as soon as a
+  // ball's forward rows are placed): the cells, the balls' numbers and their positions are
+  // still in cache then. Listed after the sort, at a million balls, they come back from memory.
   if (cells <= kSmallGrid) {
     // Cells that fit in cache: one level (zero, count, sum, place — each at cache speed).
     cell_start_.assign(static_cast<size_t>(cells) + 2, 0);
@@ -459,7 +477,14 @@ void BallCollisions<D>::build_grid() {
     starts[0] = from;
     int run = from;
     for (int j = 0; j < block_cells; ++j) starts[j + 1] = run, run += count[j];
-    for (int s = from; s < to; ++s) sorted_[starts[(by_block_[s].cell & (kBlock - 1)) + 1]++] = by_block_[s].ball;
+    for (int s = from; s < to; ++s) {
+      const int ball = by_block_[s].ball;
+      sorted_[starts[(by_block_[s].cell & (kBlock - 1)) + 1]++] = ball;
+      __builtin_prefetch(x_ + D * ball);  // (for the listing, a few blocks on)
+    }
+    // The balls whose forward rows are all placed now (cells up to the block's end), listed.
+    const int last_cell = first_cell + block_cells - max_forward_ - 2;
+    if (last_cell >= 0) list_pairs(cell_start_[static_cast<size_t>(last_cell) + 1]);
   }
   cell_start_[cells] = cell_start_[cells + 1] = static_cast<int>(slow);
 }
@@ -602,7 +627,10 @@ void BallCollisions<D>::test_pair(int i, int k, double t) {
 }
 
 template <int D>
-void BallCollisions<D>::list_pairs() {
+void BallCollisions<D>::list_pairs(int until) {
+  // The pairs of the balls at sorted_[listed_ .. until), after those listed before; each batch
+  // of the pair pass sorted by gap (sort_by_gap) as soon as it is whole.
+  if (until <= listed_) return;
   // Every pair of slow balls closer than r_a + r_b + skin, from the grid: each ball against the
   // later balls of its own cell and of the next cell along x, and the balls of its forward rows.
   // Batch by batch, branch-free: list the batch's candidates (each range of sorted_ copied
@@ -638,7 +666,7 @@ void BallCollisions<D>::list_pairs() {
     }
     for (int u = from; u < to; ++u) ci[n] = i, ck[n] = sorted[u], ++n;
   };
-  size_t kept = 0;
+  size_t kept = static_cast<size_t>(pair_count_);
   auto keep_within_reach = [&] {
     if (pair_i_.size() < kept + static_cast<size_t>(n)) {
       const size_t grown = 2 * (kept + static_cast<size_t>(n));
@@ -657,9 +685,9 @@ void BallCollisions<D>::list_pairs() {
     }
     kept += static_cast<size_t>(m);
   };
-  for (int s = 0; s < slow_count_;) {
+  for (int s = listed_; s < until;) {
     n = 0;
-    for (; s < slow_count_ && n < kBatch; ++s) {
+    for (; s < until && n < kBatch; ++s) {
       const int i = sorted[s];
       const int c = ball_cell_[i];
       list(i, s + 1, cell_start[c + 2]);
@@ -670,9 +698,10 @@ void BallCollisions<D>::list_pairs() {
     }
     keep_within_reach();
   }
-  counters_.cell_queries += static_cast<long>(slow_count_) * (rows + 1);
-  pair_i_.resize(kept);
-  pair_k_.resize(kept);
+  counters_.cell_queries += static_cast<long>(until - listed_) * (rows + 1);
+  listed_ = until;
+  pair_count_ = static_cast<int>(kept);
+  sort_by_gap(false);
 }
 
 template <int D>
@@ -718,7 +747,7 @@ void BallCollisions<D>::find_initial_events() {
   const double h = h_;
   const int* ci = pair_i_.data();
   const int* ck = pair_k_.data();
-  const int pairs = static_cast<int>(pair_i_.size());
+  const int pairs = pair_count_;
   const bool prefetch = n_ >= kPrefetchFrom;
   if (hits_.size() < static_cast<size_t>(kBatch)) hits_.resize(kBatch);
   int* hits = hits_.data();

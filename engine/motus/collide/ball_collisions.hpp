@@ -125,7 +125,8 @@ private:
   double fastest_slow_speed(double h);
   bool lists_hold() const;
   void build_lists();
-  void list_pairs();
+  void list_pairs(int until);
+  void sort_by_gap(bool last);
   void find_initial_events();
   void initial_plane_event(int i, int wall);
   void find_events(int i, double t, int exclude);
@@ -208,6 +209,7 @@ private:
   std::vector<int> block_start_, local_count_;  // the sort's first level, and its second's counts
   std::vector<Placed> by_block_;
   std::vector<int> forward_rows_;
+  int max_forward_ = 0;  // the farthest forward row's offset
 
   // The fastest a slow ball can be now: exact after a look at every velocity, then raised by
   // each contact's new speeds (so never less than the truth) until the next look.
@@ -225,7 +227,11 @@ private:
   // Every pair of balls within reach, once, in the grid's order by batch of the pair pass
   // (kBatch), and within a batch by gap class: the batch's class c is [class_start_[b·(K+1) + c],
   // class_start_[b·(K+1) + c + 1]).
+  // (The pairs are the arrays' first pair_count_: their size only grows, so that a build writes
+  // no zeros over them.) A build lists the balls of sorted_ up to listed_, and has sorted the
+  // first gap_sorted_ batches by gap.
   std::vector<int> pair_i_, pair_k_;
+  int pair_count_ = 0, listed_ = 0, gap_sorted_ = 0;
   std::vector<double> pair_d2_;  // (a build's: the pairs' squared distances then, for their classes)
   std::vector<int> class_start_;
   // From the pair pass's batch b on, no pair has a body numbered below frontier_[b]: those are
