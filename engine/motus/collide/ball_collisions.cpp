@@ -282,18 +282,61 @@ void BallCollisions<D>::build_lists() {
   const double* x = x_;
   double low[D], high[D];
   for (int k = 0; k < D; ++k) low[k] = INFINITY, high[k] = -INFINITY;
-  for_slow([&](int i) {
+  auto outside_window = [&](int i) {
     bool outside = false;
+    for (int k = 0; k < D; ++k) outside |= (x[D * i + k] < inner_low[k]) | (x[D * i + k] > inner_high[k]);
+    return outside;
+  };
+  auto note_near_faces = [&](int i) {
+    for (int w = first_face; w < plane_count; ++w)
+      if (planes[w].sign * x[D * i + planes[w].axis] - planes[w].offset < reach) near_faces_.push_back({i, w});
+  };
+  int from = 0;  // (the balls before it are done)
+  if (fast_.empty() && points_.empty()) {
+    // Every body is a slow ball: the positions in order, two balls at a time, as one array of
+    // 2·D numbers — whole SIMD registers in 2-D and in 3-D, where one ball's three are not. The
+    // pairs with a ball outside the window (or a NaN) are noted, and looked at one ball at a
+    // time after the pass: with no call in it, the extent stays in registers. (min and max keep
+    // std::min's and std::max's choice when a position is NaN.)
+    using TwoBalls = Eigen::Array<double, 2 * D, 1>;
+    TwoBalls lowest = TwoBalls::Constant(INFINITY), highest = TwoBalls::Constant(-INFINITY);
+    TwoBalls window_low, window_high;
     for (int k = 0; k < D; ++k) {
-      const double p = x[D * i + k];
-      low[k] = std::min(low[k], p);  // (Eigen's cwiseMin and cwiseMax are these, element by element)
-      high[k] = std::max(high[k], p);
-      outside |= (p < inner_low[k]) | (p > inner_high[k]);
+      window_low[k] = window_low[D + k] = inner_low[k];
+      window_high[k] = window_high[D + k] = inner_high[k];
     }
-    if (outside) [[unlikely]]
-      for (int w = first_face; w < plane_count; ++w)
-        if (planes[w].sign * x[D * i + planes[w].axis] - planes[w].offset < reach) near_faces_.push_back({i, w});
-  });
+    if (outside_window_.size() < static_cast<size_t>(n_ / 2)) outside_window_.resize(static_cast<size_t>(n_ / 2));
+    int* noted = outside_window_.data();
+    int count = 0;
+    for (; from + 1 < n_; from += 2) {
+      const TwoBalls p = Eigen::Map<const TwoBalls>(x + D * from);
+      lowest = lowest.min(p);
+      highest = highest.max(p);
+      const double inside = (p - window_low).min(window_high - p).minCoeff();  // ≥ 0 inside the window
+      noted[count] = from;
+      count += !(inside >= 0);
+    }
+    for (int k = 0; k < D; ++k) {
+      low[k] = std::min(lowest[k], lowest[D + k]);
+      high[k] = std::max(highest[k], highest[D + k]);
+    }
+    for (int a = 0; a < count; ++a)
+      for (const int i : {noted[a], noted[a] + 1})
+        if (outside_window(i)) note_near_faces(i);
+  }
+  auto take = [&](int i) {  // one ball
+    for (int k = 0; k < D; ++k) {
+      low[k] = std::min(low[k], x[D * i + k]);
+      high[k] = std::max(high[k], x[D * i + k]);
+    }
+    if (outside_window(i)) [[unlikely]]
+      note_near_faces(i);
+  };
+  if (from > 0) {
+    for (int i = from; i < n_; ++i) take(i);  // (the last, when the count is odd)
+  } else {
+    for_slow(take);
+  }
   for (int k = 0; k < D; ++k) grid_low_[k] = low[k], grid_high_[k] = high[k];
   pair_count_ = 0;
   listed_ = 0;

@@ -242,6 +242,7 @@ private:
     int ball, wall;
   };
   std::vector<NearFace> near_faces_;  // box faces within a ball's reach
+  std::vector<int> outside_window_;   // (a build's: pairs of balls, one of them near a face perhaps)
   std::vector<int> escaped_;
 };
 
