@@ -347,6 +347,7 @@ void BallCollisions<D>::build_lists() {
   }
   sort_by_gap(true);
   const int batches = gap_sorted_;
+  // (With no pairs, sort_by_gap has sized no frontier.)
   if (frontier_.size() < static_cast<size_t>(batches) + 1) frontier_.resize(static_cast<size_t>(batches) + 1);
   // The frontiers: the lowest of each batch and of every batch after it.
   frontier_[static_cast<size_t>(batches)] = n_;
@@ -375,11 +376,11 @@ void BallCollisions<D>::sort_by_gap(bool last) {
   for (;;) {
     const int b = gap_sorted_, from = b * kBatch, to = std::min(pair_count_, from + kBatch);
     if (to - from < kBatch && !(last && to > from)) return;
-    // (Grown, never shrunk: once warm, a build allocates nothing.)
-    if (class_start_.size() < static_cast<size_t>(b + 1) * (kGapClasses + 1)) {
+    // (Grown, never shrunk: once warm, a build allocates nothing. The frontiers have one more,
+    // for the end: see build_lists.)
+    if (class_start_.size() < static_cast<size_t>(b + 1) * (kGapClasses + 1))
       class_start_.resize(2 * static_cast<size_t>(b + 1) * (kGapClasses + 1));
-      frontier_.resize(2 * static_cast<size_t>(b + 1) + 1);
-    }
+    if (frontier_.size() < static_cast<size_t>(b) + 2) frontier_.resize(2 * static_cast<size_t>(b) + 2);
     int count[kGapClasses + 1] = {};
     unsigned char gap_class[kBatch];
     int lowest = n_;
