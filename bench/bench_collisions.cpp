@@ -1,12 +1,12 @@
 // bench_collisions: the ball gas of issue 3 and docs/peers.md — balls of
 // radius 0.5 on a square (cubic) lattice of spacing 2, velocities uniform in [−1, 1]^d, no
 // gravity, e = 1 with each other and the walls, dt = 1/60 — at N = 10^3, 10^4, 10^5 and
-// 10^6, in 2-D and 3-D: ns per ball-step, and the relative energy change over a fresh run
-// (the worst over the timed windows; and over 600 steps at 10^4). Building the 10^6 scene (the
-// lattice and the Simulation over it) is timed on its own, and the gas at 10^5 and 10^6 with its
-// balls numbered at random (not row by row, as the lattice numbers them). The ratios at the end
-// are issue 13's: per-ball cost at 10^6 / at 10^3 (target ≤ 1.3), 3-D / 2-D (target ≤ 1.5); and
-// what numbering at random costs.
+// 10^6, in 2-D and 3-D: ns per ball-step, the neighbour lists' builds per step, and the
+// relative energy change over a fresh run (the worst over the timed windows; and over 600
+// steps at 10^4). Building the 10^6 scene (the lattice and the Simulation over it) is timed
+// on its own, and the gas at 10^5 and 10^6 with its balls numbered at random (not row by row,
+// as the lattice numbers them). The ratios at the end are issue 13's: per-ball cost at 10^6 /
+// at 10^3 (target ≤ 1.3), 3-D / 2-D (target ≤ 1.5); and what numbering at random costs.
 // Also: the course's spring stepped through the full world (motus::Simulation) against
 // the bare symplectic-Euler loop on the same system (target: within 1.10x).
 //
@@ -65,13 +65,13 @@ constexpr long kWindow = 120;
 void BallGas(benchmark::State& state, int dimensions, bool numbered_at_random = false) {
   const long n = state.range(0);
   const SceneDescription scene = ball_gas(n, dimensions, numbered_at_random);
-  double seconds = 0, worst_energy = 0, collisions = 0;
+  double seconds = 0, worst_energy = 0, collisions = 0, builds = 0;
   long windows = 0;
   for (auto _ : state) {
     Simulation sim(scene, Integrator::SymplecticEuler);
     sim.advance(sim.time() + scene.dt, scene.dt, {});
     const double e0 = sim.energy()->total;
-    const long before = sim.world()->collision_counters().ball_collisions;
+    const CollisionCounters before = sim.world()->collision_counters();
     const double start = thread_seconds();
     sim.advance(sim.time() + static_cast<double>(kWindow) * scene.dt, scene.dt, {});
     const double elapsed = thread_seconds() - start;
@@ -79,11 +79,16 @@ void BallGas(benchmark::State& state, int dimensions, bool numbered_at_random = 
     seconds += elapsed;
     ++windows;
     worst_energy = std::max(worst_energy, std::abs(sim.energy()->total - e0) / e0);
-    collisions += static_cast<double>(sim.world()->collision_counters().ball_collisions - before);
+    const CollisionCounters after = sim.world()->collision_counters();
+    collisions += static_cast<double>(after.ball_collisions - before.ball_collisions);
+    builds += static_cast<double>(after.grid_builds - before.grid_builds);
   }
   const double ball_steps = static_cast<double>(windows * kWindow * n);
   state.counters["ns_per_ball_step"] = 1e9 * seconds / ball_steps;
   state.counters["collisions_per_ball_step"] = collisions / ball_steps;
+  // How often the neighbour lists are built: their life is set by the fastest ball, and a
+  // bigger gas has a faster one (its speeds' tail is longer), so it builds more often.
+  state.counters["list_builds_per_step"] = builds / static_cast<double>(windows * kWindow);
   state.counters["energy_change"] = worst_energy;  // relative, over a window, the worst
 }
 // Manual time = the thread's CPU time over the window (see thread_seconds).
