@@ -106,10 +106,10 @@ BENCHMARK_CAPTURE(BallGas, 3d_numbered_at_random, 3, true)->Arg(100000)->Arg(100
 
 // The least a step of the gas can do: every ball moved on by h·v, one pass over x and v and
 // nothing else (no pair, no grid, no contact), over the same balls and the same 120 steps.
-// Its per-ball cost at 10^6 over that at 10^3 is what the machine's memory alone charges a
-// million balls: at 10^3 the arrays are in the core's own cache, at 10^6 (32 MB in 2-D, 48 MB
-// in 3-D) they stream from the shared one. The gas's own ratio cannot be expected below it
-// unless the step does so much more work per ball than this pass that the streaming hides.
+// What it costs more per ball at 10^6 than at 10^3 is what the machine's memory alone charges
+// a million balls: at 10^3 the arrays are in the core's own cache, at 10^6 (32 MB in 2-D, 48 MB
+// in 3-D) they stream from the shared one. Every step of the gas makes this pass (inside its
+// pair pass), so that extra is part of the gas's own extra per ball too.
 void BallGasDriftAlone(benchmark::State& state, int dimensions) {
   const long n = state.range(0);
   const SceneDescription scene = ball_gas(n, dimensions);
