@@ -8,13 +8,17 @@
 // as the lattice numbers them). The ratios at the end are issue 13's: per-ball cost at 10^6 /
 // at 10^3 (target ≤ 1.3), 3-D / 2-D (target ≤ 1.5); and what numbering at random costs. Beside
 // them, the drift alone (x += h·v over the same balls, nothing else) at 10^3 and 10^6: what the
-// memory alone charges a big gas per ball.
+// memory alone charges a big gas per ball. And a million balls as a thousand (or a hundred)
+// separate gases stepped in turn, K steps each: how much of that a step that took each region
+// several steps ahead while it is in cache could win back, at best.
 // Also: the course's spring stepped through the full world (motus::Simulation) against
 // the bare symplectic-Euler loop on the same system (target: within 1.10x).
 //
 //   build/bench/bench_collisions [--benchmark_filter=BallGas/] [--benchmark_repetitions=5
 //       --benchmark_enable_random_interleaving=true]   (the sizes in random order: a noisy
 //       machine's slow spells then fall on all of them alike)
+//   build/bench/bench_collisions --benchmark_filter='BallGas/(2d|3d)/(1000|1000000)/|BallGasInRegions'
+//       --benchmark_repetitions=5 --benchmark_enable_random_interleaving=true   (the regions)
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -136,6 +140,43 @@ void BallGasDriftAlone(benchmark::State& state, int dimensions) {
 // (Registered in main as BallGas/2d_drift_alone and BallGas/3d_drift_alone, so that the gas's
 // filter, BallGas/, runs them beside it.)
 
+// A million balls as separate gases (regions) of 10^3 or 10^4 balls, stepped in turn: the best
+// case for a step that works region by region, since these regions have no border (no ball
+// crosses from one to the next, no contact joins two). Each region is taken on by K steps
+// before the next one. K = 1 is region by region every step: each region's data come back
+// from the shared cache every step. K = 8 or 24 keeps a region in the core's own cache for K
+// steps in a row, as a step "blocked in time" would if it could take a region ahead of its
+// neighbours. Compared per ball-step with one gas of 10^3 (always in cache) and one gas of 10^6:
+// how far such a redesign of the step could at best bring the ratio of 10^6 to 10^3 down.
+// Args: K, the balls in a region.
+constexpr long kMillion = 1000000;
+
+void BallGasInRegions(benchmark::State& state, int dimensions) {
+  const long steps_per_region = state.range(0), region_balls = state.range(1);
+  const SceneDescription scene = ball_gas(region_balls, dimensions);
+  double seconds = 0;
+  long windows = 0;
+  for (auto _ : state) {
+    std::vector<std::unique_ptr<Simulation>> regions;
+    for (long r = 0; r < kMillion / region_balls; ++r) {
+      regions.push_back(std::make_unique<Simulation>(scene, Integrator::SymplecticEuler));
+      regions.back()->advance(regions.back()->time() + scene.dt, scene.dt, {});  // (as BallGas: buffers sized)
+    }
+    const double start = thread_seconds();
+    for (long step = 0; step < kWindow; step += steps_per_region)
+      for (auto& region : regions)
+        region->advance(region->time() + static_cast<double>(steps_per_region) * scene.dt, scene.dt, {});
+    const double elapsed = thread_seconds() - start;
+    state.SetIterationTime(elapsed);
+    seconds += elapsed;
+    ++windows;
+  }
+  state.counters["ns_per_ball_step"] = 1e9 * seconds / static_cast<double>(windows * kWindow * kMillion);
+}
+// (Registered in main as BallGasInRegions/2d and /3d; kWindow is a multiple of every K.)
+constexpr std::pair<long, long> kRegionRuns[] = {{1, 1000}, {8, 1000}, {24, 1000}, {24, 10000}};
+static_assert(kWindow % 8 == 0 && kWindow % 24 == 0);
+
 // Energy over issue 3's 600 steps (not timed).
 void BallGasEnergy600(benchmark::State& state, int dimensions) {
   const long n = state.range(0);
@@ -218,6 +259,13 @@ int main(int argc, char** argv) {
         ->UseManualTime()
         ->Unit(benchmark::kMillisecond)
         ->ComputeStatistics("min", minimum);
+  for (const auto& [d, dimensions] : {std::pair{"2d", 2}, std::pair{"3d", 3}})
+    for (const auto& [steps, balls] : kRegionRuns)
+      benchmark::RegisterBenchmark((std::string("BallGasInRegions/") + d).c_str(), BallGasInRegions, dimensions)
+          ->Args({steps, balls})
+          ->UseManualTime()
+          ->Unit(benchmark::kMillisecond)
+          ->ComputeStatistics("min", minimum);
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   motus::bench::RatioReporter reporter;
@@ -237,6 +285,15 @@ int main(int argc, char** argv) {
                            " (x += h·v, nothing else): per ball at 10^6 / at 10^3",
                        gas(d + "_drift_alone", "1000000"), gas(d + "_drift_alone", "1000"),
                        1000);
+  for (const std::string d : {"2d", "3d"})
+    for (const auto& [steps, balls] : kRegionRuns) {
+      const std::string regions =
+          "BallGasInRegions/" + d + "/" + std::to_string(steps) + "/" + std::to_string(balls) + "/manual_time";
+      const std::string what = "10^6 balls " + std::string(d == "2d" ? "2-D" : "3-D") + " as gases of " +
+                               std::to_string(balls) + ", " + std::to_string(steps) + " step(s) each in turn";
+      reporter.add_ratio(what + " / one gas of 10^3", regions, gas(d, "1000"), 1000);
+      reporter.add_ratio(what + " / one gas of 10^6", regions, gas(d, "1000000"));
+    }
   for (const char* n : {"1000", "10000", "100000", "1000000"})
     reporter.add_ratio(std::string("ball gas at ") + n + ": 3-D / 2-D per ball (target <= 1.5)", gas("3d", n),
                        gas("2d", n));
