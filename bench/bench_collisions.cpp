@@ -173,9 +173,12 @@ void BallGasInRegions(benchmark::State& state, int dimensions) {
   }
   state.counters["ns_per_ball_step"] = 1e9 * seconds / static_cast<double>(windows * kWindow * kMillion);
 }
-// (Registered in main as BallGasInRegions/2d and /3d; kWindow is a multiple of every K.)
+// (Registered in main as BallGasInRegions/2d and /3d.)
 constexpr std::pair<long, long> kRegionRuns[] = {{1, 1000}, {8, 1000}, {24, 1000}, {24, 10000}};
-static_assert(kWindow % 8 == 0 && kWindow % 24 == 0);
+static_assert(std::ranges::all_of(kRegionRuns, [](const auto& run) {
+                return kWindow % run.first == 0 && kMillion % run.second == 0;
+              }),
+              "every K divides the window, every region's balls a million");
 
 // Energy over issue 3's 600 steps (not timed).
 void BallGasEnergy600(benchmark::State& state, int dimensions) {
@@ -280,20 +283,19 @@ int main(int argc, char** argv) {
     reporter.add_ratio("ball gas " + D + ": per ball at 10^5 / at 10^3", gas(d, "100000"), gas(d, "1000"), 100);
     reporter.add_ratio("ball gas " + D + ": per ball at 10^4 / at 10^3", gas(d, "10000"), gas(d, "1000"), 10);
   }
-  for (const std::string d : {"2d", "3d"})
-    reporter.add_ratio("the drift alone " + std::string(d == "2d" ? "2-D" : "3-D") +
-                           " (x += h·v, nothing else): per ball at 10^6 / at 10^3",
-                       gas(d + "_drift_alone", "1000000"), gas(d + "_drift_alone", "1000"),
-                       1000);
-  for (const std::string d : {"2d", "3d"})
+  for (const std::string d : {"2d", "3d"}) {
+    const std::string D = d == "2d" ? "2-D" : "3-D";
+    reporter.add_ratio("the drift alone " + D + " (x += h·v, nothing else): per ball at 10^6 / at 10^3",
+                       gas(d + "_drift_alone", "1000000"), gas(d + "_drift_alone", "1000"), 1000);
     for (const auto& [steps, balls] : kRegionRuns) {
       const std::string regions =
           "BallGasInRegions/" + d + "/" + std::to_string(steps) + "/" + std::to_string(balls) + "/manual_time";
-      const std::string what = "10^6 balls " + std::string(d == "2d" ? "2-D" : "3-D") + " as gases of " +
-                               std::to_string(balls) + ", " + std::to_string(steps) + " step(s) each in turn";
+      const std::string what = "10^6 balls " + D + " as gases of " + std::to_string(balls) + ", " +
+                               std::to_string(steps) + " step(s) each in turn";
       reporter.add_ratio(what + " / one gas of 10^3", regions, gas(d, "1000"), 1000);
       reporter.add_ratio(what + " / one gas of 10^6", regions, gas(d, "1000000"));
     }
+  }
   for (const char* n : {"1000", "10000", "100000", "1000000"})
     reporter.add_ratio(std::string("ball gas at ") + n + ": 3-D / 2-D per ball (target <= 1.5)", gas("3d", n),
                        gas("2d", n));
