@@ -107,10 +107,10 @@ int grade_one(const GradeCommandOptions& o, const std::string& folder) {
     result = grade::grade_submission(assignment, o.submission, options);
   } catch (const std::exception& e) {
     // Even now, a valid results.json that says what happened.
-    if (!o.results.empty()) write_file(o.results, grade::failed_json(assignment.name, e.what()).dump(2) + "\n");
+    if (!o.results.empty()) write_file(o.results, grade::results_text(grade::failed_json(assignment.name, e.what())));
     throw;
   }
-  const std::string json = grade::gradescope_json(result).dump(2) + "\n";
+  const std::string json = grade::results_text(grade::gradescope_json(result));
   if (!o.results.empty()) write_file(o.results, json);
   if (o.format == "gradescope")
     fmt::print("{}", json);
@@ -151,7 +151,7 @@ int grade_batch(const GradeCommandOptions& o, const std::string& folder) {
       const std::string results = (fs::path(out) / (name + ".json")).string();
       try {
         const auto result = grade::grade_submission(assignment, submissions[i].string(), options);
-        write_file(results, grade::gradescope_json(result).dump(2) + "\n");
+        write_file(results, grade::results_text(grade::gradescope_json(result)));
         rows[i] = {result.score, result.max_score, result.seconds,
                    !result.tests[0].passed ? "missing files" : !result.compiled ? "does not compile" : "graded"};
       } catch (const std::exception& e) {
@@ -159,7 +159,7 @@ int grade_batch(const GradeCommandOptions& o, const std::string& folder) {
         failures.push_back(name + ": " + e.what());
         rows[i] = {0, assignment.max_score(), 0, "grader failed"};
         try {
-          write_file(results, grade::failed_json(assignment.name, e.what()).dump(2) + "\n");
+          write_file(results, grade::results_text(grade::failed_json(assignment.name, e.what())));
         } catch (...) {
         }
       }

@@ -14,10 +14,13 @@ namespace fs = std::filesystem;
 namespace motus::cli {
 namespace {
 
-// What of motus's source tree it takes to build `motus` on Gradescope's machine.
-const char* const kSourceParts[] = {"CMakeLists.txt", "cmake",  "engine", "scene",       "compare",
-                                    "render",         "plugin", "grade",  "cli",         "assignments",
-                                    "scenes",         "examples", "debian-packages.txt"};
+// What of motus's source tree it takes to build `motus` on Gradescope's machine: every folder
+// the top CMakeLists.txt adds but the tests and the benchmarks (which setup.sh does not build),
+// the scenes and examples motus reads, and the package list. (A test configures the zip's copy.)
+const char* const kSourceParts[] = {"CMakeLists.txt", "cmake",       "engine",     "expressions", "scene",
+                                    "process",        "plot",        "compare",    "precision",   "render",
+                                    "plugin",         "grade",       "cli",        "assignments", "scenes",
+                                    "examples",       "debian-packages.txt"};
 
 void write_script(const fs::path& path, const std::string& text) {
   std::ofstream out(path, std::ios::binary);
@@ -27,6 +30,12 @@ void write_script(const fs::path& path, const std::string& text) {
   out.close();
   fs::permissions(path, fs::perms::owner_all | fs::perms::group_read | fs::perms::group_exec | fs::perms::others_read |
                             fs::perms::others_exec);
+}
+
+// An assignment's reference solution and hidden tests: motus's own tests build and run them,
+// the autograder needs neither (it gets the hidden tests it grades with from --hidden).
+void leave_out_answers(const fs::path& assignment) {
+  for (const char* answers : {"solution", "hidden"}) fs::remove_all(assignment / answers);
 }
 
 // zip -q -r -X ZIP . in `folder`, started directly (no shell).
@@ -71,8 +80,14 @@ int write_gradescope_package(const std::string& assignment_folder, const std::st
     const fs::path from = fs::path(source) / part;
     if (fs::exists(from)) fs::copy(from, motus / part, fs::copy_options::recursive);
   }
-  // The assignment graded (it may live outside the source tree) and its hidden tests.
+  // The assignment graded (it may live outside the source tree) and its hidden tests. No
+  // assignment's solution or hidden tests go in with the sources: a student's code may run in
+  // this image without the sandbox (--no-sandbox), and what it could read it could print.
+  if (fs::is_directory(motus / "assignments"))
+    for (const auto& entry : fs::directory_iterator(motus / "assignments"))
+      if (entry.is_directory()) leave_out_answers(entry.path());
   fs::copy(assignment_folder, staging / "assignment", fs::copy_options::recursive);
+  leave_out_answers(staging / "assignment");
   if (hidden) fs::copy(*hidden, staging / "hidden", fs::copy_options::recursive);
 
   write_script(staging / "setup.sh", R"SH(#!/usr/bin/env bash
@@ -95,6 +110,9 @@ ROOT="${{AUTOGRADER_ROOT:-/autograder}}"
 SOURCE="$ROOT/source"
 MOTUS="${{MOTUS_BINARY:-$SOURCE/motus/build/motus}}"
 mkdir -p "$ROOT/results"
+# The hidden tests for root (the grader) only: with --no-sandbox the student's code runs as an
+# unprivileged user of this machine, and must not read them.
+[ -d "$SOURCE/hidden" ] && chmod -R go-rwx "$SOURCE/hidden"
 exec "$MOTUS" grade "$SOURCE/assignment" "$ROOT/submission" {}--results "$ROOT/results/results.json" --overwrite \
   --time-limit {} --memory-limit {}{}
 )SH",

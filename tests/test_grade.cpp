@@ -319,6 +319,16 @@ TEST(Grade, TheGradescopeZipGradesTheSolutionToFullMarks) {
                         "assignment/rubric.json", "hidden/hidden.json"})
     EXPECT_TRUE(fs::exists(root / "source" / f)) << f;
   EXPECT_NE(read_file(root / "source/setup.sh").find("debian-packages.txt"), std::string::npos);
+  // No reference solution and no hidden tests but the ones it grades with (a student's code may
+  // run in this image without the sandbox).
+  for (const auto& e : fs::recursive_directory_iterator(root / "source"))
+    EXPECT_TRUE(e.path().filename() != "solution" && (e.path().filename() != "hidden" || e.path() == root / "source/hidden"))
+        << e.path();
+  // setup.sh's build: the zip's sources configure as setup.sh configures them (every folder
+  // the top CMakeLists.txt adds is there).
+  r = run_program(dir, "/usr/bin/cmake", {"-S", (root / "source/motus").string(), "-B", (dir / "zip-build").string(),
+                                          "-DCMAKE_BUILD_TYPE=Release", "-DBUILD_TESTING=OFF", "-DMOTUS_BUILD_BENCH=OFF"});
+  EXPECT_EQ(r.status, 0) << r.out << r.err;
   fs::create_directories(root / "submission");
   fs::copy_file(fs::path(kAssignments) / "integrators/solution/integrators.cpp", root / "submission/integrators.cpp");
   r = run_program(dir, (root / "source/run_autograder").string(), {},
@@ -329,6 +339,44 @@ TEST(Grade, TheGradescopeZipGradesTheSolutionToFullMarks) {
   double max = 0;
   for (const auto& [name, pts] : points("integrators")) max += pts;
   EXPECT_EQ(result["score"].get<double>(), max);
+  // The hidden tests are the grader's alone once it has run.
+  for (const auto& e : fs::recursive_directory_iterator(root / "source/hidden"))
+    EXPECT_EQ(fs::status(e.path()).permissions() & (fs::perms::group_all | fs::perms::others_all), fs::perms::none) << e.path();
+  EXPECT_EQ(fs::status(root / "source/hidden").permissions() & (fs::perms::group_all | fs::perms::others_all), fs::perms::none);
+}
+
+TEST(Grade, EachTestHasTheWholeCpuLimitOfItsOwn) {
+  // Five copies of one test, and an euler_step that spends 0.1 s of CPU on every call: half a
+  // second a test, well within the 2 s limit, but 2.5 s in all. Each test's limit is its own
+  // (docs/grading.md), not what the tests before it left over.
+  NEEDS_SANDBOX();
+  TempDir dir;
+  const fs::path assignment = dir / "five";
+  fs::copy(fs::path(kAssignments) / "integrators", assignment, fs::copy_options::recursive);
+  fs::remove_all(assignment / "hidden");
+  json test = definitions("integrators").at("euler.table");
+  json tests = json::array(), rubric = json::array();
+  for (int i = 1; i <= 5; ++i) {
+    test["name"] = "euler.table-" + std::to_string(i);
+    tests.push_back(test);
+    rubric.push_back({{"name", test["name"]}, {"points", 1}, {"visibility", "visible"}});
+  }
+  write_file(assignment / "tests/public.json", json{{"tests", tests}}.dump(2));
+  write_file(assignment / "rubric.json", json{{"tests", rubric}}.dump(2));
+  const fs::path submission = copy_solution(dir, "integrators", "slow");
+  std::string source = read_file(submission / "integrators.cpp");
+  const std::string anchor = "void euler_step(const MechanicalSystem& s, double t, double h, VectorInOut x, VectorInOut v) {\n";
+  ASSERT_NE(source.find(anchor), std::string::npos);
+  source.replace(source.find(anchor), anchor.size(),
+                 anchor + "  for (const std::clock_t until = std::clock() + CLOCKS_PER_SEC / 10; std::clock() < until;) {}\n");
+  write_file(submission / "integrators.cpp", "#include <ctime>\n" + source);
+  const auto r = run_motus(dir, {"grade", assignment.string(), submission.string(), "--time-limit", "2", "--results",
+                                 (dir / "results.json").string()});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const json result = read_json(dir / "results.json");
+  expect_valid_gradescope(result);
+  EXPECT_TRUE(failed(result).empty()) << result.dump(2);
+  EXPECT_EQ(result["score"].get<double>(), 5);
 }
 
 }  // namespace

@@ -47,6 +47,9 @@ TEST(Grade, HostileSubmissionsEndWithinTheirLimitsAndHarmNothing) {
       {"abort", "#include <cstdlib>\n", "std::abort();", "killed by SIGABRT"},
       {"exception", "#include <stdexcept>\n", "throw std::out_of_range(\"deliberately\");",
        "threw std::out_of_range: deliberately"},
+      // Bytes that are not UTF-8 (what an editor that saves Latin-1 gives) in what it prints.
+      {"not-utf-8", "#include <cstdio>\n#include <cstdlib>\n", "std::fputs(\"caf\\xe9 \\xff\\xfe\\n\", stderr); std::abort();",
+       "killed by SIGABRT"},
       {"memory", "#include <vector>\n",
        "std::vector<double> big(size_t(10) << 27); big[12345] = 1; if (big[12345] > 2) return;", "ran out of its 512 MB"},
       {"fork-bomb", "#include <unistd.h>\n", "for (;;) ::fork();", "timed out after 2 s"},
@@ -78,6 +81,10 @@ TEST(Grade, HostileSubmissionsEndWithinTheirLimitsAndHarmNothing) {
   }
   fs::create_directories(dir / "batch/does-not-compile");
   write_file(dir / "batch/does-not-compile/integrators.cpp", "#include \"integrators.hpp\"\nthis is not C++;\n" + original);
+  // A compiler error on a line with a Latin-1 comment: the compiler quotes bytes that are not UTF-8.
+  fs::create_directories(dir / "batch/latin-1");
+  write_file(dir / "batch/latin-1/integrators.cpp",
+             "#include \"integrators.hpp\"\nint broken = \"r\xe9sum\xe9\"; // r\xe9sum\xe9\n" + original);
   fs::create_directories(dir / "batch/empty");
 
   const auto began = std::chrono::steady_clock::now();
@@ -86,7 +93,7 @@ TEST(Grade, HostileSubmissionsEndWithinTheirLimitsAndHarmNothing) {
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count();
   ::close(listener);
   ASSERT_EQ(r.status, 0) << r.err;
-  // 12 submissions, 2 at a time, each test at most 2 s: well within the 10 minutes Gradescope allows one.
+  // 14 submissions, 2 at a time, each test at most 2 s: well within the 10 minutes Gradescope allows one.
   EXPECT_LT(seconds, 240) << r.err;
 
   double public_max = 0;
@@ -128,6 +135,15 @@ TEST(Grade, HostileSubmissionsEndWithinTheirLimitsAndHarmNothing) {
   EXPECT_NE(errors.find("error:"), std::string::npos) << errors;  // the compiler's own words
   EXPECT_LE(count_lines(errors), 45) << errors;                   // cut to a readable length
 
+  // Graded like any submission that does not compile, the bytes that are not UTF-8 shown as U+FFFD.
+  const json latin = read_json(dir / "results/latin-1.json");
+  expect_valid_gradescope(latin);
+  const json* latin_build = test_named(latin, "build");
+  ASSERT_NE(latin_build, nullptr);
+  EXPECT_EQ((*latin_build)["status"], "failed");
+  EXPECT_NE((*latin_build)["output"].get<std::string>().find("error:"), std::string::npos);
+  EXPECT_NE((*latin_build)["output"].get<std::string>().find("\xef\xbf\xbd"), std::string::npos) << (*latin_build)["output"];
+
   const json empty = read_json(dir / "results/empty.json");
   expect_valid_gradescope(empty);
   EXPECT_EQ(empty["score"].get<double>(), 0);
@@ -135,6 +151,63 @@ TEST(Grade, HostileSubmissionsEndWithinTheirLimitsAndHarmNothing) {
   ASSERT_NE(files, nullptr);
   EXPECT_EQ((*files)["status"], "failed");
   EXPECT_NE((*files)["output"].get<std::string>().find("integrators.cpp: missing"), std::string::npos);
+}
+
+TEST(Grade, NoExpectedValueReachesTheStudentsCode) {
+  // A submission that reads everything the grader sends its process (a pipe put in front of
+  // standard input when the plug-in is loaded, before the server reads a line). The Lorenz
+  // scene of the hidden tests has reference states, which rk4.lorenz-order judges the run
+  // against: they must not be among what it saw. (And it must have seen the requests: else it
+  // proves nothing.)
+  NEEDS_SANDBOX();
+  TempDir dir;
+  const fs::path submission = copy_solution(dir, "integrators", "spy");
+  std::string source = read_file(submission / "integrators.cpp");
+  const std::string anchor = "void rk4_step(const FirstOrderSystem& f, double t, double h, VectorInOut y) {\n";
+  ASSERT_NE(source.find(anchor), std::string::npos);
+  source.replace(source.find(anchor), anchor.size(),
+                 anchor +
+                     // (The scene travels as a JSON string in the request: its keys' quotes escaped.)
+                     R"(  std::lock_guard<std::mutex> lock(seen_lock);
+  if (seen.find(R"-("op")-") == std::string::npos) throw std::runtime_error("SAW NOTHING");
+  if (seen.find(R"-(\"dt\")-") == std::string::npos) throw std::runtime_error("SAW NO SCENE");
+  if (seen.find(R"-(\"reference\")-") != std::string::npos) throw std::runtime_error("SAW THE REFERENCE");
+)");
+  const std::string spy = R"(#include <unistd.h>
+#include <mutex>
+#include <stdexcept>
+#include <string>
+#include <thread>
+namespace {
+std::string seen;
+std::mutex seen_lock;
+struct Spy {
+  Spy() {
+    int p[2];
+    if (::pipe(p) != 0) return;
+    const int real = ::dup(0);
+    ::dup2(p[0], 0);
+    ::close(p[0]);
+    std::thread([real, to = p[1]] {
+      char buffer[4096];
+      for (ssize_t n; (n = ::read(real, buffer, sizeof buffer)) > 0;) {
+        { std::lock_guard<std::mutex> lock(seen_lock); seen.append(buffer, static_cast<size_t>(n)); }
+        if (::write(to, buffer, static_cast<size_t>(n)) != n) break;
+      }
+      ::close(to);
+    }).detach();
+  }
+} spy;
+}  // namespace
+)";
+  write_file(submission / "integrators.cpp", spy + source);
+  const auto r = run_motus(dir, {"grade", "integrators", submission.string(), "--hidden", hidden("integrators"),
+                                 "--time-limit", "5", "--results", (dir / "results.json").string()});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const json result = read_json(dir / "results.json");
+  expect_valid_gradescope(result);
+  ASSERT_NE(test_named(result, "rk4.lorenz-order"), nullptr);
+  EXPECT_TRUE(failed(result).empty()) << result.dump(2);
 }
 
 }  // namespace

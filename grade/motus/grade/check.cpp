@@ -15,6 +15,7 @@
 #include "motus/integrator_name.hpp"
 #include "motus/grade/wire.hpp"
 #include "motus/scene_file/scene_file.hpp"
+#include "motus/scene_file/scene_overrides.hpp"
 #include "motus/scene_error.hpp"
 #include "motus/simulation.hpp"
 #include "motus/systems/mechanical_system.hpp"
@@ -93,9 +94,10 @@ CheckScene load_check_scene(JsonFields& f, const json& test, const SceneSource& 
     scene.file = source.shipped(f.string("scene"));
   }
   f.use("set");  // read by hand below
-  scene.sets = read_sets(test, f.path());
-  scene.text = read_text(scene.file);
-  scene.description = parse_scene(scene.text, scene.file, scene.sets);
+  const std::vector<std::string> sets = read_sets(test, f.path());
+  const std::string text = read_text(scene.file);
+  scene.description = parse_scene(text, scene.file, sets);
+  scene.text = scene_for_the_sandbox(text, sets);
   return scene;
 }
 
@@ -115,8 +117,8 @@ struct RunRequest {
 };
 
 RunOutput run(Probe& probe, const CheckScene& scene, const RunRequest& r, Clock::time_point deadline) {
-  json request = {{"op", "run"}, {"scene", scene.text}, {"file", fs::path(scene.file).filename().string()},
-                  {"set", scene.sets}, {"integrator", r.integrator}, {"dt", r.dt}, {"every", r.every}};
+  json request = {{"op", "run"},        {"scene", scene.text}, {"file", fs::path(scene.file).filename().string()},
+                  {"integrator", r.integrator}, {"dt", r.dt},      {"every", r.every}};
   if (std::isnan(r.until))
     request["steps"] = r.steps;
   else
@@ -848,6 +850,13 @@ private:
 };
 
 }  // namespace
+
+std::string scene_for_the_sandbox(const std::string& text, const std::vector<std::string>& sets) {
+  json document = json::parse(text);
+  for (const auto& s : sets) apply_override(document, s);
+  document.erase("reference");
+  return document.dump();
+}
 
 std::unique_ptr<Check> make_check(JsonFields& test, const SceneSource& scenes, const std::string& hint) {
   const std::string kind = test.string("kind");

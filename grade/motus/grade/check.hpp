@@ -39,13 +39,18 @@ struct SceneSource {
   std::string tests_folder;
 };
 
-// A scene a check runs: its JSON text (sent to the student's side) and its description
-// (for the grader's own measurements).
+// A scene a check runs: the JSON text sent to the student's side (scene_for_the_sandbox) and
+// its description (for the grader's own measurements).
 struct CheckScene {
   std::string file, text;
-  std::vector<std::string> sets;
   SceneDescription description;
 };
+
+// A scene file's text as the student's side gets it: the test's "set"s applied, and its
+// "reference" states — values the student's run is judged against — left out. (The scene's
+// name for an exact solution stays: the student's run needs none, and it is no value.)
+// `text` is a scene that parse_scene has read with `sets`.
+std::string scene_for_the_sandbox(const std::string& text, const std::vector<std::string>& sets);
 
 class Check {
 public:

@@ -104,7 +104,7 @@ GradeResult grade_submission(const Assignment& a, const std::string& submission,
   result.tests.push_back(build);
   result.compiled = build.passed;
 
-  // 3. Every test of the rubric, each against its own deadline.
+  // 3. Every test of the rubric, each against its own deadline and in a server of its own.
   Limits limits = o.limits;
   ProbeSetup setup{o.motus, built.plugin, limits, o.isolate, user.uid()};
   Probe probe(setup);
@@ -122,6 +122,10 @@ GradeResult grade_submission(const Assignment& a, const std::string& submission,
     } else {
       const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
                                                                     std::chrono::duration<double>(limits.cpu_seconds));
+      // A server of its own: RLIMIT_CPU counts a process's whole life, so a server kept from
+      // the tests before would leave this one only what they did not use (and the student's
+      // code could carry state from one test into the next).
+      probe.stop();
       try {
         const CheckResult c = t.check->run(probe, deadline);
         r.passed = c.passed;
@@ -199,6 +203,10 @@ nlohmann::json failed_json(const std::string& assignment, const std::string& why
           {"visibility", "visible"},
           {"extra_data", {{"internal_error", true}}},
           {"tests", nlohmann::json::array()}};
+}
+
+std::string results_text(const nlohmann::json& results) {
+  return results.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
 }
 
 }  // namespace motus::grade

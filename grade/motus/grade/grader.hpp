@@ -44,5 +44,8 @@ nlohmann::json gradescope_json(const GradeResult& result);
 std::string text_summary(const GradeResult& result);
 // The results.json of a grading that could not finish (an internal failure): valid, and says so.
 nlohmann::json failed_json(const std::string& assignment, const std::string& why);
+// A results.json's text. What the student's code and compiler said may be in any encoding (an
+// editor that saves Latin-1): bytes that are not UTF-8 become U+FFFD instead of failing the write.
+std::string results_text(const nlohmann::json& results);
 
 }  // namespace motus::grade

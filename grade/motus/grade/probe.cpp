@@ -48,7 +48,7 @@ nlohmann::json Probe::ask(nlohmann::json request, std::chrono::steady_clock::tim
   if (!server_) start();
   const std::string op = request.value("op", std::string("?"));
   const std::string doing = op == "run" ? "a run of the scene" : op == "project" ? "satisfy_constraints" : op;
-  if (!server_->write_line(request.dump())) died(doing);
+  if (!server_->write_line(request.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace))) died(doing);
   const auto line = server_->read_line(deadline);
   if (!line) died(doing);
   nlohmann::json reply;

@@ -5,10 +5,12 @@
 // server sends back raw outputs only (states, velocities, times). Every comparison with an
 // expected value is made by the grader, outside the sandbox: no expected value ever enters it.
 //
-//   {"op": "run", "scene": TEXT, "set": [...], "integrator": NAME, "dt": H,
+//   {"op": "run", "scene": TEXT, "integrator": NAME, "dt": H,
 //    "steps": N | "until": T, "every": K, "atol": A, "rtol": R}
 //     → {"ok": true, "t": [...], "y": [[...], ...], "steps": S, "rejected": R, "evaluations": E}
-//       (y = [x; v] for bodies; a row at the start, every K steps, and at the end)
+//       (y = [x; v] for bodies; a row at the start, every K steps, and at the end. TEXT is the
+//       scene with the test's sets applied and its reference states left out:
+//       check.hpp's scene_for_the_sandbox)
 //   {"op": "collide_balls", "m_a", "v_a", "m_b", "v_b", "n", "e"}     → {"ok": true, "v_a", "v_b"}
 //   {"op": "bounce_off_wall", "v", "n", "e"}                           → {"ok": true, "v"}
 //   {"op": "balls_impact", "p_a", "v_a", "r_a", "p_b", "v_b", "r_b"}   → {"ok": true, "t"}
