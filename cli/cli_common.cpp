@@ -183,10 +183,28 @@ void PartialFolder::complete() {
 }
 
 void check_can_write(const std::string& path, bool overwrite) {
-  if (fs::exists(path) && !overwrite)
+  std::error_code error;
+  const auto status = fs::status(path, error);
+  if (fs::exists(fs::symlink_status(path, error)) && !overwrite)
     throw InputError(path + ": already exists; choose another name or pass --overwrite");
+  if (fs::is_directory(status)) throw InputError(path + ": is a folder, not a file");
   const fs::path parent = fs::path(path).parent_path();
   if (!parent.empty() && !fs::is_directory(parent)) throw InputError(path + ": folder " + parent.string() + " does not exist");
+}
+
+void check_can_replace(const std::string& path, bool overwrite) {
+  check_can_write(path, overwrite);
+  std::error_code error;
+  const auto status = fs::symlink_status(path, error);
+  if (fs::exists(status) && !fs::is_regular_file(status) && !fs::is_symlink(status))
+    throw InputError(path + ": is not a regular file (a device or a FIFO); --overwrite replaces regular files only");
+}
+
+const CLI::Validator& non_empty_path() {
+  static const CLI::Validator validator(
+      [](const std::string& path) { return path.empty() ? std::string("an empty path names no file") : std::string(); },
+      "PATH");
+  return validator;
 }
 
 std::string time_unit_of(const SceneDescription& scene) {

@@ -131,7 +131,16 @@ private:
 };
 
 // Refuses to overwrite an existing file unless asked to (nothing the user wrote is
-// lost without being asked).
+// lost without being asked), and a folder even then. For a file written in place: a FIFO or a
+// device (/dev/full) is written to as it is.
 void check_can_write(const std::string& path, bool overwrite);
+// The same for a file written whole under another name and then renamed over `path`: the
+// rename would put a regular file where a device or a FIFO was, so only a regular file (or a
+// link, which the rename replaces and does not follow) may be overwritten.
+void check_can_replace(const std::string& path, bool overwrite);
+
+// For the options that name a file or folder to write: an empty one is refused, not taken for
+// "not given" (which would write nothing, or somewhere else, and say nothing).
+const CLI::Validator& non_empty_path();
 
 }  // namespace motus::cli

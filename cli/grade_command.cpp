@@ -96,8 +96,8 @@ std::string new_folder(const std::string& prefix) {
 
 int grade_one(const GradeCommandOptions& o, const std::string& folder) {
   if (!fs::is_directory(o.submission)) throw InputError(o.submission + ": no such submission folder");
-  if (!o.results.empty()) check_can_write(o.results, o.overwrite);
-  if (!o.plugin_out.empty()) check_can_write(o.plugin_out, o.overwrite);
+  if (!o.results.empty()) check_can_replace(o.results, o.overwrite);
+  if (!o.plugin_out.empty()) check_can_replace(o.plugin_out, o.overwrite);
   const grade::Assignment assignment = load(o, folder);
   check_limits(o);
   grade::GradeOptions options = grade_options(o);
@@ -197,7 +197,7 @@ CLI::App* add_grade_command(CLI::App& app, GradeCommandOptions& o) {
   g->add_option("assignment", o.assignment, "An assignment: a folder under assignments/ (integrators, collisions, cloth) or a path")
       ->required();
   g->add_option("submission", o.submission, "The submission's folder (the files the handout names)");
-  g->add_option("--results", o.results, "Write Gradescope's results.json here");
+  g->add_option("--results", o.results, "Write Gradescope's results.json here")->check(non_empty_path());
   g->add_option("--format", o.format, "What standard output shows: text (a summary) or gradescope (the JSON)")
       ->check(CLI::IsMember({"text", "gradescope"}))
       ->capture_default_str();
@@ -206,11 +206,11 @@ CLI::App* add_grade_command(CLI::App& app, GradeCommandOptions& o) {
   g->add_option("--memory-limit", o.memory_limit, "Megabytes of address space the student's code may use")->capture_default_str();
   g->add_flag("--no-sandbox", o.no_sandbox,
               "Grade without bubblewrap (limits and another user only): for machines without user namespaces, knowingly");
-  g->add_option("--plugin-out", o.plugin_out, "Also keep the plug-in built from the submission here (for motus run --plugin)");
+  g->add_option("--plugin-out", o.plugin_out, "Also keep the plug-in built from the submission here (for motus run --plugin)")->check(non_empty_path());
   g->add_flag("--overwrite", o.overwrite, "Allow --results and --plugin-out to replace existing files");
   g->add_option("--batch", o.batch, "Grade every subfolder of this folder, one submission each");
   g->add_option("--jobs", o.jobs, "With --batch: submissions graded at once")->capture_default_str();
-  g->add_option("--out", o.out, "With --batch: the results folder (default: a new folder under runs/); with --package: the zip");
+  g->add_option("--out", o.out, "With --batch: the results folder (default: a new folder under runs/); with --package: the zip")->check(non_empty_path());
   g->add_option("--package", o.package, "Write the autograder zip for this platform instead of grading")
       ->check(CLI::IsMember({"gradescope"}));
   return g;

@@ -60,7 +60,7 @@ std::string quoted(const std::string& s) {  // for a shell script's double quote
 int write_gradescope_package(const std::string& assignment_folder, const std::string& assignment_name,
                              const std::optional<std::string>& hidden, const std::string& zip, bool no_sandbox,
                              double time_limit, long memory_limit, bool overwrite) {
-  check_can_write(zip, overwrite);
+  check_can_replace(zip, overwrite);
   const std::string source = source_directory();
   if (source.empty()) throw InputError("--package: needs the source tree motus was built from (it goes into the zip)");
   std::string pattern = (fs::temp_directory_path() / "motus-package-XXXXXX").string();

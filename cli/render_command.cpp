@@ -72,7 +72,7 @@ void write_manifest(const std::string& out, long frames, const std::string& vide
 CLI::App* add_render_command(CLI::App& app, RenderOptions& o) {
   auto* render = app.add_subcommand("render", "Simulate a scene and draw it as PNG frames (and optionally one MP4 or GIF)");
   render->add_option("scene", o.scene, "Scene file, or the name of a shipped scene (see `motus list`)")->required();
-  render->add_option("--out", o.out, "Folder for frame_00000.png, ... (must not exist unless --overwrite)")->required();
+  render->add_option("--out", o.out, "Folder for frame_00000.png, ... (must not exist unless --overwrite)")->required()->check(non_empty_path());
   render->add_option("--size", o.size, "Frame size in pixels")->type_name("WxH")->capture_default_str();
   render->add_option("--fps", o.fps, "Frames per second of simulated time (World2: per simulated year)")->capture_default_str();
   render->add_option("--duration", o.duration, "Simulated time to draw, s (default: the scene's)");

@@ -149,7 +149,7 @@ CLI::App* add_run_command(CLI::App& app, RunOptions& o) {
   run->add_option("--atol", o.atol, "Absolute tolerance of rk45, dop853 and rk4-doubling (default: the scene's)");
   run->add_option("--set", o.sets, "Override a scene field, e.g. --set bodies[0].mass=2 (repeatable)")
       ->type_name("PATH=VALUE");
-  run->add_option("--trajectory", o.trajectory, "Write t, state and energies per output time to this CSV file");
+  run->add_option("--trajectory", o.trajectory, "Write t, state and energies per output time to this CSV file")->check(non_empty_path());
   run->add_flag("--overwrite", o.overwrite, "Allow --trajectory to replace an existing file");
   run->add_flag("--json", o.json, "Print one JSON object instead of the summary (see docs/cli.md)");
   run->add_option("--repeats", o.repeats,
@@ -179,7 +179,8 @@ int run_command(const RunOptions& o) {
   if (!(duration > 0) || !std::isfinite(duration)) throw InputError("--duration: must be a finite number > 0");
   if (!method.adaptive()) checked_step_count(duration, dt, o.steps ? "--steps" : o.duration ? "--duration" : o.dt ? "--dt" : "dt/duration");
   const Tolerance tolerance{o.atol.value_or(scene.atol), o.rtol.value_or(scene.rtol)};
-  if (!(tolerance.atol > 0) || !(tolerance.rtol > 0)) throw InputError("--atol/--rtol: must be > 0");
+  if (!(tolerance.atol > 0) || !(tolerance.rtol > 0) || !std::isfinite(tolerance.atol) || !std::isfinite(tolerance.rtol))
+    throw InputError("--atol/--rtol: must be finite and > 0");
 
   Simulation sim(scene, method, plugins().parts());  // SceneError: e.g. a symplectic integrator on a first-order system
   const auto energy0 = sim.energy();

@@ -116,7 +116,7 @@ CLI::App* add_stress_command(CLI::App& app, StressOptions& o) {
   add_list_option(c, "--integrators", o.integrators,
                   "Comma-separated integrators (default: every one that can run the scene)");
   c->add_option("--set", o.sets, "Override a scene field (repeatable), e.g. --set forces[0].stiffness=4")->type_name("PATH=VALUE");
-  c->add_option("--out", o.out, "The page's folder (default: a new folder under runs/); must not exist yet");
+  c->add_option("--out", o.out, "The page's folder (default: a new folder under runs/); must not exist yet")->check(non_empty_path());
   c->add_option("--steps", o.steps, "Steps of each stability and stiffness trial")->check(CLI::Range(100L, 10000000L))->capture_default_str();
   c->add_option("--drift-steps", o.drift_steps, "Steps of the long run (10^5 to 10^7 and more)")
       ->check(CLI::Range(100L, 100000000L))

@@ -268,6 +268,12 @@ TEST(Grade, BadInputIsOneLineAndExitTwo) {
       {{"grade", "integrators", solution, "--results", (dir / "results.json").string()}, "--overwrite"},
       {{"grade", "integrators", solution, "--hidden", (dir / "nowhere").string()}, "--hidden: no such folder"},
       {{"grade", "integrators"}, "give a SUBMISSION_DIR"},
+      // What --overwrite may replace: a regular file, not a folder or a device (the results are
+      // written under another name and renamed over it).
+      {{"grade", "integrators", solution, "--results", dir.path().string(), "--overwrite"}, "is a folder"},
+      {{"grade", "integrators", solution, "--results", "/dev/null", "--overwrite"}, "not a regular file"},
+      {{"grade", "integrators", "--package", "gradescope", "--out", "/dev/null", "--overwrite"}, "not a regular file"},
+      {{"grade", "integrators", solution, "--results", ""}, "an empty path"},
   };
   for (const auto& [args, says] : cases) {
     const auto r = run_motus(dir, args);
@@ -276,6 +282,25 @@ TEST(Grade, BadInputIsOneLineAndExitTwo) {
     EXPECT_NE(r.err.find(says), std::string::npos) << r.err;
   }
   EXPECT_EQ(read_file(dir / "results.json"), "{}");  // nothing the user had is overwritten
+}
+
+TEST(Grade, AnAssignmentGivenByARelativePathGradesAsByItsFullPath) {
+  // The sandbox mounts the assignment's provided files by their path: a relative one once made
+  // the build fail, and the student lost every point for the grader's mistake.
+  NEEDS_SANDBOX();
+  TempDir dir;
+  fs::copy(fs::path(kAssignments) / "integrators", dir / "mine", fs::copy_options::recursive);
+  // motus starts where this test is: in `dir`, for the time of the run.
+  const fs::path was = fs::current_path();
+  fs::current_path(dir.path());
+  const auto r = run_motus(dir, {"grade", "mine", (fs::path(kAssignments) / "integrators/solution").string(), "--results",
+                                 (dir / "r.json").string()});
+  fs::current_path(was);
+  ASSERT_EQ(r.status, 0) << r.err;
+  const json result = read_json(dir / "r.json");
+  EXPECT_TRUE(failed(result).empty()) << result.dump(2);
+  EXPECT_GT(result["score"].get<double>(), 0);
+  EXPECT_EQ(result["score"], result["max_score"]);
 }
 
 TEST(Grade, WithoutASandboxItRefusesUnlessToldAndThenStillGrades) {

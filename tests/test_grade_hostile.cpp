@@ -81,6 +81,11 @@ TEST(Grade, HostileSubmissionsEndWithinTheirLimitsAndHarmNothing) {
   }
   fs::create_directories(dir / "batch/does-not-compile");
   write_file(dir / "batch/does-not-compile/integrators.cpp", "#include \"integrators.hpp\"\nthis is not C++;\n" + original);
+  // A function of the handout misspelt: the link names it (not a plug-in that fails every test).
+  fs::create_directories(dir / "batch/misspelt");
+  std::string misspelt = original;
+  misspelt.replace(misspelt.find("void euler_step("), 16, "void euler_stpe(");
+  write_file(dir / "batch/misspelt/integrators.cpp", misspelt);
   // A compiler error on a line with a Latin-1 comment: the compiler quotes bytes that are not UTF-8.
   fs::create_directories(dir / "batch/latin-1");
   write_file(dir / "batch/latin-1/integrators.cpp",
@@ -93,7 +98,7 @@ TEST(Grade, HostileSubmissionsEndWithinTheirLimitsAndHarmNothing) {
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count();
   ::close(listener);
   ASSERT_EQ(r.status, 0) << r.err;
-  // 14 submissions, 2 at a time, each test at most 2 s: well within the 10 minutes Gradescope allows one.
+  // 15 submissions, 2 at a time, each test at most 2 s: well within the 10 minutes Gradescope allows one.
   EXPECT_LT(seconds, 240) << r.err;
 
   double public_max = 0;
@@ -134,6 +139,14 @@ TEST(Grade, HostileSubmissionsEndWithinTheirLimitsAndHarmNothing) {
   const std::string errors = (*build)["output"].get<std::string>();
   EXPECT_NE(errors.find("error:"), std::string::npos) << errors;  // the compiler's own words
   EXPECT_LE(count_lines(errors), 45) << errors;                   // cut to a readable length
+
+  const json misspelt_result = read_json(dir / "results/misspelt.json");
+  expect_valid_gradescope(misspelt_result);
+  const json* misspelt_build = test_named(misspelt_result, "build");
+  ASSERT_NE(misspelt_build, nullptr);
+  EXPECT_EQ((*misspelt_build)["status"], "failed");
+  EXPECT_NE((*misspelt_build)["output"].get<std::string>().find("undefined reference to `student::euler_step("),
+            std::string::npos) << (*misspelt_build)["output"];
 
   // Graded like any submission that does not compile, the bytes that are not UTF-8 shown as U+FFFD.
   const json latin = read_json(dir / "results/latin-1.json");

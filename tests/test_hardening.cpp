@@ -110,6 +110,15 @@ TEST(Hardening, OverwriteRemovesOnlyWhatMotusWrote) {
 // ---- Wrong answers and hangs ----------------------------------------------------------------------
 
 // 4. A run that cannot finish in a countable number of steps is bad input (docs: at most 10^15).
+TEST(Hardening, AnEmptyOutputPathOrAnInfiniteToleranceIsBadInput) {
+  // Once taken for "not given": no file written, or a report somewhere else, and exit 0.
+  TempDir dir;
+  expect_one_line_exit_2(run_motus(dir, {"run", "spring", "--trajectory", ""}), "--trajectory: an empty path");
+  expect_one_line_exit_2(run_motus(dir, {"compare", "head_on", "--out", ""}), "--out: an empty path");
+  expect_one_line_exit_2(run_motus(dir, {"run", "spring", "--trajectory", dir.path().string(), "--overwrite"}), "is a folder");
+  expect_one_line_exit_2(run_motus(dir, {"run", "oscillator", "--integrator", "rk45", "--atol", "inf"}), "finite");
+}
+
 TEST(Hardening, AStepCountThatOverflowsIsBadInput) {
   TempDir dir;
   expect_one_line_exit_2(run_motus(dir, {"run", "spring", "--dt", "1e-300"}), "more than a run can take");

@@ -89,7 +89,9 @@ double Assignment::max_score() const {
 Assignment load_assignment(const std::string& folder, const std::optional<std::string>& hidden,
                            const SceneSource& scenes_in) {
   Assignment a;
-  a.folder = folder;
+  // Absolute: the sandbox mounts its provided files by this path (bubblewrap resolves a relative
+  // one from elsewhere, and the build would fail as if the student's code did not compile).
+  a.folder = fs::absolute(folder).lexically_normal().string();
   const fs::path root(folder);
   const std::string manifest_file = (root / "assignment.json").string();
   if (!fs::is_regular_file(manifest_file)) throw AssignmentError(folder + ": not an assignment (no assignment.json)");

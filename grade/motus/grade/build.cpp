@@ -34,8 +34,11 @@ BuildResult build_plugin(const Assignment& a, const std::string& staged, const s
   const std::string assignment_dir = isolate ? "/assignment" : a.folder;
   const std::string submission_dir = isolate ? "/submission" : staged;
   const std::string out_dir = isolate ? "/out" : out;
-  std::vector<std::string> argv = {"/usr/bin/g++", "-std=c++20", "-O2", "-shared", "-fPIC", "-fvisibility=hidden",
-                                   "-fvisibility-inlines-hidden", "-fdiagnostics-color=never", "-I" + assignment_dir};
+  // -z defs: a function the handout asks for that the submission does not define (misspelt, or
+  // with other parameters) is a link error naming it, here, not a plug-in that fails every test.
+  std::vector<std::string> argv = {"/usr/bin/g++", "-std=c++20", "-O2", "-shared", "-fPIC", "-Wl,-z,defs",
+                                   "-fvisibility=hidden", "-fvisibility-inlines-hidden", "-fdiagnostics-color=never",
+                                   "-I" + assignment_dir};
   if (isolate) {
     spec.mounts = {{headers.student, "/motus/include/motus/student", false},
                    {headers.plugin, "/motus/include/motus/plugin", false},
