@@ -38,10 +38,22 @@ std::pair<int, int> parse_size(const std::string& text) {
 constexpr const char* kManifest = ".motus-render";
 
 // The output folder: created, or (with --overwrite) cleared of what an earlier render wrote.
-void prepare_folder(const std::string& out, bool overwrite) {
+// A file this render will write (its frames, its video) that is there already as a link or
+// anything but a regular file is refused first: writing it would write where the link leads,
+// outside the folder.
+void prepare_folder(const std::string& out, bool overwrite, long frames, const std::string& video_name) {
   if (fs::exists(out)) {
     if (!fs::is_directory(out)) throw InputError(out + ": exists and is not a folder; choose another --out");
     if (!overwrite) throw InputError(out + ": already exists; choose another --out or pass --overwrite");
+    auto refuse_unless_regular = [&](const std::string& name) {
+      std::error_code ignored;
+      const auto status = fs::symlink_status(fs::path(out) / name, ignored);
+      if (fs::exists(status) && !fs::is_regular_file(status))
+        throw InputError((fs::path(out) / name).string() + ": is " + (fs::is_symlink(status) ? "a link" : "not a regular file") +
+                         "; a render writes no file through it (remove it or choose another --out)");
+    };
+    for (long k = 0; k < frames; ++k) refuse_unless_regular(fmt::format("frame_{:05d}.png", k));
+    if (!video_name.empty()) refuse_unless_regular(video_name);
     std::ifstream manifest(fs::path(out) / kManifest);
     std::string name;
     while (std::getline(manifest, name)) {
@@ -101,8 +113,10 @@ int render_command(const RenderOptions& o) {
   if (!(o.fps > 0) || !std::isfinite(o.fps) || o.fps > 10000) throw InputError("--fps: must be a number > 0 (and at most 10000)");
   const double duration = o.duration.value_or(scene.duration);
   if (!(duration >= 0) || !std::isfinite(duration)) throw InputError("--duration: must be a finite number >= 0");
-  const long frames = static_cast<long>(std::floor(duration * o.fps + 1e-9)) + 1;
-  if (frames > 100000) throw InputError(fmt::format("--duration/--fps: {} frames is too many (at most 100,000)", frames));
+  const double frame_count = std::floor(duration * o.fps + 1e-9) + 1;  // (a double first: 1e18 s is no long)
+  if (frame_count > 100000)
+    throw InputError(fmt::format("--duration/--fps: {:.3g} frames is too many (at most 100,000)", frame_count));
+  const long frames = static_cast<long>(frame_count);
   const draw::Api& drawing = draw_module();
   if (!o.video.empty() && process::find_program("ffmpeg").empty())
     throw InputError("ffmpeg not found on PATH: --video needs it (install the Debian package ffmpeg)");
@@ -116,7 +130,8 @@ int render_command(const RenderOptions& o) {
     throw InputError(path + ": " + (e.field().empty() ? "" : e.field() + ": ") + e.what());
   }
   Simulation& sim = *built;
-  prepare_folder(o.out, o.overwrite);
+  const std::string video_name = o.video.empty() ? "" : safe_file_name(scene.name) + "." + o.video;  // a name is not a path
+  prepare_folder(o.out, o.overwrite, frames, video_name);
 
   // Simulate: mechanical scenes keep one state per frame; first-order ones every step
   // too (an attractor's curve is drawn through all of them).
@@ -162,7 +177,6 @@ int render_command(const RenderOptions& o) {
   job.folder = o.out;
   progress.phase("drawing", 0, static_cast<double>(frames));
   job.frame_done = [&](long k) { progress.update(static_cast<double>(k)); };
-  const std::string video_name = o.video.empty() ? "" : safe_file_name(scene.name) + "." + o.video;  // a name is not a path
   write_manifest(o.out, frames, video_name);  // first: what is written is listed even if the run stops
   if (const std::string error = drawing.render_frames(job); !error.empty()) throw InputError(error);
   progress.finish();

@@ -105,6 +105,20 @@ TEST(Hardening, OverwriteRemovesOnlyWhatMotusWrote) {
   EXPECT_FALSE(fs::exists(out / "frame_00002.png"));  // the earlier render's, gone
   EXPECT_TRUE(fs::exists(out / "frame_00001.png"));   // this render's
   for (const char* mine : {"holiday.gif", "holiday.mp4", "frame_99999.png"}) EXPECT_EQ(read_file(out / mine), "mine") << mine;
+  // A link where a frame or the video will go: refused, and nothing written where it leads.
+  write_file(dir / "outside.txt", "mine");
+  for (const char* name : {"frame_00000.png", "head_on.gif"}) {
+    fs::remove(out / name);
+    fs::create_symlink(dir / "outside.txt", out / name);
+    r = run_motus(dir, {"render", "head_on", "--out", out.string(), "--size", "64x48", "--fps", "1", "--duration", "1",
+                        "--overwrite", "--video", "gif"});
+    expect_one_line_exit_2(r, std::string(name) + ": is a link");
+    EXPECT_EQ(read_file(dir / "outside.txt"), "mine") << name;
+    fs::remove(out / name);
+  }
+  // A frame count past what a long holds: refused, not wrapped round.
+  expect_one_line_exit_2(run_motus(dir, {"render", "head_on", "--out", (dir / "long").string(), "--duration", "1e18"}),
+                         "frames is too many");
 }
 
 // ---- Wrong answers and hangs ----------------------------------------------------------------------
