@@ -3,6 +3,7 @@
 #include "motus/systems/system_catalog.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -152,7 +153,22 @@ long checked_step_count(double duration, double dt, const std::string& what) {
   if (!(steps <= kMaxSteps))
     throw InputError(what + ": " + fmt::format("{:g}", steps) + " steps of " + fmt::format("{:g}", dt) +
                      " is more than a run can take (at most " + fmt::format("{:g}", kMaxSteps) + ")");
+  // A duration this small against dt cannot be told from the rounding of a time (which takes no
+  // step), so it would be run as no step at all.
+  if (steps < 1e-9)
+    throw InputError(what + ": dt = " + fmt::format("{:g}", dt) + " is more than 10^9 times the duration (" +
+                     fmt::format("{:g}", duration) + "): the run would take no step");
   return fixed_step_count(duration, dt);
+}
+
+void check_time_resolution(double start_time, double duration, double dt, const std::string& what) {
+  // The times t0 + i·dt must be told apart: far from 0 doubles are too coarse (at 1e17 they are
+  // 16 apart), and the steps would land on the wrong times or on the same one.
+  const double far = std::max(std::abs(start_time), std::abs(start_time + duration));
+  const double spacing = std::nextafter(far, INFINITY) - far;
+  if (!(spacing <= 1e-6 * dt))
+    throw InputError(what + ": at t = " + fmt::format("{:g}", far) + " times are " + fmt::format("{:g}", spacing) +
+                     " apart, too coarse for steps of " + fmt::format("{:g}", dt) + " (start nearer t = 0)");
 }
 
 PartialFolder::PartialFolder(const std::string& final_path) : final_(final_path) {

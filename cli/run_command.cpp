@@ -177,7 +177,9 @@ int run_command(const RunOptions& o) {
   if (o.steps && *o.steps <= 0) throw InputError("--steps: must be > 0");
   const double duration = o.steps ? static_cast<double>(*o.steps) * dt : o.duration.value_or(scene.duration);
   if (!(duration > 0) || !std::isfinite(duration)) throw InputError("--duration: must be a finite number > 0");
-  if (!method.adaptive()) checked_step_count(duration, dt, o.steps ? "--steps" : o.duration ? "--duration" : o.dt ? "--dt" : "dt/duration");
+  const std::string what = o.steps ? "--steps" : o.duration ? "--duration" : o.dt ? "--dt" : path + ": dt/duration";
+  if (!method.adaptive()) checked_step_count(duration, dt, what);
+  check_time_resolution(scene.start_time, duration, dt, path + ": start_time");
   const Tolerance tolerance{o.atol.value_or(scene.atol), o.rtol.value_or(scene.rtol)};
   if (!(tolerance.atol > 0) || !(tolerance.rtol > 0) || !std::isfinite(tolerance.atol) || !std::isfinite(tolerance.rtol))
     throw InputError("--atol/--rtol: must be finite and > 0");

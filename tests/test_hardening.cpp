@@ -136,6 +136,12 @@ TEST(Hardening, AnEmptyOutputPathOrAnInfiniteToleranceIsBadInput) {
 TEST(Hardening, AStepCountThatOverflowsIsBadInput) {
   TempDir dir;
   expect_one_line_exit_2(run_motus(dir, {"run", "spring", "--dt", "1e-300"}), "more than a run can take");
+  // Nor a run that takes no step (once 0 steps and exit 0), or whose times cannot be told apart
+  // (far from t = 0 doubles are coarser than the step: once 4 steps for 5, or the same time again).
+  expect_one_line_exit_2(run_motus(dir, {"run", "spring", "--set", "dt=1e10"}), "the run would take no step");
+  expect_one_line_exit_2(run_motus(dir, {"run", "spring", "--set", "start_time=1e16"}), "start_time: at t = 1e+16");
+  expect_one_line_exit_2(run_motus(dir, {"compare", "head_on", "--set", "start_time=1e17", "--out", (dir / "c").string()}),
+                         "too coarse for steps");
   expect_one_line_exit_2(run_motus(dir, {"run", "spring", "--duration", "1e19"}), "--duration");
   expect_one_line_exit_2(run_motus(dir, {"run", "spring", "--steps", "99999999999999999999"}), "--steps");
   expect_one_line_exit_2(run_motus(dir, {"compare", "head_on", "--dt", "1e-300", "--out", (dir / "r").string()}),
