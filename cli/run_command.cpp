@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
@@ -19,6 +20,8 @@
 namespace motus::cli {
 namespace {
 
+namespace fs = std::filesystem;
+
 std::vector<double> to_std(const Vector& v) { return {v.data(), v.data() + v.size()}; }
 
 nlohmann::json energy_json(const std::optional<Energy>& e) {
@@ -26,7 +29,10 @@ nlohmann::json energy_json(const std::optional<Energy>& e) {
   return {{"kinetic", e->kinetic}, {"potential", e->potential}, {"total", e->total}};
 }
 
-// Writes the trajectory CSV: a header, then one row per output time.
+// Writes the trajectory CSV: a header, then one row per output time. A file is written under
+// a name of its own beside it (.NAME.partial) and renamed to NAME when the run is through: a
+// run that is interrupted or fails leaves no half-written CSV, and the file it would have
+// replaced (--overwrite) is still there. A FIFO or a device (/dev/full) is written as it is.
 class TrajectoryWriter {
 public:
   // path "-": standard output.
@@ -35,7 +41,13 @@ public:
     if (path == "-") {
       out_ = &std::cout;
     } else {
-      file_.open(path);
+      std::error_code ignored;
+      const auto status = fs::status(path, ignored);
+      if (!fs::exists(status) || fs::is_regular_file(status)) {
+        const fs::path target(path);
+        partial_ = (target.parent_path() / ("." + target.filename().string() + ".partial")).string();
+      }
+      file_.open(partial_.empty() ? path : partial_, std::ios::binary | std::ios::trunc);
       out_ = &file_;
     }
     if (!*out_) throw InputError(path + ": cannot be written");
@@ -61,7 +73,23 @@ public:
     if (sim.time() > last_) row(sim);
     out_->flush();
     if (!*out_) throw std::runtime_error(path_ + ": could not be written (disk full?)");
+    if (!partial_.empty()) {
+      file_.close();
+      if (!file_) throw std::runtime_error(path_ + ": could not be written (disk full?)");
+      std::error_code error;
+      fs::rename(partial_, path_, error);
+      if (error) throw std::runtime_error(path_ + ": could not be written (" + error.message() + ")");
+      partial_.clear();
+    }
   }
+  ~TrajectoryWriter() {
+    if (partial_.empty()) return;
+    std::error_code ignored;
+    file_.close();
+    fs::remove(partial_, ignored);  // the run did not get through
+  }
+  TrajectoryWriter(const TrajectoryWriter&) = delete;
+  TrajectoryWriter& operator=(const TrajectoryWriter&) = delete;
 
 private:
   void row(const Simulation& sim) {
@@ -84,7 +112,7 @@ private:
     }
   }
 
-  std::string path_;
+  std::string path_, partial_;  // partial_: the file written until the rename ("" for none)
   std::ofstream file_;
   std::ostream* out_ = nullptr;
   double interval_;

@@ -316,6 +316,39 @@ TEST(Hardening, AFullDiskIsAFailureNamingTheFile) {
   EXPECT_NE(err.find("standard output"), std::string::npos) << err;
 }
 
+// Ctrl-C in a run writing its trajectory: no half-written CSV, and the file --overwrite would
+// have replaced is still the user's.
+TEST(Hardening, AnInterruptedTrajectoryLeavesTheOldFileAndNoPartOfTheNew) {
+  TempDir dir;
+  write_file(dir / "mine.csv", "mine");
+  const fs::path partial = dir / ".mine.csv.partial";
+  std::vector<std::string> args = {kMotus, "run", "oscillator", "--steps", "100000000", "--trajectory",
+                                   (dir / "mine.csv").string(), "--overwrite"};
+  std::vector<char*> argv;
+  for (auto& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
+  posix_spawn_file_actions_addopen(&actions, 2, (dir / "err.txt").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  pid_t pid = 0;
+  ASSERT_EQ(posix_spawn(&pid, kMotus.c_str(), &actions, nullptr, argv.data(), environ), 0);
+  posix_spawn_file_actions_destroy(&actions);
+  // Interrupted once the new CSV has rows (within 20 s).
+  for (int i = 0; i < 2000; ++i) {
+    std::error_code ignored;
+    if (fs::exists(partial) && fs::file_size(partial, ignored) > 100000) break;
+    ::usleep(10000);
+  }
+  EXPECT_TRUE(fs::exists(partial)) << "the run wrote no trajectory in 20 s";
+  ::kill(pid, SIGINT);
+  int raw = 0;
+  waitpid(pid, &raw, 0);
+  EXPECT_EQ(WEXITSTATUS(raw), 130) << read_file(dir / "err.txt");
+  EXPECT_EQ(read_file(dir / "mine.csv"), "mine");
+  EXPECT_FALSE(fs::exists(partial));
+}
+
 // 16. Ctrl-C while the report's plots are drawn: exit 130, and no folder that looks complete
 //     (neither the report nor its partial folder is left). The plotting program here is a
 //     stand-in for gnuplot that waits, so that the Ctrl-C surely comes while it runs.
