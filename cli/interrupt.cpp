@@ -1,13 +1,35 @@
 #include "interrupt.hpp"
 
 #include <signal.h>
+#include <unistd.h>
 
 namespace motus::cli {
 namespace {
 
 volatile sig_atomic_t g_interrupted = 0;
 
-void on_interrupt(int) { g_interrupted = 1; }
+// What one step may take before motus reaches a safe point: a step of an O(N²) force over 10⁵
+// bodies, or a peer's set-up of 10⁵ bodies, takes minutes, and an interrupt must not wait for it.
+constexpr unsigned kGraceSeconds = 30;
+
+// Only async-signal-safe calls here: write and _exit.
+[[noreturn]] void stop_now(const char* why) {
+  const char* line = "motus: interrupted; ";
+  for (const char* text : {line, why, " (what was being written may be left under its temporary .NAME.partial name)\n"}) {
+    size_t length = 0;
+    while (text[length]) ++length;
+    if (::write(STDERR_FILENO, text, length) < 0) break;
+  }
+  ::_exit(kExitInterrupted);
+}
+
+void on_interrupt(int) {
+  if (g_interrupted) stop_now("stopped at once, at the second interrupt");
+  g_interrupted = 1;
+  ::alarm(kGraceSeconds);  // no safe point within the grace: on_grace_over
+}
+
+void on_grace_over(int) { stop_now("no safe point came within 30 s, so stopped there"); }
 
 }  // namespace
 
@@ -18,6 +40,8 @@ void catch_interrupts() {
   action.sa_flags = 0;  // no SA_RESTART: a wait for a child returns at once
   sigaction(SIGINT, &action, nullptr);
   sigaction(SIGTERM, &action, nullptr);
+  action.sa_handler = on_grace_over;
+  sigaction(SIGALRM, &action, nullptr);
 }
 
 bool interrupted() { return g_interrupted != 0; }

@@ -14,6 +14,7 @@ public:
 };
 
 // From now on SIGINT and SIGTERM only set a flag (a program motus waits for still gets them).
+// A second one, or 30 s with no safe point after the first, ends motus at once (exit 130).
 void catch_interrupts();
 bool interrupted();
 // Throws Interrupted once an interrupt has come.

@@ -261,6 +261,7 @@ TEST(Plugins, ACrashNamesThePluginThatWasRunning) {
 TEST(Grade, BadInputIsOneLineAndExitTwo) {
   TempDir dir;
   write_file(dir / "results.json", "{}");
+  fs::create_directories(dir / "empty");
   const std::string solution = (fs::path(kAssignments) / "integrators/solution").string();
   const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
       {{"grade", "nonsense", solution}, "no such assignment"},
@@ -274,6 +275,8 @@ TEST(Grade, BadInputIsOneLineAndExitTwo) {
       {{"grade", "integrators", solution, "--results", "/dev/null", "--overwrite"}, "not a regular file"},
       {{"grade", "integrators", "--package", "gradescope", "--out", "/dev/null", "--overwrite"}, "not a regular file"},
       {{"grade", "integrators", solution, "--results", ""}, "an empty path"},
+      {{"grade", "integrators", solution, "--time-limit", "1e-9"}, "--time-limit: must be from 0.5"},
+      {{"grade", "integrators", solution, "--hidden", (dir / "empty").string()}, "nor in --hidden"},
   };
   for (const auto& [args, says] : cases) {
     const auto r = run_motus(dir, args);

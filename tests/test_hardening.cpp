@@ -349,6 +349,37 @@ TEST(Hardening, AnInterruptedTrajectoryLeavesTheOldFileAndNoPartOfTheNew) {
   EXPECT_FALSE(fs::exists(partial));
 }
 
+// A step that takes minutes (mutual gravity over 10⁵ bodies: 10¹⁰ pairs) has no safe point to
+// stop at: a second Ctrl-C stops motus at once, exit 130, saying so.
+TEST(Hardening, ASecondInterruptStopsALongStepAtOnce) {
+  TempDir dir;
+  std::vector<std::string> args = {kMotus, "run", "ball_gas", "--repeats", "1", "--steps", "1", "--set",
+                                   "lattice.count=100000", "--set", R"(forces=[{"type": "mutual_gravity", "G": 1}])"};
+  std::vector<char*> argv;
+  for (auto& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
+  posix_spawn_file_actions_addopen(&actions, 2, (dir / "err.txt").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  pid_t pid = 0;
+  ASSERT_EQ(posix_spawn(&pid, kMotus.c_str(), &actions, nullptr, argv.data(), environ), 0);
+  posix_spawn_file_actions_destroy(&actions);
+  ::sleep(1);  // loaded and stepping (the lattice takes a few ms)
+  ::kill(pid, SIGINT);
+  ::usleep(200000);
+  const auto second = std::chrono::steady_clock::now();
+  ::kill(pid, SIGINT);
+  int raw = 0;
+  waitpid(pid, &raw, 0);
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - second).count(), 2);
+  ASSERT_TRUE(WIFEXITED(raw));
+  EXPECT_EQ(WEXITSTATUS(raw), 130);
+  const std::string err = read_file(dir / "err.txt");
+  EXPECT_EQ(count_lines(err), 1) << err;
+  EXPECT_NE(err.find("stopped at once"), std::string::npos) << err;
+}
+
 // 16. Ctrl-C while the report's plots are drawn: exit 130, and no folder that looks complete
 //     (neither the report nor its partial folder is left). The plotting program here is a
 //     stand-in for gnuplot that waits, so that the Ctrl-C surely comes while it runs.

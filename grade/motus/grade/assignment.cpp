@@ -132,7 +132,7 @@ Assignment load_assignment(const std::string& folder, const std::optional<std::s
     const std::string name = entry.at("name").get<std::string>();
     if (!in_rubric.insert(name).second) throw AssignmentError(where + ".name: \"" + name + "\" is in the rubric twice");
     const double points = entry.value("points", 0.0);
-    if (!(points >= 0)) throw AssignmentError(where + ".points: must be a number ≥ 0");
+    if (!(points >= 0) || points > 1e6) throw AssignmentError(where + ".points: must be a number from 0 to 1,000,000");
     const std::string visibility = entry.value("visibility", std::string("visible"));
     if (!visibilities.count(visibility))
       throw AssignmentError(where + ".visibility: must be visible, after_due_date, after_published or hidden");
@@ -142,7 +142,8 @@ Assignment load_assignment(const std::string& folder, const std::optional<std::s
         ++a.hidden_not_given;  // a hidden test, and the hidden tests were not given
         continue;
       }
-      throw AssignmentError(where + ".name: \"" + name + "\" is defined in no test file (tests/ or the hidden folder)");
+      throw AssignmentError(where + ".name: \"" + name + "\" is defined in no test file: not in " + (root / "tests").string() +
+                            "/ nor in --hidden " + *hidden + " (is that the hidden tests' folder?)");
     }
     const Definition& d = it->second;
     TestCase t;
