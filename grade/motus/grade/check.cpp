@@ -439,10 +439,19 @@ public:
     r.integrator = integrator_;
     r.dt = first_step_;
     r.until = scene_.description.start_time + duration_;
-    r.every = 1'000'000'000;
+    r.every = 1;  // every step's time: the step sizes the controller chose
     r.atol = r.rtol = tolerance_;
     const RunOutput out = grade::run(probe, scene_, r, deadline);
     const double error = error_at_end(out.y.back(), out.t.back());
+    // The steps it took, but the last (shortened to land on the end): an adaptive run's change
+    // with the error. A controller that keeps h as it is can still beat fixed-step RK4 with the
+    // doubling's extrapolation alone, and must not pass as adaptive.
+    double smallest = INFINITY, largest = 0;
+    for (size_t i = 1; i + 1 < out.t.size(); ++i) {
+      smallest = std::min(smallest, out.t[i] - out.t[i - 1]);
+      largest = std::max(largest, out.t[i] - out.t[i - 1]);
+    }
+    const bool adapts = largest >= 2 * smallest;
     // motus's own fixed-step RK4, halving h until it is as accurate — or until it has spent
     // more evaluations than the student's run, which settles the comparison.
     long rk4_evaluations = -1;
@@ -469,18 +478,20 @@ public:
       peer = fmt::format("; motus's {} at the same tolerance: error {}", info(*compare_with_).name, num(peer_error));
     }
     const std::string measured = fmt::format(
-        "at tolerance {}: error {} at t = {} after {} steps ({} rejected) and {} evaluations; motus's fixed-step rk4 "
-        "needs {} evaluations for that error",
-        num(tolerance_), num(error), num(out.t.back()), out.steps, out.rejected, out.evaluations,
-        rk4_needs_more ? "more than " + std::to_string(out.evaluations) : std::to_string(rk4_evaluations)) + peer;
+        "at tolerance {}: error {} at t = {} after {} steps ({} rejected; h from {} to {}) and {} evaluations; motus's "
+        "fixed-step rk4 needs {} evaluations for that error",
+        num(tolerance_), num(error), num(out.t.back()), out.steps, out.rejected, num(smallest), num(largest),
+        out.evaluations, rk4_needs_more ? "more than " + std::to_string(out.evaluations) : std::to_string(rk4_evaluations)) +
+        peer;
     const bool lands = std::abs(out.t.back() - r.until) <= 1e-9 * std::max(1.0, std::abs(r.until));
     const bool fewer = rk4_needs_more || (rk4_evaluations > 0 && out.evaluations < rk4_evaluations);
     const bool as_good = !compare_with_ || error <= factor_ * peer_error;
-    const bool ok = lands && error <= max_error_ && fewer && as_good;
+    const bool ok = lands && error <= max_error_ && fewer && as_good && adapts;
     return ok ? pass(measured)
               : fail(measured,
-                     fmt::format("the run lands on t = {}, its error is at most {}{}, and it needs fewer evaluations "
-                                 "than fixed-step RK4 at the same error",
+                     fmt::format("the run lands on t = {}, its error is at most {}{}, it needs fewer evaluations "
+                                 "than fixed-step RK4 at the same error, and its step size changes with the error (the "
+                                 "largest step at least twice the smallest)",
                                  num(r.until), num(max_error_),
                                  compare_with_ ? fmt::format(" and at most {} × motus's {}", num(factor_),
                                                              info(*compare_with_).name)
