@@ -135,12 +135,16 @@ int compare_command(const CompareOptions& o) {
   {
     char x = 0;
     std::istringstream size(o.size);
-    if (!(size >> panel_width >> x >> panel_height) || x != 'x' || panel_width < 64 || panel_height < 48 ||
-        panel_width > 4096 || panel_height > 4096)
+    if (!(size >> panel_width >> x >> panel_height) || x != 'x' || size.peek() != std::char_traits<char>::eof() ||
+        panel_width < 64 || panel_height < 48 || panel_width > 4096 || panel_height > 4096)
       throw InputError("--size: must be WxH with 64 <= W <= 4096 and 48 <= H <= 4096 (got \"" + o.size + "\")");
   }
+  // (Checked with or without --render: a value that is wrong is wrong either way.)
+  if (!(o.fps > 0) || !std::isfinite(o.fps) || o.fps > 10000) throw InputError("--fps: must be a number > 0 (and at most 10000)");
+  if (o.render && o.fps * options.duration < 1)
+    throw InputError(fmt::format("--fps: {:g} frames per second of a {:g} s run is less than one frame after the first "
+                                 "(a video needs two)", o.fps, options.duration));
   if (o.render) {
-    if (!(o.fps > 0) || !std::isfinite(o.fps)) throw InputError("--fps: must be a finite number > 0");
     options.frame_every = std::max(1L, std::lround(1 / (o.fps * options.dt)));
   } else {
     options.frame_every = replay_frame_every(scene, options);

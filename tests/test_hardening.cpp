@@ -131,6 +131,16 @@ TEST(Hardening, AnEmptyOutputPathOrAnInfiniteToleranceIsBadInput) {
   expect_one_line_exit_2(run_motus(dir, {"compare", "head_on", "--out", ""}), "--out: an empty path");
   expect_one_line_exit_2(run_motus(dir, {"run", "spring", "--trajectory", dir.path().string(), "--overwrite"}), "is a folder");
   expect_one_line_exit_2(run_motus(dir, {"run", "oscillator", "--integrator", "rk45", "--atol", "inf"}), "finite");
+  // Options read in part: a size with more after it, a frame rate with no second frame.
+  expect_one_line_exit_2(run_motus(dir, {"compare", "head_on", "--size", "480x360x2"}), "--size");
+  expect_one_line_exit_2(run_motus(dir, {"compare", "head_on", "--render", "--fps", "1e-9", "--out", (dir / "c").string()}),
+                         "a video needs two");
+  // An expression past the documented 10,000 characters (docs/scene-format.md, "Limits").
+  std::string rhs = "v";
+  while (rhs.size() <= 10000) rhs += " + 0";
+  write_file(dir / "long.json", R"({"name": "long", "integrator": "rk4", "dt": 0.01, "duration": 1, "system": {"type": "equations",
+    "variables": ["x", "v"], "initial": [1, 0], "equations": {"x": ")" + rhs + R"(", "v": "-x"}}})");
+  expect_one_line_exit_2(run_motus(dir, {"run", (dir / "long.json").string()}), "system.equations.x: the expression has");
 }
 
 TEST(Hardening, AStepCountThatOverflowsIsBadInput) {

@@ -61,6 +61,10 @@ FirstOrderDescription read_equations_system(JsonFields& system) {
     if (!equations.has(name))
       equations.fail(name, "missing: every variable needs its equation, the right-hand side of " + name + "' = ...");
     spec.right_hand_sides.push_back(equations.string(name));
+    // muparser refuses a longer one as "expression too long" at column 1: say what the limit is.
+    if (spec.right_hand_sides.back().size() > 10000)
+      equations.fail(name, "the expression has " + std::to_string(spec.right_hand_sides.back().size()) +
+                               " characters; at most 10,000");
   }
   try {
     expressions::ExpressionSystem parsed(spec);  // the first problem, with its column
