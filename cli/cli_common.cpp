@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -205,7 +206,21 @@ void check_can_write(const std::string& path, bool overwrite) {
     throw InputError(path + ": already exists; choose another name or pass --overwrite");
   if (fs::is_directory(status)) throw InputError(path + ": is a folder, not a file");
   const fs::path parent = fs::path(path).parent_path();
-  if (!parent.empty() && !fs::is_directory(parent)) throw InputError(path + ": folder " + parent.string() + " does not exist");
+  if (!parent.empty() && !fs::is_directory(parent, error))
+    throw InputError(path + ": folder " + parent.string() + " does not exist");
+  // A file beside it, made and removed at once: a folder that takes no new file (/proc, a
+  // read-only disk) or a name too long is bad input now, not a failure after the work. (A FIFO
+  // or a device is written as it is, and needs no new file.)
+  if (fs::exists(status) && !fs::is_regular_file(status)) return;
+  const fs::path folder = parent.empty() ? fs::path(".") : parent;
+  // (The file itself is written under a name 13 characters longer, .NAME.partial, then renamed.)
+  const long name_max = ::pathconf(folder.c_str(), _PC_NAME_MAX);
+  if (name_max > 0 && static_cast<long>(fs::path(path).filename().string().size()) + 13 > name_max)
+    throw InputError(path + ": the file name is too long (at most " + std::to_string(name_max - 13) + " bytes here)");
+  const std::string probe = (folder / (".motus-probe-" + std::to_string(::getpid()))).string();
+  const int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL, 0600);
+  if (fd < 0 && errno != EEXIST) throw InputError(path + ": cannot be written there (" + std::strerror(errno) + ")");
+  if (fd >= 0) ::close(fd), ::unlink(probe.c_str());
 }
 
 void check_can_replace(const std::string& path, bool overwrite) {

@@ -276,6 +276,7 @@ TEST(Grade, BadInputIsOneLineAndExitTwo) {
       {{"grade", "integrators", "--package", "gradescope", "--out", "/dev/null", "--overwrite"}, "not a regular file"},
       {{"grade", "integrators", solution, "--results", ""}, "an empty path"},
       {{"grade", "integrators", solution, "--time-limit", "1e-9"}, "--time-limit: must be from 0.5"},
+      {{"grade", "integrators", solution, "--results", "/proc/results.json"}, "cannot be written there"},  // (before grading)
       {{"grade", "integrators", solution, "--hidden", (dir / "empty").string()}, "nor in --hidden"},
   };
   for (const auto& [args, says] : cases) {

@@ -130,6 +130,8 @@ TEST(Hardening, AnEmptyOutputPathOrAnInfiniteToleranceIsBadInput) {
   expect_one_line_exit_2(run_motus(dir, {"run", "spring", "--trajectory", ""}), "--trajectory: an empty path");
   expect_one_line_exit_2(run_motus(dir, {"compare", "head_on", "--out", ""}), "--out: an empty path");
   expect_one_line_exit_2(run_motus(dir, {"run", "spring", "--trajectory", dir.path().string(), "--overwrite"}), "is a folder");
+  expect_one_line_exit_2(run_motus(dir, {"run", "spring", "--trajectory", (dir / (std::string(250, 'a') + ".csv")).string()}),
+                         "the file name is too long");
   expect_one_line_exit_2(run_motus(dir, {"run", "oscillator", "--integrator", "rk45", "--atol", "inf"}), "finite");
   // Options read in part: a size with more after it, a frame rate with no second frame.
   expect_one_line_exit_2(run_motus(dir, {"compare", "head_on", "--size", "480x360x2"}), "--size");
