@@ -113,6 +113,8 @@ int grade_one(const GradeCommandOptions& o, const std::string& folder) {
   }
   const std::string json = grade::results_text(grade::gradescope_json(result));
   if (!o.results.empty()) write_file(o.results, json);
+  if (!o.plugin_out.empty() && !result.compiled)
+    fmt::print(stderr, "motus: note: --plugin-out: {} was not written: the submission does not compile\n", o.plugin_out);
   if (o.format == "gradescope")
     fmt::print("{}", json);
   else
@@ -220,6 +222,10 @@ CLI::App* add_grade_command(CLI::App& app, GradeCommandOptions& o) {
 int grade_command(const GradeCommandOptions& o) {
   const std::string folder = assignment_folder(o.assignment);
   const int modes = !o.submission.empty() + !o.batch.empty() + !o.package.empty();
+  if (modes > 1)
+    throw InputError("grade: a SUBMISSION_DIR, --batch and --package are three ways to use it: give one of them, not " +
+                     std::string(!o.submission.empty() ? "SUBMISSION_DIR" : "--batch") + " and " +
+                     (!o.package.empty() ? "--package" : "--batch"));
   if (modes != 1) throw InputError("grade: give a SUBMISSION_DIR, or --batch DIR, or --package gradescope --out FILE.zip");
   if (!o.package.empty()) {
     if (o.out.empty()) throw InputError("--package: needs --out FILE.zip");

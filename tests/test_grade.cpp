@@ -191,6 +191,20 @@ TEST(Plugins, AStudentsCollisionsAreAnEngineColumnInCompare) {
     }
 }
 
+TEST(Plugins, MotusRunSaysWhenTheStudentsPartsResolveTheContacts) {
+  // The pass list names the plug-in's collisions and projection (once the same words as motus's own).
+  TempDir dir;
+  auto r = run_motus(dir, {"run", "bouncing_balls", "--plugin", kAssignmentPlugins + "/collisions-solution.so", "--json"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(json::parse(r.out)["passes"].back(), "collisions (the plug-in's impulses and times of impact)");
+  r = run_motus(dir, {"run", "cloth", "--plugin", kAssignmentPlugins + "/cloth-solution.so", "--json"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(json::parse(r.out)["passes"].back(), "constraints and contacts (the plug-in's projection)");
+  r = run_motus(dir, {"run", "bouncing_balls", "--json"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(json::parse(r.out)["passes"].back(), "collisions (impulses at the time of impact)");
+}
+
 TEST(Plugins, AStudentsIntegratorRunsInBenchPrecisionAndRender) {
   TempDir dir;
   const std::string plugin = kAssignmentPlugins + "/integrators-solution.so";

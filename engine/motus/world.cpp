@@ -60,6 +60,7 @@ World::World(const MechanicalDescription& scene, const Method& method, ExternalP
                                          " cannot run collisions: contacts are resolved at their time of impact during "
                                          "symplectic Euler's drift (symplectic-euler) or projected (verlet)");
     const Vector inverse_mass = system_.masses().cwiseInverse();
+    external_collisions_ = parts.collisions != nullptr;
     switch (scene.dimensions) {
       case 1: collisions_.emplace<BallCollisions<1>>(inverse_mass, radius, restitution, scene.colliders, parts.collisions); break;
       case 2: collisions_.emplace<BallCollisions<2>>(inverse_mass, radius, restitution, scene.colliders, parts.collisions); break;
@@ -118,8 +119,14 @@ std::vector<std::string> World::passes() const {
   std::vector<std::string> p;
   if (has_forces_) p.push_back("forces");
   p.push_back("drift");
-  if (has_collisions()) p.push_back("collisions (impulses at the time of impact)");
-  if (constraints_) p.push_back(project_contacts_ ? "constraints and contacts (projection)" : "constraints (projection)");
+  // (A plug-in's part is named as such: what runs is then the student's code, not motus's.)
+  if (has_collisions())
+    p.push_back(external_collisions_ ? "collisions (the plug-in's impulses and times of impact)"
+                                     : "collisions (impulses at the time of impact)");
+  if (constraints_) {
+    const std::string what = project_contacts_ ? "constraints and contacts" : "constraints";
+    p.push_back(what + (external_projection_ ? " (the plug-in's projection)" : " (projection)"));
+  }
   return p;
 }
 

@@ -65,6 +65,7 @@ private:
   std::unique_ptr<ConstraintProjection> constraints_;
   bool project_contacts_ = false;  // verlet: walls and balls are projection constraints too
   bool has_sticks_ = false;
+  bool external_collisions_ = false;  // a plug-in's collision rules resolve the contacts
   int substeps_ = 1;  // Verlet steps per step with a projection (the scene's constraint_substeps)
   bool position_dependent_forces_ = false;  // anything but uniform gravity and drag
   bool velocity_dependent_forces_ = false;  // drag, damped springs

@@ -36,9 +36,15 @@ void Probe::died(const std::string& while_doing) {
   // The last lines it wrote on standard error (and standard output, which goes there too).
   std::string errors = server_->errors();
   if (!errors.empty()) {
-    if (errors.size() > 1200) errors = "…" + errors.substr(errors.size() - 1200);
+    // Only its first 64 KB are kept (the rest was read and dropped): past that, "the end" is
+    // the end of what was kept, not what it wrote last.
+    const bool capped = errors.size() >= setup_.limits.output_bytes, cut = errors.size() > 1200;
+    if (cut) errors = "…" + errors.substr(errors.size() - 1200);
     while (!errors.empty() && (errors.back() == '\n' || errors.back() == ' ')) errors.pop_back();
-    what += ". Its last output:\n" + errors;
+    what += capped ? ". The end of the first " + std::to_string(setup_.limits.output_bytes / 1024) + " KB of its output:\n"
+            : cut  ? ". The end of its output:\n"
+                   : ". Its output:\n";
+    what += errors;
   }
   server_.reset();  // the next request starts a new one
   throw ProbeFailure(what);
