@@ -133,6 +133,9 @@ TEST(Hardening, AnEmptyOutputPathOrAnInfiniteToleranceIsBadInput) {
   expect_one_line_exit_2(run_motus(dir, {"run", "spring", "--trajectory", (dir / (std::string(250, 'a') + ".csv")).string()}),
                          "the file name is too long");
   expect_one_line_exit_2(run_motus(dir, {"run", "oscillator", "--integrator", "rk45", "--atol", "inf"}), "finite");
+  // A mass > 0 whose inverse is infinite (a subnormal): once a state no longer finite, exit 1.
+  expect_one_line_exit_2(run_motus(dir, {"run", "spring", "--set", "bodies[0].mass=1e-320"}),
+                         "bodies[0].mass: must be at least 2.2e-308");
   // Options read in part: a size with more after it, a frame rate with no second frame.
   expect_one_line_exit_2(run_motus(dir, {"compare", "head_on", "--size", "480x360x2"}), "--size");
   expect_one_line_exit_2(run_motus(dir, {"compare", "head_on", "--render", "--fps", "1e-9", "--out", (dir / "c").string()}),
