@@ -9,6 +9,7 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <iostream>
 
 #include <CLI/CLI.hpp>
 
@@ -54,14 +55,24 @@ int main(int argc, char** argv) {
   StressOptions stress_options;
   auto* stress = add_stress_command(app, stress_options);
 
+  // Help and the version, printed: a standard output that could not take them (a full disk) is
+  // a failure, as for every other output.
+  auto printed = [](int status) {
+    std::cout.flush();
+    if (!std::cout || std::fflush(stdout) != 0 || std::ferror(stdout)) {
+      fmt::print(stderr, "motus: the run failed: standard output could not be written ({})\n", std::strerror(errno));
+      return kExitFailure;
+    }
+    return status;
+  };
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);
+    return printed(app.exit(e));
   } catch (const CLI::CallForAllHelp& e) {
-    return app.exit(e);
+    return printed(app.exit(e));
   } catch (const CLI::CallForVersion& e) {
-    return app.exit(e);
+    return printed(app.exit(e));
   } catch (const CLI::ParseError& e) {
     fmt::print(stderr, "motus: error: {} (run `motus --help` or `motus SUBCOMMAND --help`)\n", one_line(e.what()));
     return kExitBadInput;

@@ -353,8 +353,10 @@ int run_command(const RunOptions& o) {
 
   // With --trajectory - the CSV is standard output, and the summary goes to standard error.
   std::FILE* out = o.trajectory == "-" ? stderr : stdout;
-  fmt::print(out, "scene        {}  ({})\n", scene.name, path);
-  if (!scene.description.empty()) fmt::print(out, "             {}\n", scene.description);
+  // (On one line each, shortened in the middle past 600 characters: a scene file's 50 MB
+  // description, or a name with a newline in it, is not printed as it is.)
+  fmt::print(out, "scene        {}  ({})\n", one_line(scene.name, 600), path);
+  if (!scene.description.empty()) fmt::print(out, "             {}\n", one_line(scene.description, 600));
   if (!o.sets.empty())
     fmt::print(out, "             (the description is the file's; this run changed {})\n", fmt::join(o.sets, ", "));
   fmt::print(out, "integrator   {}{}, dt = {:g}{}\n", integrator_name, adaptive ? " (adaptive)" : "", dt,

@@ -133,6 +133,14 @@ TEST(Hardening, AnEmptyOutputPathOrAnInfiniteToleranceIsBadInput) {
   expect_one_line_exit_2(run_motus(dir, {"run", "spring", "--trajectory", (dir / (std::string(250, 'a') + ".csv")).string()}),
                          "the file name is too long");
   expect_one_line_exit_2(run_motus(dir, {"run", "oscillator", "--integrator", "rk45", "--atol", "inf"}), "finite");
+  // A description of 50 MB (or a name with a newline in it) is printed on one line, shortened.
+  write_file(dir / "told.json", R"({"name": "two\nlines", "description": ")" + std::string(1 << 20, 'd') +
+                                    R"(", "integrator": "symplectic-euler", "dt": 1, "duration": 1,
+    "bodies": [{"mass": 1, "position": [0], "velocity": [1]}], "dimensions": 1})");
+  const auto told = run_motus(dir, {"run", (dir / "told.json").string()});
+  EXPECT_EQ(told.status, 0) << told.err;
+  EXPECT_LT(told.out.size(), 4000u);
+  EXPECT_NE(told.out.find("scene        two lines"), std::string::npos) << told.out.substr(0, 300);
   // A mass > 0 whose inverse is infinite (a subnormal): once a state no longer finite, exit 1.
   expect_one_line_exit_2(run_motus(dir, {"run", "spring", "--set", "bodies[0].mass=1e-320"}),
                          "bodies[0].mass: must be at least 2.2e-308");
@@ -329,6 +337,34 @@ TEST(Hardening, AFullDiskIsAFailureNamingTheFile) {
   const std::string err = read_file(dir / "err.txt");
   EXPECT_EQ(count_lines(err), 1) << err;
   EXPECT_NE(err.find("standard output"), std::string::npos) << err;
+  // The help too (it was exit 0 whatever became of it).
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, 1, "/dev/full", O_WRONLY, 0);
+  posix_spawn_file_actions_addopen(&actions, 2, (dir / "err.txt").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  std::vector<std::string> help = {kMotus, "--help"};
+  std::vector<char*> help_argv = {help[0].data(), help[1].data(), nullptr};
+  ASSERT_EQ(posix_spawn(&pid, kMotus.c_str(), &actions, nullptr, help_argv.data(), environ), 0);
+  posix_spawn_file_actions_destroy(&actions);
+  waitpid(pid, &raw, 0);
+  EXPECT_EQ(WEXITSTATUS(raw), 1);
+  EXPECT_NE(read_file(dir / "err.txt").find("standard output"), std::string::npos);
+}
+
+// Starts `motus ARGS...` and returns at once (its pid, or -1): standard output to /dev/null,
+// standard error to dir/err.txt. For the tests that interrupt it while it runs.
+pid_t start_motus(const TempDir& dir, std::vector<std::string> args) {
+  args.insert(args.begin(), kMotus);
+  std::vector<char*> argv;
+  for (auto& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
+  posix_spawn_file_actions_addopen(&actions, 2, (dir / "err.txt").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  pid_t pid = -1;
+  if (posix_spawn(&pid, kMotus.c_str(), &actions, nullptr, argv.data(), environ) != 0) pid = -1;
+  posix_spawn_file_actions_destroy(&actions);
+  return pid;
 }
 
 // Ctrl-C in a run writing its trajectory: no half-written CSV, and the file --overwrite would
@@ -337,18 +373,9 @@ TEST(Hardening, AnInterruptedTrajectoryLeavesTheOldFileAndNoPartOfTheNew) {
   TempDir dir;
   write_file(dir / "mine.csv", "mine");
   const fs::path partial = dir / ".mine.csv.partial";
-  std::vector<std::string> args = {kMotus, "run", "oscillator", "--steps", "100000000", "--trajectory",
-                                   (dir / "mine.csv").string(), "--overwrite"};
-  std::vector<char*> argv;
-  for (auto& a : args) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
-  posix_spawn_file_actions_addopen(&actions, 2, (dir / "err.txt").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  pid_t pid = 0;
-  ASSERT_EQ(posix_spawn(&pid, kMotus.c_str(), &actions, nullptr, argv.data(), environ), 0);
-  posix_spawn_file_actions_destroy(&actions);
+  const pid_t pid = start_motus(dir, {"run", "oscillator", "--steps", "100000000", "--trajectory", (dir / "mine.csv").string(),
+                                     "--overwrite"});
+  ASSERT_GT(pid, 0);
   // Interrupted once the new CSV has rows (within 20 s).
   for (int i = 0; i < 2000; ++i) {
     std::error_code ignored;
@@ -368,18 +395,9 @@ TEST(Hardening, AnInterruptedTrajectoryLeavesTheOldFileAndNoPartOfTheNew) {
 // stop at: a second Ctrl-C stops motus at once, exit 130, saying so.
 TEST(Hardening, ASecondInterruptStopsALongStepAtOnce) {
   TempDir dir;
-  std::vector<std::string> args = {kMotus, "run", "ball_gas", "--repeats", "1", "--steps", "1", "--set",
-                                   "lattice.count=100000", "--set", R"(forces=[{"type": "mutual_gravity", "G": 1}])"};
-  std::vector<char*> argv;
-  for (auto& a : args) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
-  posix_spawn_file_actions_addopen(&actions, 2, (dir / "err.txt").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  pid_t pid = 0;
-  ASSERT_EQ(posix_spawn(&pid, kMotus.c_str(), &actions, nullptr, argv.data(), environ), 0);
-  posix_spawn_file_actions_destroy(&actions);
+  const pid_t pid = start_motus(dir, {"run", "ball_gas", "--repeats", "1", "--steps", "1", "--set", "lattice.count=100000",
+                                     "--set", R"(forces=[{"type": "mutual_gravity", "G": 1}])"});
+  ASSERT_GT(pid, 0);
   ::sleep(1);  // loaded and stepping (the lattice takes a few ms)
   ::kill(pid, SIGINT);
   ::usleep(200000);
