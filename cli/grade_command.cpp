@@ -78,7 +78,8 @@ grade::Assignment load(const GradeCommandOptions& o, const std::string& folder) 
 }
 
 void check_limits(const GradeCommandOptions& o) {
-  // (Below half a second a correct solution times out: each test's server takes a tenth of one to start.)
+  // (Below half a second a correct solution can time out: each test starts a server of its own,
+  // and the longer tests take tenths of a second of the reference solution's own time.)
   if (!(o.time_limit >= 0.5) || o.time_limit > 600) throw InputError("--time-limit: must be from 0.5 to 600 s");
   if (o.memory_limit < 64 || o.memory_limit > 65536) throw InputError("--memory-limit: must be from 64 to 65536 MB");
   if (o.jobs < 1 || o.jobs > 64) throw InputError("--jobs: must be from 1 to 64");
