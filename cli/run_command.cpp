@@ -172,7 +172,9 @@ CLI::App* add_run_command(CLI::App& app, RunOptions& o) {
   run->add_option("--integrator", o.integrator, "Integrator (default: the scene's); see `motus list`");
   run->add_option("--dt", o.dt, "Step size, s (the first step for adaptive integrators; default: the scene's)");
   auto* duration = run->add_option("--duration", o.duration, "Time to integrate, s (default: the scene's)");
-  run->add_option("--steps", o.steps, "Number of steps of dt instead of a duration")->excludes(duration);
+  run->add_option("--steps", o.steps, "Number of steps of dt instead of a duration (1 to 10^15)")
+      ->check(CLI::Range(1L, 1'000'000'000'000'000L))  // (checked as written: a number past a long is not taken for the largest)
+      ->excludes(duration);
   run->add_option("--rtol", o.rtol, "Relative tolerance of rk45, dop853 and rk4-doubling (default: the scene's)");
   run->add_option("--atol", o.atol, "Absolute tolerance of rk45, dop853 and rk4-doubling (default: the scene's)");
   run->add_option("--set", o.sets, "Override a scene field, e.g. --set bodies[0].mass=2 (repeatable)")

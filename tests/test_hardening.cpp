@@ -130,6 +130,7 @@ TEST(Hardening, AnEmptyOutputPathOrAnInfiniteToleranceIsBadInput) {
   expect_one_line_exit_2(run_motus(dir, {"run", "spring", "--trajectory", ""}), "--trajectory: an empty path");
   expect_one_line_exit_2(run_motus(dir, {"compare", "head_on", "--out", ""}), "--out: an empty path");
   expect_one_line_exit_2(run_motus(dir, {"run", "spring", "--trajectory", dir.path().string(), "--overwrite"}), "is a folder");
+  expect_one_line_exit_2(run_motus(dir, {"run", "spring", "--plugin", "/dev/null"}), "--plugin: not a regular file");
   expect_one_line_exit_2(run_motus(dir, {"run", "spring", "--trajectory", (dir / (std::string(250, 'a') + ".csv")).string()}),
                          "the file name is too long");
   expect_one_line_exit_2(run_motus(dir, {"run", "oscillator", "--integrator", "rk45", "--atol", "inf"}), "finite");
@@ -166,7 +167,9 @@ TEST(Hardening, AStepCountThatOverflowsIsBadInput) {
   expect_one_line_exit_2(run_motus(dir, {"compare", "head_on", "--set", "start_time=1e17", "--out", (dir / "c").string()}),
                          "too coarse for steps");
   expect_one_line_exit_2(run_motus(dir, {"run", "spring", "--duration", "1e19"}), "--duration");
-  expect_one_line_exit_2(run_motus(dir, {"run", "spring", "--steps", "99999999999999999999"}), "--steps");
+  // (The number as written: it was read as the largest long, 9.22337e+18, and reported so.)
+  expect_one_line_exit_2(run_motus(dir, {"run", "spring", "--steps", "99999999999999999999"}),
+                         "--steps: Value 99999999999999999999 not in range");
   expect_one_line_exit_2(run_motus(dir, {"compare", "head_on", "--dt", "1e-300", "--out", (dir / "r").string()}),
                          "more than a run can take");
   EXPECT_FALSE(fs::exists(dir / "r"));

@@ -18,8 +18,11 @@ PluginSet::~PluginSet() = default;  // the libraries stay loaded: their code may
 
 void PluginSet::load(const std::string& file) {
   std::error_code error;
-  if (!std::filesystem::is_regular_file(file, error))
+  const auto status = std::filesystem::status(file, error);
+  if (!std::filesystem::exists(status))
     throw PluginError(file + ": --plugin: no such file (a plug-in is a shared library, FILE.so)");
+  if (!std::filesystem::is_regular_file(status))
+    throw PluginError(file + ": --plugin: not a regular file (a plug-in is a shared library, FILE.so)");
   // A path without a slash would make dlopen search the library path instead of this file.
   const std::string path = file.find('/') == std::string::npos ? "./" + file : file;
   void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
