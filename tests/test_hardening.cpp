@@ -142,6 +142,13 @@ TEST(Hardening, AnEmptyOutputPathOrAnInfiniteToleranceIsBadInput) {
   EXPECT_EQ(told.status, 0) << told.err;
   EXPECT_LT(told.out.size(), 4000u);
   EXPECT_NE(told.out.find("scene        two lines"), std::string::npos) << told.out.substr(0, 300);
+  // A million bodies and one more are refused while the file is read, before its document is built.
+  {
+    std::string bodies = R"({"name": "many", "integrator": "symplectic-euler", "dt": 0.01, "duration": 0.01, "dimensions": 1, "bodies": [)";
+    for (long i = 0; i <= 1'000'000; ++i) bodies += i ? ",{\"mass\":1,\"position\":[0]}" : "{\"mass\":1,\"position\":[0]}";
+    write_file(dir / "many.json", bodies + "]}");
+    expect_one_line_exit_2(run_motus(dir, {"run", (dir / "many.json").string()}), "bodies[1000000]: more than 1000000 bodies");
+  }
   // A mass > 0 whose inverse is infinite (a subnormal): once a state no longer finite, exit 1.
   expect_one_line_exit_2(run_motus(dir, {"run", "spring", "--set", "bodies[0].mass=1e-320"}),
                          "bodies[0].mass: must be at least 2.2e-308");

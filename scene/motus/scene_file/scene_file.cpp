@@ -371,7 +371,7 @@ public:
   bool string(string_t&) override { return value(); }
   bool binary(binary_t&) override { return value(); }
   bool start_object(std::size_t) override {
-    advance();
+    if (!advance()) return false;
     stack_.push_back({false, -1, "", {}});
     return deep_enough();
   }
@@ -388,7 +388,7 @@ public:
   const std::string& problem() const { return problem_; }
   bool end_object() override { return end(); }
   bool start_array(std::size_t) override {
-    advance();
+    if (!advance()) return false;
     stack_.push_back({true, -1, "", {}});
     return deep_enough();
   }
@@ -408,13 +408,23 @@ private:
     return false;
   }
   std::string problem_;
-  void advance() {
-    if (!stack_.empty() && stack_.back().is_array) ++stack_.back().index;
-  }
-  bool value() {
-    advance();
+  // One more element of the innermost array. The scene's own lists of bodies and sticks are
+  // counted here, before the document is built: a million bodies and one more are refused now,
+  // not after a gigabyte of document.
+  bool advance() {
+    if (stack_.empty() || !stack_.back().is_array) return true;
+    const long count = ++stack_.back().index + 1;
+    if (stack_.size() == 2 && !stack_[0].is_array) {
+      const std::string& list = stack_[0].key;
+      const long limit = list == "bodies" ? kMaxBodies : list == "sticks" ? kMaxSticks : 0;
+      if (limit > 0 && count > limit) {
+        problem_ = "more than " + std::to_string(limit) + " " + list + " (the limit of a scene's " + list + ")";
+        return false;
+      }
+    }
     return true;
   }
+  bool value() { return advance(); }
   bool end() {
     stack_.pop_back();
     return true;
