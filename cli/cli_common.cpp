@@ -213,14 +213,21 @@ void check_can_write(const std::string& path, bool overwrite) {
   // or a device is written as it is, and needs no new file.)
   if (fs::exists(status) && !fs::is_regular_file(status)) return;
   const fs::path folder = parent.empty() ? fs::path(".") : parent;
-  // (The file itself is written under a name 13 characters longer, .NAME.partial, then renamed.)
+  // (The file itself is written under a longer name, partial_file_for's, then renamed.)
   const long name_max = ::pathconf(folder.c_str(), _PC_NAME_MAX);
-  if (name_max > 0 && static_cast<long>(fs::path(path).filename().string().size()) + 13 > name_max)
-    throw InputError(path + ": the file name is too long (at most " + std::to_string(name_max - 13) + " bytes here)");
+  const long longer = static_cast<long>(fs::path(partial_file_for(path)).filename().string().size() -
+                                        fs::path(path).filename().string().size());
+  if (name_max > 0 && static_cast<long>(fs::path(path).filename().string().size()) + longer > name_max)
+    throw InputError(path + ": the file name is too long (at most " + std::to_string(name_max - longer) + " bytes here)");
   const std::string probe = (folder / (".motus-probe-" + std::to_string(::getpid()))).string();
   const int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL, 0600);
   if (fd < 0 && errno != EEXIST) throw InputError(path + ": cannot be written there (" + std::strerror(errno) + ")");
   if (fd >= 0) ::close(fd), ::unlink(probe.c_str());
+}
+
+std::string partial_file_for(const std::string& path) {
+  const fs::path target(path);
+  return (target.parent_path() / ("." + target.filename().string() + ".partial")).string();
 }
 
 void check_can_replace(const std::string& path, bool overwrite) {

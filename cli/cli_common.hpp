@@ -136,6 +136,8 @@ private:
 // lost without being asked), and a folder even then. For a file written in place: a FIFO or a
 // device (/dev/full) is written to as it is.
 void check_can_write(const std::string& path, bool overwrite);
+// Where a file is written until it is complete and renamed to `path`: .NAME.partial beside it.
+std::string partial_file_for(const std::string& path);
 // The same for a file written whole under another name and then renamed over `path`: the
 // rename would put a regular file where a device or a FIFO was, so only a regular file (or a
 // link, which the rename replaces and does not follow) may be overwritten.

@@ -50,7 +50,7 @@ grade::GradeOptions grade_options(const GradeCommandOptions& o) {
 
 // Writes text to `path` whole, or fails with one line (a half-written results file is worse than none).
 void write_file(const std::string& path, const std::string& text) {
-  const std::string temporary = path + ".partial";
+  const std::string temporary = partial_file_for(path);
   {
     std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
     out << text;

@@ -123,7 +123,7 @@ exec "$MOTUS" grade "$SOURCE/assignment" "$ROOT/submission" {}--results "$ROOT/r
                            "--package gradescope`.\nUpload this zip as the autograder; setup.sh builds motus, "
                            "run_autograder grades each submission.\n",
                            quoted(assignment_name), quoted(assignment_name)));
-  const fs::path partial = fs::path(zip).string() + ".partial";
+  const fs::path partial = partial_file_for(zip);
   std::error_code ignored;
   fs::remove(partial, ignored);
   zip_folder(staging, fs::absolute(partial));

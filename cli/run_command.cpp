@@ -43,10 +43,7 @@ public:
     } else {
       std::error_code ignored;
       const auto status = fs::status(path, ignored);
-      if (!fs::exists(status) || fs::is_regular_file(status)) {
-        const fs::path target(path);
-        partial_ = (target.parent_path() / ("." + target.filename().string() + ".partial")).string();
-      }
+      if (!fs::exists(status) || fs::is_regular_file(status)) partial_ = partial_file_for(path);
       file_.open(partial_.empty() ? path : partial_, std::ios::binary | std::ios::trunc);
       out_ = &file_;
     }
@@ -204,7 +201,6 @@ int run_command(const RunOptions& o) {
   const std::string integrator_name = method.name();
   const double dt = o.dt.value_or(scene.dt);
   if (!(dt > 0) || !std::isfinite(dt)) throw InputError("--dt: must be a finite number > 0");
-  if (o.steps && *o.steps <= 0) throw InputError("--steps: must be > 0");
   const double duration = o.steps ? static_cast<double>(*o.steps) * dt : o.duration.value_or(scene.duration);
   if (!(duration > 0) || !std::isfinite(duration)) throw InputError("--duration: must be a finite number > 0");
   const std::string what = o.steps ? "--steps" : o.duration ? "--duration" : o.dt ? "--dt" : path + ": dt/duration";

@@ -135,8 +135,7 @@ GradeResult grade_submission(const Assignment& a, const std::string& submission,
         if (r.output.back() != '.' && r.output.find('\n') == std::string::npos) r.output += ".";
         // The test's hint is about wrong numbers: it helps a run too slow to finish (a step size
         // that shrinks without end), not one that crashed, threw or ran out of memory.
-        const bool too_slow = r.output.find("timed out") != std::string::npos || r.output.find("used up its") != std::string::npos;
-        if (!t.hint.empty() && too_slow) r.output += "\nThis usually means: " + t.hint;
+        if (!t.hint.empty() && e.out_of_time()) r.output += "\nThis usually means: " + t.hint;
       }
     }
     r.score = r.passed ? r.max_score : 0;

@@ -31,7 +31,9 @@ void Probe::died(const std::string& while_doing) {
   const Ending ending = server_->timed_out() ? server_->kill()
                                              : server_->finish(std::chrono::steady_clock::now() + std::chrono::seconds(2));
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count();
-  std::string what = "your code " + ending.describe(setup_.limits, server_->timed_out() ? setup_.limits.cpu_seconds : wall);
+  const double seconds = server_->timed_out() ? setup_.limits.cpu_seconds : wall;
+  const bool out_of_time = ending.out_of_time(setup_.limits, seconds);
+  std::string what = "your code " + ending.describe(setup_.limits, seconds);
   if (!while_doing.empty()) what += " during " + while_doing;
   // The last lines it wrote on standard error (and standard output, which goes there too).
   std::string errors = server_->errors();
@@ -47,7 +49,7 @@ void Probe::died(const std::string& while_doing) {
     what += errors;
   }
   server_.reset();  // the next request starts a new one
-  throw ProbeFailure(what);
+  throw ProbeFailure(what, out_of_time);
 }
 
 nlohmann::json Probe::ask(nlohmann::json request, std::chrono::steady_clock::time_point deadline) {

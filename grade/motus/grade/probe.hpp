@@ -15,7 +15,13 @@ namespace motus::grade {
 
 class ProbeFailure : public std::runtime_error {
 public:
-  using std::runtime_error::runtime_error;
+  explicit ProbeFailure(const std::string& what, bool out_of_time = false)
+      : std::runtime_error(what), out_of_time_(out_of_time) {}
+  // It timed out or used up its CPU (rather than crashed, threw or ran out of memory).
+  bool out_of_time() const { return out_of_time_; }
+
+private:
+  bool out_of_time_;
 };
 
 struct ProbeSetup {

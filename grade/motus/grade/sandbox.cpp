@@ -114,10 +114,14 @@ std::string bubblewrap_program() {
   return "";
 }
 
+bool Ending::out_of_time(const Limits& limits, double wall_seconds) const {
+  return timed_out || signal == SIGXCPU ||
+         (signal == SIGKILL && limits.cpu_seconds > 0 && wall_seconds >= limits.cpu_seconds);
+}
+
 std::string Ending::describe(const Limits& limits, double wall_seconds) const {
   if (timed_out) return "timed out after " + format_seconds(wall_seconds) + " s";
-  if (signal == SIGXCPU || (signal == SIGKILL && !timed_out && limits.cpu_seconds > 0 && wall_seconds >= limits.cpu_seconds))
-    return "used up its " + format_seconds(limits.cpu_seconds) + " s of CPU";
+  if (out_of_time(limits, wall_seconds)) return "used up its " + format_seconds(limits.cpu_seconds) + " s of CPU";
   if (signal == SIGXFSZ) return "wrote more than its " + std::to_string(limits.file_mb) + " MB to a file";
   if (signal) {
     const char* name = signal_name(signal);

@@ -67,6 +67,8 @@ struct Ending {
   // One phrase: "exited with status 3", "killed by SIGSEGV", "timed out after 10 s",
   // "used up its 10 s of CPU", "ran out of its 512 MB".
   std::string describe(const Limits& limits, double wall_seconds) const;
+  // Whether it ended for want of time: its deadline, or its CPU limit.
+  bool out_of_time(const Limits& limits, double wall_seconds) const;
 };
 
 class SandboxProcess {

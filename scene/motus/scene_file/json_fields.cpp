@@ -64,19 +64,20 @@ double JsonFields::number(const std::string& key, double fallback) {
   return v ? checked_number(*v, key) : fallback;
 }
 
-double JsonFields::positive(const std::string& key) {
-  const double x = number(key);
+double JsonFields::checked_positive(const std::string& key, double x) const {
   if (!(x > 0)) fail(key, "must be > 0 (got " + nlohmann::json(x).dump() + ")");
   // A subnormal (below 2.2e-308) is > 0, but its inverse (1/m) is infinite.
-  if (x < std::numeric_limits<double>::min()) fail(key, "must be at least 2.2e-308, a double's smallest normal number (got " + nlohmann::json(x).dump() + ")");
+  if (x < std::numeric_limits<double>::min())
+    fail(key, "must be at least 2.2e-308, a double's smallest normal number (got " + nlohmann::json(x).dump() + ")");
   return x;
+}
+double JsonFields::positive(const std::string& key) {
+  const double x = number(key);
+  return checked_positive(key, x);
 }
 double JsonFields::positive(const std::string& key, double fallback) {
   const double x = number(key, fallback);
-  if (!(x > 0)) fail(key, "must be > 0 (got " + nlohmann::json(x).dump() + ")");
-  // A subnormal (below 2.2e-308) is > 0, but its inverse (1/m) is infinite.
-  if (x < std::numeric_limits<double>::min()) fail(key, "must be at least 2.2e-308, a double's smallest normal number (got " + nlohmann::json(x).dump() + ")");
-  return x;
+  return checked_positive(key, x);
 }
 double JsonFields::non_negative(const std::string& key) {
   const double x = number(key);

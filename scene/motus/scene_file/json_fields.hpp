@@ -18,7 +18,7 @@ public:
   // Fields: required ones throw when missing; optional ones return the default.
   double number(const std::string& key);
   double number(const std::string& key, double fallback);
-  double positive(const std::string& key);                   // > 0
+  double positive(const std::string& key);                   // > 0 (and not subnormal)
   double positive(const std::string& key, double fallback);
   double non_negative(const std::string& key);                   // ≥ 0
   double non_negative(const std::string& key, double fallback);
@@ -51,6 +51,7 @@ private:
   const nlohmann::json& at(const std::string& key);
   const nlohmann::json* find(const std::string& key);
   double checked_number(const nlohmann::json& value, const std::string& key) const;
+  double checked_positive(const std::string& key, double x) const;
 
   const nlohmann::json& object_;
   std::string path_;
