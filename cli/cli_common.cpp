@@ -172,15 +172,27 @@ void check_time_resolution(double start_time, double duration, double dt, const 
                      " apart, too coarse for steps of " + fmt::format("{:g}", dt) + " (start nearer t = 0)");
 }
 
-PartialFolder::PartialFolder(const std::string& final_path) : final_(final_path) {
-  const fs::path target(final_path);
+namespace {
+// "out/" names the folder "out": its parent is the parent of out, not out itself (which
+// parent_path() of "out/" would give, and the report would be made inside the folder it is
+// to become).
+fs::path without_trailing_separators(const std::string& path) {
+  fs::path target(path);
+  while (!target.has_filename() && target.has_relative_path()) target = target.parent_path();
+  return target;
+}
+}  // namespace
+
+PartialFolder::PartialFolder(const std::string& final_path)
+    : final_(without_trailing_separators(final_path).string()) {
+  const fs::path target(final_);
   const fs::path parent = target.parent_path().empty() ? fs::path(".") : target.parent_path();
   std::error_code error;
   fs::create_directories(parent, error);
-  if (error) throw InputError(final_path + ": cannot be created (" + error.message() + ")");
+  if (error) throw InputError(final_ + ": cannot be created (" + error.message() + ")");
   std::string pattern = (parent / ("." + target.filename().string() + ".partial-XXXXXX")).string();
   if (!::mkdtemp(pattern.data()))
-    throw InputError(final_path + ": cannot be created (" + std::string(std::strerror(errno)) + ")");
+    throw InputError(final_ + ": cannot be created (" + std::string(std::strerror(errno)) + ")");
   ::chmod(pattern.c_str(), 0755);  // as a folder made by create_directories would be (mkdtemp makes 0700)
   partial_ = pattern;
 }
