@@ -72,6 +72,20 @@ double Metrics::deepest_penetration(const std::vector<double>& x) const {
         deepest = std::max(deepest, radius_[i] - (coordinate(i, k) - b.min[k]));
         deepest = std::max(deepest, radius_[i] - (b.max[k] - coordinate(i, k)));
       }
+    for (const auto& g : walls.segments) {  // the centre's distance from the segment's nearest point
+      double ab2 = 0, ap_ab = 0;
+      for (int k = 0; k < d_; ++k) {
+        ab2 += (g.b[k] - g.a[k]) * (g.b[k] - g.a[k]);
+        ap_ab += (coordinate(i, k) - g.a[k]) * (g.b[k] - g.a[k]);
+      }
+      const double along = ab2 > 0 ? std::clamp(ap_ab / ab2, 0.0, 1.0) : 0.0;
+      double d2 = 0;
+      for (int k = 0; k < d_; ++k) {
+        const double gap = coordinate(i, k) - (g.a[k] + along * (g.b[k] - g.a[k]));
+        d2 += gap * gap;
+      }
+      deepest = std::max(deepest, radius_[i] - std::sqrt(d2));
+    }
   }
   if (balls_.size() < 2) return deepest;
   // Balls: sort by a grid cell of size 2·r_max and look at neighbouring cells only.
