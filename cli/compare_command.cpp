@@ -216,9 +216,8 @@ int compare_command(const CompareOptions& o) {
     } catch (const InputError& e) {  // no drawing module: the report is still worth having
       error = e.what();
     }
-    if (error.empty() && !o.render) {
-      context.first_and_last = pictures.contact_sheet;
-    } else if (error.empty()) {
+    if (error.empty()) {
+      context.first_and_last = pictures.first_and_last;
       context.video = pictures.video;
       context.contact_sheet = pictures.contact_sheet;
       picture_warning = pictures.warning;

@@ -54,17 +54,18 @@ struct ComparisonJob {
   std::vector<Panel> panels;
   int width = 480, height = 360;  // each panel
   double fps = 30;
-  std::string folder;             // frames/, comparison.mp4 and contact_sheet.png go here (it exists)
+  std::string folder;  // first_and_last.png, frames/, comparison.mp4 and contact_sheet.png go here (it exists)
   std::function<void(long done, long total)> progress;
-  // Only the first and the last instant, as first_and_last.png (no frames/, no video): the
-  // picture every report has, --render or not.
+  // Only the first and the last instant, as first_and_last.png (no frames/, no video, no
+  // contact sheet). first_and_last.png, the picture every report has, is drawn either way.
   bool first_and_last_only = false;
 };
 
 struct ComparisonPictures {
   long frames = 0;
   std::string video;          // file name in the folder, or "" when ffmpeg is missing
-  std::string contact_sheet;  // file name in the folder (first_and_last.png when first_and_last_only)
+  std::string first_and_last;  // file name in the folder: the first and the last instant (always drawn)
+  std::string contact_sheet;   // file name in the folder: three instants (not when first_and_last_only), or ""
   std::string warning;        // one line for the user, or ""
 };
 

@@ -98,7 +98,7 @@ std::string draw_comparison(const ComparisonJob& job, ComparisonPictures& pictur
     const std::string frames_folder = job.folder + "/frames";
     if (!job.first_and_last_only) fs::create_directories(frames_folder);
     const size_t frames = reference->size();
-    std::vector<render::Image> sheet;
+    std::vector<render::Image> sheet, ends;  // (ends: the first and the last instant, in every report)
     const std::vector<size_t> sheet_frames =
         job.first_and_last_only ? std::vector<size_t>{0, frames - 1} : std::vector<size_t>{0, frames / 2, frames - 1};
     std::vector<std::string> sheet_labels;
@@ -123,16 +123,21 @@ std::string draw_comparison(const ComparisonJob& job, ComparisonPictures& pictur
       }
       const render::Image row = render::compose_side_by_side(panels, labels);
       if (!job.first_and_last_only) render::write_png(fmt::format("{}/frame_{:05d}.png", frames_folder, k), row);
-      if (std::find(sheet_frames.begin(), sheet_frames.end(), k) != sheet_frames.end()) {
+      if (k == 0 || k + 1 == frames) ends.push_back(row);
+      if (!job.first_and_last_only && std::find(sheet_frames.begin(), sheet_frames.end(), k) != sheet_frames.end()) {
         sheet.push_back(row);
         sheet_labels.push_back(fmt::format("t = {:.3g} s", reference->times[k]));
       }
       if (job.progress) job.progress(static_cast<long>(k) + 1, static_cast<long>(frames));
     }
     pictures.frames = static_cast<long>(frames);
-    pictures.contact_sheet = job.first_and_last_only ? "first_and_last.png" : "contact_sheet.png";
-    render::write_png(job.folder + "/" + pictures.contact_sheet, render::contact_sheet(sheet, 1, sheet_labels));
+    pictures.first_and_last = "first_and_last.png";
+    std::vector<std::string> end_labels{fmt::format("t = {:.3g} s", reference->times[0])};
+    if (frames > 1) end_labels.push_back(fmt::format("t = {:.3g} s", reference->times[frames - 1]));
+    render::write_png(job.folder + "/" + pictures.first_and_last, render::contact_sheet(ends, 1, end_labels));
     if (job.first_and_last_only) return;
+    pictures.contact_sheet = "contact_sheet.png";
+    render::write_png(job.folder + "/" + pictures.contact_sheet, render::contact_sheet(sheet, 1, sheet_labels));
     if (process::find_program("ffmpeg").empty()) {
       pictures.warning = "video skipped: ffmpeg not found on PATH (install the Debian package ffmpeg)";
     } else {
