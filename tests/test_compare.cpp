@@ -150,9 +150,44 @@ TEST(Compare, RenderDrawsTheEnginesSideBySideIntoTheReport) {
   ASSERT_TRUE(fs::exists(out / "contact_sheet.png"));
   const std::string html = read_file(out / "index.html");
   EXPECT_NE(html.find("contact_sheet.png"), std::string::npos);
+  // The first and the last instant are in every report, --render or not (docs/cli.md).
+  EXPECT_TRUE(fs::exists(out / "first_and_last.png"));
+  EXPECT_NE(html.find("<img src=\"first_and_last.png\""), std::string::npos);
   if (fs::exists("/usr/bin/ffmpeg")) {
     EXPECT_TRUE(fs::exists(out / "comparison.mp4"));
     EXPECT_NE(html.find("<video src=\"comparison.mp4\""), std::string::npos);
+  }
+}
+
+TEST(Compare, AReportFolderNamedWithATrailingSlashIsThatFolder) {
+  // "--out r/" is the folder r: the report is written there, not lost inside it.
+  TempDir dir;
+  const Result r = run_motus(dir, {"compare", scene("head_on"), "--engines", "motus", "--duration", "0.1", "--out",
+                                   (dir / "r").string() + "/", "--json"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_TRUE(fs::exists(dir / "r" / "index.html"));
+  EXPECT_TRUE(fs::exists(dir / "r" / "summary.json"));
+  for (const auto& f : fs::directory_iterator(dir.path()))  // (no .r.partial-* folder left behind)
+    EXPECT_NE(f.path().filename().string().front(), '.') << "left behind: " << f.path();
+}
+
+TEST(Compare, PenetrationCountsSegmentsAsItCountsPlanes) {
+  // A ball of radius 0.5 whose centre starts 0.2 m from a wall is 0.3 m into it at t = 0,
+  // whether the wall is a plane or a segment (docs/cli.md: ball–ball and ball–wall overlap).
+  TempDir dir;
+  const std::string ball =
+      R"("dimensions": 2, "integrator": "symplectic-euler", "bodies": [{"mass": 1, "radius": 0.5, "position": [0, 0.2]}],)";
+  const std::string run = R"("dt": 0.01, "duration": 0.05})";
+  write_file(dir / "plane.json",
+             R"({"name": "plane", )" + ball + R"("colliders": [{"type": "plane", "normal": [0, 1], "offset": 0}], )" + run);
+  write_file(dir / "segment.json",
+             R"({"name": "segment", )" + ball + R"("colliders": [{"type": "segment", "a": [-5, 0], "b": [5, 0]}], )" + run);
+  for (const char* wall : {"plane", "segment"}) {
+    const Result r = run_motus(dir, {"compare", (dir / (std::string(wall) + ".json")).string(), "--engines", "motus",
+                                     "--out", (dir / (std::string(wall) + "_report")).string(), "--json"});
+    ASSERT_EQ(r.status, 0) << wall << ": " << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    EXPECT_NEAR(engine(j, "motus")->at("max_penetration").get<double>(), 0.3, 1e-12) << wall;
   }
 }
 
