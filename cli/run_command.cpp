@@ -58,7 +58,7 @@ public:
       aux_.resize(static_cast<Eigen::Index>(aux_names_.size()));
     }
     *out_ << '\n';
-    next_ = sim.time();
+    start_ = next_ = sim.time();
     row(sim);
   }
   void after_step(const Simulation& sim) {
@@ -100,20 +100,24 @@ private:
     }
     *out_ << '\n';
     last_ = sim.time();
-    while (next_ <= sim.time() + 1e-9 * std::max(1.0, std::abs(sim.time()))) {
-      if (interval_ <= 0) {
-        next_ = -INFINITY;  // every step
-        break;
-      }
-      next_ += interval_;
+    if (interval_ <= 0) {
+      next_ = -INFINITY;  // every step
+      return;
     }
+    // The first output time t0 + k·interval past this row, counted (not stepped to one interval
+    // at a time: an interval far below dt would take dt/interval turns, or none at all once
+    // adding it to t no longer changes t). An interval below dt gives a row after every step.
+    const double tolerance = 1e-9 * std::max(1.0, std::abs(sim.time()));
+    const double k = std::floor((sim.time() + tolerance - start_) / interval_) + 1;
+    const double next = start_ + k * interval_;
+    next_ = std::isfinite(next) ? std::max(next_, next) : -INFINITY;  // (an interval of 1e-320 s: every step)
   }
 
   std::string path_, partial_;  // partial_: the file written until the rename ("" for none)
   std::ofstream file_;
   std::ostream* out_ = nullptr;
   double interval_;
-  double next_ = 0;
+  double start_ = 0, next_ = 0;  // the first row's time, and the next output time
   double last_ = -INFINITY;
   std::vector<std::string> aux_names_;
   Vector aux_;

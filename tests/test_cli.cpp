@@ -314,4 +314,29 @@ TEST(CliRun, TrajectoryRefusesToOverwriteUnlessAsked) {
   EXPECT_TRUE(fs::exists(fresh));
 }
 
+TEST(CliRun, TrajectoryRowsComeEveryOutputIntervalHoweverSmall) {
+  // The spring's 5 steps of 1 s from t = 1: output_interval 2.5 takes the first steps at or past
+  // 1 + 2.5k (t = 4 and the end, 6); an interval far below dt (1e-20 s, which added to t = 1
+  // changes nothing) gives a row after every step, as 0 does — and the run ends.
+  TempDir dir;
+  auto times = [&](const std::string& interval) {
+    const std::string name = "interval_" + interval;
+    write_file(dir / (name + ".json"),
+               R"({"dimensions": 1, "bodies": [{"mass": 10, "position": [20]}], "integrator": "euler",)"
+               R"( "forces": [{"type": "spring", "a": 0, "anchor": [0], "stiffness": 5}],)"
+               R"( "dt": 1, "duration": 5, "start_time": 1, "output_interval": )" + interval + "}");
+    const fs::path csv = dir / (name + ".csv");
+    const Result r = run_motus(dir, {"run", (dir / (name + ".json")).string(), "--trajectory", csv.string()});
+    EXPECT_EQ(r.status, 0) << interval << ": " << r.err;
+    std::string t;
+    std::istringstream rows(read_file(csv));
+    for (std::string line; std::getline(rows, line);) t += line.substr(0, line.find(',')) + " ";
+    return t;
+  };
+  EXPECT_EQ(times("2.5"), "t 1 4 6 ");
+  EXPECT_EQ(times("1e-20"), "t 1 2 3 4 5 6 ");
+  EXPECT_EQ(times("1e-320"), "t 1 2 3 4 5 6 ");
+  EXPECT_EQ(times("0"), "t 1 2 3 4 5 6 ");
+}
+
 }  // namespace
