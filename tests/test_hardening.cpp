@@ -447,3 +447,53 @@ TEST(Hardening, UnusableSizesAreRefusedWithTheLimitNamed) {
 }
 
 }  // namespace
+
+namespace {
+
+// 18. Lengths past double precision's reach: a plane's normal of [0, 1e200] (its squared length
+//     overflows) or [0, 1e-200] (underflows to 0) is still the floor y = 0; a segment as long
+//     as 2e200 m, or a rope or cloth far from 0, cannot be held and is refused, naming the field.
+//     (Each was a wrong run with exit 0: a wall that let the ball through, sticks of length 0.)
+motus::SceneDescription parse(std::string text) {  // (every scene here runs 1 s at dt = 0.01)
+  return motus::parse_scene(text.insert(1, R"("dt": 0.01, "duration": 1, )"), "s.json");
+}
+
+TEST(Hardening, LengthsPastDoublePrecisionAreScaledOrRefused) {
+  for (const char* normal : {"[0, 1e200]", "[0, 1e-200]", "[0, 2]"}) {
+    const auto scene = parse(std::string(R"({"dimensions": 2, "bodies": [{"mass": 1, "position": [0, 5]}],)") +
+                             R"( "colliders": [{"type": "plane", "normal": )" + normal + R"(, "offset": 4}],)" +
+                             R"( "integrator": "symplectic-euler"})");
+    const auto& plane = scene.mechanical->colliders.planes.at(0);
+    EXPECT_EQ(plane.normal[0], 0.0) << normal;
+    EXPECT_EQ(plane.normal[1], 1.0) << normal;
+    // The wall is where normal·x = offset: y = 4 / |normal| in metres.
+    const double expected = std::string(normal) == "[0, 2]" ? 2.0 : std::string(normal) == "[0, 1e200]" ? 4e-200 : 4e200;
+    EXPECT_DOUBLE_EQ(plane.offset, expected) << normal;
+  }
+  auto refused = [](const std::string& text, const std::string& says) {
+    try {
+      parse(text);
+      ADD_FAILURE() << "not refused: " << text;
+    } catch (const std::exception& e) {
+      EXPECT_NE(std::string(e.what()).find(says), std::string::npos) << e.what();
+    }
+  };
+  refused(R"({"dimensions": 2, "bodies": [{"mass": 1, "position": [0, 5]}],
+              "colliders": [{"type": "plane", "normal": [0, 1e-200], "offset": 1e300}], "integrator": "symplectic-euler"})",
+          "colliders[0].offset");
+  refused(R"({"dimensions": 2, "bodies": [{"mass": 1, "position": [1, 1]}],
+              "colliders": [{"type": "segment", "a": [-1e200, 0], "b": [1e200, 0]}], "integrator": "symplectic-euler"})",
+          "colliders[0].b: the segment's length");
+  refused(R"({"dimensions": 2, "rope": {"segments": 3, "origin": [1e17, 0]}, "integrator": "verlet"})", "rope.origin");
+  refused(R"({"dimensions": 2, "cloth": {"rows": 2, "columns": 2, "origin": [1e17, 0]}, "integrator": "verlet"})",
+          "cloth.origin");
+  // A rope's direction is only a direction, however long: its sticks are segment_length long.
+  for (const char* direction : {"[1e200, 0]", "[1e-200, 0]"}) {
+    const auto rope = parse(std::string(R"({"dimensions": 2, "rope": {"segments": 3, "segment_length": 0.5, "direction": )") +
+                            direction + R"(}, "integrator": "verlet"})");
+    ASSERT_EQ(rope.mechanical->sticks.size(), 3u) << direction;
+    for (const auto& stick : rope.mechanical->sticks) EXPECT_EQ(stick.length, 0.5) << direction;
+  }
+}
+
+}  // namespace

@@ -1,5 +1,7 @@
 #include "motus/scene_generators.hpp"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <string>
 
@@ -84,17 +86,25 @@ void add_rope(MechanicalDescription& scene, const RopeGenerator& rope) {
   if (rope.segments < 1) throw SceneError("rope.segments", "must be ≥ 1 (" + std::to_string(rope.segments) + " given)");
   if (!(rope.segment_length > 0)) throw SceneError("rope.segment_length", "must be > 0 m");
   if (!(rope.mass > 0)) throw SceneError("rope.mass", "must be > 0 kg (per particle)");
-  double norm = 0;
-  for (int k = 0; k < scene.dimensions; ++k) norm += rope.direction[k] * rope.direction[k];
-  norm = std::sqrt(norm);
-  if (!(norm > 0))
+  // The unit direction, scaled by its largest component first: the squared length of
+  // [1e200, 0] overflows, and of [1e-200, 0] is 0, though neither is zero.
+  double largest = 0;
+  for (int k = 0; k < scene.dimensions; ++k) largest = std::max(largest, std::abs(rope.direction[k]));
+  if (!(largest > 0))
     throw SceneError("rope.direction", "must not be zero in the scene's " + std::to_string(scene.dimensions) +
                                            " dimensions; e.g. [1, 0]");
+  std::array<double, 3> direction{0, 0, 0};
+  double norm = 0;
+  for (int k = 0; k < scene.dimensions; ++k) {
+    direction[k] = rope.direction[k] / largest;
+    norm += direction[k] * direction[k];
+  }
+  norm = std::sqrt(norm);
 
   int previous = -1;
   for (int j = 0; j <= rope.segments; ++j) {
     std::array<double, 3> p = rope.origin;
-    for (int k = 0; k < 3; ++k) p[k] += j * rope.segment_length * rope.direction[k] / norm;
+    for (int k = 0; k < 3; ++k) p[k] += j * rope.segment_length * direction[k] / norm;
     const int body = add_particle(scene, rope.mass, p);
     if (previous >= 0) add_stick(scene, previous, body);
     else if (rope.pin_first) add_pin(scene, body);

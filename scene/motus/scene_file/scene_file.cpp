@@ -99,6 +99,20 @@ void check_generated(JsonFields& f, const MechanicalDescription& m, size_t first
                         " is too large for double precision)");
 }
 
+// A cloth's or a rope's sticks are as long as the particles are apart where they were made:
+// `spacing` (√2 times it across a cloth's squares). Far enough from 0, double precision cannot
+// hold that distance (at 1e17 m, positions are 16 m apart) and a stick would be made shorter,
+// or of length 0.
+void check_generated_sticks(JsonFields& f, const MechanicalDescription& m, size_t first_stick, double spacing,
+                            const std::string& spacing_key) {
+  for (size_t s = first_stick; s < m.sticks.size(); ++s) {
+    const double length = m.sticks[s].length;
+    if (!(length >= (1 - 1e-6) * spacing && length <= (1 + 1e-6) * std::sqrt(2.0) * spacing))
+      f.fail("origin", "is too far from 0 for a " + spacing_key + " of " + nlohmann::json(spacing).dump() +
+                           " m: double precision cannot hold the particles that far apart there");
+  }
+}
+
 void read_lattice(JsonFields f, MechanicalDescription& m) {
   BallLattice lattice;
   lattice.count = f.integer("count");
@@ -141,9 +155,10 @@ void read_cloth(JsonFields f, MechanicalDescription& m) {
   cloth.pin = f.string("pin", cloth.pin);
   cloth.plane = f.string("plane", cloth.plane);
   f.reject_unknown();
-  const size_t first = m.bodies.size();
+  const size_t first = m.bodies.size(), first_stick = m.sticks.size();
   add_cloth(m, cloth);  // SceneError("cloth.pin", ...) for values it cannot build
   check_generated(f, m, first, "spacing");
+  check_generated_sticks(f, m, first_stick, cloth.spacing, "spacing");
 }
 
 void read_rope(JsonFields f, MechanicalDescription& m) {
@@ -158,21 +173,31 @@ void read_rope(JsonFields f, MechanicalDescription& m) {
   rope.direction = padded(f.numbers("direction", m.dimensions, along));
   rope.pin_first = f.boolean("pin_first", rope.pin_first);
   f.reject_unknown();
-  const size_t first = m.bodies.size();
+  const size_t first = m.bodies.size(), first_stick = m.sticks.size();
   add_rope(m, rope);
   check_generated(f, m, first, "segment_length");
+  check_generated_sticks(f, m, first_stick, rope.segment_length, "segment_length");
 }
 
 void read_collider(JsonFields& f, int d, Colliders& colliders) {
   const std::string type = f.string("type");
   if (type == "plane") {
     PlaneCollider p;
-    const auto normal = f.numbers("normal", d);
+    // Stored as a unit normal (and the offset divided alike), so that every reader of the scene
+    // — engine, peers, pictures — sees the same wall. Scaled by its largest component first: the
+    // squared length of [0, 1e200] overflows, and of [0, 1e-200] is 0, though neither is zero.
+    auto normal = f.numbers("normal", d);
+    double largest = 0;
+    for (double c : normal) largest = std::max(largest, std::abs(c));
+    if (largest == 0) f.fail("normal", "must not be zero");
     double length2 = 0;
-    for (double c : normal) length2 += c * c;
-    if (length2 == 0) f.fail("normal", "must not be zero");
+    for (double& c : normal) c /= largest, length2 += c * c;
+    const double length = std::sqrt(length2);
+    for (double& c : normal) c /= length;
     p.normal = padded(normal);
-    p.offset = f.number("offset", 0);
+    p.offset = f.number("offset", 0) / largest / length;
+    if (!std::isfinite(p.offset))
+      f.fail("offset", "is too large for this normal (offset / |normal| must be a finite number of metres)");
     p.restitution = restitution(f, "restitution");
     colliders.planes.push_back(p);
   } else if (type == "box") {
@@ -189,6 +214,10 @@ void read_collider(JsonFields& f, int d, Colliders& colliders) {
     s.a = padded(f.numbers("a", d));
     s.b = padded(f.numbers("b", d));
     if (s.a == s.b) f.fail("b", "a segment needs two different end points");
+    double length2 = 0;
+    for (int k = 0; k < d; ++k) length2 += (s.b[k] - s.a[k]) * (s.b[k] - s.a[k]);
+    if (!std::isfinite(length2) || length2 < 1e-200)  // (the time of impact divides by it)
+      f.fail("b", "the segment's length must be between 1e-100 and about 1e154 m");
     s.restitution = restitution(f, "restitution");
     colliders.segments.push_back(s);
   } else {
