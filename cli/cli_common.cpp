@@ -162,14 +162,18 @@ long checked_step_count(double duration, double dt, const std::string& what) {
   return fixed_step_count(duration, dt);
 }
 
-void check_time_resolution(double start_time, double duration, double dt, const std::string& what) {
+void check_time_resolution(double start_time, double duration, double dt, const std::string& start_what,
+                           const std::string& step_what) {
   // The times t0 + i·dt must be told apart: far from 0 doubles are too coarse (at 1e17 they are
-  // 16 apart), and the steps would land on the wrong times or on the same one.
+  // 16 apart), and the steps would land on the wrong times or on the same one. The field to
+  // blame is start_time when it is what takes the run far from 0, else dt (or the duration).
   const double far = std::max(std::abs(start_time), std::abs(start_time + duration));
   const double spacing = std::nextafter(far, INFINITY) - far;
-  if (!(spacing <= 1e-6 * dt))
-    throw InputError(what + ": at t = " + fmt::format("{:g}", far) + " times are " + fmt::format("{:g}", spacing) +
-                     " apart, too coarse for steps of " + fmt::format("{:g}", dt) + " (start nearer t = 0)");
+  if (spacing <= 1e-6 * dt) return;
+  const std::string coarse = "at t = " + fmt::format("{:g}", far) + " times are " + fmt::format("{:g}", spacing) +
+                             " apart, too coarse for steps of " + fmt::format("{:g}", dt);
+  if (std::abs(start_time) > duration) throw InputError(start_what + ": " + coarse + " (start nearer t = 0)");
+  throw InputError(step_what + ": " + coarse + " (a larger dt or a shorter duration)");
 }
 
 namespace {

@@ -112,8 +112,10 @@ constexpr double kMaxSteps = 1e15;
 // The number of fixed steps of dt that `duration` takes; InputError naming `what` when it is
 // not a number of steps one could count.
 long checked_step_count(double duration, double dt, const std::string& what);
-// Refuses a run whose times cannot be told apart at its step: a start_time far from 0 (exit 2).
-void check_time_resolution(double start_time, double duration, double dt, const std::string& what);
+// Refuses a run whose times cannot be told apart at its step (exit 2), naming start_what when
+// start_time is what takes the run far from 0, else step_what (dt, the duration or the option).
+void check_time_resolution(double start_time, double duration, double dt, const std::string& start_what,
+                           const std::string& step_what);
 
 // A folder written under a temporary name and renamed to `final_path` only when complete()
 // is called; otherwise the destructor removes it and everything in it. Throws InputError

@@ -129,8 +129,9 @@ int compare_command(const CompareOptions& o) {
   if (!(options.duration > 0) || !std::isfinite(options.duration)) throw InputError("--duration: must be a finite number > 0");
   options.samples = o.samples;
   options.repeats = o.repeats;
-  checked_step_count(options.duration, options.dt, o.duration ? "--duration" : o.dt ? "--dt" : path + ": dt/duration");
-  check_time_resolution(scene.start_time, options.duration, options.dt, path + ": start_time");
+  const std::string what = o.duration ? "--duration" : o.dt ? "--dt" : path + ": dt/duration";
+  checked_step_count(options.duration, options.dt, what);
+  check_time_resolution(scene.start_time, options.duration, options.dt, path + ": start_time", what);
   int panel_width = 0, panel_height = 0;
   {
     char x = 0;

@@ -173,6 +173,11 @@ TEST(Hardening, AStepCountThatOverflowsIsBadInput) {
   expect_one_line_exit_2(run_motus(dir, {"run", "spring", "--set", "start_time=1e16"}), "start_time: at t = 1e+16");
   expect_one_line_exit_2(run_motus(dir, {"compare", "head_on", "--set", "start_time=1e17", "--out", (dir / "c").string()}),
                          "too coarse for steps");
+  // A step too fine for the run's times blames the step, not a start_time the scene does not have
+  // (head_on runs 4 s from 0: at t = 4 doubles are 8.9e-16 apart, more than 1e-6 of 1e-12).
+  expect_one_line_exit_2(run_motus(dir, {"compare", "head_on", "--dt", "1e-12", "--out", (dir / "d").string()}),
+                         "--dt: at t = 4 times are 8.88178e-16 apart");
+  expect_one_line_exit_2(run_motus(dir, {"run", "spring", "--set", "dt=1e-12"}), "dt/duration: at t = 5 times are");
   expect_one_line_exit_2(run_motus(dir, {"run", "spring", "--duration", "1e19"}), "--duration");
   // (The number as written: it was read as the largest long, 9.22337e+18, and reported so.)
   expect_one_line_exit_2(run_motus(dir, {"run", "spring", "--steps", "99999999999999999999"}),
