@@ -265,6 +265,9 @@ TEST(Hardening, DuplicateKeysAreRefused) {
   write_file(dir / "dup.json",
              R"({"name": "x", "dimensions": 1, "bodies": [{"mass": 1, "position": [0]}], "dt": -1, "dt": 0.01, "duration": 1})");
   expect_one_line_exit_2(run_motus(dir, {"run", (dir / "dup.json").string()}), "dt: duplicate key \"dt\"");
+  // --set is "exactly as if the file had said it": the same rule (it ran with the last mass).
+  expect_one_line_exit_2(run_motus(dir, {"run", "spring", "--set", R"(bodies[0]={"mass": -1, "mass": 2, "position": [3]})"}),
+                         "bodies[0].mass: duplicate key \"mass\"");
 }
 
 // 10. An error line is a few hundred characters at most, however large the input; 10 MB of '['

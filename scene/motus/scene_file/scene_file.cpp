@@ -385,9 +385,10 @@ public:
     std::string p;
     for (const auto& frame : stack_) {
       if (frame.is_array) {
-        if (frame.index >= 0) p += "[" + std::to_string(frame.index) + "]";
+        if (frame.index >= 0) p.append(1, '[').append(std::to_string(frame.index)).append(1, ']');
       } else if (!frame.key.empty()) {
-        p += (p.empty() ? "" : ".") + frame.key;
+        if (!p.empty()) p += '.';
+        p += frame.key;
       }
     }
     return p;
@@ -537,6 +538,16 @@ SceneDescription parse_scene(const std::string& text, const std::string& file, c
   try {
     for (const auto& o : overrides) {
       current = o;
+      // The value is held to the file's rules too (a key once per object, the nesting), as if
+      // the file had said it.
+      if (const auto equals = o.find('='); equals != std::string::npos) {
+        FieldPathTracker checker;
+        if (!nlohmann::json::sax_parse(o.substr(equals + 1), &checker) && !checker.problem().empty()) {
+          std::string field = o.substr(0, equals);
+          if (const std::string inner = checker.path(); !inner.empty()) field.append(inner[0] == '[' ? "" : ".").append(inner);
+          throw SceneError(field, checker.problem());
+        }
+      }
       apply_override(document, o);
     }
     current.clear();
