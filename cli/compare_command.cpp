@@ -176,7 +176,7 @@ int compare_command(const CompareOptions& o) {
   context.scene = &scene;
   context.dt = options.dt;
   context.duration = options.duration;
-  context.samples = options.samples;
+  context.samples = std::min(options.samples, fixed_step_count(options.duration, options.dt));  // (as many as were taken)
   context.dimensions = scene.mechanical->dimensions;
   context.bodies = static_cast<long>(scene.mechanical->bodies.size());
   // The rounds run (the default's number is decided by how long the metrics runs took).
@@ -246,8 +246,10 @@ int compare_command(const CompareOptions& o) {
     fmt::print("us/step: CPU time per step, the fastest of {} rounds (engines taking turns), the median beside it; "
                "spread = (slowest - fastest) / fastest\n\n",
                context.repeats);
-    fmt::print("{:<8}{:>13}{:>13}{:>13}{:>13}{:>13}{:>13}{:>11}{:>11}{:>8}{:>12}\n", "engine", "energy drift",
-               "max |dE|/E0", "momentum", "penetration", "constraint", exact_known ? "from exact" : "from motus",
+    const bool joules = summary["energy_unit"] == "J";
+    fmt::print("{:<8}{:>13}{:>13}{:>13}{:>13}{:>13}{:>13}{:>11}{:>11}{:>8}{:>12}\n", "engine",
+               joules ? "E drift [J]" : "energy drift", joules ? "max |dE| [J]" : "max |dE|/E0", "momentum",
+               "penetration", "constraint", exact_known ? "from exact" : "from motus",
                "us/step", "median", "spread", "time/motus");
     for (const auto& e : summary["engines"]) {
       if (!e["supported"].get<bool>()) {

@@ -191,6 +191,76 @@ TEST(Compare, PenetrationCountsSegmentsAsItCountsPlanes) {
   }
 }
 
+// metrics.csv's rows as cells, without the header.
+std::vector<std::vector<std::string>> csv_rows(const std::string& csv) {
+  std::vector<std::vector<std::string>> rows;
+  std::istringstream lines(csv);
+  std::string line;
+  std::getline(lines, line);
+  while (std::getline(lines, line)) {
+    std::vector<std::string> cells;
+    std::istringstream cell_stream(line);
+    for (std::string cell; std::getline(cell_stream, cell, ',');) cells.push_back(cell);
+    if (!line.empty() && line.back() == ',') cells.emplace_back();
+    rows.push_back(cells);
+  }
+  return rows;
+}
+
+TEST(Compare, AScenesStartingWithNoEnergyHasItsEnergyColumnsInJoules) {
+  // stick_pendulum is let go at rest from its pivot's height: E₀ = 0, and (E − E₀)/|E₀| would be
+  // no number. The columns are then in joules, and say so; head_on's (E₀ = 2 J) are fractions.
+  TempDir dir;
+  const Result pendulum = run_motus(dir, {"compare", scene("stick_pendulum"), "--engines", "motus", "--out",
+                                          (dir / "p").string(), "--json", "--duration", "1"});
+  ASSERT_EQ(pendulum.status, 0) << pendulum.err;
+  const auto j = nlohmann::json::parse(pendulum.out);
+  EXPECT_EQ(j.at("energy_unit"), "J");
+  // The last sample's energy, in joules, is the drift: E_end − 0.
+  const auto rows = csv_rows(read_file(dir / "p" / "metrics.csv"));
+  EXPECT_DOUBLE_EQ(engine(j, "motus")->at("energy_drift").get<double>(), std::stod(rows.back().at(4)));
+  EXPECT_NE(j.at("definitions").dump().find("energy drift [J]"), std::string::npos);
+  EXPECT_NE(read_file(dir / "p" / "index.html").find("<th>energy drift [J]</th>"), std::string::npos);
+  EXPECT_NE(read_file(dir / "p" / "figures.gp").find("E0| [J]"), std::string::npos);
+  const Result table = run_motus(dir, {"compare", scene("stick_pendulum"), "--engines", "motus", "--out",
+                                       (dir / "t").string(), "--duration", "1"});
+  EXPECT_NE(table.out.find("max |dE| [J]"), std::string::npos) << table.out;
+  const Result head_on = run_motus(dir, {"compare", scene("head_on"), "--engines", "motus", "--out",
+                                         (dir / "h").string(), "--json", "--duration", "0.1"});
+  ASSERT_EQ(head_on.status, 0) << head_on.err;
+  EXPECT_EQ(nlohmann::json::parse(head_on.out).at("energy_unit"), "E0");
+}
+
+TEST(Compare, MetricsCsvAgreesWithTheSummary) {
+  // --samples 300 over head_on's 400 steps: 300 samples and the start (it took 400, one every
+  // floor(400/300) = 1 step); the momentum change of the last row is the summary's momentum drift
+  // (stick_pendulum starts at rest: the CSV divided it by 1e-300); with no motus run, the distance
+  // from motus is an empty cell, not 0.
+  TempDir dir;
+  Result r = run_motus(dir, {"compare", scene("head_on"), "--engines", "motus", "--samples", "300", "--out",
+                             (dir / "s").string()});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(csv_rows(read_file(dir / "s" / "metrics.csv")).size(), 301u);
+
+  r = run_motus(dir, {"compare", scene("stick_pendulum"), "--engines", "motus,box2d", "--out", (dir / "p").string(),
+                      "--json", "--duration", "1"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  const auto rows = csv_rows(read_file(dir / "p" / "metrics.csv"));
+  for (const char* name : {"motus", "box2d"}) {
+    std::vector<std::string> last;
+    for (const auto& row : rows)
+      if (row.at(0) == name) last = row;
+    ASSERT_FALSE(last.empty()) << name;
+    const double drift = engine(j, name)->at("momentum_drift").get<double>();
+    EXPECT_NEAR(std::stod(last.at(6)), drift, 1e-6 * drift) << name;  // (the CSV's 7 digits)
+  }
+
+  r = run_motus(dir, {"compare", scene("head_on"), "--engines", "box2d", "--out", (dir / "b").string(), "--duration", "0.1"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  for (const auto& row : csv_rows(read_file(dir / "b" / "metrics.csv"))) EXPECT_EQ(row.at(12), "") << row.at(1);
+}
+
 TEST(Compare, BadInputIsOneLineAndExitTwo) {
   TempDir dir;
   for (const std::vector<std::string>& args :

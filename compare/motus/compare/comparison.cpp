@@ -20,6 +20,14 @@ Timings EngineRun::microseconds_per_step() const {
   return summarize(per_step);
 }
 
+bool energy_in_joules(const std::vector<EngineRun>& runs) {
+  const EngineRun* reference = nullptr;
+  for (const auto& r : runs)
+    if (r.supported && !r.rows.empty() && (!reference || (r.engine == "motus" && reference->engine != "motus")))
+      reference = &r;
+  return reference && reference->rows.front().total == 0;
+}
+
 double EngineRun::energy_drift() const { return relative(rows.back().total - rows.front().total, rows.front().total); }
 
 double EngineRun::max_energy_error() const {
@@ -28,15 +36,20 @@ double EngineRun::max_energy_error() const {
   return worst;
 }
 
+double EngineRun::momentum_scale() const {
+  double size = 0;
+  for (double p : rows.front().momentum) size += p * p;
+  const double scale = std::max(std::sqrt(size), scale_of_momentum);
+  return scale > 0 ? scale : 1;
+}
+
 double EngineRun::momentum_drift() const {
-  double change = 0, size = 0;
+  double change = 0;
   for (size_t k = 0; k < rows.front().momentum.size(); ++k) {
     const double a = rows.front().momentum[k], b = rows.back().momentum[k];
     change += (b - a) * (b - a);
-    size += a * a;
   }
-  const double scale = std::max(std::sqrt(size), scale_of_momentum);
-  return scale > 0 ? std::sqrt(change) / scale : std::sqrt(change);
+  return std::sqrt(change) / momentum_scale();
 }
 
 double EngineRun::max_penetration() const {
@@ -67,7 +80,12 @@ std::vector<EngineRun> run_comparison(const SceneDescription& scene, const Compa
                                       const std::function<void(double)>& progress) {
   const Metrics metrics(scene);
   const long steps = fixed_step_count(options.duration, options.dt);
-  const long every = std::max(1L, steps / std::max(1L, options.samples));
+  // The samples after the start: `samples` of them (every step when the run has fewer), at the
+  // steps nearest to k·steps/samples, k = 1 … samples — the last at the end.
+  const long samples = std::min(std::max(1L, options.samples), steps);
+  auto sample_step = [&](long k) {
+    return k >= samples ? steps : std::llround(static_cast<double>(k) * static_cast<double>(steps) / static_cast<double>(samples));
+  };
   double scale = 0;
   for (const auto& b : scene.mechanical->bodies) {
     double speed2 = 0;
@@ -138,15 +156,17 @@ std::vector<EngineRun> run_comparison(const SceneDescription& scene, const Compa
     };
     if (options.frame_every > 0) keep_frame();
     size_t index = 1;
+    long next_sample = sample_step(1);
     for (long i = 0; i < steps;) {
       // Step to the next sample (or frame).
-      long batch = std::min(every - i % every, steps - i);
+      long batch = next_sample - i;
       if (options.frame_every > 0) batch = std::min(batch, options.frame_every - i % options.frame_every);
       for (long b = 0; b < batch; ++b) backend->step();
       i += batch;
       backend->read(s);
-      if (i % every == 0 || i == steps) {
+      if (i == next_sample) {
         sample(index++);
+        next_sample = sample_step(static_cast<long>(index));
         if (progress) progress((done + static_cast<double>(i)) / total_steps);
       }
       // (and the last state always: the report shows where each engine ended)

@@ -28,7 +28,8 @@ struct EngineRun {
   // Summaries (meaningful when supported and rows is not empty).
   double energy_drift() const;       // (E_end − E_0)/|E_0|
   double max_energy_error() const;   // max |E − E_0|/|E_0| over the samples
-  double momentum_drift() const;     // |p_end − p_0| / max(|p_0|, Σ m|v_0|)
+  double momentum_drift() const;     // |p_end − p_0| / momentum_scale()
+  double momentum_scale() const;     // max(|p_0|, Σ m|v_0|), or 1 (changes in kg·m/s) when both are 0
   double max_penetration() const;    // m
   double max_constraint_error() const;
   double max_from_motus() const;     // m
@@ -38,6 +39,12 @@ struct EngineRun {
 
   double scale_of_momentum = 0;  // Σ m|v_0|, set by run_comparison
 };
+
+// Whether the energy columns are changes in joules rather than fractions of |E₀|: when the
+// scene starts with E₀ = 0 exactly (a pendulum let go at rest from the height of its pivot)
+// there is no fraction to take. Decided on motus's run (else the first that ran), so that
+// every engine's column is in one unit.
+bool energy_in_joules(const std::vector<EngineRun>& runs);
 
 // A plug-in's column: motus's world with the plug-in's parts, and its integrator when it
 // brings the one asked for.

@@ -111,14 +111,23 @@ std::string format_vector(const std::vector<double>& v) {
   return out + ")";
 }
 
-std::vector<ColumnDefinition> column_definitions(const SceneDescription& scene, long samples, bool momentum_conserved) {
+std::vector<ColumnDefinition> column_definitions(const SceneDescription& scene, long samples, bool momentum_conserved,
+                                                 bool energy_in_joules) {
   std::vector<ColumnDefinition> d;
   const std::string over = fmt::format("over the {} samples of the run (and its start and end)", samples);
-  d.push_back({"energy drift",
-               "(E_end − E₀) / |E₀|: the total energy at the end against the start, as a fraction (+ gained, − lost). E "
-               "is the kinetic energy ½ m v² plus the potential energy of the scene's forces, computed by the same code "
-               "from every engine's positions and velocities."});
-  d.push_back({"max |ΔE|/E₀", "the largest |E(t) − E₀| / |E₀| " + over + ": an engine can end near E₀ and stray on the way."});
+  const std::string energy = " E is the kinetic energy ½ m v² plus the potential energy of the scene's forces, computed "
+                             "by the same code from every engine's positions and velocities.";
+  if (energy_in_joules) {
+    d.push_back({"energy drift [J]", "E_end − E₀: the total energy at the end against the start, in joules (+ gained, − "
+                                     "lost). This scene starts with E₀ = 0, so there is no fraction of it to take." +
+                                         energy});
+    d.push_back({"max |ΔE| [J]", "the largest |E(t) − E₀| " + over + ", in joules: an engine can end near E₀ and stray on the way."});
+  } else {
+    d.push_back({"energy drift",
+                 "(E_end − E₀) / |E₀|: the total energy at the end against the start, as a fraction (+ gained, − lost)." +
+                     energy});
+    d.push_back({"max |ΔE|/E₀", "the largest |E(t) − E₀| / |E₀| " + over + ": an engine can end near E₀ and stray on the way."});
+  }
   d.push_back({"momentum drift",
                "|p_end − p₀| / scale, where p = Σ m v is the total momentum and the scale is the larger of |p₀| and Σ m "
                "|v₀| (the momentum in play: in a head-on collision p₀ is 0, and dividing by it would mean nothing). " +
@@ -237,12 +246,13 @@ std::string what_to_notice(const SceneDescription& scene, const std::vector<Engi
   std::vector<std::string> parts;
   for (const EngineRun* r : engines)
     parts.push_back(r->engine + " " + signed_number(r->energy_drift()) + " (at worst " + number(r->max_energy_error()) + ")");
+  const std::string measure = energy_in_joules(runs) ? "in J (the scene starts with E₀ = 0): " : "relative to E₀: ";
   if (conserves_energy(scene))
-    return "The scene keeps its energy exactly, so every change is the engine's error; relative to E₀: " + joined(parts) +
+    return "The scene keeps its energy exactly, so every change is the engine's error; " + measure + joined(parts) +
            unsupported_tail(runs) + ".";
   return "The scene loses energy by design (restitution below 1, damping or drag), so compare the engines with each "
-         "other; energy change relative to E₀: " +
-         joined(parts) + unsupported_tail(runs) + ".";
+         "other; energy change " +
+         measure + joined(parts) + unsupported_tail(runs) + ".";
 }
 
 }  // namespace motus::compare

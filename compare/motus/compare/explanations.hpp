@@ -18,7 +18,9 @@ struct ColumnDefinition {
 
 // The columns of the summary table, defined for this scene (whether it keeps its momentum,
 // whether it has an exact answer, how many samples the maxima are over).
-std::vector<ColumnDefinition> column_definitions(const SceneDescription& scene, long samples, bool momentum_conserved);
+// `energy_in_joules`: the scene starts with E₀ = 0 (comparison.hpp's energy_in_joules).
+std::vector<ColumnDefinition> column_definitions(const SceneDescription& scene, long samples, bool momentum_conserved,
+                                                 bool energy_in_joules = false);
 
 // The exact state at the end of the run and each engine's final velocities beside it.
 struct ExactAnswer {

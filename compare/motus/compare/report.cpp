@@ -57,13 +57,15 @@ std::vector<plot::Figure> figures(const ReportContext& c, const std::vector<Engi
     energy.series.push_back(std::move(s));
   }
   changes_sign = negative && positive;
+  const bool joules = energy_in_joules(runs);  // (E₀ = 0: the changes themselves)
   if (changes_sign) {
     energy.y_scale = plot::Scale::symlog;
     energy.symlog_threshold = 1e-16;
-    energy.y_label = "(E - E0) / |E0|   (symlog: logarithmic beyond 1e-16)";
+    energy.y_label = joules ? "E - E0 [J]   (symlog: logarithmic beyond 1e-16 J)"
+                            : "(E - E0) / |E0|   (symlog: logarithmic beyond 1e-16)";
   } else {
     energy.y_scale = plot::Scale::log;
-    energy.y_label = "|E - E0| / |E0|";
+    energy.y_label = joules ? "|E - E0| [J]" : "|E - E0| / |E0|";
     for (auto& s : energy.series)
       for (double& y : s.y) y = std::abs(y);
   }
@@ -134,6 +136,7 @@ nlohmann::json summary_json(const ReportContext& c, const std::vector<EngineRun>
   j["dimensions"] = c.dimensions;
   j["bodies"] = c.bodies;
   j["repeats"] = c.repeats;
+  j["energy_unit"] = energy_in_joules(runs) ? "J" : "E0";  // energy_drift, max_energy_error: joules, or fractions of |E₀|
   const EngineRun* motus = find_motus(runs);
   const Timings motus_time = motus ? motus->microseconds_per_step() : Timings{};
   j["engines"] = nlohmann::json::array();
@@ -193,7 +196,7 @@ nlohmann::json summary_json(const ReportContext& c, const std::vector<EngineRun>
       j["exact"] = x;
     }
     j["definitions"] = nlohmann::json::array();
-    for (const auto& d : column_definitions(*c.scene, c.samples, c.momentum_conserved))
+    for (const auto& d : column_definitions(*c.scene, c.samples, c.momentum_conserved, energy_in_joules(runs)))
       j["definitions"].push_back({{"column", d.column}, {"meaning", d.meaning}});
   }
   return j;
@@ -205,10 +208,11 @@ std::string write_report(const std::string& folder, const ReportContext& c, cons
     std::ofstream csv(folder + "/metrics.csv");
     csv << "engine,t,kinetic,potential,total,energy_error,momentum_change,px,py,pz,penetration,constraint_error,"
            "distance_from_motus,distance_from_exact\n";
+    const bool motus_ran = find_motus(runs) != nullptr;  // (else no distance from it: an empty cell)
     for (const auto& r : runs) {
       if (!r.supported) continue;
       const auto& first = r.rows.front();
-      const double scale = std::max(r.scale_of_momentum, 1e-300);
+      const double scale = r.momentum_scale();  // (the summary's momentum_drift's)
       for (const auto& row : r.rows) {
         double change = 0;
         double p[3] = {0, 0, 0};
@@ -217,9 +221,10 @@ std::string write_report(const std::string& folder, const ReportContext& c, cons
           p[k] = row.momentum[k];
         }
         const double e_error = first.total != 0 ? (row.total - first.total) / std::abs(first.total) : row.total - first.total;
-        csv << fmt::format("{},{:.17g},{:.17g},{:.17g},{:.17g},{:.6e},{:.6e},{:.17g},{:.17g},{:.17g},{:.6e},{:.6e},{:.6e},{}\n",
+        csv << fmt::format("{},{:.17g},{:.17g},{:.17g},{:.17g},{:.6e},{:.6e},{:.17g},{:.17g},{:.17g},{:.6e},{:.6e},{},{}\n",
                            r.engine, row.t, row.kinetic, row.potential, row.total, e_error, std::sqrt(change) / scale, p[0],
-                           p[1], p[2], row.penetration, row.constraint_error, row.from_motus,
+                           p[1], p[2], row.penetration, row.constraint_error,
+                           motus_ran ? fmt::format("{:.6e}", row.from_motus) : "",
                            row.from_exact >= 0 ? fmt::format("{:.6e}", row.from_exact) : "");
       }
     }
@@ -249,7 +254,9 @@ std::string write_report(const std::string& folder, const ReportContext& c, cons
   if (summary.contains("notice"))
     html << "<p class=\"notice\"><b>What to notice.</b> " << html_escape(summary["notice"].get<std::string>()) << "</p>\n";
   const int columns = exact_known ? 11 : 10;
-  html << "<div class=\"wide\"><table><tr><th>engine</th><th>energy drift</th><th>max |ΔE|/E₀</th><th>momentum drift"
+  html << "<div class=\"wide\"><table><tr><th>engine</th>"
+       << (energy_in_joules(runs) ? "<th>energy drift [J]</th><th>max |ΔE| [J]</th>" : "<th>energy drift</th><th>max |ΔE|/E₀</th>")
+       << "<th>momentum drift"
        << (c.momentum_conserved ? "" : "*") << "</th><th>max penetration [m]</th><th>constraint error</th>"
        << "<th>max distance from motus [m]</th>" << (exact_known ? "<th>max distance from exact [m]</th>" : "")
        << "<th>µs per step (min)</th><th>median</th><th>spread</th><th>time / motus</th></tr>\n";
