@@ -155,7 +155,8 @@ std::string draw(const std::vector<Figure>& figures, const std::string& folder) 
   const std::string gnuplot = gnuplot_program();
   if (gnuplot.empty()) return "plots skipped: gnuplot not found on PATH (apt-get install gnuplot-nox)";
   const process::Outcome run = process::run_program({gnuplot, "figures.gp"}, folder, folder + "/figures.log");
-  if (!run.ok()) return "plots failed: see " + folder + "/figures.log";
+  // (Named within the report: `folder` is often a partial one, renamed once the report is whole.)
+  if (!run.ok()) return "plots failed: gnuplot's messages are in the report's figures.log";
   return "";
 }
 
