@@ -92,7 +92,8 @@ double JsonFields::non_negative(const std::string& key, double fallback) {
 
 long JsonFields::integer(const std::string& key) {
   const double x = number(key);
-  if (x != std::floor(x) || std::abs(x) > 1e15) fail(key, "must be a whole number (got " + nlohmann::json(x).dump() + ")");
+  if (x != std::floor(x)) fail(key, "must be a whole number (got " + nlohmann::json(x).dump() + ")");
+  if (std::abs(x) > 1e15) fail(key, "must be a whole number of at most 1e15 in size (got " + nlohmann::json(x).dump() + ")");
   return static_cast<long>(x);
 }
 long JsonFields::integer(const std::string& key, long fallback) {
