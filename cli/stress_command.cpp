@@ -136,6 +136,8 @@ int stress_command(const StressOptions& o) {
   if (!(o.energy_factor > 1) || !std::isfinite(o.energy_factor)) throw InputError("--energy-factor: must be a finite number > 1");
   if (!(o.duration > 0) || !std::isfinite(o.duration)) throw InputError("--duration: must be a finite number > 0");
   checked_step_count(static_cast<double>(o.drift_steps) * scene.dt, scene.dt, "--drift-steps");
+  const double longest = std::max(static_cast<double>(std::max(o.steps, o.drift_steps)) * scene.dt, o.duration);
+  check_time_resolution(scene.start_time, longest, scene.dt, path + ": start_time", path + ": dt");
 
   std::vector<Integrator> asked;
   if (o.integrators.empty()) {
@@ -156,7 +158,8 @@ int stress_command(const StressOptions& o) {
   report.dimensions = m.dimensions;
   report.bodies = static_cast<long>(m.bodies.size());
   report.dt = scene.dt;
-  report.settings = {o.steps, o.drift_steps, o.energy_factor, o.duration};
+  // (--duration is at most the scene's: what the runs take is what the report says)
+  report.settings = {o.steps, o.drift_steps, o.energy_factor, std::min(o.duration, scene.duration)};
   report.omega = stress::harmonic_omega(scene);
   report.stiffness_knob = stress::stiffness_knob(scene);
 

@@ -35,20 +35,25 @@ std::string blow_up(double e, double e0, double factor) {
 long run_steps(Simulation& sim, long steps, double h, const std::function<bool(const Simulation&)>& each, const Tick& tick,
                std::string& failure) {
   constexpr long kChunk = 256;
-  const double t0 = sim.time();
   const long first = sim.steps();
   long seen = 0;
   bool go = true;
   try {
     for (long done = 0; go && done < steps;) {
       const long n = std::min(kChunk, steps - done);
-      sim.advance(t0 + static_cast<double>(done + n) * h, h, Tolerance{}, [&](const Simulation& s) {
-        if (!go) return;
+      // n steps from where the clock is now: from t0, t0 + (done + n)·h and the clock (each chunk's
+      // start plus its steps) part by a few roundings a chunk, and after 10^7 steps that made one
+      // step more.
+      sim.advance(sim.time() + static_cast<double>(n) * h, h, Tolerance{}, [&](const Simulation& s) {
+        if (!go || seen >= steps) return;
         tick();
         ++seen;
         if (!each(s)) go = false;
       });
+      const long before = done;
       done = sim.steps() - first;
+      // A step that no longer moves the clock (times too coarse for h) would never end the run.
+      if (done == before && go) throw std::runtime_error(fmt::format("the steps no longer advance the time at t = {:g}", sim.time()));
     }
   } catch (const Interrupted&) {
     throw;
