@@ -94,7 +94,12 @@ Curve sweep_motus(const SceneDescription& scene, const Method& method, const Swe
       if (sweep.point_done) sweep.point_done();
     }
   } else {
+    // Where only reference states are known (no formula for every t), the steps must land on
+    // the reference time: each level's h is shortened to the nearest that divides the run.
+    const bool land_on_end = last_reference_time(scene).has_value();
+    const double span = sweep.end - scene.start_time;
     for (double h : fixed_steps(sweep)) {
+      if (land_on_end && span > 0) h = span / std::ceil(span / h - 1e-9);
       c.points.push_back(measure(scene, method, h, 0, sweep.end, sweep.repeats));
       if (sweep.point_done) sweep.point_done();
     }
