@@ -4,6 +4,7 @@
 
 #include <fmt/ranges.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -79,6 +80,34 @@ void write_manifest(const std::string& out, long frames, const std::string& vide
   if (!manifest) throw std::runtime_error((fs::path(out) / kManifest).string() + ": cannot be written");
 }
 
+// A render that does not get through (Ctrl-C, a failed drawing or video) takes back what it
+// wrote: the files its manifest lists, the manifest, and the folder if it made it — no folder
+// of some frames that looks like a render.
+class UnfinishedRender {
+public:
+  UnfinishedRender(std::string out, bool made_folder) : out_(std::move(out)), made_folder_(made_folder) {}
+  UnfinishedRender(const UnfinishedRender&) = delete;
+  UnfinishedRender& operator=(const UnfinishedRender&) = delete;
+  ~UnfinishedRender() {
+    if (done_) return;
+    std::error_code ignored;
+    std::ifstream manifest(fs::path(out_) / kManifest);
+    for (std::string name; std::getline(manifest, name);) {
+      if (name.empty() || name.find('/') != std::string::npos || name[0] == '.') continue;
+      const fs::path file = fs::path(out_) / name;
+      if (fs::is_regular_file(fs::symlink_status(file, ignored))) fs::remove(file, ignored);
+    }
+    fs::remove(fs::path(out_) / kManifest, ignored);
+    if (made_folder_) fs::remove(out_, ignored);  // (only if empty: nothing else is ever removed)
+  }
+  void done() { done_ = true; }
+
+private:
+  std::string out_;
+  bool made_folder_;
+  bool done_ = false;
+};
+
 }  // namespace
 
 CLI::App* add_render_command(CLI::App& app, RenderOptions& o) {
@@ -117,6 +146,8 @@ int render_command(const RenderOptions& o) {
   if (frame_count > 100000)
     throw InputError(fmt::format("--duration/--fps: {:.3g} frames is too many (at most 100,000)", frame_count));
   const long frames = static_cast<long>(frame_count);
+  check_time_resolution(scene.start_time, duration, scene.dt, path + ": start_time",
+                        o.duration ? "--duration" : path + ": dt/duration");
   const draw::Api& drawing = draw_module();
   if (!o.video.empty() && process::find_program("ffmpeg").empty())
     throw InputError("ffmpeg not found on PATH: --video needs it (install the Debian package ffmpeg)");
@@ -131,7 +162,9 @@ int render_command(const RenderOptions& o) {
   }
   Simulation& sim = *built;
   const std::string video_name = o.video.empty() ? "" : safe_file_name(scene.name) + "." + o.video;  // a name is not a path
+  const bool made_folder = !fs::exists(o.out);
   prepare_folder(o.out, o.overwrite, frames, video_name);
+  UnfinishedRender unfinished(o.out, made_folder);
 
   // Simulate: mechanical scenes keep one state per frame; first-order ones every step
   // too (an attractor's curve is drawn through all of them).
@@ -178,7 +211,10 @@ int render_command(const RenderOptions& o) {
   progress.phase("drawing", 0, static_cast<double>(frames));
   job.frame_done = [&](long k) { progress.update(static_cast<double>(k)); };
   write_manifest(o.out, frames, video_name);  // first: what is written is listed even if the run stops
-  if (const std::string error = drawing.render_frames(job); !error.empty()) throw InputError(error);
+  if (const std::string error = drawing.render_frames(job); !error.empty()) {
+    stop_if_interrupted();  // (a Ctrl-C that stopped the drawing is exit 130, not a failure)
+    throw std::runtime_error(error);  // everything the user could get wrong was refused before the run
+  }
   progress.finish();
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count();
   fmt::print("{} frames of {}x{} at {:g} per simulated {} ({:g} {} of {}) in {}/ ({:.1f} s)\n", frames, width, height,
@@ -187,12 +223,23 @@ int render_command(const RenderOptions& o) {
   if (!o.video.empty()) {
     const std::string file = (fs::path(o.out) / video_name).string();
     progress.note("encoding the video (ffmpeg)");
-    const std::string error = drawing.encode_video((fs::path(o.out) / "frame_%05d.png").string(), o.fps, file, o.video);
+    // (ffmpeg reads a % in the folder's name as part of the frames' pattern: written %%)
+    std::string folder = o.out;
+    for (size_t at = folder.find('%'); at != std::string::npos; at = folder.find('%', at + 2)) folder.insert(at, 1, '%');
+    const std::string error = drawing.encode_video((fs::path(folder) / "frame_%05d.png").string(), o.fps, file, o.video);
     progress.finish();
     stop_if_interrupted();
     if (!error.empty()) throw std::runtime_error(error);
     fmt::print("video        {}\n", file);
   }
+  unfinished.done();
+  // An unstable run is drawn as it went (the frames show it), but it is not a run that went well.
+  for (size_t k = 0; k < recording.states.size(); ++k)
+    if (!std::all_of(recording.states[k].begin(), recording.states[k].end(), [](double y) { return std::isfinite(y); })) {
+      fmt::print(stderr, "motus: the run failed: the state was no longer finite by t = {:g} (the integrator is unstable "
+                 "at this step; try a smaller --dt or another --integrator)\n", recording.times[k]);
+      return 1;
+    }
   return 0;
 }
 
