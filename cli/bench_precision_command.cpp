@@ -2,10 +2,12 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <ctime>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 
 #include "cli_common.hpp"
 #include "interrupt.hpp"
@@ -104,16 +106,28 @@ int bench_precision_command(const BenchPrecisionOptions& o) {
     for (const auto& m : plugins().integrators()) chosen.push_back(m);
   } else {
     for (const auto& name : o.integrators) {
-      if (const auto id = integrator_from_name(name)) chosen.emplace_back(*id);
-      else if (const auto m = plugins().integrator(name)) chosen.push_back(*m);
+      std::optional<Method> method;
+      if (const auto id = integrator_from_name(name)) method.emplace(*id);
+      else if (const auto m = plugins().integrator(name)) method = *m;
       else throw InputError("--integrators: unknown integrator \"" + name + "\" (known: " + known_integrators() + ")");
+      // (each once, as stress takes them: rk4,rk4 is one curve)
+      if (std::none_of(chosen.begin(), chosen.end(), [&](const Method& m) { return m.name() == method->name(); }))
+        chosen.push_back(*method);
     }
   }
   auto wants = [&](const std::string& peer) { return std::find(o.peers.begin(), o.peers.end(), peer) != o.peers.end(); };
 
   // Everything that can be refused is refused before anything runs.
-  if (!o.csv.empty()) check_can_write(o.csv, o.overwrite);
   const std::string folder = o.out.empty() ? new_run_folder(scene.name) : o.out;
+  if (!o.csv.empty()) {
+    // The copy goes beside the run, not into it (the run's folder must not exist until it is whole).
+    const fs::path csv = fs::absolute(o.csv).lexically_normal();
+    fs::path run = fs::absolute(folder).lexically_normal();
+    if (!run.has_filename()) run = run.parent_path();  // ("out/")
+    const auto [end, _] = std::mismatch(run.begin(), run.end(), csv.begin(), csv.end());
+    if (end == run.end()) throw InputError("--csv: " + o.csv + " is in the run's folder " + folder + "; put the copy elsewhere");
+    check_can_write(o.csv, o.overwrite);
+  }
   if (fs::exists(folder)) throw InputError(folder + ": already exists; bench precision never overwrites a run (choose another --out)");
   PartialFolder partial(folder);
 

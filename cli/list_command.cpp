@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include <cstdlib>
 #include <filesystem>
 
 #include "cli_common.hpp"
@@ -21,14 +22,21 @@ CLI::App* add_list_command(CLI::App& app, std::vector<std::string>& plugin_files
 
 int list_command(const std::vector<std::string>& plugin_files) {
   load_plugins(plugin_files);
+  {
+    std::error_code error;
+    if (!std::filesystem::is_directory(scenes_directory(), error))
+      throw InputError(scenes_directory() + ": the scenes' folder" +
+                       (std::getenv("MOTUS_SCENES") && *std::getenv("MOTUS_SCENES") ? " (MOTUS_SCENES)" : "") +
+                       " is not a folder that can be read");
+  }
   fmt::print("scenes (in {}):\n", scenes_directory());
   for (const auto& file : shipped_scenes()) {
     const std::string name = std::filesystem::path(file).stem().string();
     try {
       const SceneDescription s = load_scene(file);
-      fmt::print("  {:<20} {}\n", name, s.description);
+      fmt::print("  {:<20} {}\n", name, one_line(s.description, 600));  // (one line each, whatever the file says)
     } catch (const std::exception& e) {
-      fmt::print("  {:<20} (cannot be loaded: {})\n", name, e.what());
+      fmt::print("  {:<20} (cannot be loaded: {})\n", name, one_line(e.what(), 600));
     }
   }
   fmt::print("integrators:\n");

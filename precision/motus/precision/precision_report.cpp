@@ -83,9 +83,9 @@ std::string precision_csv(const std::string& scene, const std::vector<Curve>& cu
   std::string csv = "scene,integrator,h,tolerance,steps,evaluations,t_end,error,seconds,engine,failed,median_seconds\n";
   for (const Curve& c : curves)
     for (const Point& p : c.points)
-      csv += fmt::format("{},{},{:.17g},{},{},{},{:.17g},{:.6e},{:.6e},{},{},{:.6e}\n", scene, c.method, p.h,
+      csv += fmt::format("{},{},{:.17g},{},{},{},{:.17g},{:.6e},{:.6e},{},{},{:.6e}\n", csv_text(scene), csv_text(c.method), p.h,
                          c.adaptive ? fmt::format("{:.6g}", p.tolerance) : "", p.steps, p.evaluations, p.t_end,
-                         p.failed.empty() ? p.error : NAN, p.failed.empty() ? p.seconds : NAN, c.engine,
+                         p.failed.empty() ? p.error : NAN, p.failed.empty() ? p.seconds : NAN, csv_text(c.engine),
                          csv_text(p.failed), p.failed.empty() ? p.median_seconds : NAN);
   return csv;
 }
@@ -93,13 +93,13 @@ std::string precision_csv(const std::string& scene, const std::vector<Curve>& cu
 std::string write_precision_report(const std::string& folder, const ReportContext& c, const std::vector<Curve>& curves) {
   write_file(folder + "/precision.csv", precision_csv(c.scene, curves));
 
-  // targets.csv: every curve read at every target.
+  // targets.csv: every curve read at every target it reaches (one that never gets there has no row).
   std::string targets = "target,integrator,engine,seconds,median_seconds,evaluations,upper_bound\n";
   for (double target : c.targets)
     for (const Curve& curve : curves) {
       const auto at = at_target(curve, target);
       if (at)
-        targets += fmt::format("{:g},{},{},{:.6e},{:.6e},{:.1f},{}\n", target, curve.method, curve.engine, at->seconds,
+        targets += fmt::format("{:g},{},{},{:.6e},{:.6e},{:.1f},{}\n", target, csv_text(curve.method), csv_text(curve.engine), at->seconds,
                                at->median_seconds, at->evaluations, at->upper_bound ? "yes" : "no");
     }
   write_file(folder + "/targets.csv", targets);
