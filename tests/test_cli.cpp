@@ -314,6 +314,21 @@ TEST(CliRun, TrajectoryRefusesToOverwriteUnlessAsked) {
   EXPECT_TRUE(fs::exists(fresh));
 }
 
+TEST(CliList, AScenesFolderThatIsNotThereIsBadInput) {
+  // MOTUS_SCENES naming no folder gave an empty list and exit 0; a description over two lines
+  // is listed on one.
+  TempDir dir;
+  Result r = run_motus(dir, {"list"}, {"MOTUS_SCENES=" + (dir / "nowhere").string()});
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_NE(r.err.find("MOTUS_SCENES"), std::string::npos) << r.err;
+  fs::create_directories(dir / "scenes");
+  write_file(dir / "scenes" / "two_lines.json", R"({"description": "first\nsecond", "dimensions": 1,
+      "bodies": [{"mass": 1, "position": [0]}], "dt": 1, "duration": 1})");
+  r = run_motus(dir, {"list"}, {"MOTUS_SCENES=" + (dir / "scenes").string()});
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("two_lines            first second\n"), std::string::npos) << r.out;
+}
+
 TEST(CliRun, TrajectoryRowsComeEveryOutputIntervalHoweverSmall) {
   // The spring's 5 steps of 1 s from t = 1: output_interval 2.5 takes the first steps at or past
   // 1 + 2.5k (t = 4 and the end, 6); an interval far below dt (1e-20 s, which added to t = 1

@@ -265,7 +265,11 @@ TEST(BenchPrecisionCommand, BadPeersAndFlagsAreOneLineExitTwo) {
         std::vector<std::string>{"--per-decade", "0"}, std::vector<std::string>{"--levels", "0"},
         std::vector<std::string>{"--repeats", "0"}, std::vector<std::string>{"--duration", "-1"},
         std::vector<std::string>{"--integrators", "nosuch"},
-        std::vector<std::string>{"--out", (dir / "exists").string()}}) {
+        std::vector<std::string>{"--out", (dir / "exists").string()},
+        // (a copy inside the run's folder: refused before the run, not found there after it)
+        std::vector<std::string>{"--out", (dir / "run").string(), "--csv", (dir / "run" / "copy.csv").string()},
+        std::vector<std::string>{"--set", "start_time=1e17"},  // (times 16 apart: the runs never got there)
+        std::vector<std::string>{"--duration", "1e300"}}) {
     std::vector<std::string> args = {"bench", "precision", "kepler", "--levels", "1", "--repeats", "1"};
     args.insert(args.end(), extra.begin(), extra.end());
     const auto r = run_motus(dir, args);
@@ -274,6 +278,30 @@ TEST(BenchPrecisionCommand, BadPeersAndFlagsAreOneLineExitTwo) {
     EXPECT_EQ(r.err.rfind("motus: error: ", 0), 0u) << r.err;
   }
   EXPECT_TRUE(fs::is_empty(dir / "exists")) << "an existing --out is left alone";
+  EXPECT_FALSE(fs::exists(dir / "run"));
+}
+
+TEST(BenchPrecisionCommand, FixedStepsLandOnASceneKnownOnlyAtItsReferenceTime) {
+  // arenstorf is known only at T = 17.0652165601579625588917206249 (its reference state): each
+  // fixed step is shortened to divide T, so rk4 at the scene's dt = 0.001 takes ceil(T/0.001) =
+  // 17066 steps and ends on T (it ended at 17.066, where nothing is known, and the command failed).
+  // Named twice, it is one curve.
+  TempDir dir;
+  const auto r = run_motus(dir, {"bench", "precision", "arenstorf", "--integrators", "rk4,rk4", "--levels", "1",
+                                 "--repeats", "1", "--out", (dir / "a").string()});
+  ASSERT_EQ(r.status, 0) << r.err;
+  std::istringstream csv(read_file(dir / "a" / "precision.csv"));
+  std::string header, row, extra;
+  std::getline(csv, header);
+  ASSERT_TRUE(std::getline(csv, row));
+  EXPECT_FALSE(std::getline(csv, extra)) << "one curve of one point: " << extra;
+  std::vector<std::string> cells;
+  std::istringstream cell_stream(row);
+  for (std::string cell; std::getline(cell_stream, cell, ',');) cells.push_back(cell);
+  ASSERT_GE(cells.size(), 8u) << row;
+  EXPECT_EQ(cells[4], "17066") << row;                              // steps
+  EXPECT_NEAR(std::stod(cells[6]), 17.0652165601579625588917206249, 1e-9) << row;  // t_end
+  EXPECT_LT(std::stod(cells[7]), 1.0) << row;                       // an error was measured there
 }
 
 }  // namespace

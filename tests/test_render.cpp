@@ -273,6 +273,27 @@ TEST(RenderCommand, MissingFontExits2WithOneLine) {
   EXPECT_NE(r.err.find("fonts-dejavu-core"), std::string::npos) << r.err;
 }
 
+TEST(RenderCommand, AnUnstableRunIsDrawnThenExitsOne) {
+  // Euler on x'' = -x at dt = 10 grows by 1 + 100 a step: infinite within a few hundred steps. The
+  // frames are drawn (they show it), then exit 1 with one line, as `motus run` does.
+  TempDir dir;
+  const auto r = run_motus(dir, {"render", "oscillator", "--integrator", "euler", "--set", "dt=10", "--duration", "20000",
+                                 "--fps", "0.0001", "--size", "64x48", "--out", (dir / "frames").string()});
+  EXPECT_EQ(r.status, 1) << r.err;
+  EXPECT_EQ(count_lines(r.err), 1) << r.err;
+  EXPECT_NE(r.err.find("no longer finite"), std::string::npos) << r.err;
+  EXPECT_TRUE(fs::exists(dir / "frames" / "frame_00002.png"));
+}
+
+TEST(RenderCommand, APercentSignInTheFolderIsNoPartOfTheVideosPattern) {
+  TempDir dir;
+  const auto r = run_motus(dir, {"render", "spring", "--out", (dir / "p%dq").string(), "--size", "32x32", "--fps", "10",
+                                 "--duration", "0.3", "--video", "gif"});
+  if (r.status == 2 && r.err.find("ffmpeg not found") != std::string::npos) GTEST_SKIP() << "no ffmpeg here";
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_TRUE(fs::exists(dir / "p%dq" / "spring.gif"));
+}
+
 TEST(RenderCommand, GifThroughFfmpeg) {
   TempDir dir;
   const auto r = run_motus(dir, {"render", "newtons_cradle", "--out", (dir / "frames").string(), "--size",

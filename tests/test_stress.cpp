@@ -238,6 +238,8 @@ TEST(StressErrors, BadInputIsOneLineAndExitTwo) {
       {"stress", "oscillator", "--out", dir.path().string()},  // exists
       {"stress", "oscillator", "--steps", "10"},
       {"stress", "ball_gas", "--integrators", "rk4", "--out", (dir / "d").string()},
+      // (at t = 1e17 times are 16 apart: steps of 0.1 never moved the clock, and stress hung)
+      {"stress", "oscillator", "--set", "start_time=1e17", "--integrators", "verlet", "--out", (dir / "f").string()},
   };
   for (const auto& args : cases) {
     const Result r = run_motus(dir, args);
