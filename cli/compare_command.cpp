@@ -235,7 +235,7 @@ int compare_command(const CompareOptions& o) {
   summary["report"] = folder + "/index.html";
 
   if (o.json) {
-    fmt::print("{}\n", summary.dump(2));
+    fmt::print("{}\n", summary.dump(2, ' ', false, nlohmann::json::error_handler_t::replace));  // (a path not in UTF-8)
   } else {
     fmt::print("{}: {} bodies, {}-D, dt = {:g} s, {:g} s ({} steps); motus integrator {}\n", scene.name,
                context.bodies, context.dimensions, options.dt, options.duration,

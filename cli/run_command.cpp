@@ -349,7 +349,7 @@ int run_command(const RunOptions& o) {
                           : nlohmann::json(nullptr);
     j["finite"] = finite;
     if (!o.trajectory.empty()) j["trajectory"] = o.trajectory;
-    fmt::print("{}\n", j.dump(2));
+    fmt::print("{}\n", j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace));  // (a path not in UTF-8)
     return finite ? 0 : report_non_finite(std::isnan(non_finite_by) ? sim.time() : non_finite_by);
   }
 

@@ -329,7 +329,7 @@ std::string write_page(const std::string& folder, const Report& r) {
   write_csvs(folder, r);
   {
     File f(folder + "/summary.json");
-    f << summary_json(r).dump(2) << '\n';
+    f << summary_json(r).dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << '\n';  // (a path not in UTF-8)
   }
   const std::string warning = plot::draw(figures(r), folder);
 
@@ -417,7 +417,8 @@ std::string write_page(const std::string& folder, const Report& r) {
     h << "</p>\n<table><tr><th>integrator</th><th>first factor that fails</th>" << (r.omega ? "<th>theory</th>" : "") << "</tr>\n";
     for (const auto& s : r.stiffness) {
       if (!s.skipped.empty()) {
-        h << "<tr><td>" << name(s.integrator) << "</td><td colspan=\"2\">" << html_escape(s.skipped) << "</td></tr>\n";
+        h << "<tr><td>" << name(s.integrator) << "</td><td colspan=\"" << (r.omega ? 2 : 1) << "\">" << html_escape(s.skipped)
+          << "</td></tr>\n";
         continue;
       }
       h << "<tr><td>" << name(s.integrator) << "</td><td>" << (s.first_failure > 0 ? fmt::format("{:g}", s.first_failure) : "none up to 1e8")

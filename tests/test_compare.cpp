@@ -156,6 +156,14 @@ TEST(Compare, RenderDrawsTheEnginesSideBySideIntoTheReport) {
   if (fs::exists("/usr/bin/ffmpeg")) {
     EXPECT_TRUE(fs::exists(out / "comparison.mp4"));
     EXPECT_NE(html.find("<video src=\"comparison.mp4\""), std::string::npos);
+    // A % in the folder is no part of ffmpeg's frame pattern (the video failed, and the report
+    // showed none of the pictures).
+    const fs::path percent = dir / "c_50%";
+    const Result p = run_motus(dir, {"compare", scene("head_on"), "--render", "--size", "64x48", "--fps", "5",
+                                     "--duration", "0.4", "--engines", "motus", "--out", percent.string()});
+    ASSERT_EQ(p.status, 0) << p.err;
+    EXPECT_TRUE(fs::exists(percent / "comparison.mp4")) << p.err;
+    EXPECT_NE(read_file(percent / "index.html").find("first_and_last.png"), std::string::npos);
   }
 }
 
@@ -259,6 +267,31 @@ TEST(Compare, MetricsCsvAgreesWithTheSummary) {
   r = run_motus(dir, {"compare", scene("head_on"), "--engines", "box2d", "--out", (dir / "b").string(), "--duration", "0.1"});
   ASSERT_EQ(r.status, 0) << r.err;
   for (const auto& row : csv_rows(read_file(dir / "b" / "metrics.csv"))) EXPECT_EQ(row.at(12), "") << row.at(1);
+}
+
+TEST(Compare, ARunThatBlewUpIsNotReportedAsExact) {
+  // Euler on x'' = -x at dt = 3 grows by 1 + 9 a step: not finite within 400 steps. The exact
+  // answer's table said 0 m from it (NaN lost every comparison), the sentence "-nan".
+  TempDir dir;
+  const Result r = run_motus(dir, {"compare", scene("oscillator"), "--integrator", "euler", "--dt", "3", "--duration",
+                                   "3000", "--engines", "motus", "--out", (dir / "r").string(), "--json"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  ASSERT_TRUE(j.contains("exact")) << r.out;
+  const auto& motus = j.at("exact").at("engines").at(0);
+  EXPECT_FALSE(motus.at("final_distance").is_number() && motus.at("final_distance").get<double>() == 0) << motus.dump();
+  EXPECT_EQ(j.at("notice").get<std::string>().find("nan"), std::string::npos) << j.at("notice");
+}
+
+TEST(Compare, AFigureNoEngineCouldDrawIsStillThereForItsLink) {
+  // Box2D cannot run a 1-D scene: the energy figure has no line, and was not drawn, though the
+  // report links it. It is drawn as empty axes that say so.
+  TempDir dir;
+  const Result r = run_motus(dir, {"compare", scene("oscillator"), "--engines", "box2d", "--out", (dir / "r").string()});
+  ASSERT_EQ(r.status, 0) << r.err;
+  if (!fs::exists("/usr/bin/gnuplot")) GTEST_SKIP() << "no gnuplot here";
+  EXPECT_TRUE(fs::exists(dir / "r" / "energy.svg"));
+  EXPECT_TRUE(fs::exists(dir / "r" / "energy.png"));
 }
 
 TEST(Compare, BadInputIsOneLineAndExitTwo) {

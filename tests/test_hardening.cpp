@@ -505,3 +505,49 @@ TEST(Hardening, LengthsPastDoublePrecisionAreScaledOrRefused) {
 }
 
 }  // namespace
+
+namespace {
+
+// 19. A scene's path need not be UTF-8 (a folder named in Latin-1): the report is written, the
+//     bytes shown as U+FFFD (the summary's JSON refused them, after the whole run: exit 1, no report).
+TEST(Hardening, ASceneFileWhosePathIsNotUtf8GetsItsReport) {
+  TempDir dir;
+  const fs::path folder = dir / "d\xff";
+  fs::create_directories(folder);
+  write_file(folder / "o.json", R"({"dimensions": 1, "bodies": [{"mass": 1, "position": [1]}],
+      "forces": [{"type": "spring", "a": 0, "anchor": [0], "stiffness": 1}], "integrator": "symplectic-euler",
+      "dt": 0.1, "duration": 1})");
+  const Result r = run_motus(dir, {"compare", (folder / "o.json").string(), "--engines", "motus", "--out",
+                                   (dir / "report").string(), "--json"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_TRUE(json::accept(r.out)) << r.out;
+  EXPECT_NE(read_file(dir / "report" / "summary.json").find("d\xef\xbf\xbd"), std::string::npos);  // U+FFFD
+}
+
+// 20. Box2D is float and asserts on numbers it cannot hold (b2Body: position.IsValid() — an abort
+//     that ended the whole comparison): a body at 1e300 m, or a box of ±1e300, is "not supported
+//     by box2d", and the other engines run.
+TEST(Hardening, NumbersPastBox2dsFloatAreNotSupportedThereAndTheRestRuns) {
+  TempDir dir;
+  write_file(dir / "far.json", R"({"dimensions": 2, "bodies": [{"mass": 1, "radius": 0.5, "position": [1e300, 0]},
+      {"mass": 1, "radius": 0.5, "position": [0, 0]}], "integrator": "symplectic-euler", "dt": 0.01, "duration": 0.1})");
+  write_file(dir / "box.json", R"({"dimensions": 2, "bodies": [{"mass": 1, "radius": 0.5, "position": [0, 0]}],
+      "colliders": [{"type": "box", "min": [-1e300, -1e300], "max": [1e300, 1e300]}],
+      "integrator": "symplectic-euler", "dt": 0.01, "duration": 0.1})");
+  for (const char* scene : {"far", "box"}) {
+    const Result r = run_motus(dir, {"compare", (dir / (std::string(scene) + ".json")).string(), "--engines",
+                                     "motus,box2d", "--out", (dir / (std::string(scene) + "_report")).string(), "--json"});
+    ASSERT_EQ(r.status, 0) << scene << ": " << r.err;
+    const auto j = json::parse(r.out);
+    for (const auto& e : j.at("engines")) {
+      if (e.at("engine") == "box2d") {
+        EXPECT_FALSE(e.at("supported").get<bool>()) << scene;
+        EXPECT_NE(e.at("unsupported").dump().find("past 1e18"), std::string::npos) << e.dump();
+      } else {
+        EXPECT_TRUE(e.at("supported").get<bool>()) << scene;
+      }
+    }
+  }
+}
+
+}  // namespace

@@ -141,9 +141,16 @@ std::string draw_comparison(const ComparisonJob& job, ComparisonPictures& pictur
     if (process::find_program("ffmpeg").empty()) {
       pictures.warning = "video skipped: ffmpeg not found on PATH (install the Debian package ffmpeg)";
     } else {
-      pictures.video = "comparison.mp4";
-      render::encode_video(frames_folder + "/frame_%05d.png", job.fps, job.folder + "/" + pictures.video,
-                           render::VideoFormat::mp4);
+      // (ffmpeg reads a % in the folder's name as part of the frames' pattern: written %%.) A video
+      // that fails costs the video only: the frames and the sheets are drawn and still shown.
+      std::string pattern = frames_folder;
+      for (size_t at = pattern.find('%'); at != std::string::npos; at = pattern.find('%', at + 2)) pattern.insert(at, 1, '%');
+      try {
+        render::encode_video(pattern + "/frame_%05d.png", job.fps, job.folder + "/comparison.mp4", render::VideoFormat::mp4);
+        pictures.video = "comparison.mp4";
+      } catch (const std::exception& e) {
+        pictures.warning = std::string("video skipped: ") + e.what();
+      }
     }
   });
 }

@@ -13,11 +13,13 @@ namespace {
 // Two significant digits: enough to compare engines that differ by decades.
 std::string number(double x) {
   if (x == 0) return "0";
+  if (!std::isfinite(x)) return "not finite";  // (a run that blew up: not "-nan")
   return fmt::format("{:.2g}", x);
 }
 
 std::string signed_number(double x) {
   if (x == 0) return "0";
+  if (!std::isfinite(x)) return "not finite";
   return fmt::format("{:+.2g}", x);
 }
 
@@ -185,7 +187,9 @@ std::optional<ExactAnswer> exact_answer(const SceneDescription& scene, const std
     e.engine = r->engine;
     for (int i = 0; i < static_cast<int>(a.bodies); ++i) {
       const auto v = body(r->last.v.data(), i), x = body(r->last.x.data(), i);
-      const double dv = distance(v, body(y->data() + n, i)), dx = distance(x, body(y->data(), i));
+      // (A run that blew up is infinitely far: NaN would lose every comparison and read as 0.)
+      auto far = [](double d) { return std::isnan(d) ? INFINITY : d; };
+      const double dv = far(distance(v, body(y->data() + n, i))), dx = far(distance(x, body(y->data(), i)));
       if (dv > e.worst_speed_error) e.worst_speed_error = dv, e.worst_body = i;
       e.worst_position_error = std::max(e.worst_position_error, dx);
       if (i < shown) e.velocity.push_back(v);

@@ -231,7 +231,8 @@ std::string write_report(const std::string& folder, const ReportContext& c, cons
     check_written(csv, folder + "/metrics.csv");
   }
   const nlohmann::json summary = summary_json(c, runs);
-  write_text(folder + "/summary.json", summary.dump(2) + "\n");
+  // (A scene file's path or name need not be UTF-8: such bytes are written as U+FFFD.)
+  write_text(folder + "/summary.json", summary.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
   const std::string warning = plot::draw(figures(c, runs), folder);
 
   // index.html

@@ -128,9 +128,18 @@ std::string draw(const std::vector<Figure>& figures, const std::string& folder) 
       gp << "set yrange " << (f.y_scale == Scale::log ? "[1e-17:1e-13]" : "[-1:1]") << "\n"
          << "set label 2 'every value is exactly 0' at graph 0.5, graph 0.5 center tc rgb '#555555'\n";
     }
-    if (plot_line.empty()) continue;
-    axis(gp, "x", f.x_scale, f.symlog_threshold);
-    axis(gp, "y", f.y_scale, f.symlog_threshold);
+    if (plot_line.empty()) {
+      // No series at all (no engine or method could run the scene): the figure is still drawn, as
+      // empty axes that say so, since every page links its figures.
+      axis(gp, "x", Scale::linear, 0);
+      axis(gp, "y", Scale::linear, 0);
+      gp << "set xrange [0:1]\nset yrange [0:1]\n"
+         << "set label 2 'nothing to draw: no run has data for this figure' at graph 0.5, graph 0.5 center tc rgb '#555555'\n";
+      plot_line = "plot 2 notitle";  // (a line outside the range: the axes alone)
+    } else {
+      axis(gp, "x", f.x_scale, f.symlog_threshold);
+      axis(gp, "y", f.y_scale, f.symlog_threshold);
+    }
     // Plain text throughout (no "enhanced" markup: a scene called ball_gas keeps its underscore).
     gp << "set title " << quoted(f.title) << "\nset xlabel " << quoted(f.x_label) << "\nset ylabel " << quoted(f.y_label)
        << "\nunset label 1\nset bmargin " << (f.note.empty() ? 4 : 6) << "\n";

@@ -139,8 +139,12 @@ std::string write_precision_report(const std::string& folder, const ReportContex
     std::vector<std::optional<Fastest>> best;
     for (const auto& e : engines) {
       best.push_back(fastest(curves, e, target));
+      // (an engine none of whose curves could run the scene has reached nothing: it cannot run it)
+      const bool runs = std::any_of(curves.begin(), curves.end(),
+                                    [&](const Curve& curve) { return curve.engine == e && curve.unsupported.empty(); });
       html += best.back() ? "<td>" + html_escape(best.back()->method) + "</td><td>" + micro(best.back()->at) + "</td>"
-                          : "<td class=\"no\">not reached</td><td>–</td>";
+              : runs      ? "<td class=\"no\">not reached</td><td>–</td>"
+                          : "<td class=\"no\">cannot run this scene</td><td>–</td>";
     }
     for (size_t k = 1; k < engines.size(); ++k)
       html += engines[0] == "motus" && best[0] && best[k]
@@ -176,7 +180,10 @@ std::string write_precision_report(const std::string& folder, const ReportContex
   }
   html += "</table>\n<h2>The methods</h2>\n<ul>\n";
   for (const Curve& curve : curves)
-    html += "<li><code>" + html_escape(curve.method) + "</code>: " + html_escape(curve.description) + "</li>\n";
+    html += "<li><code>" + html_escape(curve.method) + "</code>: " +
+            html_escape(curve.description.empty() && !curve.unsupported.empty() ? "cannot run this scene: " + curve.unsupported
+                                                                                : curve.description) +
+            "</li>\n";
   html += "</ul>\n<p>Engines: ";
   for (size_t i = 0; i < c.versions.size(); ++i) html += (i ? "; " : "") + html_escape(c.versions[i]);
   html += ". Odeint's steppers call motus's own right-hand side (the scene's system by its concrete type), with the "

@@ -142,6 +142,33 @@ void Box2dBackend::build(const SceneDescription& scene, const Method& /*method*/
 
   // What Box2D cannot express faithfully: refuse rather than run another scene.
   std::vector<std::string> unsupported;
+  // Box2D is float, and squares lengths: past 1e18 a square overflows float's range (3.4e38), and
+  // Box2D's own assertions (b2Body: position.IsValid(); b2CollideEdgeAndCircle: den > 0) would
+  // end the whole comparison.
+  constexpr double kFloatReach = 1e18;
+  auto beyond = [&](std::initializer_list<double> numbers) {
+    return std::any_of(numbers.begin(), numbers.end(), [&](double x) { return !(std::abs(x) <= kFloatReach); });
+  };
+  for (size_t i = 0; i < n; ++i) {
+    const auto& b = m.bodies[i];
+    if (beyond({b.mass, b.radius, start_position(i, 0), start_position(i, 1), b.velocity[0], b.velocity[1]})) {
+      unsupported.push_back(format("body %zu: a mass, size, position or speed past 1e18 (float squares past its range)", i));
+      break;
+    }
+  }
+  for (size_t j = 0; j < m.colliders.planes.size(); ++j)
+    if (beyond({m.colliders.planes[j].offset}))
+      unsupported.push_back(format("plane %zu: an offset past 1e18 (float squares past its range)", j));
+  for (size_t j = 0; j < m.colliders.boxes.size(); ++j) {
+    const auto& b = m.colliders.boxes[j];
+    if (beyond({b.min[0], b.min[1], b.max[0], b.max[1], b.max[0] - b.min[0], b.max[1] - b.min[1]}))
+      unsupported.push_back(format("box %zu: a corner past 1e18 (float squares past its range)", j));
+  }
+  for (size_t j = 0; j < m.colliders.segments.size(); ++j) {
+    const auto& s = m.colliders.segments[j];
+    if (beyond({s.a[0], s.a[1], s.b[0], s.b[1], s.b[0] - s.a[0], s.b[1] - s.a[1]}))
+      unsupported.push_back(format("segment %zu: an end past 1e18 (float squares past its range)", j));
+  }
   for (size_t j = 0; j < m.colliders.planes.size(); ++j) {
     const auto& p = m.colliders.planes[j];
     for (size_t i = 0; i < n; ++i)
