@@ -72,6 +72,19 @@ std::string resolve_scene_path(const std::string& argument) {
   return argument;  // the loader says "no such file"
 }
 
+std::string non_finite_suspect(const Method& method) {
+  for (const auto& p : plugins().plugins()) {
+    const auto& names = p.integrator_names;
+    if (method.is_external() && std::find(names.begin(), names.end(), method.name()) != names.end())
+      return "check the plug-in's integrator " + method.name() + " (" + p.file + "), or try a smaller --dt";
+  }
+  for (const auto& p : plugins().plugins())
+    if (p.entry->collisions || p.entry->constraints)
+      return "check the plug-in's " + std::string(p.entry->collisions ? "collision response" : "constraint projection") +
+             " (" + p.file + "); else the integrator is unstable at this step";
+  return "the integrator is unstable at this step; try a smaller --dt or another --integrator";
+}
+
 std::vector<std::string> shipped_scenes() {
   std::vector<std::string> files;
   std::error_code error;
@@ -95,7 +108,10 @@ void add_plugin_option(CLI::App* command, std::vector<std::string>& files) {
 
 void load_plugins(const std::vector<std::string>& files) {
   try {
-    for (const auto& file : files) plugins().load(file);
+    for (const auto& file : files) {
+      report_crashes_while_loading(file);
+      plugins().load(file);
+    }
   } catch (const PluginError& e) {
     throw InputError(e.what());
   }

@@ -112,6 +112,16 @@ int compare_command(const CompareOptions& o) {
     const auto builtin = integrator_from_name(own);
     options.method = builtin ? Method(*builtin) : method_for(path, scene, std::nullopt);
   }
+  // A plug-in of integrators only, with none of them asked for, would have a column of motus's
+  // own code under its name.
+  const bool plugin_column = !plugin.empty() && std::find(options.engines.begin(), options.engines.end(), plugin) !=
+                                                    options.engines.end();
+  if (plugin_column && !plugins().parts().collisions && !plugins().parts().constraints && !requested.is_external()) {
+    std::string names;
+    for (const auto& m : plugins().integrators()) names += (names.empty() ? "" : ", ") + m.name();
+    throw InputError("--plugin: " + plugin + " brings integrators only (" + names +
+                     "): choose the one its column runs with --integrator " + plugin + ":NAME");
+  }
   if (!plugin.empty()) {
     compare::PluginEngine engine;
     engine.name = plugin;

@@ -236,8 +236,8 @@ int render_command(const RenderOptions& o) {
   // An unstable run is drawn as it went (the frames show it), but it is not a run that went well.
   for (size_t k = 0; k < recording.states.size(); ++k)
     if (!std::all_of(recording.states[k].begin(), recording.states[k].end(), [](double y) { return std::isfinite(y); })) {
-      fmt::print(stderr, "motus: the run failed: the state was no longer finite by t = {:g} (the integrator is unstable "
-                 "at this step; try a smaller --dt or another --integrator)\n", recording.times[k]);
+      fmt::print(stderr, "motus: the run failed: the state was no longer finite by t = {:g} ({})\n", recording.times[k],
+                 non_finite_suspect(method));
       return 1;
     }
   return 0;

@@ -124,9 +124,8 @@ private:
 };
 
 // A state that overflowed is a result to show, but not a run that went well.
-int report_non_finite(double by) {
-  fmt::print(stderr, "motus: the run failed: the state was no longer finite by t = {:g} (the integrator is unstable "
-             "at this step; try a smaller --dt or another --integrator)\n", by);
+int report_non_finite(double by, const Method& method) {
+  fmt::print(stderr, "motus: the run failed: the state was no longer finite by t = {:g} ({})\n", by, non_finite_suspect(method));
   return kExitFailure;
 }
 
@@ -350,7 +349,7 @@ int run_command(const RunOptions& o) {
     j["finite"] = finite;
     if (!o.trajectory.empty()) j["trajectory"] = o.trajectory;
     fmt::print("{}\n", j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace));  // (a path not in UTF-8)
-    return finite ? 0 : report_non_finite(std::isnan(non_finite_by) ? sim.time() : non_finite_by);
+    return finite ? 0 : report_non_finite(std::isnan(non_finite_by) ? sim.time() : non_finite_by, method);
   }
 
   // With --trajectory - the CSV is standard output, and the summary goes to standard error.
@@ -411,7 +410,7 @@ int run_command(const RunOptions& o) {
     fmt::print(out, "constraints  largest stick-length error {:.3e} over the run, {:.3e} at the end\n", worst_constraint_error,
                sim.constraint_error());
   if (!o.trajectory.empty()) fmt::print(out, "trajectory   {}\n", o.trajectory == "-" ? "standard output" : o.trajectory);
-  return finite ? 0 : report_non_finite(std::isnan(non_finite_by) ? sim.time() : non_finite_by);
+  return finite ? 0 : report_non_finite(std::isnan(non_finite_by) ? sim.time() : non_finite_by, method);
 }
 
 }  // namespace motus::cli

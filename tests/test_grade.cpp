@@ -251,6 +251,9 @@ TEST(Plugins, FaultsAreOneLineAndExitTwo) {
       {{"run", "lorenz", "--plugin", kPlugins + "/misbehaving.so", "--integrator", "bad:throws"},
        "bad:throws: threw std::runtime_error: thrown on purpose"},
       {{"run", "spring", "--integrator", "student:euler"}, "load its plug-in with --plugin"},
+      // (a column of integrators only, none of them chosen: it would have run motus's own code)
+      {{"compare", "oscillator", "--plugin", kPlugins + "/misbehaving.so", "--out", (dir / "c").string()},
+       "bad brings integrators only"},
   };
   for (const auto& c : cases) {
     const auto r = run_motus(dir, c.args);
@@ -258,6 +261,40 @@ TEST(Plugins, FaultsAreOneLineAndExitTwo) {
     EXPECT_EQ(count_lines(r.err), 1) << r.err;
     EXPECT_NE(r.err.find(c.says), std::string::npos) << r.err;
   }
+}
+
+TEST(Plugins, APluginsBrokenNumbersAreItsOwnFailureNeverAPerfectRun) {
+  // NaN from a plug-in's integrator: run names the plug-in (not "a smaller --dt" alone); compare's
+  // column is not finite, never 0 (std::max(0, NaN) is 0); a controller that keeps a rejected
+  // step's size ends the run, exit 1 (it tried the same step for ever).
+  TempDir dir;
+  const std::string plugin = kPlugins + "/misbehaving.so";
+  Result r = run_motus(dir, {"run", "lorenz", "--plugin", plugin, "--integrator", "bad:nan"});
+  EXPECT_EQ(r.status, 1) << r.err;
+  EXPECT_NE(r.err.find("check the plug-in's integrator bad:nan (" + plugin + ")"), std::string::npos) << r.err;
+  r = run_motus(dir, {"compare", "oscillator", "--plugin", plugin, "--integrator", "bad:nan", "--engines", "motus,bad",
+                      "--out", (dir / "c").string(), "--json"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  for (const auto& e : nlohmann::json::parse(r.out).at("engines"))
+    if (e.at("engine") == "bad") {
+      for (const char* field : {"max_energy_error", "max_distance_from_exact"})
+        EXPECT_FALSE(e.at(field).is_number() && e.at(field).get<double>() == 0) << field << ": " << e.dump();
+    }
+  r = run_motus(dir, {"run", "lorenz", "--plugin", plugin, "--integrator", "bad:keeps-h"});
+  EXPECT_EQ(r.status, 1) << r.err;
+  EXPECT_NE(r.err.find("kept a rejected step's size"), std::string::npos) << r.err;
+}
+
+TEST(Plugins, AnExceptionWhileLoadingNamesThePlugin) {
+  // Its code runs as soon as it is opened: libstdc++'s two lines ("terminate called ...") and
+  // no name before; now one line naming it (and the abort it dies of).
+  TempDir dir;
+  const auto r = run_motus(dir, {"list", "--plugin", kPlugins + "/throws_on_load.so"});
+  EXPECT_EQ(r.status, 128 + SIGABRT) << r.err;
+  EXPECT_EQ(count_lines(r.err), 1) << r.err;
+  EXPECT_NE(r.err.find("the plug-in " + kPlugins + "/throws_on_load.so threw an exception while it was being loaded"),
+            std::string::npos)
+      << r.err;
 }
 
 TEST(Plugins, ACrashNamesThePluginThatWasRunning) {

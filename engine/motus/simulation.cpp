@@ -149,10 +149,17 @@ void Simulation::advance(double end_time, double dt, Tolerance tolerance,
       while (t_ < end_time) {
         double h = std::min(adaptive_h_, end_time - t_);
         const bool landing = h < adaptive_h_;  // shortened to land on end_time
+        const double tried = h;
         const bool accepted = stepper.try_step(system, t_, h, y_);
         if (!landing || !accepted) adaptive_h_ = h;
         if (!accepted) {
           ++rejected_;
+          // A controller that does not shrink a rejected step (a student's that keeps h, say)
+          // would try the same step for ever.
+          if (!(adaptive_h_ < tried))
+            throw StepSizeUnderflow("the step-size control kept a rejected step's size at t = " + std::to_string(t_) +
+                                     " (h = " + std::to_string(tried) + " was rejected, and " +
+                                     std::to_string(adaptive_h_) + " is next): it would be tried for ever");
           if (adaptive_h_ < 1e-14 * std::max(1.0, std::abs(t_)))
             throw StepSizeUnderflow("step size underflow at t = " + std::to_string(t_) +
                                      ": the tolerance cannot be met in double precision");

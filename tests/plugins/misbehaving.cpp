@@ -1,5 +1,7 @@
 // A plug-in whose integrators misbehave on purpose, for test_grade's plug-in errors:
-// "bad:throws" throws, "bad:crashes" dereferences a null pointer.
+// "bad:throws" throws, "bad:crashes" dereferences a null pointer, "bad:nan" answers NaN,
+// "bad:keeps-h" is step doubling whose controller keeps a rejected step's size.
+#include <limits>
 #include <stdexcept>
 
 #include "motus/student/plugin.hpp"
@@ -14,9 +16,22 @@ void crashes(const student::FirstOrderSystem&, double, double, student::VectorIn
   *static_cast<volatile double*>(nullptr) = y[0];
 }
 
+void nan(const student::FirstOrderSystem&, double, double, student::VectorInOut y) {
+  y.setConstant(std::numeric_limits<double>::quiet_NaN());
+}
+
+// An error estimate no tolerance accepts, and the same h again.
+student::Vector rejected(const student::FirstOrderSystem&, double, double, student::VectorIn y, student::Vector& error) {
+  error = student::Vector::Constant(y.size(), 1.0);
+  return y;
+}
+double keeps_h(double h, double) { return h; }
+
 }  // namespace
 
 MOTUS_PLUGIN("bad", "integrators that misbehave (test_grade)") {
   plugin.first_order("throws", 1, "throws std::runtime_error", throws);
   plugin.first_order("crashes", 1, "dereferences a null pointer", crashes);
+  plugin.first_order("nan", 1, "answers NaN", nan);
+  plugin.adaptive("keeps-h", 5, "a controller that keeps a rejected step's size", rejected, keeps_h);
 }

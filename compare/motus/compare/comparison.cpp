@@ -32,7 +32,7 @@ double EngineRun::energy_drift() const { return relative(rows.back().total - row
 
 double EngineRun::max_energy_error() const {
   double worst = 0;
-  for (const auto& r : rows) worst = std::max(worst, std::abs(relative(r.total - rows.front().total, rows.front().total)));
+  for (const auto& r : rows) worst = worse(worst, std::abs(relative(r.total - rows.front().total, rows.front().total)));
   return worst;
 }
 
@@ -54,25 +54,25 @@ double EngineRun::momentum_drift() const {
 
 double EngineRun::max_penetration() const {
   double worst = 0;
-  for (const auto& r : rows) worst = std::max(worst, r.penetration);
+  for (const auto& r : rows) worst = worse(worst, r.penetration);
   return worst;
 }
 
 double EngineRun::max_constraint_error() const {
   double worst = 0;
-  for (const auto& r : rows) worst = std::max(worst, r.constraint_error);
+  for (const auto& r : rows) worst = worse(worst, r.constraint_error);
   return worst;
 }
 
 double EngineRun::max_from_motus() const {
   double worst = 0;
-  for (const auto& r : rows) worst = std::max(worst, r.from_motus);
+  for (const auto& r : rows) worst = worse(worst, r.from_motus);
   return worst;
 }
 
 double EngineRun::max_from_exact() const {
   double worst = -1;
-  for (const auto& r : rows) worst = std::max(worst, r.from_exact);
+  for (const auto& r : rows) worst = worse(worst, r.from_exact);
   return worst;
 }
 

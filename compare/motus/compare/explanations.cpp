@@ -13,13 +13,13 @@ namespace {
 // Two significant digits: enough to compare engines that differ by decades.
 std::string number(double x) {
   if (x == 0) return "0";
-  if (!std::isfinite(x)) return "not finite";  // (a run that blew up: not "-nan")
+  if (std::isnan(x)) return "not finite";  // (a run that blew up: not "-nan"; an infinity reads "inf")
   return fmt::format("{:.2g}", x);
 }
 
 std::string signed_number(double x) {
   if (x == 0) return "0";
-  if (!std::isfinite(x)) return "not finite";
+  if (std::isnan(x)) return "not finite";
   return fmt::format("{:+.2g}", x);
 }
 

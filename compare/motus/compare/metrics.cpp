@@ -40,11 +40,11 @@ MetricsRow Metrics::measure(const Snapshot& s, const Snapshot* motus) const {
 
   for (const auto& stick : scene_.mechanical->sticks) {
     const double length = (x.segment(stick.a * d_, d_) - x.segment(stick.b * d_, d_)).norm();
-    row.constraint_error = std::max(row.constraint_error, std::abs(length - stick.length) / stick.length);
+    row.constraint_error = worse(row.constraint_error, std::abs(length - stick.length) / stick.length);
   }
   auto farthest = [&](const Vector& other_x) {
     double worst = 0;
-    for (Eigen::Index i = 0; i < x.size(); i += d_) worst = std::max(worst, (x.segment(i, d_) - other_x.segment(i, d_)).norm());
+    for (Eigen::Index i = 0; i < x.size(); i += d_) worst = worse(worst, (x.segment(i, d_) - other_x.segment(i, d_)).norm());
     return worst;
   };
   if (motus) row.from_motus = farthest(Eigen::Map<const Vector>(motus->x.data(), static_cast<Eigen::Index>(motus->x.size())));
@@ -65,12 +65,12 @@ double Metrics::deepest_penetration(const std::vector<double>& x) const {
         length += p.normal[k] * p.normal[k];
         height += p.normal[k] * coordinate(i, k);
       }
-      deepest = std::max(deepest, radius_[i] - height / std::sqrt(length));
+      deepest = worse(deepest, radius_[i] - height / std::sqrt(length));
     }
     for (const auto& b : walls.boxes)
       for (int k = 0; k < d_; ++k) {
-        deepest = std::max(deepest, radius_[i] - (coordinate(i, k) - b.min[k]));
-        deepest = std::max(deepest, radius_[i] - (b.max[k] - coordinate(i, k)));
+        deepest = worse(deepest, radius_[i] - (coordinate(i, k) - b.min[k]));
+        deepest = worse(deepest, radius_[i] - (b.max[k] - coordinate(i, k)));
       }
     for (const auto& g : walls.segments) {  // the centre's distance from the segment's nearest point
       double ab2 = 0, ap_ab = 0;
@@ -84,7 +84,7 @@ double Metrics::deepest_penetration(const std::vector<double>& x) const {
         const double gap = coordinate(i, k) - (g.a[k] + along * (g.b[k] - g.a[k]));
         d2 += gap * gap;
       }
-      deepest = std::max(deepest, radius_[i] - std::sqrt(d2));
+      deepest = worse(deepest, radius_[i] - std::sqrt(d2));
     }
   }
   if (balls_.size() < 2) return deepest;
@@ -123,7 +123,7 @@ double Metrics::deepest_penetration(const std::vector<double>& x) const {
         if (j <= i) continue;
         double d2 = 0;
         for (int k = 0; k < d_; ++k) d2 += (coordinate(i, k) - coordinate(j, k)) * (coordinate(i, k) - coordinate(j, k));
-        deepest = std::max(deepest, radius_[i] + radius_[j] - std::sqrt(d2));
+        deepest = worse(deepest, radius_[i] + radius_[j] - std::sqrt(d2));
       }
     }
   }

@@ -3,6 +3,8 @@
 // snapshots alike — energies from motus's own force laws, momenta, the deepest
 // interpenetration, the worst stick, and the distance from motus's trajectory and from
 // the scene's analytic solution.
+#include <algorithm>
+#include <cmath>
 #include <optional>
 #include <vector>
 
@@ -22,6 +24,11 @@ struct MetricsRow {
   double from_motus = 0;        // the largest distance of a body from where motus has it, m
   double from_exact = -1;       // the same from the analytic solution; −1 when the scene has none
 };
+
+// The larger of a running maximum and a new value, where a value that is not a number (a run that
+// blew up, or a student's code that returned NaN) is the worst of all: std::max(worst, NaN) would
+// keep `worst`, and a broken run would read as a perfect one.
+inline double worse(double worst, double x) { return std::isnan(x) ? INFINITY : std::max(worst, x); }
 
 class Metrics {
 public:

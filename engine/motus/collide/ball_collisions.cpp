@@ -165,8 +165,10 @@ void BallCollisions<D>::drift(VectorRef x, VectorRef v, double h, bool kicked) {
     if (state_[e.i].collisions_this_step != e.count_i) continue;  // stale: i has collided since
     if (e.other >= 0 && state_[e.other].collisions_this_step != e.count_other) continue;
     if (++events_this_step_ > limit)
-      throw std::runtime_error("more than " + std::to_string(limit) +
-                               " collisions in one step: the scene cannot settle (overlapping bodies?)");
+      throw std::runtime_error("more than " + std::to_string(limit) + " collisions in one step: " +
+                               (rules_ ? "with the plug-in's times of impact and impulses, the contacts never end (does "
+                                         "it find a contact between balls that are moving apart?)"
+                                       : "the scene cannot settle (overlapping bodies?)"));
     resolve(e);
   }
 

@@ -7,7 +7,9 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <cstring>
+#include <exception>
 #include <filesystem>
 
 #include "motus/integrator_name.hpp"
@@ -191,7 +193,39 @@ void copy_line(char* out, size_t size, const std::string& text) {
   std::snprintf(out, size, "%s", text.c_str());
 }
 
+void install_crash_handlers() {
+  struct sigaction action {};
+  action.sa_sigaction = on_crash;
+  action.sa_flags = SA_SIGINFO | SA_ONSTACK;
+  sigemptyset(&action.sa_mask);
+  // An alternate stack, so that a stack overflow in the plug-in can still be reported.
+  static std::vector<char> alternate(1 << 16);
+  stack_t stack{};
+  stack.ss_sp = alternate.data();
+  stack.ss_size = alternate.size();
+  sigaltstack(&stack, nullptr);
+  for (int signal : {SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT}) sigaction(signal, &action, nullptr);
+}
+
+char g_threw_line[600] = {};  // "motus: the plug-in FILE threw ... while it was being loaded\n"
+std::terminate_handler g_previous_terminate = nullptr;
+
 }  // namespace
+
+void report_crashes_while_loading(const std::string& file) {
+  g_range_count = 0;
+  copy_line(g_loaded_line, sizeof g_loaded_line, "motus: the plug-in " + file + " crashed the process while it was being loaded");
+  copy_line(g_threw_line, sizeof g_threw_line,
+            "motus: the plug-in " + file + " threw an exception while it was being loaded (in a global's constructor?)\n");
+  install_crash_handlers();
+  // An exception out of a global's constructor ends in std::terminate: one line, not libstdc++'s two.
+  const std::terminate_handler previous = std::set_terminate([] {
+    write_all(g_threw_line);
+    ::signal(SIGABRT, SIG_DFL);
+    std::abort();
+  });
+  if (!g_previous_terminate) g_previous_terminate = previous;
+}
 
 void report_plugin_crashes(const PluginSet& plugins) {
   if (plugins.empty()) return;
@@ -210,17 +244,8 @@ void report_plugin_crashes(const PluginSet& plugins) {
   }
   copy_line(g_loaded_line, sizeof g_loaded_line, "motus: the process crashed while running with the plug-in" +
                                                       std::string(plugins.plugins().size() > 1 ? "s " : " ") + loaded);
-  struct sigaction action {};
-  action.sa_sigaction = on_crash;
-  action.sa_flags = SA_SIGINFO | SA_ONSTACK;
-  sigemptyset(&action.sa_mask);
-  // An alternate stack, so that a stack overflow in the plug-in can still be reported.
-  static std::vector<char> alternate(1 << 16);
-  stack_t stack{};
-  stack.ss_sp = alternate.data();
-  stack.ss_size = alternate.size();
-  sigaltstack(&stack, nullptr);
-  for (int signal : {SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT}) sigaction(signal, &action, nullptr);
+  if (g_previous_terminate) std::set_terminate(g_previous_terminate), g_previous_terminate = nullptr;
+  install_crash_handlers();
 }
 
 }  // namespace motus

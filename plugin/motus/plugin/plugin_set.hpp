@@ -61,5 +61,8 @@ private:
 // one line naming the plug-in whose code was running — or, when the crash was elsewhere,
 // the plug-ins that were loaded — before the process dies of the signal as it would have.
 void report_plugin_crashes(const PluginSet& plugins);
+// Until report_plugin_crashes: a crash, or an exception out of a global's constructor, while
+// `file` is being loaded prints one line naming it (its code runs as soon as it is opened).
+void report_crashes_while_loading(const std::string& file);
 
 }  // namespace motus
