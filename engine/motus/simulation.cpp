@@ -156,6 +156,9 @@ void Simulation::advance(double end_time, double dt, Tolerance tolerance,
           ++rejected_;
           // A controller that does not shrink a rejected step (a student's that keeps h, say)
           // would try the same step for ever.
+          if (std::isnan(adaptive_h_))
+            throw StepSizeUnderflow("the step-size control proposed no number after a rejected step at t = " +
+                                     std::to_string(t_) + " (an error estimate that is not finite?)");
           if (!(adaptive_h_ < tried))
             throw StepSizeUnderflow("the step-size control kept a rejected step's size at t = " + std::to_string(t_) +
                                      " (h = " + std::to_string(tried) + " was rejected, and " +
