@@ -186,12 +186,15 @@ int compare_command(const CompareOptions& o) {
   context.scene = &scene;
   context.dt = options.dt;
   context.duration = options.duration;
-  context.samples = std::min(options.samples, fixed_step_count(options.duration, options.dt));  // (as many as were taken)
+  context.samples = options.samples;
   context.dimensions = scene.mechanical->dimensions;
   context.bodies = static_cast<long>(scene.mechanical->bodies.size());
   // The rounds run (the default's number is decided by how long the metrics runs took).
   for (const auto& run : runs)
-    if (run.supported) context.repeats = std::max(context.repeats, static_cast<int>(run.round_seconds.size()));
+    if (run.supported) {
+      context.repeats = std::max(context.repeats, static_cast<int>(run.round_seconds.size()));
+      context.samples = static_cast<long>(run.rows.size()) - 1;  // (as many as were taken: the start is no sample)
+    }
   const auto conserved = compare::conserved_quantities(scene);
   context.momentum_conserved = conserved.momentum;
   context.angular_momentum_conserved = conserved.angular_momentum;

@@ -22,12 +22,10 @@ CLI::App* add_list_command(CLI::App& app, std::vector<std::string>& plugin_files
 
 int list_command(const std::vector<std::string>& plugin_files) {
   load_plugins(plugin_files);
-  {
-    std::error_code error;
-    if (!std::filesystem::is_directory(scenes_directory(), error))
-      throw InputError(scenes_directory() + ": the scenes' folder" +
-                       (std::getenv("MOTUS_SCENES") && *std::getenv("MOTUS_SCENES") ? " (MOTUS_SCENES)" : "") +
-                       " is not a folder that can be read");
+  if (std::error_code error; !std::filesystem::is_directory(scenes_directory(), error)) {
+    const char* set = std::getenv("MOTUS_SCENES");
+    throw InputError(scenes_directory() + ": the scenes' folder" + (set && *set ? " (MOTUS_SCENES)" : "") +
+                     " is not a folder that can be read");
   }
   fmt::print("scenes (in {}):\n", scenes_directory());
   for (const auto& file : shipped_scenes()) {

@@ -223,10 +223,7 @@ int render_command(const RenderOptions& o) {
   if (!o.video.empty()) {
     const std::string file = (fs::path(o.out) / video_name).string();
     progress.note("encoding the video (ffmpeg)");
-    // (ffmpeg reads a % in the folder's name as part of the frames' pattern: written %%)
-    std::string folder = o.out;
-    for (size_t at = folder.find('%'); at != std::string::npos; at = folder.find('%', at + 2)) folder.insert(at, 1, '%');
-    const std::string error = drawing.encode_video((fs::path(folder) / "frame_%05d.png").string(), o.fps, file, o.video);
+    const std::string error = drawing.encode_video((fs::path(o.out) / "frame_%05d.png").string(), o.fps, file, o.video);
     progress.finish();
     stop_if_interrupted();
     if (!error.empty()) throw std::runtime_error(error);

@@ -45,7 +45,7 @@ long run_steps(Simulation& sim, long steps, double h, const std::function<bool(c
       // start plus its steps) part by a few roundings a chunk, and after 10^7 steps that made one
       // step more.
       sim.advance(sim.time() + static_cast<double>(n) * h, h, Tolerance{}, [&](const Simulation& s) {
-        if (!go || seen >= steps) return;
+        if (!go) return;
         tick();
         ++seen;
         if (!each(s)) go = false;

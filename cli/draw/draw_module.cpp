@@ -99,8 +99,7 @@ std::string draw_comparison(const ComparisonJob& job, ComparisonPictures& pictur
     if (!job.first_and_last_only) fs::create_directories(frames_folder);
     const size_t frames = reference->size();
     std::vector<render::Image> sheet, ends;  // (ends: the first and the last instant, in every report)
-    const std::vector<size_t> sheet_frames =
-        job.first_and_last_only ? std::vector<size_t>{0, frames - 1} : std::vector<size_t>{0, frames / 2, frames - 1};
+    const std::vector<size_t> sheet_frames{0, frames / 2, frames - 1};  // (the contact sheet's; not when first_and_last_only)
     std::vector<std::string> sheet_labels;
     render::Image panel_image;
     for (size_t k = 0; k < frames; ++k) {
@@ -141,12 +140,10 @@ std::string draw_comparison(const ComparisonJob& job, ComparisonPictures& pictur
     if (process::find_program("ffmpeg").empty()) {
       pictures.warning = "video skipped: ffmpeg not found on PATH (install the Debian package ffmpeg)";
     } else {
-      // (ffmpeg reads a % in the folder's name as part of the frames' pattern: written %%.) A video
-      // that fails costs the video only: the frames and the sheets are drawn and still shown.
-      std::string pattern = frames_folder;
-      for (size_t at = pattern.find('%'); at != std::string::npos; at = pattern.find('%', at + 2)) pattern.insert(at, 1, '%');
+      // A video that fails costs the video only: the frames and the sheets are drawn and still shown.
       try {
-        render::encode_video(pattern + "/frame_%05d.png", job.fps, job.folder + "/comparison.mp4", render::VideoFormat::mp4);
+        render::encode_video(frames_folder + "/frame_%05d.png", job.fps, job.folder + "/comparison.mp4",
+                             render::VideoFormat::mp4);
         pictures.video = "comparison.mp4";
       } catch (const std::exception& e) {
         pictures.warning = std::string("video skipped: ") + e.what();

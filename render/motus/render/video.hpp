@@ -12,7 +12,8 @@ enum class VideoFormat { mp4, gif };
 std::optional<VideoFormat> video_format_from_name(const std::string& name);
 
 // Runs ffmpeg on frames named by a printf pattern ("out/frame_%05d.png", numbered from 0)
-// at `fps` frames per second into out_path (replaced if it exists).
+// at `fps` frames per second into out_path (replaced if it exists). Only the file name is a
+// pattern: a % in the folder's name ("runs/c_50%/frame_%05d.png") is taken as it is.
 // Throws RenderError when ffmpeg is not on $PATH (install the Debian package ffmpeg), and
 // std::runtime_error when ffmpeg runs and fails.
 void encode_video(const std::string& frame_pattern, double fps, const std::string& out_path, VideoFormat format);
