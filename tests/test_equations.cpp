@@ -227,6 +227,23 @@ const std::vector<BadEquations> kBad = {
      "system.initial", "must have 2 numbers (got 1)"},
     {"unknown_system_field", R"j("variables": ["x"], "equations": {"x": "1"}, "initial": [1], "equation": {})j",
      "system.equation", "unknown field"},
+    // muparser reads up to a NUL: the rest, "*1000 + k", was dropped unseen, and the run went on.
+    {"nul_inside", R"j("variables": ["x", "v"], "equations": {"x": "v\u0000*1000 + k", "v": "-x"}, "initial": [1, 0])j",
+     "system.equations.x", "a control character (code 0) at column 2"},
+    // A number out of range or cut short is no unknown variable; the symbol named is the word at
+    // the column, not the rest of the expression; muparser's own position is not named twice.
+    {"number_out_of_range", R"j("variables": ["x"], "equations": {"x": "1e309 * x"}, "initial": [1])j",
+     "system.equations.x", "not a number at column 1: \"1e309\""},
+    {"number_cut_short", R"j("variables": ["x"], "equations": {"x": "1.5e"}, "initial": [1])j", "system.equations.x",
+     "not a number at column 1: \"1.5e\""},
+    {"no_operator", R"j("variables": ["x"], "equations": {"x": "3 % x"}, "initial": [1])j", "system.equations.x",
+     "syntax error at column 3: \"%\" is no operator, number or name"},
+    {"not_ascii", R"j("variables": ["x"], "equations": {"x": "μ*x"}, "initial": [1])j", "system.equations.x",
+     "syntax error at column 1: \"μ\" is no operator"},
+    {"unknown_variable_then_more", R"j("variables": ["x"], "equations": {"x": "x + k2_ * x"}, "initial": [1])j",
+     "system.equations.x", "unknown variable \"k2_\" at column 5 (known"},
+    {"too_few_arguments", R"j("variables": ["x"], "equations": {"x": "sum()"}, "initial": [1])j", "system.equations.x",
+     "syntax error at column 6: too few parameters for function \"sum\""},
 };
 
 class BadEquationsTest : public ::testing::TestWithParam<BadEquations> {};
@@ -241,6 +258,7 @@ TEST_P(BadEquationsTest, OneErrorNamingTheField) {
     EXPECT_EQ(e.field, c.field) << e.what();
     EXPECT_NE(e.message.find(c.what), std::string::npos) << "expected: " << c.what << "\ngot: " << e.what();
     EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos);
+    EXPECT_EQ(e.message.find("position"), std::string::npos) << e.what();  // (a column is named once, ours)
   }
 }
 
@@ -260,6 +278,28 @@ TEST(EquationsLoader, SetChangesParametersAndEquations) {
   EXPECT_EQ(dydt[0], 1.0);
   EXPECT_DOUBLE_EQ(dydt[1], 2.5 * (1 - 0.25) * 1 - 0.5);
   EXPECT_EQ(sim.state_names(), (std::vector<std::string>{"x", "v"}));
+}
+
+// An adaptive step whose error estimate is NaN (the state is no longer a number) is rejected, never
+// taken: the run stops with the state still finite, before t = 0.3, where the right-hand side
+// stops being a number. (Accepted, a NaN step size followed, and t = nan in the message.)
+TEST(EquationsLoader, AnAdaptiveStepIntoNaNIsRejected) {
+  const auto scene = motus::parse_scene(
+      R"j({"system": {"type": "equations", "variables": ["x"], "equations": {"x": "t > 0.3 ? sqrt(-1) : 1"},
+          "initial": [0]}, "dt": 0.1, "duration": 1})j",
+      "nan.json");
+  for (const Integrator integrator : {Integrator::Rk45, Integrator::Dop853, Integrator::Rk4Doubling}) {
+    motus::Simulation sim(scene, integrator);
+    try {
+      sim.advance(1, 0.1, {1e-6, 1e-6});
+      ADD_FAILURE() << motus::info(integrator).name << " ran through";
+    } catch (const std::runtime_error& e) {
+      EXPECT_NE(std::string(e.what()).find("not finite"), std::string::npos) << e.what();
+    }
+    EXPECT_TRUE(std::isfinite(sim.state()[0])) << motus::info(integrator).name;
+    EXPECT_LE(sim.time(), 0.3) << motus::info(integrator).name;
+    EXPECT_NEAR(sim.state()[0], sim.time(), 1e-12) << motus::info(integrator).name;  // x = t until then
+  }
 }
 
 // t is the time: a forced system sees it.

@@ -54,7 +54,7 @@ public:
   // — the fifth-order estimate, scaled down by the third-order one where that is larger.
   static double combined_error(double h, double sum5, double sum3, Eigen::Index n) {
     const double denominator = sum5 + 0.01 * sum3;
-    if (!(denominator > 0)) return 0;
+    if (denominator == 0) return 0;  // no error at all (a NaN goes on: the step is rejected)
     return std::abs(h) * sum5 / std::sqrt(denominator * static_cast<double>(n));
   }
 
@@ -73,7 +73,7 @@ private:
     const double err = attempt(f, t, h, y0, s);
     const double h_used = h;
     h = control_.next_step(h, err);
-    if (err > 1) return false;
+    if (!(err <= 1)) return false;  // too large (or NaN: a state that is no longer finite), try again smaller
     y = s.y_new;
     t += h_used;
     f.derivative(t, s.y_new, s.k[0]);  // first same as last: the next step's k1

@@ -85,7 +85,7 @@ private:
     const double err = scaled_error(y, s.y_new, s.error, tol_);
     const double h_used = h;
     h = control_.next_step(h, err);
-    if (err > 1) return false;
+    if (!(err <= 1)) return false;  // too large (or NaN: a state that is no longer finite), try again smaller
     y = s.y_new;
     t += h_used;
     k1.swap(k7);  // first same as last

@@ -51,7 +51,7 @@ private:
     const double err = scaled_error(y, y_half, difference, tol_);
     const double h_used = h;
     h = control_.next_step(h, err);
-    if (err > 1) return false;
+    if (!(err <= 1)) return false;  // too large (or NaN: a state that is no longer finite), try again smaller
     for (Eigen::Index i = 0; i < n; ++i) y[i] = y_half[i] + difference[i];
     t += h_used;
     return true;
