@@ -20,7 +20,7 @@ bool is_constant(const std::string& name) { return plain_parser().GetConst().cou
 // muparser's message without its "at position N" (we give a 1-based column instead), starting
 // with a small letter so that it reads on after "syntax error at column N: ".
 std::string plain_message(std::string message) {
-  for (const char* tail : {" found at position ", " at position "}) {
+  for (const char* tail : {" found at position ", " at expression position ", " at position "}) {
     const auto at = message.find(tail);
     if (at != std::string::npos) {
       auto end = at + std::string(tail).size();
@@ -32,6 +32,25 @@ std::string plain_message(std::string message) {
   if (!message.empty() && message[0] >= 'A' && message[0] <= 'Z' && !(message.size() > 1 && std::isupper(static_cast<unsigned char>(message[1]))))
     message[0] = static_cast<char>(std::tolower(static_cast<unsigned char>(message[0])));
   return message.empty() ? "cannot be parsed" : message;
+}
+
+// What stands at `position` of the text: a number as written (1e309, 1.5e), a name, or else one
+// character (all of its UTF-8 bytes).
+std::string word_at(const std::string& text, size_t position) {
+  if (position >= text.size()) return "";
+  auto at = [&](size_t i) { return static_cast<unsigned char>(text[i]); };
+  auto in_name = [&](size_t i) { return std::isalnum(at(i)) || at(i) == '_'; };
+  size_t end = position + 1;
+  if (std::isdigit(at(position)) || at(position) == '.') {
+    while (end < text.size() && (std::isdigit(at(end)) || at(end) == '.' || at(end) == 'e' || at(end) == 'E' ||
+                                 ((at(end) == '+' || at(end) == '-') && (at(end - 1) == 'e' || at(end - 1) == 'E'))))
+      ++end;
+  } else if (in_name(position)) {
+    while (end < text.size() && in_name(end)) ++end;
+  } else {
+    while (end < text.size() && (at(end) & 0xC0) == 0x80) ++end;
+  }
+  return text.substr(position, end - position);
 }
 
 // The first '=' that is an assignment (x = 3, x += 1), not part of ==, !=, <= or >=; npos if none.
@@ -113,6 +132,13 @@ ExpressionSystem::ExpressionSystem(const Equations& e) : names_(e.variables), pa
     const int end_column = static_cast<int>(text.size()) + 1;
     if (text.find_first_not_of(" \t") == std::string::npos)
       throw EquationError(index, 0, "is empty: give the right-hand side of " + e.variables[i] + "' = ...");
+    // muparser reads a C string: a NUL (JSON's \u0000) would end the expression there, silently.
+    if (const auto control = std::find_if(text.begin(), text.end(), [](char c) { return c != '\t' && static_cast<unsigned char>(c) < 0x20; });
+        control != text.end()) {
+      const int column = static_cast<int>(control - text.begin()) + 1;
+      throw EquationError(index, column, "a control character (code " + std::to_string(static_cast<int>(*control)) +
+                                             ") at column " + std::to_string(column) + ": an expression is one line of text");
+    }
     if (const size_t at = assignment(text); at != std::string::npos)
       throw EquationError(index, static_cast<int>(at) + 1,
                           "an assignment at column " + std::to_string(at + 1) +
@@ -135,8 +161,20 @@ ExpressionSystem::ExpressionSystem(const Equations& e) : names_(e.variables), pa
       }
     } catch (const mu::Parser::exception_type& error) {
       const int column = std::clamp(error.GetPos() + 1, 1, end_column);
-      const std::string token = error.GetToken();
+      // (muparser's token is the rest of the expression from there: the word at that column is
+      // the one to name.)
+      const std::string token = word_at(text, static_cast<size_t>(column - 1));
       if (error.GetCode() == mu::ecUNASSIGNABLE_TOKEN && !token.empty()) {
+        const unsigned char first = static_cast<unsigned char>(token[0]);
+        if (std::isdigit(first) || first == '.')
+          throw EquationError(index, column,
+                              "not a number at column " + std::to_string(column) + ": \"" + token +
+                                  "\" (a number is written as 1.5 or 2e-3, and is at most about 1.8e308)");
+        if (!std::isalpha(first) && first != '_')
+          throw EquationError(index, column,
+                              "syntax error at column " + std::to_string(column) + ": \"" + token +
+                                  "\" is no operator, number or name (operators: + - * / ^, comparisons, && || and ?:; names: "
+                                  "ASCII letters, digits and _)");
         if (is_function(token))
           throw EquationError(index, column,
                               "syntax error at column " + std::to_string(column) + ": the function " + token +
