@@ -8,8 +8,9 @@ set -euo pipefail
 seconds="${1:-60}"
 here="$(cd "$(dirname "$0")" && pwd)"
 build="${2:-$here/../build/fuzz}"
-cmake -S "$here" -B "$build" -DCMAKE_CXX_COMPILER=clang++ > "$build.configure.log" 2>&1 || { cat "$build.configure.log"; exit 1; }
-cmake --build "$build" -j"$(nproc)" > "$build.build.log" 2>&1 || { tail -40 "$build.build.log"; exit 1; }
+mkdir -p "$build"  # (everything it writes goes in there)
+cmake -S "$here" -B "$build" -DCMAKE_CXX_COMPILER=clang++ > "$build/configure.log" 2>&1 || { cat "$build/configure.log"; exit 1; }
+cmake --build "$build" -j"$(nproc)" > "$build/build.log" 2>&1 || { tail -40 "$build/build.log"; exit 1; }
 mkdir -p "$build/findings"
 status=0
 for fuzzer in fuzz_load fuzz_step; do
