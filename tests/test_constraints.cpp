@@ -515,7 +515,7 @@ TEST(StickPendulum, ProjectionDampsTheSwingAsTheTheorySays) {
 TEST(Ragdoll, NoParticleEverEndsUpInTheFloorOrOutsideTheBox) {
   const SceneDescription scene = ragdoll_scene();
   Simulation sim(scene, Integrator::Verlet);
-  double lowest_gap = INFINITY, worst_error = 0;
+  double lowest_gap = INFINITY;
   sim.advance(scene.duration, scene.dt, {}, [&](const Simulation& s) {
     const Vector& y = s.state();
     for (size_t i = 0; i < kRagdoll.size(); ++i) {
@@ -527,10 +527,10 @@ TEST(Ragdoll, NoParticleEverEndsUpInTheFloorOrOutsideTheBox) {
       ASSERT_LE(x, kBoxMax[0] - r + 1e-12) << "body " << i;
       ASSERT_LE(h, kBoxMax[1] - r + 1e-12) << "body " << i;
     }
-    worst_error = std::max(worst_error, s.world()->constraint_error(y.head(26)));
   });
-  std::printf("  ragdoll: lowest gap to the floor %.3g m, largest stick error %.3f%% (10 sweeps)\n", lowest_gap,
-              100 * worst_error);
+  // (Its sticks are held against both peers' in the same run, every step sampled, by
+  // Compare.OnTheStickScenesMotusKeepsItsSticksAtLeastAsWellAsBothPeers.)
+  std::printf("  ragdoll: lowest gap to the floor %.3g m\n", lowest_gap);
   EXPECT_LT(lowest_gap, 1e-3);  // it did land (the test would be empty otherwise)
   // Five balls (head, hands, feet): the broad phase ran, and the counters show it.
   EXPECT_GT(sim.world()->collision_counters().broad_phase_queries(), 0);

@@ -301,7 +301,9 @@ TEST(BenchPrecisionCommand, FixedStepsLandOnASceneKnownOnlyAtItsReferenceTime) {
   ASSERT_GE(cells.size(), 8u) << row;
   EXPECT_EQ(cells[4], "17066") << row;                              // steps
   EXPECT_NEAR(std::stod(cells[6]), 17.0652165601579625588917206249, 1e-9) << row;  // t_end
-  EXPECT_LT(std::stod(cells[7]), 1.0) << row;                       // an error was measured there
+  // An error was measured there (its size is the curves' to show: 0.91 here, Arenstorf's orbit
+  // being hard on fixed steps; not this test's).
+  EXPECT_TRUE(std::isfinite(std::stod(cells[7])) && std::stod(cells[7]) > 0) << row;
 }
 
 }  // namespace
