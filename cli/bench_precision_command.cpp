@@ -226,17 +226,26 @@ int bench_precision_command(const BenchPrecisionOptions& o) {
   context.versions = versions;
   const std::string warning = precision::write_precision_report(partial.path(), context, curves);
   if (!warning.empty()) fmt::print(stderr, "motus: {}\n", warning);
-  if (!o.csv.empty()) {
-    std::ofstream csv(o.csv, std::ios::binary);
-    if (!csv) throw InputError(o.csv + ": cannot be written");
-    csv << precision::precision_csv(scene.name, curves);
-    csv.flush();
-    if (!csv) throw std::runtime_error(o.csv + ": could not be written (disk full?)");
-    fmt::print("\ntable written to {}\n", o.csv);
-  }
   stop_if_interrupted();
   partial.complete();
   fmt::print("report: {}/index.html\n", folder);
+  // The copy, after the report (which is whole by now): whole or not at all, and over a file that
+  // appeared during the sweep only with --overwrite.
+  if (!o.csv.empty()) {
+    std::error_code ignored;
+    const auto status = fs::status(o.csv, ignored);
+    std::optional<PartialFile> partial_csv;  // (none for a FIFO or a device: written as it is)
+    if (!fs::exists(status) || fs::is_regular_file(status)) partial_csv.emplace(o.csv);
+    {
+      std::ofstream csv(partial_csv ? partial_csv->path() : o.csv, std::ios::binary);
+      if (!csv) throw std::runtime_error(o.csv + ": cannot be written");
+      csv << precision::precision_csv(scene.name, curves);
+      csv.flush();
+      if (!csv) throw std::runtime_error(o.csv + ": could not be written (disk full?)");
+    }
+    if (partial_csv) partial_csv->complete(o.overwrite);
+    fmt::print("table written to {}\n", o.csv);
+  }
   return 0;
 }
 

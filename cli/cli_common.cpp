@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <fcntl.h>
+#include <stdio.h>  // renameat2, RENAME_NOREPLACE
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -223,18 +224,64 @@ PartialFolder::~PartialFolder() {
   fs::remove_all(partial_, ignored);
 }
 
+namespace {
+// Renames `from` to `to` unless something is at `to` already (then false; the check and the rename
+// are one step, RENAME_NOREPLACE, so nothing that appears in between is replaced). A file system
+// without that flag gets a hard link and an unlink instead, which refuse the same way (files only).
+bool rename_without_replacing(const std::string& from, const std::string& to) {
+  if (::renameat2(AT_FDCWD, from.c_str(), AT_FDCWD, to.c_str(), RENAME_NOREPLACE) == 0) return true;
+  if (errno == EEXIST) return false;
+  if (errno == EINVAL || errno == ENOSYS) {
+    if (::link(from.c_str(), to.c_str()) == 0) {
+      ::unlink(from.c_str());
+      return true;
+    }
+    if (errno == EEXIST) return false;
+  }
+  throw std::runtime_error(to + ": could not be written (" + std::strerror(errno) + ")");
+}
+}  // namespace
+
 void PartialFolder::complete() {
-  if (fs::exists(final_)) throw std::runtime_error(final_ + ": appeared while the report was written; it is in " + partial_);
-  std::error_code error;
-  fs::rename(partial_, final_, error);
-  if (error) throw std::runtime_error(final_ + ": the finished report could not be moved there (" + error.message() + ")");
+  if (!rename_without_replacing(partial_, final_))
+    throw std::runtime_error(final_ + ": appeared while the report was written; it is in " + partial_);
   done_ = true;
+}
+
+PartialFile::PartialFile(const std::string& final_path) : final_(final_path) {
+  std::string pattern = partial_folder_pattern_for(final_path);
+  if (!::mkdtemp(pattern.data()))
+    throw InputError(final_ + ": cannot be written (" + std::string(std::strerror(errno)) + ")");
+  folder_ = pattern;
+  file_ = (fs::path(folder_) / fs::path(final_path).filename()).string();
+}
+
+PartialFile::~PartialFile() {
+  if (done_) return;
+  std::error_code ignored;
+  fs::remove_all(folder_, ignored);
+}
+
+void PartialFile::complete(bool overwrite) {
+  std::error_code error;
+  if (overwrite) {
+    fs::rename(file_, final_, error);
+    if (error) throw std::runtime_error(final_ + ": could not be written (" + error.message() + ")");
+  } else if (!rename_without_replacing(file_, final_)) {
+    done_ = true;  // (kept: it is the only copy of the work)
+    throw std::runtime_error(final_ + ": appeared while it was written, and is left as it is (no --overwrite); what was "
+                                      "written is in " + file_);
+  }
+  done_ = true;
+  fs::remove(folder_, error);
 }
 
 void check_can_write(const std::string& path, bool overwrite) {
   std::error_code error;
   const auto status = fs::status(path, error);
-  if (fs::exists(fs::symlink_status(path, error)) && !overwrite)
+  // (A FIFO or a device is no file the user wrote: it is written as it is, below.)
+  const auto link_status = fs::symlink_status(path, error);
+  if ((fs::is_regular_file(link_status) || fs::is_symlink(link_status)) && !overwrite)
     throw InputError(path + ": already exists; choose another name or pass --overwrite");
   if (fs::is_directory(status)) throw InputError(path + ": is a folder, not a file");
   const fs::path parent = fs::path(path).parent_path();
@@ -245,9 +292,9 @@ void check_can_write(const std::string& path, bool overwrite) {
   // or a device is written as it is, and needs no new file.)
   if (fs::exists(status) && !fs::is_regular_file(status)) return;
   const fs::path folder = parent.empty() ? fs::path(".") : parent;
-  // (The file itself is written under a longer name, partial_file_for's, then renamed.)
+  // (The file itself is written in a folder with a longer name, a PartialFile's, then moved.)
   const long name_max = ::pathconf(folder.c_str(), _PC_NAME_MAX);
-  const long longer = static_cast<long>(fs::path(partial_file_for(path)).filename().string().size() -
+  const long longer = static_cast<long>(fs::path(partial_folder_pattern_for(path)).filename().string().size() -
                                         fs::path(path).filename().string().size());
   if (name_max > 0 && static_cast<long>(fs::path(path).filename().string().size()) + longer > name_max)
     throw InputError(path + ": the file name is too long (at most " + std::to_string(name_max - longer) + " bytes here)");
@@ -257,9 +304,9 @@ void check_can_write(const std::string& path, bool overwrite) {
   if (fd >= 0) ::close(fd), ::unlink(probe.c_str());
 }
 
-std::string partial_file_for(const std::string& path) {
+std::string partial_folder_pattern_for(const std::string& path) {
   const fs::path target(path);
-  return (target.parent_path() / ("." + target.filename().string() + ".partial")).string();
+  return (target.parent_path() / ("." + target.filename().string() + ".partial-XXXXXX")).string();
 }
 
 void check_can_replace(const std::string& path, bool overwrite) {

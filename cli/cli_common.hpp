@@ -138,12 +138,32 @@ private:
   bool done_ = false;
 };
 
+// A file written whole or not at all: written as NAME inside a new folder of its own beside it
+// (.NAME.partial-XXXXXX, made by mkdtemp, so that nothing already there is truncated and no link
+// is followed), and moved to `final_path` by complete(): over a file there only with
+// `overwrite`; without it, a file that appeared there meanwhile is left as it is (an error that
+// says where the work was kept). Otherwise the destructor removes the folder and the file.
+// Throws InputError when the folder cannot be made.
+class PartialFile {
+public:
+  explicit PartialFile(const std::string& final_path);
+  ~PartialFile();
+  PartialFile(const PartialFile&) = delete;
+  PartialFile& operator=(const PartialFile&) = delete;
+  const std::string& path() const { return file_; }  // where to write it
+  void complete(bool overwrite);                     // throws std::runtime_error naming final_path
+
+private:
+  std::string final_, folder_, file_;
+  bool done_ = false;
+};
+
 // Refuses to overwrite an existing file unless asked to (nothing the user wrote is
 // lost without being asked), and a folder even then. For a file written in place: a FIFO or a
 // device (/dev/full) is written to as it is.
 void check_can_write(const std::string& path, bool overwrite);
-// Where a file is written until it is complete and renamed to `path`: .NAME.partial beside it.
-std::string partial_file_for(const std::string& path);
+// The folder a PartialFile for `path` is written in, with mkdtemp's XXXXXX: .NAME.partial-XXXXXX.
+std::string partial_folder_pattern_for(const std::string& path);
 // The same for a file written whole under another name and then renamed over `path`: the
 // rename would put a regular file where a device or a FIFO was, so only a regular file (or a
 // link, which the rename replaces and does not follow) may be overwritten.

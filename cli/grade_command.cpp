@@ -8,6 +8,7 @@
 #include <ctime>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <mutex>
 #include <thread>
 
@@ -48,22 +49,17 @@ grade::GradeOptions grade_options(const GradeCommandOptions& o) {
   return g;
 }
 
-// Writes text to `path` whole, or fails with one line (a half-written results file is worse than none).
-void write_file(const std::string& path, const std::string& text) {
-  const std::string temporary = partial_file_for(path);
+// Writes text to `path` whole, or fails with one line (a half-written results file is worse than
+// none); over a file there only with `overwrite` (one that appeared during the grading is kept).
+void write_file(const std::string& path, const std::string& text, bool overwrite) {
+  PartialFile partial(path);
   {
-    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
+    std::ofstream out(partial.path(), std::ios::binary | std::ios::trunc);
     out << text;
     out.flush();
-    if (!out) {
-      std::error_code ignored;
-      fs::remove(temporary, ignored);
-      throw std::runtime_error(path + ": cannot be written");
-    }
+    if (!out) throw std::runtime_error(path + ": cannot be written");
   }
-  std::error_code error;
-  fs::rename(temporary, path, error);
-  if (error) throw std::runtime_error(path + ": cannot be written (" + error.message() + ")");
+  partial.complete(overwrite);
 }
 
 grade::Assignment load(const GradeCommandOptions& o, const std::string& folder) {
@@ -103,17 +99,19 @@ int grade_one(const GradeCommandOptions& o, const std::string& folder) {
   const grade::Assignment assignment = load(o, folder);
   check_limits(o);
   grade::GradeOptions options = grade_options(o);
-  options.plugin_out = o.plugin_out;
+  std::optional<PartialFile> plugin_out;  // (kept only when the submission compiles)
+  if (!o.plugin_out.empty()) options.plugin_out = plugin_out.emplace(o.plugin_out).path();
   grade::GradeResult result;
   try {
     result = grade::grade_submission(assignment, o.submission, options);
   } catch (const std::exception& e) {
     // Even now, a valid results.json that says what happened.
-    if (!o.results.empty()) write_file(o.results, grade::results_text(grade::failed_json(assignment.name, e.what())));
+    if (!o.results.empty()) write_file(o.results, grade::results_text(grade::failed_json(assignment.name, e.what())), o.overwrite);
     throw;
   }
   const std::string json = grade::results_text(grade::gradescope_json(result));
-  if (!o.results.empty()) write_file(o.results, json);
+  if (!o.results.empty()) write_file(o.results, json, o.overwrite);
+  if (plugin_out && result.compiled) plugin_out->complete(o.overwrite);
   if (!o.plugin_out.empty() && !result.compiled)
     fmt::print(stderr, "motus: note: --plugin-out: {} was not written: the submission does not compile\n", o.plugin_out);
   if (o.format == "gradescope")
@@ -155,7 +153,7 @@ int grade_batch(const GradeCommandOptions& o, const std::string& folder) {
       const std::string results = (fs::path(out) / (name + ".json")).string();
       try {
         const auto result = grade::grade_submission(assignment, submissions[i].string(), options);
-        write_file(results, grade::results_text(grade::gradescope_json(result)));
+        write_file(results, grade::results_text(grade::gradescope_json(result)), false);  // (a folder of our own)
         rows[i] = {result.score, result.max_score, result.seconds,
                    !result.tests[0].passed ? "missing files" : !result.compiled ? "does not compile" : "graded"};
       } catch (const std::exception& e) {
@@ -163,7 +161,7 @@ int grade_batch(const GradeCommandOptions& o, const std::string& folder) {
         failures.push_back(name + ": " + e.what());
         rows[i] = {0, assignment.max_score(), 0, "grader failed"};
         try {
-          write_file(results, grade::results_text(grade::failed_json(assignment.name, e.what())));
+          write_file(results, grade::results_text(grade::failed_json(assignment.name, e.what())), false);
         } catch (...) {
         }
       }
@@ -184,7 +182,7 @@ int grade_batch(const GradeCommandOptions& o, const std::string& folder) {
   for (size_t i = 0; i < submissions.size(); ++i)
     csv += fmt::format("{},{},{},{:.2f},{}\n", submissions[i].filename().string(), rows[i].score, rows[i].max_score,
                        rows[i].seconds, rows[i].status);
-  write_file((fs::path(out) / "scores.csv").string(), csv);
+  write_file((fs::path(out) / "scores.csv").string(), csv, false);
   fmt::print("{}", csv);
   fmt::print(stderr, "motus: graded {} submissions of {} in {:.1f} s with {} jobs; results in {}/\n", submissions.size(),
              assignment.name, wall, o.jobs, out);

@@ -123,11 +123,9 @@ exec "$MOTUS" grade "$SOURCE/assignment" "$ROOT/submission" {}--results "$ROOT/r
                            "--package gradescope`.\nUpload this zip as the autograder; setup.sh builds motus, "
                            "run_autograder grades each submission.\n",
                            quoted(assignment_name), quoted(assignment_name)));
-  const fs::path partial = partial_file_for(zip);
-  std::error_code ignored;
-  fs::remove(partial, ignored);
-  zip_folder(staging, fs::absolute(partial));
-  fs::rename(partial, zip);
+  PartialFile partial(zip);  // (zip adds to an archive that is there: it writes a new one in a folder of its own)
+  zip_folder(staging, fs::absolute(partial.path()));
+  partial.complete(overwrite);
   fmt::print("autograder  {} (setup.sh, run_autograder; motus's sources, the assignment{})\n", zip,
              hidden ? " and its hidden tests" : "");
   if (!hidden)

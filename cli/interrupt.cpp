@@ -15,7 +15,7 @@ constexpr unsigned kGraceSeconds = 30;
 // Only async-signal-safe calls here: write and _exit.
 [[noreturn]] void stop_now(const char* why) {
   const char* line = "motus: interrupted; ";
-  for (const char* text : {line, why, " (what was being written may be left under its temporary .NAME.partial name)\n"}) {
+  for (const char* text : {line, why, " (what was being written may be left under its temporary .NAME.partial-XXXXXX name)\n"}) {
     size_t length = 0;
     while (text[length]) ++length;
     if (::write(STDERR_FILENO, text, length) < 0) break;

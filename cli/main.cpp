@@ -8,6 +8,7 @@
 
 #include <cerrno>
 #include <cstdio>
+#include <system_error>
 #include <cstring>
 #include <iostream>
 
@@ -123,6 +124,12 @@ int main(int argc, char** argv) {
     if (interrupted()) {  // a program motus waited for died of the same Ctrl-C
       fmt::print(stderr, "motus: interrupted; nothing half-written was left behind\n");
       return kExitInterrupted;
+    }
+    if (std::ferror(stdout)) {  // fmt's "cannot write to file" is standard output's: named as such
+      const auto* system = dynamic_cast<const std::system_error*>(&e);
+      fmt::print(stderr, "motus: the run failed: standard output could not be written ({})\n",
+                 system ? system->code().message() : one_line(e.what()));
+      return kExitFailure;
     }
     fmt::print(stderr, "motus: the run failed: {}\n", one_line(e.what()));
     return kExitFailure;

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <optional>
 #include <nlohmann/json.hpp>
 
 #include "cli_common.hpp"
@@ -29,22 +30,22 @@ nlohmann::json energy_json(const std::optional<Energy>& e) {
   return {{"kinetic", e->kinetic}, {"potential", e->potential}, {"total", e->total}};
 }
 
-// Writes the trajectory CSV: a header, then one row per output time. A file is written under
-// a name of its own beside it (.NAME.partial) and renamed to NAME when the run is through: a
+// Writes the trajectory CSV: a header, then one row per output time. A file is written as a
+// PartialFile (in a folder of its own beside it) and moved to NAME when the run is through: a
 // run that is interrupted or fails leaves no half-written CSV, and the file it would have
 // replaced (--overwrite) is still there. A FIFO or a device (/dev/full) is written as it is.
 class TrajectoryWriter {
 public:
   // path "-": standard output.
-  TrajectoryWriter(const std::string& path, const Simulation& sim, double interval)
-      : path_(path == "-" ? "standard output" : path), interval_(interval) {
+  TrajectoryWriter(const std::string& path, const Simulation& sim, double interval, bool overwrite)
+      : path_(path == "-" ? "standard output" : path), interval_(interval), overwrite_(overwrite) {
     if (path == "-") {
       out_ = &std::cout;
     } else {
       std::error_code ignored;
       const auto status = fs::status(path, ignored);
-      if (!fs::exists(status) || fs::is_regular_file(status)) partial_ = partial_file_for(path);
-      file_.open(partial_.empty() ? path : partial_, std::ios::binary | std::ios::trunc);
+      if (!fs::exists(status) || fs::is_regular_file(status)) partial_.emplace(path);
+      file_.open(partial_ ? partial_->path() : path, std::ios::binary | std::ios::trunc);
       out_ = &file_;
     }
     if (!*out_) throw InputError(path + ": cannot be written");
@@ -70,21 +71,13 @@ public:
     if (sim.time() > last_) row(sim);
     out_->flush();
     if (!*out_) throw std::runtime_error(path_ + ": could not be written (disk full?)");
-    if (!partial_.empty()) {
+    if (partial_) {
       file_.close();
       if (!file_) throw std::runtime_error(path_ + ": could not be written (disk full?)");
-      std::error_code error;
-      fs::rename(partial_, path_, error);
-      if (error) throw std::runtime_error(path_ + ": could not be written (" + error.message() + ")");
-      partial_.clear();
+      partial_->complete(overwrite_);
     }
   }
-  ~TrajectoryWriter() {
-    if (partial_.empty()) return;
-    std::error_code ignored;
-    file_.close();
-    fs::remove(partial_, ignored);  // the run did not get through
-  }
+  ~TrajectoryWriter() { file_.close(); }  // (before the PartialFile removes it: the run did not get through)
   TrajectoryWriter(const TrajectoryWriter&) = delete;
   TrajectoryWriter& operator=(const TrajectoryWriter&) = delete;
 
@@ -113,10 +106,12 @@ private:
     next_ = std::isfinite(next) ? std::max(next_, next) : -INFINITY;  // (an interval of 1e-320 s: every step)
   }
 
-  std::string path_, partial_;  // partial_: the file written until the rename ("" for none)
+  std::string path_;
+  std::optional<PartialFile> partial_;  // the file written until the move (none: standard output, a FIFO, a device)
   std::ofstream file_;
   std::ostream* out_ = nullptr;
   double interval_;
+  bool overwrite_;
   double start_ = 0, next_ = 0;  // the first row's time, and the next output time
   double last_ = -INFINITY;
   std::vector<std::string> aux_names_;
@@ -223,7 +218,7 @@ int run_command(const RunOptions& o) {
     throw InputError("--trajectory -: standard output is the CSV's; --json wants it too (write the CSV to a file)");
   if (!o.trajectory.empty()) {
     if (o.trajectory != "-") check_can_write(o.trajectory, o.overwrite);
-    trajectory.emplace(o.trajectory, sim, scene.output_interval);
+    trajectory.emplace(o.trajectory, sim, scene.output_interval, o.overwrite);
   }
   // A short run is shown step by step: the time, the state and (for bodies) the acceleration.
   std::vector<std::vector<double>> table;

@@ -398,26 +398,87 @@ bool wait_until_catching(pid_t pid, int signal) {
 
 // Ctrl-C in a run writing its trajectory: no half-written CSV, and the file --overwrite would
 // have replaced is still the user's.
+// The file a run writes NAME as until it is through: NAME in a folder .NAME.partial-XXXXXX of its
+// own beside it; "" while there is none.
+fs::path partial_of(const fs::path& file) {
+  std::error_code ignored;
+  for (const auto& e : fs::directory_iterator(file.parent_path(), ignored))
+    if (e.path().filename().string().rfind("." + file.filename().string() + ".partial-", 0) == 0)
+      return e.path() / file.filename();
+  return {};
+}
+
+// Waits (up to 20 s) until the partial file of `file` holds more than `bytes`; returns it.
+fs::path wait_for_partial(const fs::path& file, std::uintmax_t bytes) {
+  for (int i = 0; i < 2000; ++i) {
+    std::error_code ignored;
+    const fs::path partial = partial_of(file);
+    if (!partial.empty() && fs::exists(partial) && fs::file_size(partial, ignored) > bytes) return partial;
+    ::usleep(10000);
+  }
+  return {};
+}
+
 TEST(Hardening, AnInterruptedTrajectoryLeavesTheOldFileAndNoPartOfTheNew) {
   TempDir dir;
   write_file(dir / "mine.csv", "mine");
-  const fs::path partial = dir / ".mine.csv.partial";
   const pid_t pid = start_motus(dir, {"run", "oscillator", "--steps", "100000000", "--trajectory", (dir / "mine.csv").string(),
                                      "--overwrite"});
   ASSERT_GT(pid, 0);
   // Interrupted once the new CSV has rows (within 20 s).
-  for (int i = 0; i < 2000; ++i) {
-    std::error_code ignored;
-    if (fs::exists(partial) && fs::file_size(partial, ignored) > 100000) break;
-    ::usleep(10000);
-  }
-  EXPECT_TRUE(fs::exists(partial)) << "the run wrote no trajectory in 20 s";
+  const fs::path partial = wait_for_partial(dir / "mine.csv", 100000);
+  EXPECT_FALSE(partial.empty()) << "the run wrote no trajectory in 20 s";
   ::kill(pid, SIGINT);
   int raw = 0;
   waitpid(pid, &raw, 0);
   EXPECT_EQ(WEXITSTATUS(raw), 130) << read_file(dir / "err.txt");
   EXPECT_EQ(read_file(dir / "mine.csv"), "mine");
-  EXPECT_FALSE(fs::exists(partial));
+  EXPECT_TRUE(partial_of(dir / "mine.csv").empty()) << "left behind: " << partial_of(dir / "mine.csv");
+}
+
+// What lies where a file is written until it is through is not motus's to truncate, delete or
+// follow: a file of the user's called .out.csv.partial and a link of that name are left as they
+// are (the first was emptied, the second's target overwritten with the CSV, and the link moved
+// into place as out.csv).
+TEST(Hardening, ATrajectoryNeverWritesOverWhatIsBesideIt) {
+  TempDir dir;
+  write_file(dir / ".out.csv.partial", "precious notes");
+  write_file(dir / "important.txt", "important");
+  fs::create_symlink("important.txt", dir / ".linked.csv.partial");
+  for (const char* name : {"out.csv", "linked.csv"}) {
+    const auto r = run_motus(dir, {"run", "spring", "--repeats", "1", "--trajectory", (dir / name).string()});
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_TRUE(fs::is_regular_file(fs::symlink_status(dir / name))) << name;
+    EXPECT_EQ(read_file(dir / name).rfind("t,x0,vx0", 0), 0u) << name;
+  }
+  EXPECT_EQ(read_file(dir / ".out.csv.partial"), "precious notes");
+  EXPECT_EQ(read_file(dir / "important.txt"), "important");
+  EXPECT_TRUE(fs::is_symlink(dir / ".linked.csv.partial"));
+}
+
+// A file that appears where the trajectory goes while the run is under way (the user's, written
+// meanwhile) is not replaced without --overwrite: exit 1, naming where the CSV was kept. A FIFO or
+// a device is written as it is, with or without --overwrite.
+TEST(Hardening, AFileThatAppearsDuringARunIsNotReplaced) {
+  TempDir dir;
+  // (The cloth's first row is written at once, and its 20 s take a second or two of stepping.)
+  const pid_t pid = start_motus(dir, {"run", "cloth", "--repeats", "1", "--duration", "20", "--set", "output_interval=1",
+                                     "--trajectory", (dir / "late.csv").string()});
+  ASSERT_GT(pid, 0);
+  const fs::path partial = wait_for_partial(dir / "late.csv", 1000);
+  ASSERT_FALSE(partial.empty()) << "the run wrote no trajectory in 20 s";
+  write_file(dir / "late.csv", "written meanwhile");
+  int raw = 0;
+  waitpid(pid, &raw, 0);
+  const std::string err = read_file(dir / "err.txt");
+  EXPECT_EQ(WEXITSTATUS(raw), 1) << err;
+  EXPECT_EQ(read_file(dir / "late.csv"), "written meanwhile");
+  EXPECT_NE(err.find("appeared while it was written"), std::string::npos) << err;
+  EXPECT_NE(err.find(partial.parent_path().filename().string()), std::string::npos) << err;
+  EXPECT_TRUE(fs::exists(partial)) << "the run's CSV, its only copy, is kept";
+
+  const auto devnull = run_motus(dir, {"run", "spring", "--repeats", "1", "--trajectory", "/dev/null"});
+  EXPECT_EQ(devnull.status, 0) << devnull.err;
 }
 
 // A step that takes minutes (mutual gravity over 10⁵ bodies: 10¹⁰ pairs) has no safe point to
