@@ -188,7 +188,27 @@ TEST(Plugins, AStudentsCollisionsAreAnEngineColumnInCompare) {
       // The reference solution is motus's formula: the last ball leaves at 1 m/s, the same as motus to rounding.
       EXPECT_LT(e["max_distance_from_motus"].get<double>(), 1e-9);
       EXPECT_EQ(e["momentum"]["final"][0].get<double>(), 1.0);
+      EXPECT_EQ(e["notes"], json::array()) << e.dump();  // its code ran
     }
+}
+
+// A scene without contacts runs none of a collisions plug-in's code: its column is motus's own
+// numbers under the plug-in's name, and a note says so.
+TEST(Plugins, ACompareColumnInWhichNoneOfThePluginsCodeRunsSaysSo) {
+  TempDir dir;
+  const auto r = run_motus(dir, {"compare", "spring", "--plugin", kAssignmentPlugins + "/collisions-solution.so", "--json",
+                                 "--out", (dir / "report").string()});
+  ASSERT_EQ(r.status, 0) << r.err;
+  bool seen = false;
+  const json summary = json::parse(r.out);
+  for (const auto& e : summary["engines"])
+    if (e["engine"] == "student") {
+      seen = true;
+      ASSERT_EQ(e["notes"].size(), 1u) << e.dump();
+      EXPECT_NE(e["notes"][0].get<std::string>().find("collision rules never run in this scene"), std::string::npos);
+      EXPECT_NE(e["notes"][0].get<std::string>().find("motus's own code"), std::string::npos);
+    }
+  EXPECT_TRUE(seen);
 }
 
 TEST(Plugins, MotusRunSaysWhenTheStudentsPartsResolveTheContacts) {

@@ -14,6 +14,21 @@ void MotusBackend::build(const SceneDescription& scene, const Method& method, do
   t0_ = scene.start_time;
 }
 
+// A plug-in's column in which none of its code runs — collision rules in a scene with no contacts
+// to resolve, a projection with no sticks or contacts to project, and motus's own integrator —
+// shows motus's own numbers under the plug-in's name: it says so.
+std::vector<std::string> MotusBackend::notes() const {
+  if (!sim_ || (!parts_.collisions && !parts_.constraints) || sim_->method().is_external()) return {};
+  const World* world = sim_->world();
+  if (!world || (parts_.collisions && world->has_collisions()) || (parts_.constraints && world->has_constraints())) return {};
+  const std::string mine = parts_.collisions && parts_.constraints ? "neither the plug-in's collision rules nor its projection runs"
+                           : parts_.collisions                       ? "the plug-in's collision rules never run"
+                                                                     : "the plug-in's projection never runs";
+  return {mine + " in this scene (nothing here for " + (parts_.constraints && !parts_.collisions ? "it" : "them") +
+          " to do with " + sim_->method().name() +
+          "): this column is motus's own code"};
+}
+
 void MotusBackend::step() {
   // Whole steps of dt from the start, like the peers' world.Step(dt).
   ++steps_;

@@ -21,6 +21,7 @@ public:
   void step() override;
   void read(Snapshot& out) const override;
   std::vector<std::string> settings() const override;
+  std::vector<std::string> notes() const override;
 
   const Simulation& simulation() const { return *sim_; }
 
