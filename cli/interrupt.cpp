@@ -42,6 +42,9 @@ void catch_interrupts() {
   sigaction(SIGTERM, &action, nullptr);
   action.sa_handler = on_grace_over;
   sigaction(SIGALRM, &action, nullptr);
+  // A reader that went away (motus ... | head) makes a write fail with EPIPE, which the writes'
+  // checks report (exit 1, one line), instead of a signal that ends motus without a word.
+  ::signal(SIGPIPE, SIG_IGN);
 }
 
 bool interrupted() { return g_interrupted != 0; }

@@ -2,8 +2,11 @@
 
 #include <unistd.h>
 
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <iostream>
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "cli_common.hpp"
@@ -16,6 +19,13 @@ namespace {
 
 using nlohmann::json;
 namespace wire = grade::wire;
+
+// The dimensions a request works in: 1, 2 or 3, as a scene's (the parts' pins and walls hold 3).
+int dimensions(const json& request, const char* key) {
+  const long d = request.at(key).is_array() ? static_cast<long>(request.at(key).size()) : request.at(key).get<long>();
+  if (d < 1 || d > 3) throw std::invalid_argument(std::string(key) + ": 1, 2 or 3 dimensions, not " + std::to_string(d));
+  return static_cast<int>(d);
+}
 
 std::vector<double> point(const json& request, const char* key, int d) {
   std::vector<double> p = wire::numbers(request.at(key));
@@ -59,7 +69,7 @@ const ExternalCollisionRules& collisions() {
 
 json collide_balls(const json& r) {
   const auto& rules = collisions();
-  const int d = static_cast<int>(r.at("v_a").size());
+  const int d = dimensions(r, "v_a");
   std::vector<double> v_a = point(r, "v_a", d), v_b = point(r, "v_b", d);
   const std::vector<double> n = point(r, "n", d);
   check_external(rules.collide_balls(rules.self, d, v_a.data(), v_b.data(), wire::number(r.at("m_a")),
@@ -70,7 +80,7 @@ json collide_balls(const json& r) {
 
 json bounce_off_wall(const json& r) {
   const auto& rules = collisions();
-  const int d = static_cast<int>(r.at("v").size());
+  const int d = dimensions(r, "v");
   std::vector<double> v = point(r, "v", d);
   const std::vector<double> n = point(r, "n", d);
   check_external(rules.bounce_off_wall(rules.self, d, v.data(), n.data(), wire::number(r.at("e"))), "bounce_off_wall",
@@ -80,7 +90,7 @@ json bounce_off_wall(const json& r) {
 
 json balls_impact(const json& r) {
   const auto& rules = collisions();
-  const int d = static_cast<int>(r.at("p_a").size());
+  const int d = dimensions(r, "p_a");
   const auto p_a = point(r, "p_a", d), v_a = point(r, "v_a", d), p_b = point(r, "p_b", d), v_b = point(r, "v_b", d);
   double t = 0;
   check_external(rules.balls_impact(rules.self, d, p_a.data(), v_a.data(), wire::number(r.at("r_a")), p_b.data(),
@@ -91,7 +101,7 @@ json balls_impact(const json& r) {
 
 json plane_impact(const json& r) {
   const auto& rules = collisions();
-  const int d = static_cast<int>(r.at("p").size());
+  const int d = dimensions(r, "p");
   const auto p = point(r, "p", d), v = point(r, "v", d), n = point(r, "n", d);
   double t = 0;
   check_external(rules.plane_impact(rules.self, d, p.data(), v.data(), wire::number(r.at("r")), n.data(),
@@ -103,7 +113,7 @@ json plane_impact(const json& r) {
 json project(const json& r) {
   const ExternalConstraintRules* rules = plugins().parts().constraints;
   if (!rules) throw std::invalid_argument("the plug-in brings no constraint projection");
-  const int d = r.at("dimensions").get<int>();
+  const int d = dimensions(r, "dimensions");
   std::vector<double> inverse_mass = wire::numbers(r.at("inverse_mass")), radius = wire::numbers(r.at("radius"));
   const int n = static_cast<int>(inverse_mass.size());
   std::vector<double> x = wire::numbers(r.at("x"));
@@ -170,11 +180,17 @@ CLI::App* add_serve_command(CLI::App& app, ServeOptions& o) {
 
 int serve_command(const ServeOptions& o) {
   // The answers go to the original standard output; anything else this process prints —
-  // the student's own std::cout included — goes to standard error, so it cannot forge one.
+  // the student's own std::cout included — goes to standard error, so that its printing cannot
+  // corrupt an answer. (Code in the plug-in could still write to the answers' descriptor; it
+  // gains nothing: serve is never told the expected values.)
   const int protocol = ::dup(STDOUT_FILENO);
   ::dup2(STDERR_FILENO, STDOUT_FILENO);
   std::FILE* out = ::fdopen(protocol, "w");
-  if (!out) return kExitFailure;
+  auto failed_write = [] {
+    fmt::print(stderr, "motus: the run failed: standard output could not be written ({})\n", std::strerror(errno));
+    return kExitFailure;
+  };
+  if (!out) return failed_write();
   load_plugins(o.plugins);
   std::string line;
   while (std::getline(std::cin, line)) {
@@ -186,7 +202,7 @@ int serve_command(const ServeOptions& o) {
       reply = {{"ok", false}, {"error", e.what()}};
     }
     const std::string text = reply.dump(-1, ' ', false, json::error_handler_t::replace) + "\n";
-    if (std::fputs(text.c_str(), out) == EOF || std::fflush(out) != 0) return kExitFailure;
+    if (std::fputs(text.c_str(), out) == EOF || std::fflush(out) != 0) return failed_write();
   }
   return 0;
 }

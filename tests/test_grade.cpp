@@ -481,3 +481,43 @@ TEST(Grade, EachTestHasTheWholeCpuLimitOfItsOwn) {
 }
 
 }  // namespace
+
+namespace {
+
+// `motus serve` (the student's side of the grader) refuses a request in other than 1, 2 or 3
+// dimensions: the parts' pins and walls hold three numbers, and 64 were written past them (and
+// what lay beyond was read back into the answer).
+TEST(Serve, RequestsInMoreThanThreeDimensionsAreRefused) {
+  TempDir dir;
+  // One request to `motus serve --plugin PLUGIN`: its one answer.
+  auto serve = [&](const std::string& plugin, const std::string& request) {
+    write_file(dir / "request.txt", request + "\n");
+    std::vector<std::string> args = {kMotus, "serve", "--plugin", kAssignmentPlugins + "/" + plugin};
+    std::vector<char*> argv;
+    for (auto& a : args) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    posix_spawn_file_actions_addopen(&actions, 0, (dir / "request.txt").c_str(), O_RDONLY, 0);
+    posix_spawn_file_actions_addopen(&actions, 1, (dir / "answer.txt").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    posix_spawn_file_actions_addopen(&actions, 2, (dir / "err.txt").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    pid_t pid = -1;
+    EXPECT_EQ(posix_spawn(&pid, kMotus.c_str(), &actions, nullptr, argv.data(), environ), 0);
+    posix_spawn_file_actions_destroy(&actions);
+    int raw = 0;
+    waitpid(pid, &raw, 0);
+    EXPECT_TRUE(WIFEXITED(raw) && WEXITSTATUS(raw) == 0) << read_file(dir / "err.txt");
+    return read_file(dir / "answer.txt");
+  };
+  std::string many = "[0";
+  for (int k = 1; k < 64; ++k) many += ",0";
+  many += "]";
+  const std::string projected = serve("cloth-solution.so", R"({"op":"project","dimensions":64,"inverse_mass":[1],"radius":[1],"x":)" + many +
+                                                             R"(,"sticks":[],"pins":[[0,)" + many + R"(]],"walls":[[)" + many + R"(,0]]})");
+  EXPECT_EQ(projected, "{\"error\":\"dimensions: 1, 2 or 3 dimensions, not 64\",\"ok\":false}\n");
+  const std::string collided = serve("collisions-solution.so",
+                                     R"({"op":"collide_balls","v_a":[1,0,0,0],"v_b":[0,0,0,0],"m_a":1,"m_b":1,"n":[1,0,0,0],"e":1})");
+  EXPECT_EQ(collided, "{\"error\":\"v_a: 1, 2 or 3 dimensions, not 4\",\"ok\":false}\n");
+}
+
+}  // namespace

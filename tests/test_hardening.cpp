@@ -657,3 +657,35 @@ TEST(Hardening, TheFuzzersPastFindingsEndWell) {
 }
 
 }  // namespace
+
+namespace {
+
+// 20. A reader that goes away (motus list | head -1): the write fails, exit 1 with one line
+//     naming standard output (SIGPIPE ended motus without a word).
+TEST(Hardening, AReaderThatGoesAwayIsAFailedWriteWithOneLine) {
+  TempDir dir;
+  int pipe_ends[2];
+  ASSERT_EQ(::pipe(pipe_ends), 0);
+  ::close(pipe_ends[0]);  // nobody reads
+  std::vector<std::string> args = {kMotus, "list"};
+  std::vector<char*> argv;
+  for (auto& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_adddup2(&actions, pipe_ends[1], 1);
+  posix_spawn_file_actions_addopen(&actions, 2, (dir / "err.txt").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  pid_t pid = -1;
+  ASSERT_EQ(posix_spawn(&pid, kMotus.c_str(), &actions, nullptr, argv.data(), environ), 0);
+  posix_spawn_file_actions_destroy(&actions);
+  ::close(pipe_ends[1]);
+  int raw = 0;
+  waitpid(pid, &raw, 0);
+  const std::string err = read_file(dir / "err.txt");
+  ASSERT_TRUE(WIFEXITED(raw)) << "ended by signal " << WTERMSIG(raw);
+  EXPECT_EQ(WEXITSTATUS(raw), 1);
+  EXPECT_EQ(count_lines(err), 1) << err;
+  EXPECT_NE(err.find("standard output could not be written"), std::string::npos) << err;
+}
+
+}  // namespace
