@@ -1094,7 +1094,8 @@ double BallCollisions<D>::outside_balls_impact(const Point& p_a, const Point& v_
   double t = kNoImpact;
   check_external(rules_->balls_impact(rules_->self, D, p_a.data(), v_a.data(), r_a, p_b.data(), v_b.data(), r_b, &t),
                  "time of impact of two balls", rules_->error, rules_->self);
-  return t >= 0 && t <= horizon ? t : kNoImpact;  // negative or NaN: no impact
+  if (std::isnan(t)) throw ExternalError("returned NaN as the time of impact of two balls (a time ≥ 0, or +infinity for none)");
+  return t >= 0 && t <= horizon ? t : kNoImpact;  // (negative: none, as +infinity)
 }
 
 template <int D>
@@ -1103,6 +1104,8 @@ double BallCollisions<D>::outside_plane_impact(const Point& p, const Point& v, d
   double t = kNoImpact;
   check_external(rules_->plane_impact(rules_->self, D, p.data(), v.data(), r, plane.normal.data(), plane.offset, &t),
                  "time of impact of a ball and a plane", rules_->error, rules_->self);
+  if (std::isnan(t))
+    throw ExternalError("returned NaN as the time of impact of a ball and a plane (a time ≥ 0, or +infinity for none)");
   return t >= 0 && t <= horizon ? t : kNoImpact;
 }
 
