@@ -63,8 +63,12 @@ std::string scenes_directory() {
 std::string resolve_scene_path(const std::string& argument) {
   std::error_code error;  // (a link that loops is the loader's to report, in one line)
   const auto status = fs::symlink_status(argument, error);
-  if (fs::exists(status) || (error && error != std::errc::no_such_file_or_directory)) return argument;
   const bool plain_name = argument.find('/') == std::string::npos;
+  // A folder of the same name as a shipped scene (a student's copy of the cloth starter in ./cloth)
+  // is no scene: `motus run cloth` still means the shipped one. ("./cloth" names the folder.)
+  const bool folder = fs::is_directory(status);
+  if ((fs::exists(status) && !(folder && plain_name)) || (error && error != std::errc::no_such_file_or_directory))
+    return argument;
   if (plain_name) {
     fs::path shipped = fs::path(scenes_directory()) / argument;
     if (shipped.extension() != ".json") shipped += ".json";

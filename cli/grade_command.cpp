@@ -93,6 +93,8 @@ std::string new_folder(const std::string& prefix) {
 }
 
 int grade_one(const GradeCommandOptions& o, const std::string& folder) {
+  if (fs::is_regular_file(o.submission))
+    throw InputError(o.submission + ": is a file; a submission is the folder of the handout's files (unpack it first)");
   if (!fs::is_directory(o.submission)) throw InputError(o.submission + ": no such submission folder");
   if (!o.results.empty()) check_can_replace(o.results, o.overwrite);
   if (!o.plugin_out.empty()) check_can_replace(o.plugin_out, o.overwrite);

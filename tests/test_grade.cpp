@@ -521,3 +521,39 @@ TEST(Serve, RequestsInMoreThanThreeDimensionsAreRefused) {
 }
 
 }  // namespace
+
+namespace {
+
+// A handed-in file that is not where the handout says, as students hand them in: the files test
+// says where it is (under another case, in a folder, packed), and a zip given as the submission
+// is refused saying to unpack it.
+TEST(Grade, AMissingFileSaysWhereItMightBe) {
+  TempDir dir;
+  const std::string solution = read_file(fs::path(kAssignments) / "integrators/solution/integrators.cpp");
+  fs::create_directories(dir / "case");
+  write_file(dir / "case/Integrators.cpp", solution);
+  fs::create_directories(dir / "folder/integrators");
+  write_file(dir / "folder/integrators/integrators.cpp", solution);
+  fs::create_directories(dir / "packed");
+  write_file(dir / "packed/integrators.zip", "PK");
+  const std::map<std::string, std::string> hints = {
+      {"case", "there is Integrators.cpp: names are case-sensitive"},
+      {"folder", "there is integrators/integrators.cpp: put it at the top"},
+      {"packed", "there is integrators.zip: hand in the files themselves, unpacked"}};
+  for (const auto& [folder, hint] : hints) {
+    const auto r = run_motus(dir, {"grade", "integrators", (dir / folder).string(), "--results",
+                                   (dir / (folder + ".json")).string()});
+    ASSERT_EQ(r.status, 0) << r.err;
+    const json result = read_json(dir / (folder + ".json"));
+    const json* files = test_named(result, "files");
+    ASSERT_NE(files, nullptr) << folder;
+    EXPECT_NE((*files)["output"].get<std::string>().find("integrators.cpp: missing (" + hint), std::string::npos)
+        << folder << ": " << (*files)["output"];
+  }
+  const auto zip = run_motus(dir, {"grade", "integrators", (dir / "packed/integrators.zip").string()});
+  EXPECT_EQ(zip.status, 2);
+  EXPECT_NE(zip.err.find("is a file; a submission is the folder of the handout's files (unpack it first)"),
+            std::string::npos) << zip.err;
+}
+
+}  // namespace

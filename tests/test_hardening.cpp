@@ -689,3 +689,35 @@ TEST(Hardening, AReaderThatGoesAwayIsAFailedWriteWithOneLine) {
 }
 
 }  // namespace
+
+namespace {
+
+// 21. A folder in the working folder named like a shipped scene (a student's copy of the cloth
+//     starter in ./cloth) does not hide the scene: `motus run cloth` runs the shipped cloth, and
+//     ./cloth still names the folder.
+TEST(Hardening, AFolderNamedLikeAShippedSceneDoesNotHideIt) {
+  TempDir dir;
+  fs::create_directories(dir / "cloth");
+  auto run_in_dir = [&](const std::string& scene) {
+    std::vector<std::string> args = {kMotus, "run", scene, "--steps", "1", "--repeats", "1"};
+    std::vector<char*> argv;
+    for (auto& a : args) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    posix_spawn_file_actions_addchdir_np(&actions, dir.path().c_str());
+    posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
+    posix_spawn_file_actions_addopen(&actions, 2, (dir / "err.txt").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    pid_t pid = -1;
+    EXPECT_EQ(posix_spawn(&pid, kMotus.c_str(), &actions, nullptr, argv.data(), environ), 0);
+    posix_spawn_file_actions_destroy(&actions);
+    int raw = 0;
+    waitpid(pid, &raw, 0);
+    return WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+  };
+  EXPECT_EQ(run_in_dir("cloth"), 0) << read_file(dir / "err.txt");
+  EXPECT_EQ(run_in_dir("./cloth"), 2);
+  EXPECT_NE(read_file(dir / "err.txt").find("is a folder, not a scene file"), std::string::npos) << read_file(dir / "err.txt");
+}
+
+}  // namespace

@@ -4,6 +4,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <cctype>
 #include <chrono>
 #include <cstdlib>
 #include <filesystem>
@@ -14,6 +15,30 @@ namespace fs = std::filesystem;
 
 namespace motus::grade {
 namespace {
+
+// Where a file the handout names may be instead, as a student hands it in: under another case
+// (Integrators.cpp), in a folder (integrators/integrators.cpp), or packed (integrators.zip). ""
+// when none of these is there. (The top level and one level down; links are not followed.)
+std::string where_it_might_be(const std::string& submission, const std::string& name) {
+  auto lower = [](std::string s) {
+    for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return s;
+  };
+  std::error_code error;
+  int looked = 0;
+  for (fs::directory_iterator top(submission, error), end; !error && top != end && looked < 1000; top.increment(error), ++looked) {
+    const std::string found = top->path().filename().string();
+    const std::string lowered = lower(found);
+    if (lowered == lower(name) && top->is_regular_file(error))
+      return " (there is " + found + ": names are case-sensitive, rename it " + name + ")";
+    for (const char* packed : {".zip", ".tar", ".tar.gz", ".tgz", ".7z", ".rar"})
+      if (lowered.size() > std::string(packed).size() && lowered.ends_with(packed))
+        return " (there is " + found + ": hand in the files themselves, unpacked)";
+    if (top->is_directory(error) && !top->is_symlink(error) && fs::is_regular_file(fs::symlink_status(top->path() / name, error)))
+      return " (there is " + found + "/" + name + ": put it at the top of the submission, not in a folder)";
+  }
+  return "";
+}
 
 constexpr std::uintmax_t kMaxFileBytes = 1 << 20;  // a handed-in file larger than 1 MB is not source code
 
@@ -74,7 +99,7 @@ GradeResult grade_submission(const Assignment& a, const std::string& submission,
     std::error_code error;
     const auto status = fs::symlink_status(from, error);
     if (error || !fs::exists(status)) {
-      missing += "  " + name + ": missing\n";
+      missing += "  " + name + ": missing" + where_it_might_be(submission, name) + "\n";
     } else if (!fs::is_regular_file(status)) {
       missing += "  " + name + ": not a regular file (a folder or a link is not taken)\n";
     } else if (fs::file_size(from) > kMaxFileBytes) {
