@@ -208,6 +208,12 @@ fs::path without_trailing_separators(const std::string& path) {
 }
 }  // namespace
 
+std::vector<std::string> module_candidates(const char* env_var, const std::string& name, const std::string& installed) {
+  if (const char* env = std::getenv(env_var); env && *env) return {env};
+  const fs::path here = executable_directory();
+  return {(here / name).string(), (here / installed).lexically_normal().string()};
+}
+
 PartialFolder::PartialFolder(const std::string& final_path)
     : final_(without_trailing_separators(final_path).string()) {
   const fs::path target(final_);

@@ -121,6 +121,11 @@ long checked_step_count(double duration, double dt, const std::string& what);
 void check_time_resolution(double start_time, double duration, double dt, const std::string& start_what,
                            const std::string& step_what);
 
+// Where a module of the `motus` command may be (motus-draw.so, motus-peers.so): at $ENV_VAR when
+// that is set and not empty (and only there), else next to the executable (the build tree), else
+// at `installed`, relative to the executable (where `cmake --install` puts it).
+std::vector<std::string> module_candidates(const char* env_var, const std::string& name, const std::string& installed);
+
 // A folder written under a temporary name and renamed to `final_path` only when complete()
 // is called; otherwise the destructor removes it and everything in it. Throws InputError
 // when it cannot be made.

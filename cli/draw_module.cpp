@@ -11,17 +11,9 @@ namespace fs = std::filesystem;
 namespace motus::cli {
 namespace {
 
-// $MOTUS_DRAW_MODULE; else next to the executable (the build tree); else where
-// `cmake --install` puts it relative to the installed executable.
-std::vector<std::string> module_candidates() {
-  if (const char* env = std::getenv("MOTUS_DRAW_MODULE"); env && *env) return {env};
-  const fs::path here = executable_directory();
-  return {(here / MOTUS_DRAW_MODULE_NAME).string(), (here / MOTUS_DRAW_MODULE_INSTALLED).lexically_normal().string()};
-}
-
 const draw::Api& load() {
   std::string tried;
-  for (const auto& path : module_candidates()) {
+  for (const auto& path : module_candidates("MOTUS_DRAW_MODULE", MOTUS_DRAW_MODULE_NAME, MOTUS_DRAW_MODULE_INSTALLED)) {
     if (!fs::exists(path)) {
       tried += (tried.empty() ? "" : ", ") + path;
       continue;

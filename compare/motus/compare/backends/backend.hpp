@@ -67,5 +67,11 @@ public:
 std::vector<std::string> backend_names();
 // Throws std::invalid_argument for an unknown name.
 std::unique_ptr<Backend> make_backend(const std::string& name);
+// Box2D's and Bullet's ("box2d", "bullet"), which make_backend asks for. motus::compare defines
+// it with both peers linked in (peers.cpp); the `motus` command defines its own, which loads them
+// from its module motus-peers.so only when a command runs one, so that every other command
+// starts without loading Box2D and Bullet. (Its definition is linked before the library's, whose
+// peers.cpp is then never taken from the archive.)
+std::unique_ptr<Backend> make_peer_backend(const std::string& name);
 
 }  // namespace motus::compare
