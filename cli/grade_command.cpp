@@ -13,6 +13,7 @@
 #include <thread>
 
 #include "cli_common.hpp"
+#include "interrupt.hpp"
 #include "gradescope_package.hpp"
 #include "motus/grade/grader.hpp"
 #include "progress_bar.hpp"
@@ -103,9 +104,17 @@ int grade_one(const GradeCommandOptions& o, const std::string& folder) {
   grade::GradeOptions options = grade_options(o);
   std::optional<PartialFile> plugin_out;  // (kept only when the submission compiles)
   if (!o.plugin_out.empty()) options.plugin_out = plugin_out.emplace(o.plugin_out).path();
+  ProgressBar progress(0, static_cast<double>(assignment.tests.size()), "grade " + assignment.name, 1);
+  options.progress = [&](size_t done, size_t, const std::string& test) {
+    progress.update(static_cast<double>(done));
+    progress.note(test);
+  };
   grade::GradeResult result;
   try {
     result = grade::grade_submission(assignment, o.submission, options);
+    progress.finish();
+  } catch (const Interrupted&) {
+    throw;  // (Ctrl-C: no results, exit 130)
   } catch (const std::exception& e) {
     // Even now, a valid results.json that says what happened.
     if (!o.results.empty()) write_file(o.results, grade::results_text(grade::failed_json(assignment.name, e.what())), o.overwrite);

@@ -140,6 +140,7 @@ Assignment load_assignment(const std::string& folder, const std::optional<std::s
     if (it == definitions.end()) {
       if (!hidden) {
         ++a.hidden_not_given;  // a hidden test, and the hidden tests were not given
+        if (visibility == "after_due_date" || visibility == "after_published") ++a.hidden_shown_later;
         continue;
       }
       throw AssignmentError(where + ".name: \"" + name + "\" is defined in no test file: not in " + (root / "tests").string() +

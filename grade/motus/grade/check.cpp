@@ -482,7 +482,7 @@ public:
         "fixed-step rk4 needs {} evaluations for that error",
         num(tolerance_), num(error), num(out.t.back()), out.steps, out.rejected, num(smallest), num(largest),
         out.evaluations, rk4_needs_more ? "more than " + std::to_string(out.evaluations) : std::to_string(rk4_evaluations)) +
-        peer;
+        peer + (out.evaluations == 0 ? " (your step never called f.derivative: it cannot have moved the state)" : "");
     const bool lands = std::abs(out.t.back() - r.until) <= 1e-9 * std::max(1.0, std::abs(r.until));
     const bool fewer = rk4_needs_more || (rk4_evaluations > 0 && out.evaluations < rk4_evaluations);
     const bool as_good = !compare_with_ || error <= factor_ * peer_error;

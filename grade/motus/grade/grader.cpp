@@ -135,6 +135,7 @@ GradeResult grade_submission(const Assignment& a, const std::string& submission,
   Probe probe(setup);
   int number = 0;
   for (const auto& t : a.tests) {
+    if (o.progress) o.progress(static_cast<size_t>(number), a.tests.size(), t.name);
     TestResult r;
     r.name = t.name;
     r.number = std::to_string(++number);
@@ -175,7 +176,13 @@ GradeResult grade_submission(const Assignment& a, const std::string& submission,
   for (size_t i = 2; i < result.tests.size(); ++i) passed += result.tests[i].passed;
   result.output = fmt::format("{}: {} of {} points; {} of {} tests passed{}.", a.title, result.score, result.max_score,
                               passed, a.tests.size(),
-                              a.hidden_not_given ? fmt::format(" ({} hidden tests not run here)", a.hidden_not_given) : "");
+                              a.hidden_not_given == 0 ? ""
+                              : a.hidden_shown_later == 0
+                                  ? fmt::format(" ({} hidden tests not run here)", a.hidden_not_given)
+                                  : fmt::format(" ({} of the instructor's tests not run here: {} shown after the due date, {} "
+                                                "never shown)",
+                                                a.hidden_not_given, a.hidden_shown_later,
+                                                a.hidden_not_given - a.hidden_shown_later));
   if (!files.passed) result.output += " A handed-in file is missing: see \"files\".";
   else if (!build.passed) result.output += " The submission does not compile: see \"build\".";
   return result;

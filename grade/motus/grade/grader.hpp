@@ -3,6 +3,7 @@
 // sandbox, run every test's check against the plug-in served from another sandbox, and
 // write the result as Gradescope's results.json and as a readable summary.
 #include <nlohmann/json.hpp>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -19,6 +20,9 @@ struct GradeOptions {
   bool isolate = true;    // false: --no-sandbox
   std::string plugin_out; // also keep the built plug-in here ("" : no)
   std::string work_root;  // where the temporary folders go ("": the system's temporary folder)
+  // Called as each test of the rubric starts (`done` of `total` finished): a test that runs to
+  // its limit takes seconds, and a grading that says nothing for minutes looks stuck.
+  std::function<void(size_t done, size_t total, const std::string& test)> progress;
 };
 
 struct TestResult {
