@@ -334,6 +334,36 @@ TEST(Box2dUnsupported, BodyStartingOutsideAWallIsRefused) {
   }
 }
 
+TEST(Box2dUnsupported, AMassFloatCannotHoldIsRefused) {
+  // Box2D keeps masses in float and makes a mass ≤ 0 into 1 kg: 1e-50 kg would be 1 kg.
+  SceneDescription scene = one_body({0, 1}, {0, 0});
+  scene.mechanical->bodies[0].mass = 1e-50;
+  try {
+    make_backend("box2d")->build(scene, Integrator::SymplecticEuler, 0.01);
+    FAIL() << "accepted";
+  } catch (const Unsupported& e) {
+    ASSERT_EQ(e.elements().size(), 1u);
+    EXPECT_NE(e.elements()[0].find("body 0: a mass of 1e-50 kg"), std::string::npos) << e.what();
+  }
+}
+
+// A plane is an edge as long as the bodies' spread along it and then some: two balls 3·10⁴ m
+// apart resting on the floor both stay on it (a fixed 10⁴ m each side of their centroid had
+// both beyond its ends, and they fell through).
+TEST(Box2dBackend, APlaneHoldsBodiesFarApartAlongIt) {
+  SceneDescription scene = with_peers_gravity(one_body({0, 0.5}, {0, 0}));
+  BodyDescription far = scene.mechanical->bodies[0];
+  far.position = {30000, 0.5};
+  scene.mechanical->bodies.push_back(far);
+  scene.mechanical->colliders.planes.push_back({{0, 1, 0}, 0, 1});
+  auto box2d = make_backend("box2d");
+  box2d->build(scene, Integrator::SymplecticEuler, 0.01);
+  const Snapshot s = run(*box2d, 100);
+  // (Float positions near 3·10⁴ m are 0.002 m apart: the balls rest within a few of those.)
+  EXPECT_GT(s.x[1], 0.5 - 0.02);
+  EXPECT_GT(s.x[3], 0.5 - 0.02);
+}
+
 TEST(Box2dBackend, VersionAndFairSettings) {
   auto box2d = make_backend("box2d");
   EXPECT_EQ(box2d->name(), "box2d");

@@ -3,6 +3,7 @@
 #include <box2d/box2d.h>
 
 #include <algorithm>
+#include <cfloat>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -10,6 +11,7 @@
 #include <string>
 
 #include "motus/compare/backends/peer_forces.hpp"
+#include "motus/compare/backends/starting_outside.hpp"
 
 namespace motus::compare {
 namespace {
@@ -20,7 +22,8 @@ constexpr int kPositionIterations = 3;
 // A point (radius 0) is a circle this small: Box2D needs a shape for a contact with a
 // wall; with the edges' skin of b2_polygonRadius its continuous collision still works.
 constexpr double kPointRadius = 1e-4;  // m
-// A plane is an edge this long on each side of the bodies' centroid.
+// A plane is an edge this much longer on each side than the bodies' spread along it, about
+// their centroid (the room they have to move along it).
 constexpr double kPlaneHalfLength = 1e4;  // m
 // Collision filter: balls meet walls and balls, points meet walls only (as in motus).
 constexpr std::uint16_t kWallBits = 0x1, kBallBits = 0x2, kPointBits = 0x4;
@@ -169,28 +172,15 @@ void Box2dBackend::build(const SceneDescription& scene, const Method& /*method*/
     if (beyond({s.a[0], s.a[1], s.b[0], s.b[1], s.b[0] - s.a[0], s.b[1] - s.a[1]}))
       unsupported.push_back(format("segment %zu: an end past 1e18 (float squares past its range)", j));
   }
-  for (size_t j = 0; j < m.colliders.planes.size(); ++j) {
-    const auto& p = m.colliders.planes[j];
-    for (size_t i = 0; i < n; ++i)
-      if (p.normal[0] * start_position(i, 0) + p.normal[1] * start_position(i, 1) < p.offset) {
-        unsupported.push_back(format("body %zu starting outside plane %zu (motus moves it onto the plane; a Box2D "
-                                     "edge would keep it on the wall's side)",
-                                     i, j));
-        break;
-      }
-  }
-  for (size_t j = 0; j < m.colliders.boxes.size(); ++j) {
-    const auto& b = m.colliders.boxes[j];
-    for (size_t i = 0; i < n; ++i) {
-      const double px = start_position(i, 0), py = start_position(i, 1);
-      if (px < b.min[0] || px > b.max[0] || py < b.min[1] || py > b.max[1]) {
-        unsupported.push_back(format("body %zu starting outside box %zu (motus moves it in; Box2D's edges would "
-                                     "keep it outside)",
-                                     i, j));
-        break;
-      }
+  for (const auto& outside : bodies_starting_outside(m, start_position))
+    unsupported.push_back(outside + " (motus moves it onto the wall's side; Box2D's edges would keep it on the other)");
+  for (size_t i = 0; i < n; ++i)
+    if (!pin_of[i] && !(static_cast<float>(m.bodies[i].mass) >= FLT_MIN)) {
+      unsupported.push_back(format("body %zu: a mass of %g kg, below float's smallest normal number (Box2D would make "
+                                   "it 1 kg)",
+                                   i, m.bodies[i].mass));
+      break;
     }
-  }
   for (size_t j = 0; j < m.sticks.size(); ++j)
     if (m.sticks[j].length < b2_linearSlop)
       unsupported.push_back(format("stick %zu of length %g m (b2DistanceJoint clamps lengths to at least "
@@ -268,7 +258,12 @@ void Box2dBackend::build(const SceneDescription& scene, const Method& /*method*/
     // about it, so that float rounding keeps the line through that centre.
     const double s = nx * cx + ny * cy - offset;
     b2Body* wall = w->add_static_body(cx - s * nx, cy - s * ny);
-    const double tx = -ny * kPlaneHalfLength, ty = nx * kPlaneHalfLength;
+    // (Bodies 3·10⁴ m apart along the floor were past a fixed 10⁴ m's ends, and fell through.)
+    double spread = 0;
+    for (size_t i = 0; i < n; ++i)
+      spread = std::max(spread, std::abs(-ny * (start_position(i, 0) - cx) + nx * (start_position(i, 1) - cy)));
+    const double half = spread + kPlaneHalfLength;
+    const double tx = -ny * half, ty = nx * half;
     w->add_edge(wall, -tx, -ty, tx, ty, p.restitution);
   }
   for (const auto& box : m.colliders.boxes) {

@@ -9,6 +9,16 @@ std::string MotusBackend::version() const { return version_.empty() ? "motus 0.1
 void MotusBackend::build(const SceneDescription& scene, const Method& method, double dt) {
   if (!scene.mechanical) throw Unsupported(name_, {"first-order systems (compare runs point masses)"});
   sim_ = std::make_unique<Simulation>(scene, method, parts_);
+  const MechanicalDescription& m = *scene.mechanical;
+  sweeps_ = m.constraint_iterations;
+  substeps_ = m.constraint_substeps;
+  long balls = 0;
+  restitution_in_contacts_ = false;
+  for (const auto& b : m.bodies) {
+    balls += b.radius > 0 ? 1 : 0;
+    restitution_in_contacts_ = restitution_in_contacts_ || b.restitution > 0;
+  }
+  restitution_in_contacts_ = restitution_in_contacts_ && (balls >= 2 || !m.colliders.empty());
   dt_ = dt;
   steps_ = 0;
   t0_ = scene.start_time;
@@ -50,6 +60,16 @@ std::vector<std::string> MotusBackend::settings() const {
   s.push_back("passes: " + passes);
   if (parts_.collisions) s.push_back("collision response: the plug-in's (impulses and times of impact)");
   if (parts_.constraints) s.push_back("constraint projection: the plug-in's");
+  if (sim_->world()->has_constraints()) {
+    // (The peers step dt once, with their own iterations: motus's substeps are its solver's, as
+    // their iterations are theirs, and the table's times include them.)
+    const std::string sweeps = std::to_string(sweeps_) + " projection " + (sweeps_ == 1 ? "sweep" : "sweeps");
+    s.push_back(substeps_ == 1 ? "projection: " + sweeps + " per step"
+                               : "projection: " + std::to_string(substeps_) + " substeps of dt/" +
+                                     std::to_string(substeps_) + " per step, each with " + sweeps);
+    if (restitution_in_contacts_)
+      s.push_back("contacts are projected (Jakobsen): restitution is not applied (the peers apply it)");
+  }
   return s;
 }
 

@@ -32,6 +32,8 @@ private:
   double dt_ = 0;
   long steps_ = 0;
   double t0_ = 0;
+  int sweeps_ = 1, substeps_ = 1;      // the projection's, as the scene sets them
+  bool restitution_in_contacts_ = false;  // walls or balls with e > 0 (a projection does not bounce)
 };
 
 }  // namespace motus::compare

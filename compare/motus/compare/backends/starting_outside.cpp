@@ -1,0 +1,38 @@
+#include "motus/compare/backends/starting_outside.hpp"
+
+namespace motus::compare {
+
+std::vector<std::string> bodies_starting_outside(const MechanicalDescription& m,
+                                                 const std::function<double(size_t, int)>& start) {
+  const int d = m.dimensions;
+  const size_t n = m.bodies.size();
+  std::vector<std::string> outside;
+  for (size_t j = 0; j < m.colliders.planes.size(); ++j) {
+    const auto& p = m.colliders.planes[j];
+    for (size_t i = 0; i < n; ++i) {
+      double side = 0;
+      for (int k = 0; k < d; ++k) side += p.normal[static_cast<size_t>(k)] * start(i, k);
+      if (side < p.offset) {
+        outside.push_back("body " + std::to_string(i) + " starting outside plane " + std::to_string(j));
+        break;
+      }
+    }
+  }
+  for (size_t j = 0; j < m.colliders.boxes.size(); ++j) {
+    const auto& b = m.colliders.boxes[j];
+    for (size_t i = 0; i < n; ++i) {
+      bool in = true;
+      for (int k = 0; k < d; ++k) {
+        const double x = start(i, k);
+        in = in && x >= b.min[static_cast<size_t>(k)] && x <= b.max[static_cast<size_t>(k)];
+      }
+      if (!in) {
+        outside.push_back("body " + std::to_string(i) + " starting outside box " + std::to_string(j));
+        break;
+      }
+    }
+  }
+  return outside;
+}
+
+}  // namespace motus::compare
