@@ -191,6 +191,7 @@ std::vector<EngineRun> run_comparison(const SceneDescription& scene, const Compa
       EngineRun& run = runs[e];
       std::unique_ptr<Backend> backend = make(run.engine);
       backend->build(scene, method_of(run.engine), options.dt);
+      backend->watch_for_notes(false);  // (the metrics run took the notes)
       // One block of steps; a long run (a quarter of a second or more) in twenty, to show
       // progress, where reading the clock twenty times costs nothing next to the blocks.
       const long blocks = progress && metrics_seconds[e] > 0.25 ? 20 : 1;

@@ -61,6 +61,10 @@ public:
   // Where this engine's own limits bite on this scene (Box2D's 2 m per step translation
   // cap, Bullet's angular clamp, ...), one line each; empty when none do.
   virtual std::vector<std::string> notes() const { return {}; }
+
+  // Whether step() watches for what notes() reports (on at first). The timing rounds turn it
+  // off, so that a peer's time per step is its engine's alone, not that of our bookkeeping.
+  virtual void watch_for_notes(bool /*on*/) {}
 };
 
 // The engines compiled in, by name ("motus", "box2d", "bullet").

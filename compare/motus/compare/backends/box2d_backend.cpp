@@ -318,6 +318,7 @@ void Box2dBackend::step() {
   }
   w.world->Step(static_cast<float>(w.dt), kVelocityIterations, kPositionIterations);
   ++w.steps;
+  if (!watching_) return;
 
   // b2_maxTranslation: Box2D scales down a velocity that would carry a body farther than
   // 2 m in the step, so a capped body ends the step at exactly that speed.

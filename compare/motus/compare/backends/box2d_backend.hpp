@@ -32,10 +32,12 @@ public:
   void read(Snapshot& out) const override;
   std::vector<std::string> settings() const override;
   std::vector<std::string> notes() const override;
+  void watch_for_notes(bool on) override { watching_ = on; }
 
 private:
   struct World;  // the engine's objects, kept out of this header
   std::unique_ptr<World> world_;
+  bool watching_ = true;
 };
 
 }  // namespace motus::compare

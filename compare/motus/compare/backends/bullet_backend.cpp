@@ -307,7 +307,7 @@ void BulletBackend::step() {
     }
   }
   // Count the body-steps where CCD engages (motion this step above the threshold).
-  for (size_t i = 0; i < n; ++i) {
+  for (size_t i = 0; i < n && watching_; ++i) {
     const btRigidBody& b = *w.bodies[i];
     if (b.getCcdSquareMotionThreshold() > 0 &&
         b.getLinearVelocity().length2() * w.dt * w.dt > b.getCcdSquareMotionThreshold())
@@ -316,7 +316,7 @@ void BulletBackend::step() {
   // maxSubSteps 0: exactly one internal step of dt, no accumulator, no interpolation.
   w.world->stepSimulation(w.dt, 0);
   ++w.steps;
-  for (size_t j = 0; j < w.stick_bodies.size(); ++j) {
+  for (size_t j = 0; j < w.stick_bodies.size() && watching_; ++j) {
     const btScalar len = (w.bodies[w.stick_bodies[j].second]->getCenterOfMassPosition() -
                           w.bodies[w.stick_bodies[j].first]->getCenterOfMassPosition())
                              .length();
