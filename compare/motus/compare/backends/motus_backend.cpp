@@ -63,7 +63,8 @@ std::vector<std::string> MotusBackend::settings() const {
   if (sim_->world()->has_constraints()) {
     // (The peers step dt once, with their own iterations: motus's substeps are its solver's, as
     // their iterations are theirs, and the table's times include them.)
-    const std::string sweeps = std::to_string(sweeps_) + " projection " + (sweeps_ == 1 ? "sweep" : "sweeps");
+    // ("up to": the sweeps stop once only chains of sticks are left, solved exactly: docs/constraints.md.)
+    const std::string sweeps = "up to " + std::to_string(sweeps_) + " projection " + (sweeps_ == 1 ? "sweep" : "sweeps");
     s.push_back(substeps_ == 1 ? "projection: " + sweeps + " per step"
                                : "projection: " + std::to_string(substeps_) + " substeps of dt/" +
                                      std::to_string(substeps_) + " per step, each with " + sweeps);
