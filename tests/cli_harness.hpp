@@ -129,6 +129,44 @@ inline Result run_program(const TempDir& dir, const std::string& program, const 
   return r;
 }
 
+// Where a motus started by run_motus_with reads and writes: files by path, or standard output
+// to an open descriptor (out_fd ≥ 0), and the folder it runs in ("": this process's).
+struct MotusFiles {
+  std::string in = "/dev/null", out = "/dev/null", err = "/dev/null", folder;
+  int out_fd = -1;
+};
+
+// Starts `motus ARGS...` with those files and returns at once: its pid (-1: it did not start).
+inline pid_t start_motus_with(std::vector<std::string> args, const MotusFiles& files) {
+  args.insert(args.begin(), kMotus);
+  std::vector<char*> argv;
+  for (auto& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  if (!files.folder.empty()) posix_spawn_file_actions_addchdir_np(&actions, files.folder.c_str());
+  posix_spawn_file_actions_addopen(&actions, 0, files.in.c_str(), O_RDONLY, 0);
+  if (files.out_fd >= 0)
+    posix_spawn_file_actions_adddup2(&actions, files.out_fd, 1);
+  else
+    posix_spawn_file_actions_addopen(&actions, 1, files.out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_addopen(&actions, 2, files.err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  pid_t pid = -1;
+  const int spawned = posix_spawn(&pid, kMotus.c_str(), &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  return spawned == 0 ? pid : -1;
+}
+
+// The same, waiting for it: its raw wait status (-1: it did not start).
+inline int run_motus_with(const std::vector<std::string>& args, const MotusFiles& files) {
+  const pid_t pid = start_motus_with(args, files);
+  if (pid < 0) return -1;
+  int raw = 0;
+  while (waitpid(pid, &raw, 0) < 0 && errno == EINTR) {
+  }
+  return raw;
+}
+
 // Runs `motus ARGS...` as above.
 inline Result run_motus(const TempDir& dir, const std::vector<std::string>& args,
                         const std::vector<std::string>& environment = {}) {

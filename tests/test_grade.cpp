@@ -492,20 +492,11 @@ TEST(Serve, RequestsInMoreThanThreeDimensionsAreRefused) {
   // One request to `motus serve --plugin PLUGIN`: its one answer.
   auto serve = [&](const std::string& plugin, const std::string& request) {
     write_file(dir / "request.txt", request + "\n");
-    std::vector<std::string> args = {kMotus, "serve", "--plugin", kAssignmentPlugins + "/" + plugin};
-    std::vector<char*> argv;
-    for (auto& a : args) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    posix_spawn_file_actions_t actions;
-    posix_spawn_file_actions_init(&actions);
-    posix_spawn_file_actions_addopen(&actions, 0, (dir / "request.txt").c_str(), O_RDONLY, 0);
-    posix_spawn_file_actions_addopen(&actions, 1, (dir / "answer.txt").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    posix_spawn_file_actions_addopen(&actions, 2, (dir / "err.txt").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    pid_t pid = -1;
-    EXPECT_EQ(posix_spawn(&pid, kMotus.c_str(), &actions, nullptr, argv.data(), environ), 0);
-    posix_spawn_file_actions_destroy(&actions);
-    int raw = 0;
-    waitpid(pid, &raw, 0);
+    MotusFiles files;
+    files.in = (dir / "request.txt").string();
+    files.out = (dir / "answer.txt").string();
+    files.err = (dir / "err.txt").string();
+    const int raw = run_motus_with({"serve", "--plugin", kAssignmentPlugins + "/" + plugin}, files);
     EXPECT_TRUE(WIFEXITED(raw) && WEXITSTATUS(raw) == 0) << read_file(dir / "err.txt");
     return read_file(dir / "answer.txt");
   };

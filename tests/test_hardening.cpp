@@ -369,19 +369,10 @@ TEST(Hardening, AFullDiskIsAFailureNamingTheFile) {
 
 // Starts `motus ARGS...` and returns at once (its pid, or -1): standard output to /dev/null,
 // standard error to dir/err.txt. For the tests that interrupt it while it runs.
-pid_t start_motus(const TempDir& dir, std::vector<std::string> args) {
-  args.insert(args.begin(), kMotus);
-  std::vector<char*> argv;
-  for (auto& a : args) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
-  posix_spawn_file_actions_addopen(&actions, 2, (dir / "err.txt").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  pid_t pid = -1;
-  if (posix_spawn(&pid, kMotus.c_str(), &actions, nullptr, argv.data(), environ) != 0) pid = -1;
-  posix_spawn_file_actions_destroy(&actions);
-  return pid;
+pid_t start_motus(const TempDir& dir, const std::vector<std::string>& args) {
+  MotusFiles files;
+  files.err = (dir / "err.txt").string();
+  return start_motus_with(args, files);
 }
 
 // Waits (up to 60 s) until process `pid` catches `signal`, as /proc/PID/status's SigCgt mask
@@ -667,20 +658,11 @@ TEST(Hardening, AReaderThatGoesAwayIsAFailedWriteWithOneLine) {
   int pipe_ends[2];
   ASSERT_EQ(::pipe(pipe_ends), 0);
   ::close(pipe_ends[0]);  // nobody reads
-  std::vector<std::string> args = {kMotus, "list"};
-  std::vector<char*> argv;
-  for (auto& a : args) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_adddup2(&actions, pipe_ends[1], 1);
-  posix_spawn_file_actions_addopen(&actions, 2, (dir / "err.txt").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  pid_t pid = -1;
-  ASSERT_EQ(posix_spawn(&pid, kMotus.c_str(), &actions, nullptr, argv.data(), environ), 0);
-  posix_spawn_file_actions_destroy(&actions);
+  MotusFiles files;
+  files.err = (dir / "err.txt").string();
+  files.out_fd = pipe_ends[1];
+  const int raw = run_motus_with({"list"}, files);
   ::close(pipe_ends[1]);
-  int raw = 0;
-  waitpid(pid, &raw, 0);
   const std::string err = read_file(dir / "err.txt");
   ASSERT_TRUE(WIFEXITED(raw)) << "ended by signal " << WTERMSIG(raw);
   EXPECT_EQ(WEXITSTATUS(raw), 1);
@@ -699,20 +681,10 @@ TEST(Hardening, AFolderNamedLikeAShippedSceneDoesNotHideIt) {
   TempDir dir;
   fs::create_directories(dir / "cloth");
   auto run_in_dir = [&](const std::string& scene) {
-    std::vector<std::string> args = {kMotus, "run", scene, "--steps", "1", "--repeats", "1"};
-    std::vector<char*> argv;
-    for (auto& a : args) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    posix_spawn_file_actions_t actions;
-    posix_spawn_file_actions_init(&actions);
-    posix_spawn_file_actions_addchdir_np(&actions, dir.path().c_str());
-    posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
-    posix_spawn_file_actions_addopen(&actions, 2, (dir / "err.txt").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    pid_t pid = -1;
-    EXPECT_EQ(posix_spawn(&pid, kMotus.c_str(), &actions, nullptr, argv.data(), environ), 0);
-    posix_spawn_file_actions_destroy(&actions);
-    int raw = 0;
-    waitpid(pid, &raw, 0);
+    MotusFiles files;
+    files.err = (dir / "err.txt").string();
+    files.folder = dir.path().string();
+    const int raw = run_motus_with({"run", scene, "--steps", "1", "--repeats", "1"}, files);
     return WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
   };
   EXPECT_EQ(run_in_dir("cloth"), 0) << read_file(dir / "err.txt");
