@@ -341,6 +341,19 @@ TEST(Box2dUnsupported, BodyStartingOutsideAWallIsRefused) {
   }
 }
 
+TEST(Box2dUnsupported, ABodyPinnedAwayFromItsStartIsRefused) {
+  // motus moves it to the pin at the first step; Box2D would make it there: other starting states.
+  SceneDescription scene = one_body({0, 0}, {0, 0});
+  scene.mechanical->pins.push_back({0, {0, 1, 0}});
+  try {
+    make_backend("box2d")->build(scene, Integrator::Verlet, 0.01);
+    FAIL() << "accepted";
+  } catch (const Unsupported& e) {
+    ASSERT_EQ(e.elements().size(), 1u);
+    EXPECT_NE(e.elements()[0].find("body 0 pinned away from where it starts"), std::string::npos) << e.what();
+  }
+}
+
 TEST(Box2dUnsupported, AMassFloatCannotHoldIsRefused) {
   // Box2D keeps masses in float and makes a mass ≤ 0 into 1 kg: 1e-50 kg would be 1 kg.
   SceneDescription scene = one_body({0, 1}, {0, 0});

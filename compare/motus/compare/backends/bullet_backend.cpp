@@ -167,6 +167,7 @@ void BulletBackend::build(const SceneDescription& scene, const Method& /*method*
       return pin_of[i] ? pin_of[i]->position[static_cast<size_t>(k)] : m.bodies[i].position[static_cast<size_t>(k)];
     };
     // (Bullet pushed such a body out over some fifteen steps, with energy it did not have.)
+    for (const auto& away : bodies_pinned_away(m)) unsupported.push_back(away + " (motus moves it to the pin at the first step; Bullet makes it there)");
     for (const auto& outside : bodies_starting_outside(m, start))
       unsupported.push_back(outside + " (motus moves it onto the wall's side; Bullet would push it out over several "
                                       "steps, with energy of its own)");

@@ -35,4 +35,14 @@ std::vector<std::string> bodies_starting_outside(const MechanicalDescription& m,
   return outside;
 }
 
+std::vector<std::string> bodies_pinned_away(const MechanicalDescription& m) {
+  for (const auto& p : m.pins) {
+    const auto& body = m.bodies[static_cast<size_t>(p.body)];
+    for (int k = 0; k < m.dimensions; ++k)
+      if (p.position[static_cast<size_t>(k)] != body.position[static_cast<size_t>(k)])
+        return {"body " + std::to_string(p.body) + " pinned away from where it starts"};
+  }
+  return {};
+}
+
 }  // namespace motus::compare

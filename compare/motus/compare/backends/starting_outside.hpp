@@ -1,7 +1,9 @@
 #pragma once
-// Bodies that start on the wrong side of a wall. motus moves such a body onto the plane (or
-// into the box) before the first step; a peer's wall would keep it where it is, or push it out
-// with energy it did not have (Bullet), so the peers refuse the scene rather than run another.
+// Bodies that start where motus will not leave them. One on the wrong side of a wall: motus moves
+// it onto the plane (or into the box) before the first step; a peer's wall would keep it where it
+// is, or push it out with energy it did not have (Bullet). One pinned away from where it starts:
+// motus jumps it to the pin at the first step; a peer's body is made at the pin, so the two start
+// from different states (and energies). The peers refuse such scenes rather than run others.
 #include <functional>
 #include <string>
 #include <vector>
@@ -14,5 +16,8 @@ namespace motus::compare {
 // is body i's coordinate k at the start (a pinned body's: its pin), in the scene's d dimensions.
 std::vector<std::string> bodies_starting_outside(const MechanicalDescription& m,
                                                  const std::function<double(size_t, int)>& start);
+
+// "body I pinned away from where it starts": the first such pin.
+std::vector<std::string> bodies_pinned_away(const MechanicalDescription& m);
 
 }  // namespace motus::compare
