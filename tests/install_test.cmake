@@ -74,8 +74,21 @@ foreach(engine motus box2d bullet)
   endif()
 endforeach()
 
-# The installed motus finds its installed scenes and drawing module, not this build's.
+# The installed motus finds its installed scenes, not this build's ...
 run("installed motus run spring" ${prefix}/bin/motus run spring --json)
 if(NOT output MATCHES "share/motus/scenes/spring.json")
   message(FATAL_ERROR "the installed motus did not use the installed scenes:\n${output}")
 endif()
+
+# ... and its peers module (lib/motus/motus-peers.so): Box2D and Bullet run in its compare.
+file(GLOB peers_module ${prefix}/lib*/motus/motus-peers.so ${prefix}/lib/*/motus/motus-peers.so)
+if(NOT peers_module)
+  message(FATAL_ERROR "the install has no lib/motus/motus-peers.so")
+endif()
+run("installed motus compare head_on" ${CMAKE_COMMAND} -E env --unset=MOTUS_PEERS_MODULE
+    ${prefix}/bin/motus compare head_on --repeats 1 --json --out ${WORK_DIR}/compare)
+foreach(engine box2d bullet)
+  if(NOT output MATCHES "\"engine\": \"${engine}\"" OR output MATCHES "not supported by ${engine}")
+    message(FATAL_ERROR "the installed motus did not run ${engine}:\n${output}")
+  endif()
+endforeach()
