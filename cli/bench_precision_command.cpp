@@ -232,18 +232,7 @@ int bench_precision_command(const BenchPrecisionOptions& o) {
   // The copy, after the report (which is whole by now): whole or not at all, and over a file that
   // appeared during the sweep only with --overwrite.
   if (!o.csv.empty()) {
-    std::error_code ignored;
-    const auto status = fs::status(o.csv, ignored);
-    std::optional<PartialFile> partial_csv;  // (none for a FIFO or a device: written as it is)
-    if (!fs::exists(status) || fs::is_regular_file(status)) partial_csv.emplace(o.csv);
-    {
-      std::ofstream csv(partial_csv ? partial_csv->path() : o.csv, std::ios::binary);
-      if (!csv) throw std::runtime_error(o.csv + ": cannot be written");
-      csv << precision::precision_csv(scene.name, curves);
-      csv.flush();
-      if (!csv) throw std::runtime_error(o.csv + ": could not be written (disk full?)");
-    }
-    if (partial_csv) partial_csv->complete(o.overwrite);
+    write_whole_file(o.csv, precision::precision_csv(scene.name, curves), o.overwrite);
     fmt::print("table written to {}\n", o.csv);
   }
   return 0;

@@ -13,6 +13,8 @@
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
+#include <optional>
+#include <fstream>
 
 #include <fmt/format.h>
 
@@ -284,6 +286,25 @@ void PartialFile::complete(bool overwrite) {
   }
   done_ = true;
   fs::remove(folder_, error);
+}
+
+bool written_in_place(const std::string& path) {
+  std::error_code ignored;
+  const auto status = fs::status(path, ignored);
+  return fs::exists(status) && !fs::is_regular_file(status);
+}
+
+void write_whole_file(const std::string& path, const std::string& text, bool overwrite) {
+  std::optional<PartialFile> partial;
+  if (!written_in_place(path)) partial.emplace(path);
+  {
+    std::ofstream out(partial ? partial->path() : path, std::ios::binary | std::ios::trunc);
+    if (!out) throw std::runtime_error(path + ": cannot be written");
+    out << text;
+    out.flush();
+    if (!out) throw std::runtime_error(path + ": could not be written (disk full?)");
+  }
+  if (partial) partial->complete(overwrite);
 }
 
 void check_can_write(const std::string& path, bool overwrite) {

@@ -167,6 +167,11 @@ private:
 // lost without being asked), and a folder even then. For a file written in place: a FIFO or a
 // device (/dev/full) is written to as it is.
 void check_can_write(const std::string& path, bool overwrite);
+// Writes `text` to `path` whole or not at all (through a PartialFile), over a file there only with
+// `overwrite`; a FIFO or a device is written as it is. Fails with one line naming the path.
+void write_whole_file(const std::string& path, const std::string& text, bool overwrite);
+// Whether `path` is written as it is rather than through a PartialFile: a FIFO or a device.
+bool written_in_place(const std::string& path);
 // The folder a PartialFile for `path` is written in, with mkdtemp's XXXXXX: .NAME.partial-XXXXXX.
 std::string partial_folder_pattern_for(const std::string& path);
 // The same for a file written whole under another name and then renamed over `path`: the

@@ -7,7 +7,6 @@
 #include <atomic>
 #include <ctime>
 #include <filesystem>
-#include <fstream>
 #include <optional>
 #include <mutex>
 #include <thread>
@@ -48,19 +47,6 @@ grade::GradeOptions grade_options(const GradeCommandOptions& o) {
   g.limits.memory_mb = o.memory_limit;
   g.isolate = !o.no_sandbox;
   return g;
-}
-
-// Writes text to `path` whole, or fails with one line (a half-written results file is worse than
-// none); over a file there only with `overwrite` (one that appeared during the grading is kept).
-void write_file(const std::string& path, const std::string& text, bool overwrite) {
-  PartialFile partial(path);
-  {
-    std::ofstream out(partial.path(), std::ios::binary | std::ios::trunc);
-    out << text;
-    out.flush();
-    if (!out) throw std::runtime_error(path + ": cannot be written");
-  }
-  partial.complete(overwrite);
 }
 
 grade::Assignment load(const GradeCommandOptions& o, const std::string& folder) {
@@ -117,11 +103,11 @@ int grade_one(const GradeCommandOptions& o, const std::string& folder) {
     throw;  // (Ctrl-C: no results, exit 130)
   } catch (const std::exception& e) {
     // Even now, a valid results.json that says what happened.
-    if (!o.results.empty()) write_file(o.results, grade::results_text(grade::failed_json(assignment.name, e.what())), o.overwrite);
+    if (!o.results.empty()) write_whole_file(o.results, grade::results_text(grade::failed_json(assignment.name, e.what())), o.overwrite);
     throw;
   }
   const std::string json = grade::results_text(grade::gradescope_json(result));
-  if (!o.results.empty()) write_file(o.results, json, o.overwrite);
+  if (!o.results.empty()) write_whole_file(o.results, json, o.overwrite);
   if (plugin_out && result.compiled) plugin_out->complete(o.overwrite);
   if (!o.plugin_out.empty() && !result.compiled)
     fmt::print(stderr, "motus: note: --plugin-out: {} was not written: the submission does not compile\n", o.plugin_out);
@@ -164,7 +150,7 @@ int grade_batch(const GradeCommandOptions& o, const std::string& folder) {
       const std::string results = (fs::path(out) / (name + ".json")).string();
       try {
         const auto result = grade::grade_submission(assignment, submissions[i].string(), options);
-        write_file(results, grade::results_text(grade::gradescope_json(result)), false);  // (a folder of our own)
+        write_whole_file(results, grade::results_text(grade::gradescope_json(result)), false);  // (a folder of our own)
         rows[i] = {result.score, result.max_score, result.seconds,
                    !result.tests[0].passed ? "missing files" : !result.compiled ? "does not compile" : "graded"};
       } catch (const std::exception& e) {
@@ -172,7 +158,7 @@ int grade_batch(const GradeCommandOptions& o, const std::string& folder) {
         failures.push_back(name + ": " + e.what());
         rows[i] = {0, assignment.max_score(), 0, "grader failed"};
         try {
-          write_file(results, grade::results_text(grade::failed_json(assignment.name, e.what())), false);
+          write_whole_file(results, grade::results_text(grade::failed_json(assignment.name, e.what())), false);
         } catch (...) {
         }
       }
@@ -193,7 +179,7 @@ int grade_batch(const GradeCommandOptions& o, const std::string& folder) {
   for (size_t i = 0; i < submissions.size(); ++i)
     csv += fmt::format("{},{},{},{:.2f},{}\n", submissions[i].filename().string(), rows[i].score, rows[i].max_score,
                        rows[i].seconds, rows[i].status);
-  write_file((fs::path(out) / "scores.csv").string(), csv, false);
+  write_whole_file((fs::path(out) / "scores.csv").string(), csv, false);
   fmt::print("{}", csv);
   fmt::print(stderr, "motus: graded {} submissions of {} in {:.1f} s with {} jobs; results in {}/\n", submissions.size(),
              assignment.name, wall, o.jobs, out);

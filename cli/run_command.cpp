@@ -42,9 +42,7 @@ public:
     if (path == "-") {
       out_ = &std::cout;
     } else {
-      std::error_code ignored;
-      const auto status = fs::status(path, ignored);
-      if (!fs::exists(status) || fs::is_regular_file(status)) partial_.emplace(path);
+      if (!written_in_place(path)) partial_.emplace(path);
       file_.open(partial_ ? partial_->path() : path, std::ios::binary | std::ios::trunc);
       out_ = &file_;
     }

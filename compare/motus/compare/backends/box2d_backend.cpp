@@ -172,8 +172,9 @@ void Box2dBackend::build(const SceneDescription& scene, const Method& /*method*/
     if (beyond({s.a[0], s.a[1], s.b[0], s.b[1], s.b[0] - s.a[0], s.b[1] - s.a[1]}))
       unsupported.push_back(format("segment %zu: an end past 1e18 (float squares past its range)", j));
   }
-  for (const auto& away : bodies_pinned_away(m)) unsupported.push_back(away + " (motus moves it to the pin at the first step; Box2D makes it there)");
-  for (const auto& outside : bodies_starting_outside(m, start_position))
+  for (const auto& away : bodies_pinned_away(m))
+    unsupported.push_back(away + " (motus moves it to the pin at the first step; Box2D makes it there)");
+  for (const auto& outside : bodies_starting_outside(m))
     unsupported.push_back(outside + " (motus moves it onto the wall's side; Box2D's edges would keep it on the other)");
   for (size_t i = 0; i < n; ++i)
     if (!pin_of[i] && !(static_cast<float>(m.bodies[i].mass) >= FLT_MIN)) {

@@ -161,14 +161,10 @@ void BulletBackend::build(const SceneDescription& scene, const Method& /*method*
   // btCapsuleShape is a solid: neither is the same wall.
   if (!m.colliders.segments.empty()) unsupported.push_back("segment colliders");
   if (unsupported.empty()) {
-    std::vector<const PinConstraint*> pin_of(m.bodies.size(), nullptr);
-    for (const auto& p : m.pins) pin_of[static_cast<size_t>(p.body)] = &p;  // the last pin of a body wins, as in motus
-    auto start = [&](size_t i, int k) {
-      return pin_of[i] ? pin_of[i]->position[static_cast<size_t>(k)] : m.bodies[i].position[static_cast<size_t>(k)];
-    };
+    for (const auto& away : bodies_pinned_away(m))
+      unsupported.push_back(away + " (motus moves it to the pin at the first step; Bullet makes it there)");
     // (Bullet pushed such a body out over some fifteen steps, with energy it did not have.)
-    for (const auto& away : bodies_pinned_away(m)) unsupported.push_back(away + " (motus moves it to the pin at the first step; Bullet makes it there)");
-    for (const auto& outside : bodies_starting_outside(m, start))
+    for (const auto& outside : bodies_starting_outside(m))
       unsupported.push_back(outside + " (motus moves it onto the wall's side; Bullet would push it out over several "
                                       "steps, with energy of its own)");
   }

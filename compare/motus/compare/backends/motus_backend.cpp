@@ -30,7 +30,7 @@ void MotusBackend::build(const SceneDescription& scene, const Method& method, do
 std::vector<std::string> MotusBackend::notes() const {
   if (!sim_ || (!parts_.collisions && !parts_.constraints) || sim_->method().is_external()) return {};
   const World* world = sim_->world();
-  if (!world || (parts_.collisions && world->has_collisions()) || (parts_.constraints && world->has_constraints())) return {};
+  if ((parts_.collisions && world->has_collisions()) || (parts_.constraints && world->has_constraints())) return {};
   const std::string mine = parts_.collisions && parts_.constraints ? "neither the plug-in's collision rules nor its projection runs"
                            : parts_.collisions                       ? "the plug-in's collision rules never run"
                                                                      : "the plug-in's projection never runs";

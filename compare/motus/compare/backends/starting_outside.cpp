@@ -2,9 +2,9 @@
 
 namespace motus::compare {
 
-std::vector<std::string> bodies_starting_outside(const MechanicalDescription& m,
-                                                 const std::function<double(size_t, int)>& start) {
+std::vector<std::string> bodies_starting_outside(const MechanicalDescription& m) {
   const int d = m.dimensions;
+  auto start = [&](size_t i, int k) { return m.bodies[i].position[static_cast<size_t>(k)]; };
   const size_t n = m.bodies.size();
   std::vector<std::string> outside;
   for (size_t j = 0; j < m.colliders.planes.size(); ++j) {

@@ -4,7 +4,6 @@
 // is, or push it out with energy it did not have (Bullet). One pinned away from where it starts:
 // motus jumps it to the pin at the first step; a peer's body is made at the pin, so the two start
 // from different states (and energies). The peers refuse such scenes rather than run others.
-#include <functional>
 #include <string>
 #include <vector>
 
@@ -12,10 +11,9 @@
 
 namespace motus::compare {
 
-// "body I starting outside plane J" (or box J): the first such body of each wall. `start(i, k)`
-// is body i's coordinate k at the start (a pinned body's: its pin), in the scene's d dimensions.
-std::vector<std::string> bodies_starting_outside(const MechanicalDescription& m,
-                                                 const std::function<double(size_t, int)>& start);
+// "body I starting outside plane J" (or box J): the first such body of each wall. (A pinned body
+// starts at its pin, unless bodies_pinned_away names it.)
+std::vector<std::string> bodies_starting_outside(const MechanicalDescription& m);
 
 // "body I pinned away from where it starts": the first such pin.
 std::vector<std::string> bodies_pinned_away(const MechanicalDescription& m);
