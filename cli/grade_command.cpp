@@ -42,6 +42,14 @@ std::string assignment_folder(const std::string& argument) {
 grade::GradeOptions grade_options(const GradeCommandOptions& o) {
   grade::GradeOptions g;
   g.motus = executable_path();
+  // The expressions module, for a test whose scene has an equations system (the sandbox holds
+  // only what is mounted in it).
+  for (const auto& m : module_candidates("MOTUS_EXPRESSIONS_MODULE", MOTUS_EXPRESSIONS_MODULE_NAME,
+                                         MOTUS_EXPRESSIONS_MODULE_INSTALLED))
+    if (fs::is_regular_file(m)) {
+      g.modules.push_back(m);
+      break;
+    }
   g.headers = {student_api_directory("student"), student_api_directory("plugin"), student_api_directory("external")};
   g.limits.cpu_seconds = o.time_limit;
   g.limits.memory_mb = o.memory_limit;

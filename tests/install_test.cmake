@@ -92,3 +92,15 @@ foreach(engine box2d bullet)
     message(FATAL_ERROR "the installed motus did not run ${engine}:\n${output}")
   endif()
 endforeach()
+
+# ... and its expressions module (lib/motus/motus-expressions.so): a scene with an equations
+# system runs (muparser is loaded from it).
+file(GLOB expressions_module ${prefix}/lib*/motus/motus-expressions.so ${prefix}/lib/*/motus/motus-expressions.so)
+if(NOT expressions_module)
+  message(FATAL_ERROR "the install has no lib/motus/motus-expressions.so")
+endif()
+run("installed motus run lorenz_equations" ${CMAKE_COMMAND} -E env --unset=MOTUS_EXPRESSIONS_MODULE
+    ${prefix}/bin/motus run lorenz_equations --steps 10 --json)
+if(NOT output MATCHES "\"steps\": 10")
+  message(FATAL_ERROR "the installed motus did not run lorenz_equations:\n${output}")
+endif()

@@ -355,3 +355,36 @@ TEST(CliRun, TrajectoryRowsComeEveryOutputIntervalHoweverSmall) {
 }
 
 }  // namespace
+
+namespace {
+
+// Start-up loads nothing a command does not use (docs/architecture.md): muparser (and its
+// libgomp) only for a scene with an equations system, from motus-expressions.so; Box2D and
+// Bullet only when a peer runs; OpenGL only to draw. The dynamic loader names every library it
+// loads (LD_DEBUG=libs).
+TEST(CliStart, ACommandLoadsOnlyTheLibrariesItUses) {
+  TempDir dir;
+  auto loaded = [](const std::string& log, const std::string& library) {
+    std::istringstream lines(log);
+    for (std::string line; std::getline(lines, line);)
+      if (line.find("calling init: ") != std::string::npos && line.find(library) != std::string::npos) return true;
+    return false;
+  };
+  const char* const heavy[] = {"libmuparser", "libgomp", "libbox2d", "libBullet", "libOSMesa",
+                               "motus-expressions.so", "motus-peers.so", "motus-draw.so"};
+  const Result help = run_motus(dir, {"--help"}, {"LD_DEBUG=libs"});
+  ASSERT_EQ(help.status, 0) << help.err;
+  ASSERT_TRUE(loaded(help.err, "libc.so")) << "no loader log:\n" << help.err;
+  for (const char* library : heavy) EXPECT_FALSE(loaded(help.err, library)) << "motus --help loaded " << library;
+  const Result spring = run_motus(dir, {"run", "spring", "--json"}, {"LD_DEBUG=libs"});
+  ASSERT_EQ(spring.status, 0) << spring.err;
+  for (const char* library : heavy) EXPECT_FALSE(loaded(spring.err, library)) << "motus run spring loaded " << library;
+  // A scene with an equations system loads the module, and muparser with it, and runs.
+  const Result lorenz = run_motus(dir, {"run", "lorenz_equations", "--steps", "10", "--json"}, {"LD_DEBUG=libs"});
+  ASSERT_EQ(lorenz.status, 0) << lorenz.err;
+  EXPECT_TRUE(loaded(lorenz.err, "motus-expressions.so"));
+  EXPECT_TRUE(loaded(lorenz.err, "libmuparser"));
+  EXPECT_NE(lorenz.out.find("\"steps\": 10"), std::string::npos) << lorenz.out;
+}
+
+}  // namespace

@@ -480,6 +480,31 @@ TEST(Grade, EachTestHasTheWholeCpuLimitOfItsOwn) {
   EXPECT_EQ(result["score"].get<double>(), 5);
 }
 
+// A test whose scene has an equations system runs in the sandbox too: muparser comes from motus's
+// expressions module, which the sandbox holds only because the grader mounts it beside motus.
+// RK4 on Lorenz written as expressions is fourth order, as on the compiled Lorenz (the hidden
+// test rk4.lorenz-order, its expect and tolerance).
+TEST(Grade, ATestOnAnEquationsSceneRunsInTheSandbox) {
+  NEEDS_SANDBOX();
+  TempDir dir;
+  const fs::path assignment = dir / "equations";
+  fs::copy(fs::path(kAssignments) / "integrators", assignment, fs::copy_options::recursive);
+  fs::remove_all(assignment / "hidden");
+  json test = definitions("integrators").at("rk4.lorenz-order");
+  ASSERT_EQ(test["scene"], "lorenz");
+  test["scene"] = "lorenz_equations";
+  write_file(assignment / "tests/public.json", json{{"tests", json::array({test})}}.dump(2));
+  write_file(assignment / "rubric.json",
+             json{{"tests", json::array({{{"name", test["name"]}, {"points", 1}, {"visibility", "visible"}}})}}.dump(2));
+  const fs::path submission = copy_solution(dir, "integrators", "solution");
+  const auto r = run_motus(dir, {"grade", assignment.string(), submission.string(), "--results", (dir / "results.json").string()});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const json result = read_json(dir / "results.json");
+  expect_valid_gradescope(result);
+  EXPECT_TRUE(failed(result).empty()) << result.dump(2);
+  EXPECT_EQ(result["score"].get<double>(), 1);
+}
+
 }  // namespace
 
 namespace {

@@ -56,4 +56,12 @@ private:
   std::unique_ptr<Parsed> parsed_;
 };
 
+// A new ExpressionSystem for `equations`, as the scene loader makes them: motus::expressions
+// defines it with muparser linked in (make_expression_system.cpp: tests, benchmarks and the
+// installed library use it). The `motus` command defines it, and name_problem, again
+// (cli/expressions_module.cpp): they load muparser, in the module motus-expressions.so, only when a
+// scene has an equations system, so that every other command starts without it. (The command's
+// definitions are linked before the library's, whose objects are then never taken from the archive.)
+std::unique_ptr<FirstOrderSystem> make_expression_system(const Equations& equations);
+
 }  // namespace motus::expressions

@@ -131,7 +131,7 @@ GradeResult grade_submission(const Assignment& a, const std::string& submission,
 
   // 3. Every test of the rubric, each against its own deadline and in a server of its own.
   Limits limits = o.limits;
-  ProbeSetup setup{o.motus, built.plugin, limits, o.isolate, user.uid()};
+  ProbeSetup setup{o.motus, built.plugin, o.modules, limits, o.isolate, user.uid()};
   Probe probe(setup);
   int number = 0;
   for (const auto& t : a.tests) {

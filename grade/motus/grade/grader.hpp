@@ -6,6 +6,7 @@
 #include <functional>
 #include <string>
 #include <vector>
+#include <vector>
 
 #include "motus/grade/assignment.hpp"
 #include "motus/grade/build.hpp"
@@ -15,6 +16,7 @@ namespace motus::grade {
 
 struct GradeOptions {
   std::string motus;      // this motus executable (the sandboxed server is `motus serve`)
+  std::vector<std::string> modules;  // its modules a test may need, mounted beside it (ProbeSetup)
   ApiHeaders headers;
   Limits limits;          // per test: cpu_seconds is also its wall-clock limit
   bool isolate = true;    // false: --no-sandbox

@@ -1,5 +1,7 @@
 #include "motus/grade/probe.hpp"
 
+#include <filesystem>
+
 namespace motus::grade {
 
 Probe::Probe(ProbeSetup setup) : setup_(std::move(setup)) {}
@@ -12,6 +14,8 @@ void Probe::start() {
   spec.uid = setup_.uid;
   if (setup_.isolate) {
     spec.mounts = {{setup_.motus, "/motus/motus", false}, {setup_.plugin, "/box/student.so", false}};
+    for (const auto& m : setup_.modules)
+      spec.mounts.push_back({m, "/motus/" + std::filesystem::path(m).filename().string(), false});
     spec.argv = {"/motus/motus", "serve", "--plugin", "/box/student.so"};
   } else {
     spec.argv = {setup_.motus, "serve", "--plugin", setup_.plugin};

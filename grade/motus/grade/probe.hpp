@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "motus/grade/sandbox.hpp"
 
@@ -27,6 +28,9 @@ private:
 struct ProbeSetup {
   std::string motus;   // the motus executable (this one), mounted read-only
   std::string plugin;  // the student's plug-in, mounted read-only
+  // Files mounted read-only beside motus, where it looks for its modules: the expressions module
+  // (a test's scene may have an equations system).
+  std::vector<std::string> modules;
   Limits limits;
   bool isolate = true;
   uid_t uid = 0;  // the sandbox's user

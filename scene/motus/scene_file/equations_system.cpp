@@ -67,7 +67,7 @@ FirstOrderDescription read_equations_system(JsonFields& system) {
                                " characters; at most 10,000");
   }
   try {
-    expressions::ExpressionSystem parsed(spec);  // the first problem, with its column
+    expressions::make_expression_system(spec);  // the first problem, with its column
   } catch (const expressions::EquationError& e) {
     equations.fail(spec.variables[static_cast<size_t>(e.equation)], e.what());
   }
@@ -75,7 +75,7 @@ FirstOrderDescription read_equations_system(JsonFields& system) {
   s.initial = system.numbers("initial", static_cast<int>(spec.variables.size()));
   system.reject_unknown();
   s.variables = spec.variables;
-  s.make = [spec]() -> std::unique_ptr<FirstOrderSystem> { return std::make_unique<expressions::ExpressionSystem>(spec); };
+  s.make = [spec]() { return expressions::make_expression_system(spec); };
   return s;
 }
 
