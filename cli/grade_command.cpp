@@ -73,7 +73,7 @@ void check_limits(const GradeCommandOptions& o) {
   // and the longer tests take tenths of a second of the reference solution's own time.)
   if (!(o.time_limit >= 0.5) || o.time_limit > 600) throw InputError("--time-limit: must be from 0.5 to 600 s");
   if (o.memory_limit < 64 || o.memory_limit > 65536) throw InputError("--memory-limit: must be from 64 to 65536 MB");
-  if (o.jobs < 1 || o.jobs > 64) throw InputError("--jobs: must be from 1 to 64");
+  if (o.jobs && (*o.jobs < 1 || *o.jobs > 64)) throw InputError("--jobs: must be from 1 to 64");
   if (!o.no_sandbox)
     if (const auto why = grade::sandbox_unavailable()) throw InputError(*why);
 }
@@ -87,14 +87,41 @@ std::string new_folder(const std::string& prefix) {
   return path;
 }
 
+// The assignment and the machine, checked before a submission is graded. With --results, what
+// stops the grading here still leaves a results.json that says why: on Gradescope a missing
+// one shows every student only "the autograder failed" (a container without user namespaces,
+// where bubblewrap cannot make a sandbox, is the likely cause there).
+grade::Assignment ready_to_grade(const GradeCommandOptions& o, const std::string& folder) {
+  try {
+    if (fs::is_regular_file(o.submission))
+      throw InputError(o.submission + ": is a file; a submission is the folder of the handout's files (unpack it first)");
+    if (!fs::is_directory(o.submission)) throw InputError(o.submission + ": no such submission folder");
+    grade::Assignment assignment = load(o, folder);
+    check_limits(o);
+    return assignment;
+  } catch (const InputError& e) {
+    if (!o.results.empty()) {
+      try {
+        write_whole_file(o.results,
+                         grade::results_text(grade::failed_json(fs::path(folder).filename().string(), e.what())),
+                         o.overwrite);
+      } catch (const std::exception&) {
+        // (the error that stopped the grading is the one to tell)
+      }
+    }
+    throw;
+  }
+}
+
 int grade_one(const GradeCommandOptions& o, const std::string& folder) {
-  if (fs::is_regular_file(o.submission))
-    throw InputError(o.submission + ": is a file; a submission is the folder of the handout's files (unpack it first)");
-  if (!fs::is_directory(o.submission)) throw InputError(o.submission + ": no such submission folder");
   if (!o.results.empty()) check_can_replace(o.results, o.overwrite);
   if (!o.plugin_out.empty()) check_can_replace(o.plugin_out, o.overwrite);
-  const grade::Assignment assignment = load(o, folder);
-  check_limits(o);
+  if (!o.results.empty() && !o.plugin_out.empty()) {
+    std::error_code ignored;
+    if (fs::weakly_canonical(o.results, ignored) == fs::weakly_canonical(o.plugin_out, ignored))
+      throw InputError(o.plugin_out + ": --plugin-out: is --results's file too; give them two files");
+  }
+  const grade::Assignment assignment = ready_to_grade(o, folder);
   grade::GradeOptions options = grade_options(o);
   std::optional<PartialFile> plugin_out;  // (kept only when the submission compiles)
   if (!o.plugin_out.empty()) options.plugin_out = plugin_out.emplace(o.plugin_out).path();
@@ -119,11 +146,23 @@ int grade_one(const GradeCommandOptions& o, const std::string& folder) {
   if (plugin_out && result.compiled) plugin_out->complete(o.overwrite);
   if (!o.plugin_out.empty() && !result.compiled)
     fmt::print(stderr, "motus: note: --plugin-out: {} was not written: the submission does not compile\n", o.plugin_out);
-  if (o.format == "gradescope")
+  if (o.format.value_or("text") == "gradescope")
     fmt::print("{}", json);
   else
     fmt::print("{}", grade::text_summary(result));
   return 0;
+}
+
+// A submission's folder name as one CSV field (RFC 4180: quoted when it holds a comma, a quote or
+// a line break, quotes doubled). A name a spreadsheet would take for a formula (=, +, -, @ first)
+// is prefixed with ' so that it opens as the text it is: the names come from the students.
+std::string csv_field(const std::string& name) {
+  std::string field = name;
+  if (!field.empty() && std::string("=+-@\t\r").find(field[0]) != std::string::npos) field = "'" + field;
+  if (field.find_first_of(",\"\r\n") == std::string::npos) return field;
+  std::string quoted = "\"";
+  for (const char c : field) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return quoted + "\"";
 }
 
 int grade_batch(const GradeCommandOptions& o, const std::string& folder) {
@@ -174,7 +213,8 @@ int grade_batch(const GradeCommandOptions& o, const std::string& folder) {
     }
   };
   std::vector<std::thread> threads;
-  for (int j = 0; j < std::min<int>(o.jobs, static_cast<int>(submissions.size())); ++j) threads.emplace_back(worker);
+  const int jobs = o.jobs.value_or(1);
+  for (int j = 0; j < std::min<int>(jobs, static_cast<int>(submissions.size())); ++j) threads.emplace_back(worker);
   while (done < submissions.size()) {
     progress.update(static_cast<double>(done));
     std::this_thread::sleep_for(std::chrono::milliseconds(100));
@@ -185,12 +225,12 @@ int grade_batch(const GradeCommandOptions& o, const std::string& folder) {
 
   std::string csv = "submission,score,max_score,seconds,status\n";
   for (size_t i = 0; i < submissions.size(); ++i)
-    csv += fmt::format("{},{},{},{:.2f},{}\n", submissions[i].filename().string(), rows[i].score, rows[i].max_score,
+    csv += fmt::format("{},{},{},{:.2f},{}\n", csv_field(submissions[i].filename().string()), rows[i].score, rows[i].max_score,
                        rows[i].seconds, rows[i].status);
   write_whole_file((fs::path(out) / "scores.csv").string(), csv, false);
   fmt::print("{}", csv);
-  fmt::print(stderr, "motus: graded {} submissions of {} in {:.1f} s with {} jobs; results in {}/\n", submissions.size(),
-             assignment.name, wall, o.jobs, out);
+  fmt::print(stderr, "motus: graded {} submissions of {} in {:.1f} s with {} job{}; results in {}/\n", submissions.size(),
+             assignment.name, wall, jobs, jobs == 1 ? "" : "s", out);
   for (const auto& f : failures) fmt::print(stderr, "motus: the grader failed on {}\n", f);
   return failures.empty() ? 0 : kExitFailure;
 }
@@ -205,9 +245,8 @@ CLI::App* add_grade_command(CLI::App& app, GradeCommandOptions& o) {
       ->required();
   g->add_option("submission", o.submission, "The submission's folder (the files the handout names)");
   g->add_option("--results", o.results, "Write Gradescope's results.json here")->check(non_empty_path());
-  g->add_option("--format", o.format, "What standard output shows: text (a summary) or gradescope (the JSON)")
-      ->check(CLI::IsMember({"text", "gradescope"}))
-      ->capture_default_str();
+  g->add_option("--format", o.format, "What standard output shows: text (a summary; the default) or gradescope (the JSON)")
+      ->check(CLI::IsMember({"text", "gradescope"}));
   g->add_option("--hidden", o.hidden, "The folder of hidden tests (the instructor's; not given: only the public tests run)");
   g->add_option("--time-limit", o.time_limit, "Seconds each test may take (CPU and wall clock)")->capture_default_str();
   g->add_option("--memory-limit", o.memory_limit, "Megabytes of address space the student's code may use")->capture_default_str();
@@ -216,7 +255,7 @@ CLI::App* add_grade_command(CLI::App& app, GradeCommandOptions& o) {
   g->add_option("--plugin-out", o.plugin_out, "Also keep the plug-in built from the submission here (for motus run --plugin)")->check(non_empty_path());
   g->add_flag("--overwrite", o.overwrite, "Allow --results and --plugin-out to replace existing files");
   g->add_option("--batch", o.batch, "Grade every subfolder of this folder, one submission each");
-  g->add_option("--jobs", o.jobs, "With --batch: submissions graded at once")->capture_default_str();
+  g->add_option("--jobs", o.jobs, "With --batch: submissions graded at once (default 1)");
   g->add_option("--out", o.out, "With --batch: the results folder (default: a new folder under runs/); with --package: the zip")->check(non_empty_path());
   g->add_option("--package", o.package, "Write the autograder zip for this platform instead of grading")
       ->check(CLI::IsMember({"gradescope"}));
@@ -231,11 +270,31 @@ int grade_command(const GradeCommandOptions& o) {
                      std::string(!o.submission.empty() ? "SUBMISSION_DIR" : "--batch") + " and " +
                      (!o.package.empty() ? "--package" : "--batch"));
   if (modes != 1) throw InputError("grade: give a SUBMISSION_DIR, or --batch DIR, or --package gradescope --out FILE.zip");
+  // An option the chosen use would silently ignore is refused.
+  const std::string use = !o.package.empty() ? "with --package" : !o.batch.empty() ? "with --batch" : "with one SUBMISSION_DIR";
+  auto refuse = [&](bool given, const std::string& option, const std::string& instead) {
+    if (given) throw InputError(option + ": has no use " + use + " (" + instead + ")");
+  };
+  if (o.submission.empty()) {
+    refuse(!o.results.empty(), "--results", !o.batch.empty() ? "each submission's results are written in --out" : "the zip grades into Gradescope's results");
+    refuse(!o.plugin_out.empty(), "--plugin-out", "it keeps one submission's plug-in");
+    refuse(o.format.has_value(), "--format", !o.batch.empty() ? "standard output is the scores' CSV" : "nothing is graded here");
+  } else {
+    refuse(!o.out.empty(), "--out", "it is --batch's folder or --package's zip; --results names the results file");
+  }
+  if (o.batch.empty()) refuse(o.jobs.has_value(), "--jobs", "it is --batch's");
   if (!o.package.empty()) {
     if (o.out.empty()) throw InputError("--package: needs --out FILE.zip");
     const grade::Assignment assignment = load(o, folder);  // checked before it is packed
-    return write_gradescope_package(folder, assignment.name, o.hidden, o.out, o.no_sandbox, o.time_limit,
-                                    o.memory_limit, o.overwrite);
+    const int status = write_gradescope_package(folder, assignment.name, o.hidden, o.out, o.no_sandbox, o.time_limit,
+                                                o.memory_limit, o.overwrite);
+    if (!o.hidden && assignment.hidden_not_given > 0)
+      fmt::print(stderr,
+                 "motus: note: no --hidden: the autograder grades the public tests only; the rubric's {} hidden test{} "
+                 "{} left out, and scores are out of {} points\n",
+                 assignment.hidden_not_given, assignment.hidden_not_given == 1 ? "" : "s",
+                 assignment.hidden_not_given == 1 ? "is" : "are", assignment.max_score());
+    return status;
   }
   if (!o.batch.empty()) return grade_batch(o, folder);
   return grade_one(o, folder);

@@ -13,7 +13,7 @@ namespace motus::cli {
 struct GradeCommandOptions {
   std::string assignment, submission;
   std::string results;            // --results FILE
-  std::string format = "text";    // what standard output shows: text or gradescope
+  std::optional<std::string> format;  // what standard output shows: text (not given) or gradescope
   std::optional<std::string> hidden;
   double time_limit = 10;         // s per test
   long memory_limit = 512;        // MB
@@ -21,7 +21,7 @@ struct GradeCommandOptions {
   std::string plugin_out;         // keep the built plug-in here
   bool overwrite = false;
   std::string batch;              // --batch DIR
-  int jobs = 1;
+  std::optional<int> jobs;        // --batch: submissions at once (not given: 1)
   std::string out;                // --batch: the results folder; --package: the zip
   std::string package;            // "gradescope"
 };

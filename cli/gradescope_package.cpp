@@ -128,9 +128,6 @@ exec "$MOTUS" grade "$SOURCE/assignment" "$ROOT/submission" {}--results "$ROOT/r
   partial.complete(overwrite);
   fmt::print("autograder  {} (setup.sh, run_autograder; motus's sources, the assignment{})\n", zip,
              hidden ? " and its hidden tests" : "");
-  if (!hidden)
-    fmt::print(stderr, "motus: note: no --hidden: the autograder grades the public tests only (the rubric's hidden "
-                       "tests score as not run)\n");
   return 0;
 }
 

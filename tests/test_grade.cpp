@@ -146,6 +146,27 @@ TEST_P(SeededBugs, EachLosesExactlyTheTestsThatNameIt) {
     EXPECT_FALSE(naming.empty()) << mistake << ": no test names it";
     EXPECT_EQ(failed(result), naming) << assignment << ": " << mistake;
     EXPECT_EQ(result["score"].get<double>(), max - lost) << assignment << ": " << mistake;
+    // The message students see at once counts only the tests they see now: a hidden test's
+    // failure must not show through its totals (Gradescope hides the total while one is hidden).
+    double shown_score = 0, shown_max = 0;
+    long shown = 0, shown_passed = 0, not_shown = 0;
+    for (const auto& t : result["tests"]) {
+      if (t["number"].get<std::string>().rfind("0.", 0) == 0) continue;  // files and build
+      if (t["visibility"] != "visible") {
+        ++not_shown;
+        continue;
+      }
+      ++shown, shown_passed += t["status"] == "passed";
+      shown_score += t["score"].get<double>(), shown_max += t["max_score"].get<double>();
+    }
+    ASSERT_GT(not_shown, 0) << assignment << ": its hidden tests were given";
+    const std::string output = result["output"].get<std::string>();
+    EXPECT_NE(output.find(fmt_points(shown_score) + " of " + fmt_points(shown_max) + " points on the " +
+                          std::to_string(shown) + " tests shown now; " + std::to_string(shown_passed) + " of them passed. " +
+                          std::to_string(not_shown) + " more test"),
+              std::string::npos)
+        << output;
+    EXPECT_EQ(output.find(fmt_points(max)), std::string::npos) << "the total shows through: " << output;
   }
   // The scores as a CSV, one row per submission.
   EXPECT_NE(r.out.find("submission,score,max_score,seconds,status"), std::string::npos) << r.out;
@@ -349,6 +370,17 @@ TEST(Grade, BadInputIsOneLineAndExitTwo) {
       {{"grade", "integrators", solution, "--time-limit", "1e-9"}, "--time-limit: must be from 0.5"},
       {{"grade", "integrators", solution, "--results", "/proc/results.json"}, "cannot be written there"},  // (before grading)
       {{"grade", "integrators", solution, "--hidden", (dir / "empty").string()}, "nor in --hidden"},
+      // Options the chosen use would ignore, silently until now.
+      {{"grade", "integrators", "--batch", (dir / "empty").string(), "--results", (dir / "r.json").string()},
+       "--results: has no use with --batch"},
+      {{"grade", "integrators", "--batch", (dir / "empty").string(), "--format", "gradescope"}, "--format: has no use with --batch"},
+      {{"grade", "integrators", solution, "--jobs", "2"}, "--jobs: has no use with one SUBMISSION_DIR"},
+      {{"grade", "integrators", solution, "--out", (dir / "out").string()}, "--out: has no use with one SUBMISSION_DIR"},
+      {{"grade", "integrators", "--package", "gradescope", "--out", (dir / "a.zip").string(), "--plugin-out",
+        (dir / "p.so").string()},
+       "--plugin-out: has no use with --package"},
+      {{"grade", "integrators", solution, "--results", (dir / "same").string(), "--plugin-out", (dir / "same").string()},
+       "is --results's file too"},
   };
   for (const auto& [args, says] : cases) {
     const auto r = run_motus(dir, args);
@@ -357,6 +389,57 @@ TEST(Grade, BadInputIsOneLineAndExitTwo) {
     EXPECT_NE(r.err.find(says), std::string::npos) << r.err;
   }
   EXPECT_EQ(read_file(dir / "results.json"), "{}");  // nothing the user had is overwritten
+  for (const char* name : {"r.json", "out", "a.zip", "p.so", "same"}) EXPECT_FALSE(fs::exists(dir / name)) << name;
+}
+
+// Where grading cannot start (here: an assignment whose hidden folder has none of its hidden
+// tests), --results still gets a valid results.json that says why: on Gradescope a missing one
+// shows every student only "the autograder failed" (the likely cause there: no user namespaces).
+TEST(Grade, WhatStopsTheGradingStillLeavesAResultsFileThatSaysWhy) {
+  TempDir dir;
+  fs::create_directories(dir / "empty");
+  const fs::path submission = copy_solution(dir, "integrators", "solution");
+  const auto r = run_motus(dir, {"grade", "integrators", submission.string(), "--hidden", (dir / "empty").string(),
+                                 "--results", (dir / "results.json").string()});
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_EQ(count_lines(r.err), 1) << r.err;
+  const json result = read_json(dir / "results.json");
+  EXPECT_EQ(result["score"], 0);
+  EXPECT_NE(result["output"].get<std::string>().find("nor in --hidden"), std::string::npos) << result.dump(2);
+}
+
+// What a student's code writes reaches the instructor's terminal without its control characters:
+// an escape sequence could clear the screen or rewrite the lines above it (the JSON escapes them).
+TEST(Grade, AStudentsEscapeSequencesNeverReachTheTerminal) {
+  NEEDS_SANDBOX();
+  TempDir dir;
+  const fs::path submission = copy_solution(dir, "integrators", "escapes");
+  std::string source = read_file(submission / "integrators.cpp");
+  const std::string anchor = "void euler_step(const MechanicalSystem& s, double t, double h, VectorInOut x, VectorInOut v) {\n";
+  ASSERT_NE(source.find(anchor), std::string::npos);
+  source.replace(source.find(anchor), anchor.size(), anchor + "  throw std::runtime_error(\"\\x1b[2J\\x1b[Hall clear\");\n");
+  write_file(submission / "integrators.cpp", "#include <stdexcept>\n" + source);
+  const auto r = run_motus(dir, {"grade", "integrators", submission.string(), "--results", (dir / "results.json").string()});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("?[2J?[Hall clear"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find('\x1b'), std::string::npos);
+  EXPECT_NE(read_file(dir / "results.json").find("\\u001b[2J"), std::string::npos);  // (the JSON keeps it, escaped)
+}
+
+// scores.csv is CSV whatever the students named their folders: a comma or a quote is quoted,
+// and a name a spreadsheet would run as a formula opens as text.
+TEST(Grade, TheScoresAreCsvWhateverTheFoldersAreCalled) {
+  NEEDS_SANDBOX();
+  TempDir dir;
+  for (const char* name : {"smith, john", "say \"hi\"", "=1+1"}) fs::create_directories(dir / "batch" / name);
+  const auto r = run_motus(dir, {"grade", "integrators", "--batch", (dir / "batch").string(), "--out",
+                                 (dir / "results").string()});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const std::string csv = read_file(dir / "results/scores.csv");
+  EXPECT_EQ(csv, r.out);
+  for (const char* row : {"\n'=1+1,0,", "\n\"say \"\"hi\"\"\",0,", "\n\"smith, john\",0,"})
+    EXPECT_NE(csv.find(row), std::string::npos) << row << " in:\n" << csv;
+  EXPECT_EQ(count_lines(csv), 4) << csv;
 }
 
 TEST(Grade, AnAssignmentGivenByARelativePathGradesAsByItsFullPath) {

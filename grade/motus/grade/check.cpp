@@ -68,6 +68,7 @@ bool all_close(const std::vector<double>& measured, const std::vector<double>& e
 
 std::string read_text(const std::string& file) {
   std::ifstream in(file, std::ios::binary);
+  if (!in) throw SceneError(file, "cannot be read");
   std::stringstream s;
   s << in.rdbuf();
   return s.str();
@@ -89,7 +90,14 @@ std::vector<std::string> read_sets(const json& test, const std::string& path) {
 CheckScene load_check_scene(JsonFields& f, const json& test, const SceneSource& source) {
   CheckScene scene;
   if (f.has("scene_file")) {
-    scene.file = (fs::path(source.tests_folder) / f.string("scene_file")).string();
+    // Inside the tests' own folder: the autograder's zip takes that folder (and the assignment's)
+    // and nothing beside it, so a scene reached by ../ or from / would be missing there.
+    const fs::path relative = fs::path(f.string("scene_file")).lexically_normal();
+    if (relative.empty() || relative.is_absolute() || *relative.begin() == "..")
+      f.fail("scene_file", "\"" + f.string("scene_file") +
+                               "\" must be a path inside the tests' folder (the autograder's zip holds nothing beside it)");
+    scene.file = (fs::path(source.tests_folder) / relative).string();
+    if (!fs::is_regular_file(scene.file)) f.fail("scene_file", scene.file + ": no such file");
   } else {
     scene.file = source.shipped(f.string("scene"));
   }

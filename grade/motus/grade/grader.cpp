@@ -172,17 +172,36 @@ GradeResult grade_submission(const Assignment& a, const std::string& submission,
   if (built.ok && !o.plugin_out.empty()) fs::copy_file(built.plugin, o.plugin_out, fs::copy_options::overwrite_existing);
 
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count();
-  long passed = 0;
-  for (size_t i = 2; i < result.tests.size(); ++i) passed += result.tests[i].passed;
-  result.output = fmt::format("{}: {} of {} points; {} of {} tests passed{}.", a.title, result.score, result.max_score,
-                              passed, a.tests.size(),
-                              a.hidden_not_given == 0 ? ""
+  // The overall message is shown to students at once, whatever the tests' visibility: it counts
+  // only the tests they see now. (Gradescope hides the total while a test is hidden; totals in the
+  // message would tell a student how the hidden ones went.)
+  long passed = 0, shown = 0, shown_passed = 0;
+  double shown_score = 0, shown_max = 0;
+  for (size_t i = 2; i < result.tests.size(); ++i) {
+    const TestResult& t = result.tests[i];
+    passed += t.passed;
+    if (t.visibility != "visible") continue;
+    ++shown, shown_passed += t.passed, shown_score += t.score, shown_max += t.max_score;
+  }
+  const long not_shown = static_cast<long>(a.tests.size()) - shown;
+  const std::string not_run = a.hidden_not_given == 0 ? ""
                               : a.hidden_shown_later == 0
                                   ? fmt::format(" ({} hidden tests not run here)", a.hidden_not_given)
                                   : fmt::format(" ({} of the instructor's tests not run here: {} shown after the due date, {} "
                                                 "never shown)",
                                                 a.hidden_not_given, a.hidden_shown_later,
-                                                a.hidden_not_given - a.hidden_shown_later));
+                                                a.hidden_not_given - a.hidden_shown_later);
+  if (not_shown == 0) {
+    result.output = fmt::format("{}: {} of {} points; {} of {} tests passed{}.", a.title, result.score, result.max_score,
+                                passed, a.tests.size(), not_run);
+  } else {
+    result.output = fmt::format("{}: {} of {} points on the {} tests shown now; {} of them passed. {} more test{} "
+                                "{} graded and shown later, or not at all.",
+                                a.title, shown_score, shown_max, shown, shown_passed, not_shown, not_shown == 1 ? "" : "s",
+                                not_shown == 1 ? "is" : "are");
+    result.totals = fmt::format("All tests: {} of {} points; {} of {} tests passed{}.", result.score, result.max_score,
+                                passed, a.tests.size(), not_run);
+  }
   if (!files.passed) result.output += " A handed-in file is missing: see \"files\".";
   else if (!build.passed) result.output += " The submission does not compile: see \"build\".";
   return result;
@@ -208,8 +227,34 @@ nlohmann::json gradescope_json(const GradeResult& r) {
           {"tests", tests}};
 }
 
+namespace {
+
+// What the student's code wrote (its exception messages, its output), made safe for a terminal:
+// control characters but the line break and the tab (an escape sequence could clear the
+// instructor's screen, or rewrite what the lines above say) become '?', as do C1 controls.
+std::string terminal_safe(const std::string& text) {
+  std::string safe;
+  safe.reserve(text.size());
+  for (size_t i = 0; i < text.size(); ++i) {
+    const auto c = static_cast<unsigned char>(text[i]);
+    if ((c < 0x20 && c != '\n' && c != '\t') || c == 0x7f) {
+      safe += '?';
+    } else if (c == 0xc2 && i + 1 < text.size() && static_cast<unsigned char>(text[i + 1]) >= 0x80 &&
+               static_cast<unsigned char>(text[i + 1]) <= 0x9f) {
+      safe += '?', ++i;  // U+0080 … U+009F
+    } else {
+      safe += text[i];
+    }
+  }
+  return safe;
+}
+
+}  // namespace
+
 std::string text_summary(const GradeResult& r) {
-  std::string text = r.output + fmt::format(" ({:.1f} s)\n\n", r.seconds);
+  std::string text = terminal_safe(r.output) + fmt::format(" ({:.1f} s)\n", r.seconds);
+  if (!r.totals.empty()) text += r.totals + "\n";
+  text += "\n";
   for (const auto& t : r.tests) {
     text += fmt::format("{:<5} {:<4} {:>5}/{:<5} {}: {}\n", t.passed ? "PASS" : "FAIL", t.number, t.score, t.max_score,
                         t.name, t.title);
@@ -218,7 +263,7 @@ std::string text_summary(const GradeResult& r) {
       size_t start = 0;
       while (start < t.output.size()) {
         const size_t end = t.output.find('\n', start);
-        indented += "             " + t.output.substr(start, end == std::string::npos ? std::string::npos : end - start) + "\n";
+        indented += "             " + terminal_safe(t.output.substr(start, end == std::string::npos ? std::string::npos : end - start)) + "\n";
         if (end == std::string::npos) break;
         start = end + 1;
       }

@@ -39,7 +39,8 @@ struct GradeResult {
   std::vector<TestResult> tests;
   double score = 0, max_score = 0, seconds = 0;
   bool compiled = false;
-  std::string output;  // the overall message
+  std::string output;  // the overall message, shown to students at once: of the tests they see now only
+  std::string totals;  // every test's points and passes, for the instructor (text_summary), when some are not shown
 };
 
 GradeResult grade_submission(const Assignment& assignment, const std::string& submission, const GradeOptions& options);
