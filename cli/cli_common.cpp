@@ -79,17 +79,17 @@ std::string resolve_scene_path(const std::string& argument) {
   return argument;  // the loader says "no such file"
 }
 
-std::string non_finite_suspect(const Method& method) {
+std::string non_finite_suspect(const Method& method, const std::string& smaller_step) {
   for (const auto& p : plugins().plugins()) {
     const auto& names = p.integrator_names;
     if (method.is_external() && std::find(names.begin(), names.end(), method.name()) != names.end())
-      return "check the plug-in's integrator " + method.name() + " (" + p.file + "), or try a smaller --dt";
+      return "check the plug-in's integrator " + method.name() + " (" + p.file + "), or try " + smaller_step;
   }
   for (const auto& p : plugins().plugins())
     if (p.entry->collisions || p.entry->constraints)
       return "check the plug-in's " + std::string(p.entry->collisions ? "collision response" : "constraint projection") +
              " (" + p.file + "); else the integrator is unstable at this step";
-  return "the integrator is unstable at this step; try a smaller --dt or another --integrator";
+  return "the integrator is unstable at this step; try " + smaller_step + " or another --integrator";
 }
 
 std::vector<std::string> shipped_scenes() {

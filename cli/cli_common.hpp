@@ -83,7 +83,8 @@ PluginSet& plugins();
 // What to suspect when a run's state stops being finite: a plug-in's integrator (`method`) or its
 // collision response or constraint projection when one ran, named with its file; otherwise the
 // step, too large for the integrator. One clause, for "the state was no longer finite by t = …".
-std::string non_finite_suspect(const Method& method);
+// (`smaller_step`: how this command takes a smaller step; render has no --dt.)
+std::string non_finite_suspect(const Method& method, const std::string& smaller_step = "a smaller --dt");
 // Adds --plugin to a subcommand.
 void add_plugin_option(CLI::App* command, std::vector<std::string>& files);
 // Loads them, in order, and from then on reports a crash in their code; a file that is not

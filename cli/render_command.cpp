@@ -146,6 +146,14 @@ int render_command(const RenderOptions& o) {
   if (frame_count > 100000)
     throw InputError(fmt::format("--duration/--fps: {:.3g} frames is too many (at most 100,000)", frame_count));
   const long frames = static_cast<long>(frame_count);
+  // A video plays the frames at --fps; checked before anything is drawn (ffmpeg would refuse it
+  // only after every frame had been, and the failed run's folder goes with them).
+  if (!o.video.empty() && frames < 2)
+    throw InputError(fmt::format("--fps: {:g} frames per second of a {:g} s run is less than one frame after the first "
+                                 "(a video needs two)", o.fps, duration));
+  if (!o.video.empty() && o.fps < 0.001)
+    throw InputError(fmt::format("--fps: a video at {:g} frames per second is slower than ffmpeg plays (0.001 at the least)",
+                                 o.fps));
   check_time_resolution(scene.start_time, duration, scene.dt, path + ": start_time",
                         o.duration ? "--duration" : path + ": dt/duration");
   const draw::Api& drawing = draw_module();
@@ -234,7 +242,7 @@ int render_command(const RenderOptions& o) {
   for (size_t k = 0; k < recording.states.size(); ++k)
     if (!std::all_of(recording.states[k].begin(), recording.states[k].end(), [](double y) { return std::isfinite(y); })) {
       fmt::print(stderr, "motus: the run failed: the state was no longer finite by t = {:g} ({})\n", recording.times[k],
-                 non_finite_suspect(method));
+                 non_finite_suspect(method, "a smaller step (--set dt=...)"));
       return 1;
     }
   return 0;

@@ -198,6 +198,8 @@ int run_command(const RunOptions& o) {
   const double dt = o.dt.value_or(scene.dt);
   if (!(dt > 0) || !std::isfinite(dt)) throw InputError("--dt: must be a finite number > 0");
   const double duration = o.steps ? static_cast<double>(*o.steps) * dt : o.duration.value_or(scene.duration);
+  if (o.steps && !std::isfinite(duration))
+    throw InputError(fmt::format("--steps: {} steps of {:g} s is more time than a double holds", *o.steps, dt));
   if (!(duration > 0) || !std::isfinite(duration)) throw InputError("--duration: must be a finite number > 0");
   const std::string what = o.steps ? "--steps" : o.duration ? "--duration" : o.dt ? "--dt" : path + ": dt/duration";
   if (!method.adaptive()) checked_step_count(duration, dt, what);

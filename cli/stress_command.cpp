@@ -136,7 +136,9 @@ int stress_command(const StressOptions& o) {
   if (!(o.energy_factor > 1) || !std::isfinite(o.energy_factor)) throw InputError("--energy-factor: must be a finite number > 1");
   if (!(o.duration > 0) || !std::isfinite(o.duration)) throw InputError("--duration: must be a finite number > 0");
   checked_step_count(static_cast<double>(o.drift_steps) * scene.dt, scene.dt, "--drift-steps");
-  const double longest = std::max(static_cast<double>(std::max(o.steps, o.drift_steps)) * scene.dt, o.duration);
+  // (--duration is at most the scene's: the runs take no more, and a larger one is no fault of dt.)
+  const double longest =
+      std::max(static_cast<double>(std::max(o.steps, o.drift_steps)) * scene.dt, std::min(o.duration, scene.duration));
   check_time_resolution(scene.start_time, longest, scene.dt, path + ": start_time", path + ": dt");
 
   std::vector<Integrator> asked;

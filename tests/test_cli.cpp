@@ -117,6 +117,14 @@ const std::vector<BadInput> kBadInputs = {
     {"set_through_a_number", "@spring", {"--set", "dt.x=1"}, "dt", "is not an object"},
     {"set_without_value", "@spring", {"--set", "bodies[0].mass"}, "bodies[0].mass", "needs PATH=VALUE"},
     {"set_unknown_field", "@spring", {"--set", "bodies[0].mas=1"}, "bodies[0].mas", "unknown field"},
+    // (".dt" and "bodies[0]mass" were taken as dt and bodies[0].mass; 1e309 as the word "1e309".)
+    {"set_leading_dot", "@spring", {"--set", ".dt=1"}, ".dt", "empty field name"},
+    {"set_name_right_after_index", "@spring", {"--set", "bodies[0]mass=4"}, "bodies[0]mass",
+     "a '.' must come between an index and a field name"},
+    {"set_number_overflow", "@spring", {"--set", "dt=1e309"}, "dt", "number overflow: 1e309 (numbers must be finite)"},
+    // Two reference states at one time: bench precision measured against whichever it read.
+    {"reference_time_twice", "@lorenz", {"--set", "reference[1].t=1"}, "reference[1].t",
+     "reference[0] has this time too"},
 };
 
 void PrintTo(const BadInput& c, std::ostream* os) { *os << c.name; }
@@ -148,6 +156,21 @@ TEST_P(BadInputTest, ExitsTwoWithOneLineNamingFileAndField) {
 INSTANTIATE_TEST_SUITE_P(Cli, BadInputTest, ::testing::ValuesIn(kBadInputs),
                          [](const auto& info) { return std::string(info.param.name); });
 
+// Numbers a double holds, but whose differences it does not: bodies ±9e307 m apart (the grid's
+// size came out NaN, and a vector "larger than max_size()" was all it said), and a --duration
+// past the scene's for stress (its help says it is at most the scene's; the file's dt was blamed).
+TEST(CliErrors, ExtremeButFiniteNumbersEndInAMessageThatSaysWhat) {
+  TempDir dir;
+  const Result apart = run_motus(dir, {"run", scene("head_on"), "--set", "bodies[0].position=[-9e307,0]", "--set",
+                                       "bodies[1].position=[9e307,0]", "--set", "exact="});
+  EXPECT_EQ(apart.status, 1) << apart.err;
+  EXPECT_EQ(count_lines(apart.err), 1) << apart.err;
+  EXPECT_NE(apart.err.find("too far apart for the collision grid"), std::string::npos) << apart.err;
+  const Result stress = run_motus(dir, {"stress", scene("oscillator"), "--out", (dir / "stress").string(), "--steps", "100",
+                                        "--drift-steps", "100", "--duration", "1e308", "--integrators", "euler"});
+  EXPECT_EQ(stress.status, 0) << stress.err;
+}
+
 TEST(CliErrors, MissingFileIsOneLineExitTwo) {
   TempDir dir;
   const std::string file = (dir / "no_such_scene.json").string();
@@ -164,12 +187,21 @@ TEST(CliErrors, BadOptionValueIsOneLineExitTwo) {
         std::vector<std::string>{"run", scene("spring"), "--no-such-option"},
         std::vector<std::string>{"run", scene("spring"), "--steps", "3", "--duration", "2"},
         std::vector<std::string>{"run", scene("spring"), "--dt", "0"},
-        std::vector<std::string>{"run", scene("spring"), "--steps", "0"}}) {
+        std::vector<std::string>{"run", scene("spring"), "--steps", "0"},
+        // steps·dt past a double: it was reported as --duration, which was not given
+        std::vector<std::string>{"run", scene("spring"), "--dt", "1e308", "--steps", "2"},
+        // a video at a frame rate ffmpeg refuses: refused before a frame is drawn (they were all
+        // drawn, then deleted with the failed run's folder)
+        std::vector<std::string>{"render", scene("oscillator"), "--out", (dir / "frames").string(), "--duration", "0.5",
+                                 "--fps", "1e-20", "--video", "gif"}}) {
     const Result r = run_motus(dir, args);
     EXPECT_EQ(r.status, 2) << args.back() << ": " << r.err;
     EXPECT_EQ(count_lines(r.err), 1) << args.back() << ": " << r.err;
     EXPECT_EQ(r.err.rfind("motus: error: ", 0), 0u) << r.err;
   }
+  EXPECT_FALSE(fs::exists(dir / "frames"));
+  EXPECT_EQ(run_motus(dir, {"run", scene("spring"), "--dt", "1e308", "--steps", "2"}).err,
+            "motus: error: --steps: 2 steps of 1e+308 s is more time than a double holds\n");
 }
 
 // ---------------------------------------------------------------------------------------------------------

@@ -425,6 +425,10 @@ void BallCollisions<D>::build_grid() {
   // A position at infinity (or NaN) has no cell: without this the sizing below never ends.
   if (!low.allFinite() || !high.allFinite() || !std::isfinite(cell_size_))
     throw std::runtime_error("a body's position is no longer finite: the collision grid cannot place it");
+  // Finite positions so far apart that their distance is not (±1e308): no cell size spans them.
+  if (!(high - low).allFinite())
+    throw std::runtime_error("the bodies are too far apart for the collision grid (their positions span more than a "
+                             "double can hold)");
   // Dense cells over the balls' extent, but never many more cells than balls (a sparse
   // scene gets bigger cells instead).
   // (3-D needs the more: a cubic lattice of spacing 4r has ~7 cells of the smallest size

@@ -362,6 +362,10 @@ SceneDescription read_scene(const nlohmann::json& document, const std::string& s
   for (auto& r : f.objects("reference")) {
     ReferenceState state;
     state.t = r.number("t");
+    // One state per time: two would make the error at that time whichever one is read.
+    for (size_t j = 0; j < scene.reference.size(); ++j)
+      if (scene.reference[j].t == state.t)
+        r.fail("t", "reference[" + std::to_string(j) + "] has this time too: one state per time");
     const int size = scene.first_order ? static_cast<int>(scene.first_order->initial.size())
                                        : 2 * scene.mechanical->dimensions * static_cast<int>(scene.mechanical->bodies.size());
     state.state = r.numbers("state", size);

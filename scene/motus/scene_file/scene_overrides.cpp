@@ -26,8 +26,14 @@ void apply_override(nlohmann::json& scene, const std::string& assignment) {
     throw SceneError(assignment, "--set needs PATH=VALUE (e.g. bodies[0].mass=2)");
   const std::string path = assignment.substr(0, equals);
   const std::string text = assignment.substr(equals + 1);
-  nlohmann::json value = nlohmann::json::parse(text, nullptr, /*allow_exceptions=*/false);
-  if (value.is_discarded()) value = text;  // a bare word: a string
+  nlohmann::json value;
+  try {
+    value = nlohmann::json::parse(text);
+  } catch (const nlohmann::json::exception& e) {
+    // A number too large for a double (1e999) is what it is in a scene file, not a word.
+    if (e.id == 406) throw SceneError(path, "number overflow: " + text + " (numbers must be finite)");
+    value = text;  // a bare word: a string
+  }
   // A scene file's strings are checked by the JSON parser; the command line's are not.
   if (!valid_utf8(text)) throw SceneError(path, "the value given by --set is not valid UTF-8");
 
@@ -35,6 +41,11 @@ void apply_override(nlohmann::json& scene, const std::string& assignment) {
   std::string walked;
   size_t i = 0;
   while (i < path.size()) {
+    // A name starts the path or follows a '.'; an index follows a name or an index (".dt" and
+    // "bodies[0]mass" are no paths, whatever they could be taken for).
+    if (i == 0 && path[i] == '.') throw SceneError(path, "empty field name in --set path");
+    if (i > 0 && path[i - 1] == ']' && path[i] != '.' && path[i] != '[')
+      throw SceneError(path, "a '.' must come between an index and a field name in --set path (e.g. bodies[0].mass)");
     if (path[i] == '[') {
       const size_t close = path.find(']', i);
       const std::string digits = close == std::string::npos ? "" : path.substr(i + 1, close - i - 1);
