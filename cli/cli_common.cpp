@@ -255,8 +255,10 @@ bool rename_without_replacing(const std::string& from, const std::string& to) {
 }  // namespace
 
 void PartialFolder::complete() {
-  if (!rename_without_replacing(partial_, final_))
+  if (!rename_without_replacing(partial_, final_)) {
+    done_ = true;  // (kept where the message says it is)
     throw std::runtime_error(final_ + ": appeared while the report was written; it is in " + partial_);
+  }
   done_ = true;
 }
 

@@ -54,6 +54,7 @@ grade::GradeOptions grade_options(const GradeCommandOptions& o) {
   g.limits.cpu_seconds = o.time_limit;
   g.limits.memory_mb = o.memory_limit;
   g.isolate = !o.no_sandbox;
+  g.stop = [] { return interrupted(); };  // Ctrl-C ends the wait for a student's code or its compiler at once
   return g;
 }
 
@@ -136,6 +137,8 @@ int grade_one(const GradeCommandOptions& o, const std::string& folder) {
     progress.finish();
   } catch (const Interrupted&) {
     throw;  // (Ctrl-C: no results, exit 130)
+  } catch (const grade::GradingInterrupted&) {
+    throw Interrupted();
   } catch (const std::exception& e) {
     // Even now, a valid results.json that says what happened.
     if (!o.results.empty()) write_whole_file(o.results, grade::results_text(grade::failed_json(assignment.name, e.what())), o.overwrite);
@@ -176,9 +179,10 @@ int grade_batch(const GradeCommandOptions& o, const std::string& folder) {
     if (e.is_directory()) submissions.push_back(e.path());
   std::sort(submissions.begin(), submissions.end());
   if (submissions.empty()) throw InputError(o.batch + ": --batch: has no submission folders");
-  std::error_code error;
-  fs::create_directories(out, error);
-  if (error) throw InputError(out + ": --out: cannot be created (" + error.message() + ")");
+  // Written as .OUT.partial-XXXXXX and renamed when whole: Ctrl-C or a failure leaves no folder
+  // that looks like a finished batch (the scores.csv of it all is written last).
+  PartialFolder folder_of_results(out);
+  const std::string written = folder_of_results.path();
 
   struct Row {
     double score = 0, max_score = 0, seconds = 0;
@@ -192,14 +196,16 @@ int grade_batch(const GradeCommandOptions& o, const std::string& folder) {
   const auto began = std::chrono::steady_clock::now();
   auto worker = [&] {
     const grade::GradeOptions options = grade_options(o);  // (each grading takes a sandbox user of its own)
-    for (size_t i = next++; i < submissions.size(); i = next++) {
+    for (size_t i = next++; i < submissions.size() && !interrupted(); i = next++) {
       const std::string name = submissions[i].filename().string();
-      const std::string results = (fs::path(out) / (name + ".json")).string();
+      const std::string results = (fs::path(written) / (name + ".json")).string();
       try {
         const auto result = grade::grade_submission(assignment, submissions[i].string(), options);
         write_whole_file(results, grade::results_text(grade::gradescope_json(result)), false);  // (a folder of our own)
         rows[i] = {result.score, result.max_score, result.seconds,
                    !result.tests[0].passed ? "missing files" : !result.compiled ? "does not compile" : "graded"};
+      } catch (const grade::GradingInterrupted&) {
+        break;  // (Ctrl-C: the main thread says so)
       } catch (const std::exception& e) {
         std::lock_guard<std::mutex> lock(failures_lock);
         failures.push_back(name + ": " + e.what());
@@ -215,11 +221,16 @@ int grade_batch(const GradeCommandOptions& o, const std::string& folder) {
   std::vector<std::thread> threads;
   const int jobs = o.jobs.value_or(1);
   for (int j = 0; j < std::min<int>(jobs, static_cast<int>(submissions.size())); ++j) threads.emplace_back(worker);
-  while (done < submissions.size()) {
-    progress.update(static_cast<double>(done));
+  while (done < submissions.size() && !interrupted()) {
+    try {
+      progress.update(static_cast<double>(done));
+    } catch (const Interrupted&) {
+      break;  // (not with the workers still running: they stop at the flag, and are joined below)
+    }
     std::this_thread::sleep_for(std::chrono::milliseconds(100));
   }
-  for (auto& t : threads) t.join();
+  for (auto& t : threads) t.join();  // (after Ctrl-C each ends its sandbox at once)
+  stop_if_interrupted();
   progress.finish();
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count();
 
@@ -227,7 +238,8 @@ int grade_batch(const GradeCommandOptions& o, const std::string& folder) {
   for (size_t i = 0; i < submissions.size(); ++i)
     csv += fmt::format("{},{},{},{:.2f},{}\n", csv_field(submissions[i].filename().string()), rows[i].score, rows[i].max_score,
                        rows[i].seconds, rows[i].status);
-  write_whole_file((fs::path(out) / "scores.csv").string(), csv, false);
+  write_whole_file((fs::path(written) / "scores.csv").string(), csv, false);
+  folder_of_results.complete();
   fmt::print("{}", csv);
   fmt::print(stderr, "motus: graded {} submissions of {} in {:.1f} s with {} job{}; results in {}/\n", submissions.size(),
              assignment.name, wall, jobs, jobs == 1 ? "" : "s", out);

@@ -17,8 +17,9 @@ public:
   // The clock is read every `check_every` updates (a power of two).
   ProgressBar(double start, double end, std::string label, unsigned check_every = 256);
   ~ProgressBar();
-  // Cheap enough to call every step: it looks at the clock every `check_every` calls. (It is
-  // also where a long loop stops for Ctrl-C: see interrupt.hpp.)
+  // Cheap enough to call every step: it looks at the clock at most every `check_every` calls,
+  // more often when they come slowly. (It is also where a long loop stops for Ctrl-C, at any
+  // call: see interrupt.hpp.)
   void update(double now);
   // A new phase of the work ("drawing"), running from start to end: its rate is measured anew.
   void phase(const std::string& name, double start, double end);
@@ -40,10 +41,14 @@ private:
   bool always_;
   bool shown_ = false;
   unsigned calls_ = 0;
-  unsigned check_mask_;
-  std::chrono::steady_clock::time_point began_, last_draw_, phase_began_;
+  unsigned check_mask_, most_mask_;  // the clock is read every check_mask_ + 1 calls (at most most_mask_ + 1)
+  std::chrono::steady_clock::time_point began_, last_draw_, last_check_, phase_began_;
   double phase_fraction_ = 0;  // where the current phase started, for its rate
   double fraction_ = 0;
+  // When (seconds into the phase) the progress last moved, and to where: the rate is measured up to
+  // then, so that work that moves in whole steps (the tests of a grading, the submissions of a
+  // batch) counts down between them instead of growing.
+  double moved_at_ = 0, moved_to_ = -1;
 };
 
 }  // namespace motus

@@ -167,6 +167,18 @@ inline int run_motus_with(const std::vector<std::string>& args, const MotusFiles
   return raw;
 }
 
+// Waits (up to 60 s) until process `pid` catches `signal`, as /proc/PID/status's SigCgt mask
+// shows: from then on a signal reaches its handler, not the default action.
+inline bool wait_until_catching(pid_t pid, int signal) {
+  for (int i = 0; i < 6000; ++i) {
+    std::ifstream status("/proc/" + std::to_string(pid) + "/status");
+    for (std::string line; std::getline(status, line);)
+      if (line.rfind("SigCgt:", 0) == 0 && (std::stoull(line.substr(7), nullptr, 16) >> (signal - 1) & 1)) return true;
+    ::usleep(10000);
+  }
+  return false;
+}
+
 // Runs `motus ARGS...` as above.
 inline Result run_motus(const TempDir& dir, const std::vector<std::string>& args,
                         const std::vector<std::string>& environment = {}) {

@@ -223,4 +223,47 @@ struct Spy {
   EXPECT_TRUE(failed(result).empty()) << result.dump(2);
 }
 
+// Ctrl-C while the student's code runs (here a loop that never ends, under a 600 s limit) or
+// compiles ends the grading at once: exit 130, and nothing that looks like results. The sandbox
+// has a process group of its own, which the terminal's Ctrl-C never reaches, and motus used to
+// wait for the test's limit (or the compiler) before it looked at the interrupt; a batch aborted
+// ("terminate called without an active exception") and left its folder half filled.
+TEST(Grade, CtrlCEndsTheGradingWhileTheStudentsCodeRuns) {
+  NEEDS_SANDBOX();
+  TempDir dir;
+  const fs::path submission = copy_solution(dir, "integrators", "batch/loops");
+  std::string source = read_file(submission / "integrators.cpp");
+  const std::string anchor = "void euler_step(const MechanicalSystem& s, double t, double h, VectorInOut x, VectorInOut v) {\n";
+  ASSERT_NE(source.find(anchor), std::string::npos);
+  source.replace(source.find(anchor), anchor.size(), anchor + "  for (volatile long i = 0;; i = i + 1) {}\n");
+  write_file(submission / "integrators.cpp", source);
+  copy_solution(dir, "integrators", "batch/correct");
+  auto interrupt = [&](const std::vector<std::string>& args) {
+    MotusFiles files;
+    files.err = (dir / "err.txt").string();
+    files.folder = dir.path().string();
+    const pid_t pid = start_motus_with(args, files);
+    if (pid <= 0 || !wait_until_catching(pid, SIGINT)) return -1;
+    ::sleep(3);  // (the compiler or the first test underway: either way motus waits for a sandbox)
+    ::kill(pid, SIGINT);
+    int raw = 0;
+    for (int i = 0; i < 600; ++i) {  // 60 s at most, against the 600 s it would wait
+      if (::waitpid(pid, &raw, WNOHANG) == pid) return raw;
+      ::usleep(100000);
+    }
+    ::kill(pid, SIGKILL);
+    ::waitpid(pid, &raw, 0);
+    return -2;
+  };
+  const int one = interrupt({"grade", "integrators", submission.string(), "--time-limit", "600", "--results",
+                             (dir / "results.json").string()});
+  EXPECT_TRUE(WIFEXITED(one) && WEXITSTATUS(one) == 130) << one << " (-2: not ended in 60 s): " << read_file(dir / "err.txt");
+  EXPECT_FALSE(fs::exists(dir / "results.json"));
+  const int batch = interrupt({"grade", "integrators", "--batch", (dir / "batch").string(), "--jobs", "2", "--time-limit",
+                               "600", "--out", (dir / "graded").string()});
+  EXPECT_TRUE(WIFEXITED(batch) && WEXITSTATUS(batch) == 130) << batch << ": " << read_file(dir / "err.txt");
+  for (const auto& e : fs::directory_iterator(dir.path()))
+    EXPECT_EQ(e.path().filename().string().find("graded"), std::string::npos) << e.path();  // nor .graded.partial-…
+}
+
 }  // namespace

@@ -375,18 +375,6 @@ pid_t start_motus(const TempDir& dir, const std::vector<std::string>& args) {
   return start_motus_with(args, files);
 }
 
-// Waits (up to 60 s) until process `pid` catches `signal`, as /proc/PID/status's SigCgt mask
-// shows: from then on a signal reaches its handler, not the default action.
-bool wait_until_catching(pid_t pid, int signal) {
-  for (int i = 0; i < 6000; ++i) {
-    std::ifstream status("/proc/" + std::to_string(pid) + "/status");
-    for (std::string line; std::getline(status, line);)
-      if (line.rfind("SigCgt:", 0) == 0 && (std::stoull(line.substr(7), nullptr, 16) >> (signal - 1) & 1)) return true;
-    ::usleep(10000);
-  }
-  return false;
-}
-
 // Ctrl-C in a run writing its trajectory: no half-written CSV, and the file --overwrite would
 // have replaced is still the user's.
 // The file a run writes NAME as until it is through: NAME in a folder .NAME.partial-XXXXXX of its
@@ -425,6 +413,25 @@ TEST(Hardening, AnInterruptedTrajectoryLeavesTheOldFileAndNoPartOfTheNew) {
   EXPECT_EQ(WEXITSTATUS(raw), 130) << read_file(dir / "err.txt");
   EXPECT_EQ(read_file(dir / "mine.csv"), "mine");
   EXPECT_TRUE(partial_of(dir / "mine.csv").empty()) << "left behind: " << partial_of(dir / "mine.csv");
+}
+
+// Slow steps (a 500 × 500 cloth's take tenths of a second) stop at the next one: Ctrl-C was
+// looked at every 256 steps, so motus waited its 30 s of grace, then stopped with the CSV's
+// partial folder left behind.
+TEST(Hardening, CtrlCBetweenSlowStepsStopsAtTheNextOne) {
+  TempDir dir;
+  const pid_t pid = start_motus(dir, {"run", "cloth", "--repeats", "1", "--set", "cloth.rows=500", "--set",
+                                     "cloth.columns=500", "--trajectory", (dir / "slow.csv").string()});
+  ASSERT_GT(pid, 0);
+  ASSERT_FALSE(wait_for_partial(dir / "slow.csv", 1000).empty()) << "the run wrote no trajectory in 20 s";
+  ::kill(pid, SIGINT);
+  int raw = 0;
+  waitpid(pid, &raw, 0);
+  const std::string err = read_file(dir / "err.txt");
+  EXPECT_EQ(WEXITSTATUS(raw), 130) << err;
+  EXPECT_EQ(err.find("30 s"), std::string::npos) << err;
+  EXPECT_TRUE(partial_of(dir / "slow.csv").empty()) << "left behind: " << partial_of(dir / "slow.csv");
+  EXPECT_FALSE(fs::exists(dir / "slow.csv"));
 }
 
 // What lies where a file is written until it is through is not motus's to truncate, delete or

@@ -294,6 +294,24 @@ TEST(RenderCommand, APercentSignInTheFolderIsNoPartOfTheVideosPattern) {
   EXPECT_TRUE(fs::exists(dir / "p%dq" / "spring.gif"));
 }
 
+// ffmpeg can report an error and still exit 0 (a disk that fills while it writes the video's
+// trailer: the video does not play). Its error is the run's, in one line, exit 1 — not two of
+// ffmpeg's lines and "video  …/spring.mp4", exit 0. The ffmpeg here is a stand-in that does so.
+TEST(RenderCommand, AnErrorFfmpegReportsFailsTheRunEvenAtExitZero) {
+  TempDir dir;
+  fs::create_directories(dir / "bin");
+  write_file(dir / "bin/ffmpeg", "#!/bin/sh\necho 'Error writing trailer of out.mp4: No space left on device' >&2\n"
+                                 "echo 'Error closing file out.mp4: No space left on device' >&2\nexit 0\n");
+  fs::permissions(dir / "bin/ffmpeg", fs::perms::owner_all);
+  const auto r = run_motus(dir, {"render", "spring", "--out", (dir / "frames").string(), "--size", "32x32", "--fps", "10",
+                                 "--duration", "0.3", "--video", "mp4"},
+                           {"PATH=" + (dir / "bin").string() + ":/usr/bin:/bin"});
+  EXPECT_EQ(r.status, 1) << r.err;
+  EXPECT_EQ(count_lines(r.err), 1) << r.err;
+  EXPECT_NE(r.err.find("it said: Error writing trailer of out.mp4: No space left on device"), std::string::npos) << r.err;
+  EXPECT_EQ(r.out.find("video"), std::string::npos) << r.out;
+}
+
 TEST(RenderCommand, GifThroughFfmpeg) {
   TempDir dir;
   const auto r = run_motus(dir, {"render", "newtons_cradle", "--out", (dir / "frames").string(), "--size",

@@ -22,7 +22,7 @@ std::string cut(const std::string& text, size_t lines, size_t bytes) {
 }
 
 BuildResult build_plugin(const Assignment& a, const std::string& staged, const std::string& out,
-                         const ApiHeaders& headers, bool isolate, uid_t uid) {
+                         const ApiHeaders& headers, bool isolate, uid_t uid, const std::function<bool()>& stop) {
   const auto began = std::chrono::steady_clock::now();
   SandboxSpec spec;
   spec.isolate = isolate;
@@ -60,6 +60,7 @@ BuildResult build_plugin(const Assignment& a, const std::string& staged, const s
   argv.insert(argv.end(), {"-o", out_dir + "/student.so"});
   spec.argv = argv;
   spec.workdir = "/tmp";
+  spec.stop = stop;
 
   Limits limits;
   limits.cpu_seconds = 60;
@@ -68,10 +69,12 @@ BuildResult build_plugin(const Assignment& a, const std::string& staged, const s
   limits.processes = 64;
   limits.tmpfs_mb = 256;
   BuildResult result;
+  bool interrupted = false;
   try {
     SandboxProcess compiler(spec, limits);
     const auto started = std::chrono::steady_clock::now();
     const Ending ending = compiler.finish(started + std::chrono::seconds(90));
+    interrupted = compiler.interrupted();
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     result.output = cut(compiler.errors(), 40, 6000);
     result.ok = ending.exited && ending.status == 0 && fs::is_regular_file(fs::path(out) / "student.so");
@@ -80,6 +83,7 @@ BuildResult build_plugin(const Assignment& a, const std::string& staged, const s
   } catch (const std::exception& e) {
     result.output = std::string("the compiler could not be started: ") + e.what();
   }
+  if (interrupted) throw GradingInterrupted();
   result.plugin = (fs::path(out) / "student.so").string();
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count();
   return result;

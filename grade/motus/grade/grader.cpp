@@ -119,7 +119,7 @@ GradeResult grade_submission(const Assignment& a, const std::string& submission,
   TestResult build = gate("build", "0.2", "The submission compiles into a plug-in");
   BuildResult built;
   if (files.passed) {
-    built = build_plugin(a, staged.string(), out.string(), o.headers, o.isolate, user.uid());
+    built = build_plugin(a, staged.string(), out.string(), o.headers, o.isolate, user.uid(), o.stop);
     build.passed = built.ok;
     build.output = built.ok ? fmt::format("Compiled in {:.1f} s.", built.seconds)
                             : "Not graded: the submission does not compile. The compiler said:\n" + built.output;
@@ -131,7 +131,7 @@ GradeResult grade_submission(const Assignment& a, const std::string& submission,
 
   // 3. Every test of the rubric, each against its own deadline and in a server of its own.
   Limits limits = o.limits;
-  ProbeSetup setup{o.motus, built.plugin, o.modules, limits, o.isolate, user.uid()};
+  ProbeSetup setup{o.motus, built.plugin, o.modules, o.stop, limits, o.isolate, user.uid()};
   Probe probe(setup);
   int number = 0;
   for (const auto& t : a.tests) {

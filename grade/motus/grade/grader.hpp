@@ -17,6 +17,9 @@ namespace motus::grade {
 struct GradeOptions {
   std::string motus;      // this motus executable (the sandboxed server is `motus serve`)
   std::vector<std::string> modules;  // its modules a test may need, mounted beside it (ProbeSetup)
+  // Asked while the grader waits for the student's code or its compiler: true (Ctrl-C) stops the
+  // grading at once with GradingInterrupted (sandbox.hpp).
+  std::function<bool()> stop;
   ApiHeaders headers;
   Limits limits;          // per test: cpu_seconds is also its wall-clock limit
   bool isolate = true;    // false: --no-sandbox

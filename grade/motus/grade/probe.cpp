@@ -11,6 +11,7 @@ Probe::~Probe() { stop(); }
 void Probe::start() {
   SandboxSpec spec;
   spec.isolate = setup_.isolate;
+  spec.stop = setup_.stop;
   spec.uid = setup_.uid;
   if (setup_.isolate) {
     spec.mounts = {{setup_.motus, "/motus/motus", false}, {setup_.plugin, "/box/student.so", false}};
@@ -62,6 +63,11 @@ nlohmann::json Probe::ask(nlohmann::json request, std::chrono::steady_clock::tim
   const std::string doing = op == "run" ? "a run of the scene" : op == "project" ? "satisfy_constraints" : op;
   if (!server_->write_line(request.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace))) died(doing);
   const auto line = server_->read_line(deadline);
+  if (!line && server_->interrupted()) {
+    server_->kill();
+    server_.reset();
+    throw GradingInterrupted();
+  }
   if (!line) died(doing);
   nlohmann::json reply;
   try {

@@ -4,6 +4,7 @@
 // (it threw, crashed, looped or ran out of memory) the request throws ProbeFailure saying
 // what happened, and a dead server is started again for the next check.
 #include <chrono>
+#include <functional>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
@@ -31,6 +32,7 @@ struct ProbeSetup {
   // Files mounted read-only beside motus, where it looks for its modules: the expressions module
   // (a test's scene may have an equations system).
   std::vector<std::string> modules;
+  std::function<bool()> stop;  // Ctrl-C: see SandboxSpec::stop
   Limits limits;
   bool isolate = true;
   uid_t uid = 0;  // the sandbox's user

@@ -130,7 +130,8 @@ std::string Ending::describe(const Limits& limits, double wall_seconds) const {
   return "exited with status " + std::to_string(status);
 }
 
-SandboxProcess::SandboxProcess(const SandboxSpec& spec, const Limits& limits) : error_cap_(limits.output_bytes) {
+SandboxProcess::SandboxProcess(const SandboxSpec& spec, const Limits& limits)
+    : error_cap_(limits.output_bytes), stop_(spec.stop) {
   if (spec.argv.empty()) throw std::invalid_argument("a sandbox needs a program to run");
   std::vector<std::string> args;
   if (spec.isolate) {
@@ -237,8 +238,12 @@ void SandboxProcess::pump(std::chrono::steady_clock::time_point deadline, bool w
       timed_out_ = true;
       return;
     }
-    const int wait_ms = static_cast<int>(
-        std::min<long long>(std::chrono::duration_cast<std::chrono::milliseconds>(deadline - now).count() + 1, 1000));
+    if (stop_ && stop_()) {
+      interrupted_ = true;
+      return;
+    }
+    const int wait_ms = static_cast<int>(std::min<long long>(
+        std::chrono::duration_cast<std::chrono::milliseconds>(deadline - now).count() + 1, stop_ ? 100 : 1000));
     pollfd fds[2] = {{out_, POLLIN, 0}, {err_, POLLIN, 0}};
     const int ready = ::poll(fds, 2, wait_ms);
     if (ready < 0 && errno != EINTR) return;
@@ -315,7 +320,7 @@ Ending SandboxProcess::finish(std::chrono::steady_clock::time_point deadline) {
     in_ = -1;
   }
   pump(deadline, false);
-  if (timed_out_) return kill();
+  if (timed_out_ || interrupted_) return kill();
   return reap(false);
 }
 

@@ -11,6 +11,7 @@
 #include <sys/types.h>
 
 #include <chrono>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -37,6 +38,15 @@ struct SandboxSpec {
   std::string workdir = "/tmp";
   bool isolate = true;            // false: --no-sandbox (limits and user only, no bubblewrap)
   uid_t uid = 0;                  // the user it runs as (a SandboxUser's)
+  // Asked at least every 0.1 s while the grader waits for it: true (Ctrl-C) ends the wait, and
+  // the process is killed (interrupted() then true). Its own process group gets no Ctrl-C.
+  std::function<bool()> stop;
+};
+
+// Grading stopped by `stop` (Ctrl-C): no result to report.
+class GradingInterrupted : public std::runtime_error {
+public:
+  GradingInterrupted() : std::runtime_error("grading interrupted") {}
 };
 
 // The unprivileged users sandboxes run as, when the grader runs as root.
@@ -85,6 +95,8 @@ public:
   // at the deadline (then timed_out() is true).
   std::optional<std::string> read_line(std::chrono::steady_clock::time_point deadline);
   bool timed_out() const { return timed_out_; }
+  // Whether a wait ended because the spec's `stop` said so.
+  bool interrupted() const { return interrupted_; }
   // Waits for it to end by itself until `deadline`, then kills it; every process it made
   // ends with it.
   Ending finish(std::chrono::steady_clock::time_point deadline);
@@ -104,6 +116,8 @@ private:
   size_t error_cap_;
   bool errors_cut_ = false;
   bool timed_out_ = false;
+  std::function<bool()> stop_;
+  bool interrupted_ = false;
   std::optional<Ending> ending_;
 };
 

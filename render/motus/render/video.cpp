@@ -1,7 +1,13 @@
 #include "motus/render/video.hpp"
 
+#include <unistd.h>
+
 #include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "motus/process/run_program.hpp"
@@ -36,12 +42,28 @@ void encode_video(const std::string& frame_pattern, double fps, const std::strin
                              "-loop", "0"});
   }
   args.push_back(out_path);
-  const process::Outcome ffmpeg_run = process::run_program(args);
+  // What ffmpeg says (at -loglevel error, only errors) goes to a file of its own and is read back:
+  // it can report an error and still exit 0 (a full disk while it writes the trailer leaves a
+  // video that does not play), and its lines are not motus's one-line message.
+  const char* tmp = std::getenv("TMPDIR");
+  std::string log = std::string(tmp && *tmp ? tmp : "/tmp") + "/motus-ffmpeg-XXXXXX";
+  const int log_fd = ::mkstemp(log.data());
+  if (log_fd < 0) log.clear();  // (then its messages go where motus's do)
+  else ::close(log_fd);
+  const process::Outcome ffmpeg_run = process::run_program(args, "", log);
+  std::string said;
+  if (!log.empty()) {
+    std::ifstream in(log);
+    std::getline(in, said);  // the first line: the error, as ffmpeg words it
+    ::unlink(log.c_str());
+  }
   if (!ffmpeg_run.started) throw RenderError("ffmpeg (" + ffmpeg + ") could not be started");
-  if (!ffmpeg_run.ok())
+  if (!ffmpeg_run.ok() || !said.empty())
     throw std::runtime_error("ffmpeg failed to write " + out_path + " (" +
-                             (ffmpeg_run.signal ? "signal " + std::to_string(ffmpeg_run.signal)
-                                                : "exit status " + std::to_string(ffmpeg_run.status)) + ")");
+                             (!said.empty()           ? "it said: " + said
+                              : ffmpeg_run.signal     ? "signal " + std::to_string(ffmpeg_run.signal)
+                                                      : "exit status " + std::to_string(ffmpeg_run.status)) +
+                             ")");
 }
 
 }  // namespace motus::render
