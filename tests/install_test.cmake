@@ -104,3 +104,25 @@ run("installed motus run lorenz_equations" ${CMAKE_COMMAND} -E env --unset=MOTUS
 if(NOT output MATCHES "\"steps\": 10")
   message(FATAL_ERROR "the installed motus did not run lorenz_equations:\n${output}")
 endif()
+
+# Components: an optional one that does not exist (or whose Debian packages are missing) only
+# leaves motus_<name>_FOUND false; a required one fails find_package with a message naming it.
+file(MAKE_DIRECTORY ${WORK_DIR}/components)
+file(WRITE ${WORK_DIR}/components/CMakeLists.txt [=[
+cmake_minimum_required(VERSION 3.25)
+project(components LANGUAGES CXX)
+find_package(motus 0.1 REQUIRED COMPONENTS engine OPTIONAL_COMPONENTS nonesuch)
+if(NOT TARGET motus::engine OR motus_nonesuch_FOUND OR NOT motus_engine_FOUND)
+  message(FATAL_ERROR "optional: engine ${motus_engine_FOUND}, nonesuch ${motus_nonesuch_FOUND}")
+endif()
+find_package(motus 0.1 QUIET COMPONENTS nonesuch)
+if(motus_FOUND OR NOT motus_NOT_FOUND_MESSAGE MATCHES "unknown component \"nonesuch\"")
+  message(FATAL_ERROR "required unknown component: found ${motus_FOUND}, message ${motus_NOT_FOUND_MESSAGE}")
+endif()
+message(STATUS "components: as documented")
+]=])
+run("configuring a project with optional components" ${CMAKE_COMMAND} -S ${WORK_DIR}/components
+    -B ${WORK_DIR}/components/build -DCMAKE_PREFIX_PATH=${prefix} -DCMAKE_FIND_USE_PACKAGE_REGISTRY=OFF)
+if(NOT output MATCHES "components: as documented")
+  message(FATAL_ERROR "the components project said:\n${output}")
+endif()

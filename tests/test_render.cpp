@@ -190,6 +190,23 @@ TEST(RenderText, DrawsWithTheDefaultFontAndNamesAMissingOne) {
   }
 }
 
+// Clearing a part of the canvas clears the text queued there too, and only there: a panel drawn
+// again kept the overlay of the one before (canvas.hpp promises its queued text goes).
+TEST(RenderText, ClearingAnAreaClearsItsQueuedTextOnly) {
+  Canvas canvas(200, 50, 1);
+  const Color white{255, 255, 255, 255};
+  canvas.clear(white);
+  canvas.text(5, 30, "MOTUS", {20, {0, 0, 0, 255}});
+  canvas.text(105, 30, "MOTUS", {20, {0, 0, 0, 255}});
+  canvas.clear(Viewport{0, 0, 100, 50}, white);
+  const Image image = canvas.image();
+  long left = 0, right = 0;
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x) (x < 100 ? left : right) += image.pixel(x, y).r < 128;
+  EXPECT_EQ(left, 0);
+  EXPECT_GT(right, 40);
+}
+
 TEST(RenderCompose, SideBySidePanelsWithLabels) {
   const std::vector<Image> panels{Image(100, 80, {255, 0, 0, 255}), Image(100, 80, {0, 0, 255, 255}),
                                   Image(100, 80, {0, 255, 0, 255})};

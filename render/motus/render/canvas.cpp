@@ -94,7 +94,11 @@ void Canvas::clear(const Viewport& area, Color c) {
   glClearColor(c.r / 255.0f, c.g / 255.0f, c.b / 255.0f, c.a / 255.0f);
   glClearDepth(1.0);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-  if (area.x == 0 && area.y == 0 && area.width == width_ && area.height == height_) text_.clear();
+  // The text queued in this area goes with it (a panel drawn again must not keep the overlay of the
+  // panel drawn there before): the text whose anchor lies inside it.
+  std::erase_if(text_, [&](const QueuedText& t) {
+    return t.x >= area.x && t.x < area.x + area.width && t.y >= area.y && t.y < area.y + area.height;
+  });
 }
 
 void Canvas::text(int x, int y, std::string text, const TextStyle& style) {

@@ -31,7 +31,8 @@ public:
   int supersample() const { return supersample_; }
   Viewport full() const { return {0, 0, width_, height_}; }
 
-  // Fills (part of) the canvas with a colour, clears its depth and its queued text.
+  // Fills (part of) the canvas with a colour, clears its depth and its queued text (the text
+  // anchored inside that part).
   void clear(Color color);
   void clear(const Viewport& area, Color color);
 
