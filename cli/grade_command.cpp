@@ -36,6 +36,9 @@ std::string assignment_folder(const std::string& argument) {
     if (fs::is_regular_file(e.path() / "assignment.json")) names.push_back(e.path().filename().string());
   std::sort(names.begin(), names.end());
   for (const auto& n : names) known += (known.empty() ? "" : ", ") + n;
+  if (known.empty())
+    throw InputError(argument + ": no such assignment (a folder with an assignment.json), and none is shipped in " +
+                     assignments_directory() + " (set MOTUS_ASSIGNMENTS to the folder of the assignments)");
   throw InputError(argument + ": no such assignment (a folder with an assignment.json; shipped: " + known + ")");
 }
 

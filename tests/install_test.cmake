@@ -126,3 +126,17 @@ run("configuring a project with optional components" ${CMAKE_COMMAND} -S ${WORK_
 if(NOT output MATCHES "components: as documented")
   message(FATAL_ERROR "the components project said:\n${output}")
 endif()
+
+# ... and its assignments (share/motus/assignments), without their solutions and hidden tests:
+# the installed motus grades the installed starter against its public tests.
+if(NOT EXISTS ${prefix}/share/motus/assignments/integrators/assignment.json
+   OR EXISTS ${prefix}/share/motus/assignments/integrators/solution
+   OR EXISTS ${prefix}/share/motus/assignments/integrators/hidden)
+  message(FATAL_ERROR "the install's assignments are not as documented (share/motus/assignments, no solution/ or hidden/)")
+endif()
+run("installed motus grade integrators (its starter)" ${CMAKE_COMMAND} -E env --unset=MOTUS_ASSIGNMENTS
+    ${prefix}/bin/motus grade integrators ${prefix}/share/motus/assignments/integrators/starter --no-sandbox
+    --format gradescope)
+if(NOT output MATCHES "\"max_score\"")
+  message(FATAL_ERROR "the installed motus did not grade the installed starter:\n${output}")
+endif()
