@@ -20,7 +20,7 @@ function(run what)
 endfunction()
 
 run("cmake --install" ${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${prefix})
-foreach(file bin/motus share/motus/scenes/spring.json share/motus/scene.schema.json
+foreach(file bin/motus share/motus/scenes/spring.json share/motus/scene/scene.schema.json
              include/motus/simulation.hpp include/motus/scene_file/scene_file.hpp
              include/motus/compare/comparison.hpp include/motus/render/draw.hpp)
   if(NOT EXISTS ${prefix}/${file})

@@ -42,6 +42,38 @@ constexpr bool is_symplectic = std::is_same_v<T, SymplecticEuler> || std::is_sam
                                std::is_same_v<T, Verlet> || std::is_same_v<T, VelocityVerlet> ||
                                std::is_same_v<T, Yoshida4> || std::is_same_v<T, ExternalMechanicalStep>;
 
+// A description built by hand (not by the scene loader, which checks all this with the file's
+// field paths): what the engine would otherwise read out of bounds. Its fields as a scene file
+// names them.
+void check_mechanical(const MechanicalDescription& m) {
+  if (m.dimensions < 1 || m.dimensions > 3) throw SceneError("dimensions", "must be 1, 2 or 3");
+  const auto d = static_cast<size_t>(m.dimensions);
+  const int n = static_cast<int>(m.bodies.size());
+  for (int i = 0; i < n; ++i) {
+    const BodyDescription& b = m.bodies[static_cast<size_t>(i)];
+    const std::string at = "bodies[" + std::to_string(i) + "]";
+    if (!(b.mass > 0) || !std::isfinite(b.mass)) throw SceneError(at + ".mass", "must be a finite number > 0");
+    if (b.position.size() != d)
+      throw SceneError(at + ".position", "must have " + std::to_string(d) + " numbers (got " + std::to_string(b.position.size()) + ")");
+    if (b.velocity.size() != d)
+      throw SceneError(at + ".velocity", "must have " + std::to_string(d) + " numbers (got " + std::to_string(b.velocity.size()) + ")");
+  }
+  auto body = [n](int i, bool every_allowed, const std::string& field) {
+    if ((every_allowed && i == -1) || (i >= 0 && i < n)) return;
+    throw SceneError(field, "body " + std::to_string(i) + " does not exist: the scene has bodies 0.." + std::to_string(n - 1));
+  };
+  // (The loader's forces array lists them in any order; these are by kind.)
+  for (size_t f = 0; f < m.forces.springs.size(); ++f) {
+    body(m.forces.springs[f].a, false, "springs[" + std::to_string(f) + "].a");
+    body(m.forces.springs[f].b, true, "springs[" + std::to_string(f) + "].b");
+  }
+  for (size_t f = 0; f < m.forces.drag.size(); ++f) body(m.forces.drag[f].body, true, "drag[" + std::to_string(f) + "].body");
+  for (size_t f = 0; f < m.forces.central_gravity.size(); ++f)
+    body(m.forces.central_gravity[f].body, true, "central_gravity[" + std::to_string(f) + "].body");
+  for (size_t f = 0; f < m.forces.pendulums.size(); ++f)
+    body(m.forces.pendulums[f].body, false, "pendulums[" + std::to_string(f) + "].body");
+}
+
 }  // namespace
 
 long fixed_step_count(double duration, double dt) {
@@ -60,6 +92,7 @@ Simulation::Simulation(const SceneDescription& scene, Method method, ExternalPar
     : scene_(scene), method_(std::move(method)), stepper_(std::make_unique<Steppers>()), t_(scene.start_time) {
   if (scene.mechanical) {
     const auto& m = *scene.mechanical;
+    check_mechanical(m);
     const int n = static_cast<int>(m.bodies.size()) * m.dimensions;
     y_.resize(2 * n);
     for (size_t i = 0; i < m.bodies.size(); ++i) {
@@ -76,7 +109,15 @@ Simulation::Simulation(const SceneDescription& scene, Method method, ExternalPar
     } else {
       const SystemInfo* info = find_first_order_system(scene.first_order->type);
       if (!info) throw SceneError("system.type", "unknown system \"" + scene.first_order->type + "\"");
-      first_order_ = info->make(scene.first_order->parameters);
+      // The catalog's defaults for what a description built by hand leaves out (the loader fills
+      // them in); a name the system does not have is an error, as in a file.
+      std::map<std::string, double> parameters;
+      for (const auto& p : info->parameters) parameters[p.name] = p.default_value;
+      for (const auto& [name, value] : scene.first_order->parameters) {
+        if (!parameters.count(name)) throw SceneError("system.parameters." + name, "unknown parameter of " + info->type);
+        parameters[name] = value;
+      }
+      first_order_ = info->make(parameters);
     }
     const auto& init = scene.first_order->initial;
     if (static_cast<int>(init.size()) != first_order_->size())

@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cerrno>
+#include <cstring>
 #include <fstream>
 #include <iterator>
 #include <limits>
@@ -22,7 +24,8 @@ using motus::plot::html_escape;
 
 void check_written(std::ofstream& out, const std::string& path) {
   out.flush();
-  if (!out) throw std::runtime_error(path + ": could not be written (disk full?)");
+  // (errno says why: no such folder, no space left, ...; it is not always a full disk)
+  if (!out) throw std::runtime_error(path + ": could not be written (" + std::strerror(errno) + ")");
 }
 
 // JSON (and so JavaScript) text; bytes that are not UTF-8 in a name become U+FFFD.

@@ -4,6 +4,8 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <cerrno>
+#include <cstring>
 #include <fstream>
 
 #include "motus/compare/explanations.hpp"
@@ -26,7 +28,8 @@ const EngineRun* find_motus(const std::vector<EngineRun>& runs) {
 // A report file that could not be written whole (a full disk) is an error naming it.
 void check_written(std::ofstream& out, const std::string& path) {
   out.flush();
-  if (!out) throw std::runtime_error(path + ": could not be written (disk full?)");
+  // (errno says why: no such folder, no space left, ...; it is not always a full disk)
+  if (!out) throw std::runtime_error(path + ": could not be written (" + std::strerror(errno) + ")");
 }
 
 void write_text(const std::string& path, const std::string& text) {
