@@ -143,6 +143,7 @@ int bench_precision_command(const BenchPrecisionOptions& o) {
   if (wants("odeint")) total += 2 * fixed_points + 2 * adaptive_points;
   for (const char* engine : {"box2d", "bullet"}) total += wants(engine) ? 6 : 0;
   ProgressBar progress(0, total, "bench precision", 1);
+  progress.without_estimate();  // (a level costs twice the one before it: no rate so far says what is left)
   double done = 0;
   sweep.point_done = [&] {
     progress.update(++done);

@@ -127,7 +127,7 @@ void ProgressBar::draw(double fraction) {
   const double done = fraction - phase_fraction_;
   if (fraction != moved_to_) moved_to_ = fraction, moved_at_ = in_phase;
   // (At the last move's rate, less the time since: never past 0, then no estimate until it moves.)
-  const double remaining = fraction >= 0 && done > 0 && moved_at_ > 0.2
+  const double remaining = estimate_ && fraction >= 0 && done > 0 && moved_at_ > 0.2
                                ? (1 - fraction) * moved_at_ / done - (in_phase - moved_at_)
                                : NAN;
   const int w = width();

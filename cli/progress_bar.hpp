@@ -23,6 +23,10 @@ public:
   void update(double now);
   // A new phase of the work ("drawing"), running from start to end: its rate is measured anew.
   void phase(const std::string& name, double start, double end);
+  // No time to go is shown: for work whose steps cost unlike amounts (bench precision's levels,
+  // each halving the step, cost twice the one before: an estimate from the rate so far says
+  // seconds where minutes are left).
+  void without_estimate() { estimate_ = false; }
   // Shows `what` (a phase without steps, such as ffmpeg encoding) until the next update.
   void note(const std::string& what);
   void finish();
@@ -49,6 +53,7 @@ private:
   // then, so that work that moves in whole steps (the tests of a grading, the submissions of a
   // batch) counts down between them instead of growing.
   double moved_at_ = 0, moved_to_ = -1;
+  bool estimate_ = true;
 };
 
 }  // namespace motus

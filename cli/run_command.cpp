@@ -219,6 +219,18 @@ int run_command(const RunOptions& o) {
   if (!o.trajectory.empty()) {
     if (o.trajectory != "-") check_can_write(o.trajectory, o.overwrite);
     trajectory.emplace(o.trajectory, sim, scene.output_interval, o.overwrite);
+    // A trajectory that will fill a disk is said before it starts (10,000 balls for 3000 s at
+    // dt = 1/60 make 140 GB): rows × columns × about 20 bytes a number.
+    if (!method.adaptive()) {
+      const double steps = static_cast<double>(fixed_step_count(duration, dt));
+      const double rows = 1 + (scene.output_interval > 0 ? std::min(steps, duration / scene.output_interval) : steps);
+      const double gigabytes = rows * static_cast<double>(sim.state().size() + 4) * 20 / 1e9;
+      if (gigabytes > 2)
+        fmt::print(stderr,
+                   "motus: note: the trajectory will be about {:.0f} GB ({:.3g} rows); --set output_interval=S writes "
+                   "a row every S s only\n",
+                   gigabytes, rows);
+    }
   }
   // A short run is shown step by step: the time, the state and (for bodies) the acceleration.
   std::vector<std::vector<double>> table;
