@@ -100,6 +100,36 @@ inline fs::path copy_solution(const TempDir& dir, const std::string& assignment,
   return to;
 }
 
+// The integrators solution with `line` put first in its euler_step (and `includes` before the
+// file): a submission that misbehaves there. Empty (and a failure) if the solution has no such step.
+inline fs::path solution_with_euler_step_starting(const TempDir& dir, const std::string& name, const std::string& line,
+                                                  const std::string& includes = "") {
+  const fs::path submission = copy_solution(dir, "integrators", name);
+  std::string source = read_file(submission / "integrators.cpp");
+  const std::string anchor = "void euler_step(const MechanicalSystem& s, double t, double h, VectorInOut x, VectorInOut v) {\n";
+  const size_t at = source.find(anchor);
+  if (at == std::string::npos) {
+    ADD_FAILURE() << "the integrators solution has no " << anchor;
+    return {};
+  }
+  source.replace(at, anchor.size(), anchor + "  " + line + "\n");
+  write_file(submission / "integrators.cpp", includes + source);
+  return submission;
+}
+
+// A copy of the integrators assignment whose public tests are `tests` (each worth 1 point, visible)
+// and which has no hidden tests.
+inline fs::path integrators_with_tests(const TempDir& dir, const std::string& name, const nlohmann::json& tests) {
+  const fs::path assignment = dir / name;
+  fs::copy(fs::path(kAssignments) / "integrators", assignment, fs::copy_options::recursive);
+  fs::remove_all(assignment / "hidden");
+  nlohmann::json rubric = nlohmann::json::array();
+  for (const auto& t : tests) rubric.push_back({{"name", t["name"]}, {"points", 1}, {"visibility", "visible"}});
+  write_file(assignment / "tests/public.json", nlohmann::json{{"tests", tests}}.dump(2));
+  write_file(assignment / "rubric.json", nlohmann::json{{"tests", rubric}}.dump(2));
+  return assignment;
+}
+
 inline std::string hidden(const std::string& assignment) { return (fs::path(kAssignments) / assignment / "hidden").string(); }
 
 // Processes of the sandbox users (61000 and up) that are still running (zombies excepted).

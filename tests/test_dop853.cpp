@@ -63,8 +63,8 @@ motus::SceneDescription lorenz() {
 // One body about a centre of μ = 1 from (x0, 0) with velocity (0, v0), exact solution "kepler".
 motus::SceneDescription kepler_from(double x0, double v0) {
   motus::SceneDescription scene = motus_test::kepler();
-  scene.mechanical->bodies[0].position = {x0, 0, 0};
-  scene.mechanical->bodies[0].velocity = {0, v0, 0};
+  scene.mechanical->bodies[0].position = {x0, 0};  // (a 2-D scene: it gave three numbers, and Simulation read two)
+  scene.mechanical->bodies[0].velocity = {0, v0};
   return scene;
 }
 

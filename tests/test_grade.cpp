@@ -413,12 +413,8 @@ TEST(Grade, WhatStopsTheGradingStillLeavesAResultsFileThatSaysWhy) {
 TEST(Grade, AStudentsEscapeSequencesNeverReachTheTerminal) {
   NEEDS_SANDBOX();
   TempDir dir;
-  const fs::path submission = copy_solution(dir, "integrators", "escapes");
-  std::string source = read_file(submission / "integrators.cpp");
-  const std::string anchor = "void euler_step(const MechanicalSystem& s, double t, double h, VectorInOut x, VectorInOut v) {\n";
-  ASSERT_NE(source.find(anchor), std::string::npos);
-  source.replace(source.find(anchor), anchor.size(), anchor + "  throw std::runtime_error(\"\\x1b[2J\\x1b[Hall clear\");\n");
-  write_file(submission / "integrators.cpp", "#include <stdexcept>\n" + source);
+  const fs::path submission = solution_with_euler_step_starting(
+      dir, "escapes", "throw std::runtime_error(\"\\x1b[2J\\x1b[Hall clear\");", "#include <stdexcept>\n");
   const auto r = run_motus(dir, {"grade", "integrators", submission.string(), "--results", (dir / "results.json").string()});
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_NE(r.out.find("?[2J?[Hall clear"), std::string::npos) << r.out;
@@ -535,25 +531,16 @@ TEST(Grade, EachTestHasTheWholeCpuLimitOfItsOwn) {
   // left over.
   NEEDS_SANDBOX();
   TempDir dir;
-  const fs::path assignment = dir / "five";
-  fs::copy(fs::path(kAssignments) / "integrators", assignment, fs::copy_options::recursive);
-  fs::remove_all(assignment / "hidden");
   json test = definitions("integrators").at("euler.table");
-  json tests = json::array(), rubric = json::array();
+  json tests = json::array();
   for (int i = 1; i <= 5; ++i) {
     test["name"] = "euler.table-" + std::to_string(i);
     tests.push_back(test);
-    rubric.push_back({{"name", test["name"]}, {"points", 1}, {"visibility", "visible"}});
   }
-  write_file(assignment / "tests/public.json", json{{"tests", tests}}.dump(2));
-  write_file(assignment / "rubric.json", json{{"tests", rubric}}.dump(2));
-  const fs::path submission = copy_solution(dir, "integrators", "slow");
-  std::string source = read_file(submission / "integrators.cpp");
-  const std::string anchor = "void euler_step(const MechanicalSystem& s, double t, double h, VectorInOut x, VectorInOut v) {\n";
-  ASSERT_NE(source.find(anchor), std::string::npos);
-  source.replace(source.find(anchor), anchor.size(),
-                 anchor + "  for (const std::clock_t until = std::clock() + CLOCKS_PER_SEC * 3 / 20; std::clock() < until;) {}\n");
-  write_file(submission / "integrators.cpp", "#include <ctime>\n" + source);
+  const fs::path assignment = integrators_with_tests(dir, "five", tests);
+  const fs::path submission = solution_with_euler_step_starting(
+      dir, "slow", "for (const std::clock_t until = std::clock() + CLOCKS_PER_SEC * 3 / 20; std::clock() < until;) {}",
+      "#include <ctime>\n");
   const auto r = run_motus(dir, {"grade", assignment.string(), submission.string(), "--time-limit", "3", "--results",
                                  (dir / "results.json").string()});
   ASSERT_EQ(r.status, 0) << r.err;
@@ -570,15 +557,10 @@ TEST(Grade, EachTestHasTheWholeCpuLimitOfItsOwn) {
 TEST(Grade, ATestOnAnEquationsSceneRunsInTheSandbox) {
   NEEDS_SANDBOX();
   TempDir dir;
-  const fs::path assignment = dir / "equations";
-  fs::copy(fs::path(kAssignments) / "integrators", assignment, fs::copy_options::recursive);
-  fs::remove_all(assignment / "hidden");
   json test = definitions("integrators").at("rk4.lorenz-order");
   ASSERT_EQ(test["scene"], "lorenz");
   test["scene"] = "lorenz_equations";
-  write_file(assignment / "tests/public.json", json{{"tests", json::array({test})}}.dump(2));
-  write_file(assignment / "rubric.json",
-             json{{"tests", json::array({{{"name", test["name"]}, {"points", 1}, {"visibility", "visible"}}})}}.dump(2));
+  const fs::path assignment = integrators_with_tests(dir, "equations", json::array({test}));
   const fs::path submission = copy_solution(dir, "integrators", "solution");
   const auto r = run_motus(dir, {"grade", assignment.string(), submission.string(), "--results", (dir / "results.json").string()});
   ASSERT_EQ(r.status, 0) << r.err;
