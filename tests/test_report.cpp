@@ -113,3 +113,36 @@ TEST(Report, FreeFallIsHalfGHTBehindTheParabolaUnderSymplecticEuler) {
 }
 
 }  // namespace
+
+namespace {
+
+// Each engine's distance from the exact answer at its end is taken at its own end time: motus adds
+// its steps up (head_on ends at t = 3.9999999999999587), Bullet counts them (t = 4), and measured
+// at motus's time Bullet's final distance (1.9e-13 m) came out larger than its largest over the run
+// (1.1e-13 m), which includes the end.
+TEST(Report, AnEnginesFinalDistanceFromExactIsAtMostItsLargest) {
+  TempDir dir;
+  const auto r = compare(dir, "head_on", {"--repeats", "1"});
+  ASSERT_TRUE(r.summary.contains("exact"));
+  int engines = 0;
+  for (const auto& e : r.summary["exact"]["engines"]) {
+    const double largest = engine(r, e["engine"].get<std::string>())["max_distance_from_exact"].get<double>();
+    EXPECT_LE(e["final_distance"].get<double>(), largest) << e["engine"];
+    ++engines;
+  }
+  EXPECT_EQ(engines, 3);
+}
+
+// One engine keeps one colour in every figure whoever else ran, and one that could not run the
+// scene is in the legend, saying so: in the 1-D oscillator Bullet was drawn in Box2D's orange, and
+// Box2D was not in the legend at all.
+TEST(Report, EveryEngineKeepsItsColourAndOneThatCouldNotRunIsInTheLegend) {
+  TempDir dir;
+  const auto r = compare(dir, "oscillator", {"--repeats", "1"});
+  const std::string gp = read_file(r.folder / "figures.gp");
+  EXPECT_NE(gp.find("lc rgb '#4285d6' title 'motus'"), std::string::npos) << gp;
+  EXPECT_NE(gp.find("lc rgb '#e67832' title 'box2d: not supported (1-D scenes)'"), std::string::npos) << gp;
+  EXPECT_NE(gp.find("lc rgb '#46aa64' title 'bullet'"), std::string::npos) << gp;
+}
+
+}  // namespace

@@ -38,6 +38,34 @@ void write_text(const std::string& path, const std::string& text) {
   check_written(out, path);
 }
 
+// An engine's colour in every figure, whoever else ran: motus, Box2D and Bullet their own, a
+// plug-in's column the next ones.
+int colour_of(const std::vector<EngineRun>& runs, const EngineRun& r) {
+  if (r.engine == "motus") return 0;
+  if (r.engine == "box2d") return 1;
+  if (r.engine == "bullet") return 2;
+  int others = 0;
+  for (const auto& o : runs) {
+    if (&o == &r) break;
+    others += o.engine != "motus" && o.engine != "box2d" && o.engine != "bullet";
+  }
+  return 3 + others;
+}
+
+// An engine that could not run the scene is in the legend all the same, saying why (its column
+// of the table says so too; a figure looked at alone must not drop it).
+plot::Series not_run(const std::vector<EngineRun>& runs, const EngineRun& r) {
+  plot::Series s{r.engine, {}, {}};
+  s.colour = colour_of(runs, r);
+  s.none_because = "not supported";
+  if (!r.unsupported.empty()) {
+    const std::string& why = r.unsupported.front();
+    const auto colon = why.find(": ");
+    s.none_because += colon == std::string::npos ? "" : " (" + why.substr(colon + 2) + ")";
+  }
+  return s;
+}
+
 // The report's figures: the energy error of every engine (on a log axis of |ΔE/E₀|, or symlog
 // when it changes sign), and the momenta where the scene keeps them.
 std::vector<plot::Figure> figures(const ReportContext& c, const std::vector<EngineRun>& runs) {
@@ -47,8 +75,10 @@ std::vector<plot::Figure> figures(const ReportContext& c, const std::vector<Engi
   energy.x_label = "t [s]";
   bool changes_sign = false, negative = false, positive = false;
   for (const auto& r : runs) {
+    if (!r.supported) energy.series.push_back(not_run(runs, r));
     if (!r.supported || r.rows.empty()) continue;
     plot::Series s{r.engine, {}, {}};
+    s.colour = colour_of(runs, r);
     const double e0 = r.rows.front().total;
     for (const auto& row : r.rows) {
       const double error = e0 != 0 ? (row.total - e0) / std::abs(e0) : row.total - e0;
@@ -83,8 +113,10 @@ std::vector<plot::Figure> figures(const ReportContext& c, const std::vector<Engi
     f.y_label = std::string("|") + (angular ? "L - L0" : "p - p0") + "| / " + (angular ? "|L0|" : "sum m |v0|");
     f.y_scale = plot::Scale::log;
     for (const auto& r : runs) {
+      if (!r.supported) f.series.push_back(not_run(runs, r));
       if (!r.supported || r.rows.empty()) continue;
       plot::Series s{r.engine, {}, {}};
+      s.colour = colour_of(runs, r);
       const auto& first = angular ? r.rows.front().angular_momentum : r.rows.front().momentum;
       double size = 0;
       for (double x : first) size += x * x;

@@ -106,10 +106,12 @@ std::string draw(const std::vector<Figure>& figures, const std::string& folder) 
     std::string plot_line;
     for (size_t k = 0; k < f.series.size(); ++k) {
       const auto& s = f.series[k];
-      const std::string colour = line_style(k, s.dashed);
+      const std::string colour = line_style(s.colour >= 0 ? static_cast<size_t>(s.colour) : k, s.dashed);
       if (blocks[k] < 0) {
         plot_line += (k ? ", " : "plot ") + std::string("1/0 with lines lw 1.8") + colour + " title " +
-                     quoted(s.name + (f.y_scale == Scale::log ? ": exactly 0 throughout" : ": no finite point"));
+                     quoted(s.name + (!s.none_because.empty()         ? ": " + s.none_because
+                                      : f.y_scale == Scale::log ? ": exactly 0 throughout"
+                                                                : ": no finite point"));
         continue;
       }
       const std::string pt = std::to_string(s.point_type);

@@ -19,6 +19,11 @@ struct Series {
   std::string style = "lines";  // "lines", "linespoints" or "points"
   bool dashed = false;          // a dashed line (a peer beside motus's own, say)
   int point_type = 7;           // gnuplot's point type for "linespoints" and "points" (7: a disc)
+  // Its colour: the palette's entry (figure.cpp), so that one engine keeps its colour in every
+  // figure whoever else ran; −1: by its place among the series.
+  int colour = -1;
+  // A series with no points at all, for the legend only: why it has none ("not supported: …").
+  std::string none_because = "";
 };
 
 struct Figure {
