@@ -141,9 +141,18 @@ Method method_for(const std::string& path, const SceneDescription& scene, const 
     throw InputError(path + ": --integrator: unknown integrator \"" + name + "\" (known: " + known_integrators() + ")" +
                      (looks_like_plugin && plugins().empty() ? "; load its plug-in with --plugin FILE.so" : ""));
   }
-  if (method->needs_mechanical() && !scene.is_mechanical())  // the file's own integrator was checked by the loader
-    throw InputError(path + ": --integrator: " + name + " is symplectic and needs a mechanical scene (bodies); " +
-                     "use euler, midpoint, rk4, rk4-doubling, rk45 or dop853");
+  if (method->needs_mechanical() && !scene.is_mechanical()) {  // the file's own integrator was checked by the loader
+    // A plug-in's step(x, v) need not be symplectic (a student's explicit Euler): it steps bodies.
+    // What can run this scene: the built-in first-order methods, and the plug-ins' own.
+    std::string first_order = "euler, midpoint, rk4, rk4-doubling, rk45 or dop853";
+    for (const auto& m : plugins().integrators())
+      if (!m.needs_mechanical()) first_order += ", " + m.name();
+    throw InputError(path + ": --integrator: " + name +
+                     (method->is_external() ? " steps bodies (x and v) and needs a mechanical scene (bodies), and this "
+                                              "is a first-order system; use "
+                                            : " is symplectic and needs a mechanical scene (bodies); use ") +
+                     first_order);
+  }
   return *method;
 }
 

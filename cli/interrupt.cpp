@@ -11,6 +11,10 @@ volatile sig_atomic_t g_interrupted = 0;
 // What one step may take before motus reaches a safe point: a step of an O(N²) force over 10⁵
 // bodies, or a peer's set-up of 10⁵ bodies, takes minutes, and an interrupt must not wait for it.
 constexpr unsigned kGraceSeconds = 30;
+// After this long without a safe point motus says that it waits for one, and how not to (a
+// student's plug-in in an endless loop has none: the first Ctrl-C seemed to do nothing).
+constexpr unsigned kNoticeSeconds = 2;
+volatile sig_atomic_t g_noticed = 0;
 
 // Only async-signal-safe calls here: write and _exit.
 [[noreturn]] void stop_now(const char* why) {
@@ -26,10 +30,21 @@ constexpr unsigned kGraceSeconds = 30;
 void on_interrupt(int) {
   if (g_interrupted) stop_now("stopped at once, at the second interrupt");
   g_interrupted = 1;
-  ::alarm(kGraceSeconds);  // no safe point within the grace: on_grace_over
+  ::alarm(kNoticeSeconds);  // no safe point yet: on_alarm says so, then waits out the grace
 }
 
-void on_grace_over(int) { stop_now("no safe point came within 30 s, so stopped there"); }
+void on_alarm(int) {
+  if (!g_noticed) {
+    g_noticed = 1;
+    const char notice[] = "\nmotus: interrupted; stopping at the next safe point (Ctrl-C again stops at once)\n";
+    if (::write(STDERR_FILENO, notice, sizeof notice - 1) < 0) {
+      // (nothing to do: the grace still runs)
+    }
+    ::alarm(kGraceSeconds - kNoticeSeconds);
+    return;
+  }
+  stop_now("no safe point came within 30 s, so stopped there");
+}
 
 }  // namespace
 
@@ -40,7 +55,7 @@ void catch_interrupts() {
   action.sa_flags = 0;  // no SA_RESTART: a wait for a child returns at once
   sigaction(SIGINT, &action, nullptr);
   sigaction(SIGTERM, &action, nullptr);
-  action.sa_handler = on_grace_over;
+  action.sa_handler = on_alarm;
   sigaction(SIGALRM, &action, nullptr);
   // A reader that went away (motus ... | head) makes a write fail with EPIPE, which the writes'
   // checks report (exit 1, one line), instead of a signal that ends motus without a word.

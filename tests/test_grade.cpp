@@ -145,6 +145,16 @@ TEST_P(SeededBugs, EachLosesExactlyTheTestsThatNameIt) {
       }
     EXPECT_FALSE(naming.empty()) << mistake << ": no test names it";
     EXPECT_EQ(failed(result), naming) << assignment << ": " << mistake;
+    // Each failure that names the mistake teaches with its hint: the numbers came out wrong, or
+    // they stopped the run (an inverted step-size control chose a step of 0: that failure said so
+    // and no more). (Not a crash: its hint would be about something else.)
+    for (const auto& name : naming) {
+      const json* t = test_named(result, name);
+      if (t == nullptr || !defs.at(name).contains("hint")) continue;
+      const std::string output = (*t)["output"].get<std::string>();
+      if (output.rfind("Measured", 0) != 0 && output.rfind("Your code stopped the run", 0) != 0) continue;
+      EXPECT_NE(output.find("This usually means: "), std::string::npos) << mistake << ": " << name << ": " << output;
+    }
     EXPECT_EQ(result["score"].get<double>(), max - lost) << assignment << ": " << mistake;
     // The message students see at once counts only the tests they see now: a hidden test's
     // failure must not show through its totals (Gradescope hides the total while one is hidden).
@@ -323,7 +333,7 @@ TEST(Plugins, APluginsBrokenNumbersAreItsOwnFailureNeverAPerfectRun) {
     }
   r = run_motus(dir, {"run", "lorenz", "--plugin", plugin, "--integrator", "bad:keeps-h"});
   EXPECT_EQ(r.status, 1) << r.err;
-  EXPECT_NE(r.err.find("kept a rejected step's size"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("did not shrink a rejected step"), std::string::npos) << r.err;
 }
 
 TEST(Plugins, AnExceptionWhileLoadingNamesThePlugin) {
@@ -420,6 +430,32 @@ TEST(Grade, AStudentsEscapeSequencesNeverReachTheTerminal) {
   EXPECT_NE(r.out.find("?[2J?[Hall clear"), std::string::npos) << r.out;
   EXPECT_EQ(r.out.find('\x1b'), std::string::npos);
   EXPECT_NE(read_file(dir / "results.json").find("\\u001b[2J"), std::string::npos);  // (the JSON keeps it, escaped)
+}
+
+// A step-size control turned upside down shrinks the step without end: the run records states
+// until memory runs out. It used to end as "killed by SIGABRT" (a JSON array that big cannot be
+// destroyed without memory); now the run stops at the most it may record, and the test's hint
+// follows, as for wrong numbers.
+TEST(Grade, AStepSizeThatShrinksWithoutEndIsTheStudentsErrorWithItsHint) {
+  NEEDS_SANDBOX();
+  TempDir dir;
+  const fs::path submission = copy_solution(dir, "integrators", "inverted");
+  std::string source = read_file(submission / "integrators.cpp");
+  const std::string controller = "std::pow(error_ratio, -1.0 / 5)";
+  ASSERT_NE(source.find(controller), std::string::npos);
+  source.replace(source.find(controller), controller.size(), "std::pow(error_ratio, 1.0 / 5)");
+  write_file(submission / "integrators.cpp", source);
+  const auto r = run_motus(dir, {"grade", "integrators", submission.string(), "--results", (dir / "results.json").string()});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const json result = read_json(dir / "results.json");  // (kept: test_named points into it)
+  const json* t = test_named(result, "rk4-doubling.kepler");
+  ASSERT_NE(t, nullptr);
+  const std::string output = (*t)["output"].get<std::string>();
+  EXPECT_EQ(output.rfind("Your code stopped the run: ", 0), 0u) << output;
+  EXPECT_NE(output.find("a step size that shrinks without end?"), std::string::npos) << output;
+  EXPECT_NE(output.find("This usually means: " + definitions("integrators").at("rk4-doubling.kepler")["hint"].get<std::string>()),
+            std::string::npos)
+      << output;
 }
 
 // scores.csv is CSV whatever the students named their folders: a comma or a quote is quoted,

@@ -201,9 +201,9 @@ void Simulation::advance(double end_time, double dt, Tolerance tolerance,
             throw StepSizeUnderflow("the step-size control proposed no number after a rejected step at t = " +
                                      std::to_string(t_) + " (an error estimate that is not finite?)");
           if (!(adaptive_h_ < tried))
-            throw StepSizeUnderflow("the step-size control kept a rejected step's size at t = " + std::to_string(t_) +
+            throw StepSizeUnderflow("the step-size control did not shrink a rejected step at t = " + std::to_string(t_) +
                                      " (h = " + std::to_string(tried) + " was rejected, and " +
-                                     std::to_string(adaptive_h_) + " is next): it would be tried for ever");
+                                     std::to_string(adaptive_h_) + " came next): it would be tried for ever");
           if (adaptive_h_ < 1e-14 * std::max(1.0, std::abs(t_)))
             throw StepSizeUnderflow("step size underflow at t = " + std::to_string(t_) +
                                      ": the tolerance cannot be met in double precision");

@@ -160,8 +160,9 @@ GradeResult grade_submission(const Assignment& a, const std::string& submission,
         r.output = std::string(1, static_cast<char>(std::toupper(e.what()[0]))) + (e.what() + 1);
         if (r.output.back() != '.' && r.output.find('\n') == std::string::npos) r.output += ".";
         // The test's hint is about wrong numbers: it helps a run too slow to finish (a step size
-        // that shrinks without end), not one that crashed, threw or ran out of memory.
-        if (!t.hint.empty() && e.out_of_time()) r.output += "\nThis usually means: " + t.hint;
+        // that shrinks without end) and one that its numbers stopped (a step of 0, a control that
+        // keeps a rejected step), not one that crashed or ran out of memory.
+        if (!t.hint.empty() && (e.out_of_time() || e.stopped_the_run())) r.output += "\nThis usually means: " + t.hint;
       }
     }
     r.score = r.passed ? r.max_score : 0;

@@ -76,11 +76,11 @@ nlohmann::json Probe::ask(nlohmann::json request, std::chrono::steady_clock::tim
     died(doing);
   }
   if (!reply.value("ok", false)) {
-    std::string error = reply.value("error", std::string("failed"));
+    const std::string error = reply.value("error", std::string("failed"));
     // The memory limit shows up as a failed allocation in the student's code.
     if (error.find("std::bad_alloc") != std::string::npos)
-      error = "ran out of its " + std::to_string(setup_.limits.memory_mb) + " MB (" + error + ")";
-    throw ProbeFailure("your code " + error);
+      throw ProbeFailure("your code ran out of its " + std::to_string(setup_.limits.memory_mb) + " MB (" + error + ")");
+    throw ProbeFailure("your code stopped the run: " + error, false, true);
   }
   return reply;
 }

@@ -17,13 +17,16 @@ namespace motus::grade {
 
 class ProbeFailure : public std::runtime_error {
 public:
-  explicit ProbeFailure(const std::string& what, bool out_of_time = false)
-      : std::runtime_error(what), out_of_time_(out_of_time) {}
+  explicit ProbeFailure(const std::string& what, bool out_of_time = false, bool stopped_the_run = false)
+      : std::runtime_error(what), out_of_time_(out_of_time), stopped_the_run_(stopped_the_run) {}
   // It timed out or used up its CPU (rather than crashed, threw or ran out of memory).
   bool out_of_time() const { return out_of_time_; }
+  // The run ended with an error, the process did not: a step of 0 or NaN, a step-size control
+  // that never shrinks, an exception — wrong numbers, which the test's hint is about.
+  bool stopped_the_run() const { return stopped_the_run_; }
 
 private:
-  bool out_of_time_;
+  bool out_of_time_, stopped_the_run_;
 };
 
 struct ProbeSetup {

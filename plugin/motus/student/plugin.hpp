@@ -51,7 +51,9 @@ inline std::string& last_error() {
   thread_local std::string message;
   return message;
 }
-inline const char* error(void*) { return last_error().c_str(); }
+inline const char* error(void*) {
+  return last_error().empty() ? "ran out of memory (std::bad_alloc, while saying what went wrong)" : last_error().c_str();
+}
 
 // "std::out_of_range", not "St12out_of_range".
 inline std::string type_name(const std::type_info& type) {
@@ -62,18 +64,27 @@ inline std::string type_name(const std::type_info& type) {
   return name;
 }
 
-// Runs the student's code: 0 when it returned, 1 (and the message) when it threw.
+// Runs the student's code: 0 when it returned, 1 (and the message) when it threw. Out of memory,
+// the message itself may not fit: then a fixed one, which needs no allocation (a bad_alloc out of
+// this noexcept function ended the process: "terminate called after throwing std::bad_alloc").
 template <class Work>
 int guarded(Work&& work) noexcept {
+  auto say = [](auto&& make) noexcept {
+    try {
+      last_error() = make();
+    } catch (...) {
+      last_error().clear();  // (error() then gives the fixed message)
+    }
+  };
   try {
     work();
     return 0;
   } catch (const std::bad_alloc&) {
-    last_error() = "ran out of memory (std::bad_alloc)";
+    say([] { return std::string("ran out of memory (std::bad_alloc)"); });
   } catch (const std::exception& e) {
-    last_error() = "threw " + type_name(typeid(e)) + ": " + e.what();
+    say([&] { return "threw " + type_name(typeid(e)) + ": " + e.what(); });
   } catch (...) {
-    last_error() = "threw something that is not a std::exception";
+    say([] { return std::string("threw something that is not a std::exception"); });
   }
   return 1;
 }
