@@ -1,5 +1,6 @@
 #include "list_command.hpp"
 
+#include <algorithm>
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
@@ -38,11 +39,14 @@ int list_command(const std::vector<std::string>& plugin_files) {
     }
   }
   fmt::print("integrators:\n");
+  // (As wide as the longest name, a plug-in's included: student:symplectic-euler is 24.)
+  size_t width = 20;
+  for (const Method& m : plugins().integrators()) width = std::max(width, m.name().size());
   for (const auto& i : all_integrators())
-    fmt::print("  {:<20} order {}{}{}  {}\n", i.name, i.order, i.adaptive ? ", adaptive" : "",
+    fmt::print("  {:<{}} order {}{}{}  {}\n", i.name, width, i.order, i.adaptive ? ", adaptive" : "",
                i.needs_mechanical ? ", mechanical scenes only" : "", i.description);
   for (const Method& m : plugins().integrators())
-    fmt::print("  {:<20} order {}{}{}  {}\n", m.name(), m.order(), m.adaptive() ? ", adaptive" : "",
+    fmt::print("  {:<{}} order {}{}{}  {}\n", m.name(), width, m.order(), m.adaptive() ? ", adaptive" : "",
                m.needs_mechanical() ? ", mechanical scenes only" : "", m.description());
   for (const auto& p : plugins().plugins()) {
     fmt::print("plug-in {} ({}): {}\n", p.name, p.file, p.description);

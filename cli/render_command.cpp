@@ -213,6 +213,13 @@ int render_command(const RenderOptions& o) {
   job.trails = o.trails;
   job.arrows = o.arrows;
   job.note = integrator_name;  // and the --set overrides, but the integrator only once
+  // A plug-in's collisions or projection that ran are named, as motus run names them in its passes:
+  // "verlet" alone read as motus's own projection.
+  std::string plugin_parts;
+  if (sim.world())
+    for (const auto& pass : sim.world()->passes())
+      if (pass.find("plug-in") != std::string::npos) plugin_parts += (plugin_parts.empty() ? "" : ", ") + pass;
+  if (!plugin_parts.empty()) job.note += "  " + plugin_parts;
   for (const auto& set : o.sets)
     if (set.rfind("integrator=", 0) != 0) job.note += fmt::format("  {}", set);
   job.folder = o.out;
@@ -228,6 +235,7 @@ int render_command(const RenderOptions& o) {
   fmt::print("{} frames of {}x{} at {:g} per simulated {} ({:g} {} of {}) in {}/ ({:.1f} s)\n", frames, width, height,
              o.fps, time_unit_of(scene) == "years" ? "year" : "second", duration, time_unit_of(scene), scene.name, o.out,
              wall);
+  if (!plugin_parts.empty()) fmt::print("passes       {}\n", plugin_parts);
   if (!o.video.empty()) {
     const std::string file = (fs::path(o.out) / video_name).string();
     progress.note("encoding the video (ffmpeg)");
