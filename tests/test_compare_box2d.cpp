@@ -310,6 +310,26 @@ TEST(Box2dLimits, StickPendulumKeepsItsStickAndPin) {
   EXPECT_TRUE(has_line_containing(box2d->notes(), "sticks: the worst length error so far"));
 }
 
+// The float note's scale is the farthest a body came, not where the bodies started: a body thrown
+// at 300 m/s from the origin was "0 m from the origin" (about 1e-7 m of rounding) while it flew
+// 400 m, where float rounds to some 5e-5 m.
+TEST(Box2dLimits, TheFloatNoteScalesWithTheFarthestABodyCame) {
+  SceneDescription scene = load("free_fall");
+  scene.mechanical->bodies[0].velocity[0] = 300;
+  auto box2d = built("box2d", scene, scene.dt, Integrator::SymplecticEuler);
+  Snapshot s;
+  double farthest = 0;
+  for (long i = 0; i < steps_of(scene); ++i) {
+    box2d->step();
+    box2d->read(s);
+    farthest = std::max(farthest, std::hypot(s.x[0], s.x[1]));
+  }
+  ASSERT_GT(farthest, 100);
+  char expected[64];
+  std::snprintf(expected, sizeof expected, "at %.3g m from the origin", farthest);
+  EXPECT_TRUE(has_line_containing(box2d->notes(), expected)) << expected;
+}
+
 // ---- what Box2D cannot run
 
 TEST(Box2dUnsupported, ThreeAndOneDimensionalScenesAreRefused) {

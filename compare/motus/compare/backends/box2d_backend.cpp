@@ -69,7 +69,7 @@ struct Box2dBackend::World {
   bool has_forces = false, has_sticks = false, has_pins = false, has_contacts = false, has_points = false,
        has_segments = false;
   double start_fastest = 0;  // the fastest body's speed·dt at the start, m
-  double farthest = 0;       // the largest |x| of a body at the start, m
+  double farthest = 0;       // the largest |x| of a body, at the start and after every watched step, m
   double run_fastest = 0;    // the largest speed·dt after any step, m
   long capped = 0;           // body-steps that ended at b2_maxTranslation
   long first_capped_step = -1;
@@ -328,6 +328,8 @@ void Box2dBackend::step() {
   for (size_t i = 0; i < w.bodies.size(); ++i) {
     if (w.inverse_mass[i] == 0) continue;
     const b2Vec2& u = w.bodies[i]->GetLinearVelocity();
+    const b2Vec2& p = w.bodies[i]->GetPosition();
+    w.farthest = std::max(w.farthest, std::hypot(static_cast<double>(p.x), static_cast<double>(p.y)));
     const double travel = std::hypot(static_cast<double>(u.x), static_cast<double>(u.y)) * w.dt;
     w.run_fastest = std::max(w.run_fastest, travel);
     if (travel >= cap * (1 - 1e-5)) {
@@ -390,8 +392,8 @@ std::vector<std::string> Box2dBackend::notes() const {
   std::vector<std::string> s;
   if (!world_) return s;
   const World& w = *world_;
-  s.push_back(format("Box2D is float: positions to ~1e-7 relative (about %.1g m at the farthest body's %.3g m "
-                     "from the origin), velocities likewise",
+  s.push_back(format("Box2D is float: positions to ~1e-7 relative (about %.1g m at %.3g m from the origin, the "
+                     "farthest a body came), velocities likewise",
                      std::max(w.farthest, 1.0) * 1.2e-7, w.farthest));
   const double cap = b2_maxTranslation;
   s.push_back(format("b2_maxTranslation (%g m per step): the fastest body moves %.3g m per step at the start "
