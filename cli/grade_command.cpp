@@ -121,8 +121,9 @@ int grade_one(const GradeCommandOptions& o, const std::string& folder) {
   if (!o.results.empty()) check_can_replace(o.results, o.overwrite);
   if (!o.plugin_out.empty()) check_can_replace(o.plugin_out, o.overwrite);
   if (!o.results.empty() && !o.plugin_out.empty()) {
-    std::error_code ignored;
-    if (fs::weakly_canonical(o.results, ignored) == fs::weakly_canonical(o.plugin_out, ignored))
+    std::error_code a, b;
+    const fs::path results = fs::weakly_canonical(o.results, a), plugin = fs::weakly_canonical(o.plugin_out, b);
+    if (!a && !b && results == plugin)
       throw InputError(o.plugin_out + ": --plugin-out: is --results's file too; give them two files");
   }
   const grade::Assignment assignment = ready_to_grade(o, folder);
@@ -163,7 +164,9 @@ int grade_one(const GradeCommandOptions& o, const std::string& folder) {
 // a line break, quotes doubled). A name a spreadsheet would take for a formula (=, +, -, @ first)
 // is prefixed with ' so that it opens as the text it is: the names come from the students.
 std::string csv_field(const std::string& name) {
-  std::string field = name;
+  std::string field;
+  for (const char c : name)  // (control characters, an escape sequence among them, are no name's: '?')
+    field += static_cast<unsigned char>(c) < 0x20 && c != '\n' && c != '\r' && c != '\t' ? '?' : c;
   if (!field.empty() && std::string("=+-@\t\r").find(field[0]) != std::string::npos) field = "'" + field;
   if (field.find_first_of(",\"\r\n") == std::string::npos) return field;
   std::string quoted = "\"";
@@ -221,7 +224,7 @@ int grade_batch(const GradeCommandOptions& o, const std::string& folder) {
       ++done;
     }
   };
-  std::vector<std::thread> threads;
+  std::vector<std::jthread> threads;  // (joined however this function is left: never std::terminate)
   const int jobs = o.jobs.value_or(1);
   for (int j = 0; j < std::min<int>(jobs, static_cast<int>(submissions.size())); ++j) threads.emplace_back(worker);
   while (done < submissions.size() && !interrupted()) {
@@ -246,7 +249,11 @@ int grade_batch(const GradeCommandOptions& o, const std::string& folder) {
   fmt::print("{}", csv);
   fmt::print(stderr, "motus: graded {} submissions of {} in {:.1f} s with {} job{}; results in {}/\n", submissions.size(),
              assignment.name, wall, jobs, jobs == 1 ? "" : "s", out);
-  for (const auto& f : failures) fmt::print(stderr, "motus: the grader failed on {}\n", f);
+  for (const auto& f : failures) {
+    std::string line;  // (a student's folder name and an error: one line, no control characters)
+    for (const char c : f) line += static_cast<unsigned char>(c) < 0x20 ? '?' : c;
+    fmt::print(stderr, "motus: the grader failed on {}\n", line);
+  }
   return failures.empty() ? 0 : kExitFailure;
 }
 

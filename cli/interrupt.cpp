@@ -3,10 +3,16 @@
 #include <signal.h>
 #include <unistd.h>
 
+#include <atomic>
+#include <cerrno>
+
 namespace motus::cli {
 namespace {
 
-volatile sig_atomic_t g_interrupted = 0;
+// (Atomic, not only volatile: grade's workers read it from their threads. Lock-free, so that the
+// handler may set it.)
+std::atomic<int> g_interrupted{0};
+static_assert(std::atomic<int>::is_always_lock_free);
 
 // What one step may take before motus reaches a safe point: a step of an O(N²) force over 10⁵
 // bodies, or a peer's set-up of 10⁵ bodies, takes minutes, and an interrupt must not wait for it.
@@ -34,6 +40,7 @@ void on_interrupt(int) {
 }
 
 void on_alarm(int) {
+  const int saved = errno;  // (the write below must not change what the interrupted code reads)
   if (!g_noticed) {
     g_noticed = 1;
     const char notice[] = "\nmotus: interrupted; stopping at the next safe point (Ctrl-C again stops at once)\n";
@@ -41,6 +48,7 @@ void on_alarm(int) {
       // (nothing to do: the grace still runs)
     }
     ::alarm(kGraceSeconds - kNoticeSeconds);
+    errno = saved;
     return;
   }
   stop_now("no safe point came within 30 s, so stopped there");

@@ -129,11 +129,13 @@ endif()
 
 # ... and its assignments (share/motus/assignments), without their solutions and hidden tests:
 # the installed motus grades the installed starter against its public tests.
-if(NOT EXISTS ${prefix}/share/motus/assignments/integrators/assignment.json
-   OR EXISTS ${prefix}/share/motus/assignments/integrators/solution
-   OR EXISTS ${prefix}/share/motus/assignments/integrators/hidden)
-  message(FATAL_ERROR "the install's assignments are not as documented (share/motus/assignments, no solution/ or hidden/)")
-endif()
+foreach(assignment integrators collisions cloth)
+  if(NOT EXISTS ${prefix}/share/motus/assignments/${assignment}/assignment.json
+     OR EXISTS ${prefix}/share/motus/assignments/${assignment}/solution
+     OR EXISTS ${prefix}/share/motus/assignments/${assignment}/hidden)
+    message(FATAL_ERROR "the install's ${assignment} is not as documented (share/motus/assignments, no solution/ or hidden/)")
+  endif()
+endforeach()
 run("installed motus grade integrators (its starter)" ${CMAKE_COMMAND} -E env --unset=MOTUS_ASSIGNMENTS
     ${prefix}/bin/motus grade integrators ${prefix}/share/motus/assignments/integrators/starter --no-sandbox
     --format gradescope)

@@ -238,7 +238,13 @@ TEST(Grade, CtrlCEndsTheGradingWhileTheStudentsCodeRuns) {
     files.err = (dir / "err.txt").string();
     files.folder = dir.path().string();
     const pid_t pid = start_motus_with(args, files);
-    if (pid <= 0 || !wait_until_catching(pid, SIGINT)) return -1;
+    if (pid <= 0) return -1;
+    if (!wait_until_catching(pid, SIGINT)) {
+      int ignored = 0;
+      ::kill(pid, SIGKILL);
+      ::waitpid(pid, &ignored, 0);
+      return -1;
+    }
     ::sleep(3);  // (the compiler or the first test underway: either way motus waits for a sandbox)
     ::kill(pid, SIGINT);
     int raw = 0;
@@ -253,10 +259,13 @@ TEST(Grade, CtrlCEndsTheGradingWhileTheStudentsCodeRuns) {
   const int one = interrupt({"grade", "integrators", submission.string(), "--time-limit", "600", "--results",
                              (dir / "results.json").string()});
   EXPECT_TRUE(WIFEXITED(one) && WEXITSTATUS(one) == 130) << one << " (-2: not ended in 60 s): " << read_file(dir / "err.txt");
+  // (Not by the 30 s of grace that motus gives a step without a safe point: that was the old way out.)
+  EXPECT_EQ(read_file(dir / "err.txt").find("no safe point came within 30 s"), std::string::npos) << read_file(dir / "err.txt");
   EXPECT_FALSE(fs::exists(dir / "results.json"));
   const int batch = interrupt({"grade", "integrators", "--batch", (dir / "batch").string(), "--jobs", "2", "--time-limit",
                                "600", "--out", (dir / "graded").string()});
   EXPECT_TRUE(WIFEXITED(batch) && WEXITSTATUS(batch) == 130) << batch << ": " << read_file(dir / "err.txt");
+  EXPECT_EQ(read_file(dir / "err.txt").find("no safe point came within 30 s"), std::string::npos) << read_file(dir / "err.txt");
   for (const auto& e : fs::directory_iterator(dir.path()))
     EXPECT_EQ(e.path().filename().string().find("graded"), std::string::npos) << e.path();  // nor .graded.partial-…
 }

@@ -423,10 +423,23 @@ TEST(Hardening, CtrlCBetweenSlowStepsStopsAtTheNextOne) {
   const pid_t pid = start_motus(dir, {"run", "cloth", "--repeats", "1", "--set", "cloth.rows=500", "--set",
                                      "cloth.columns=500", "--trajectory", (dir / "slow.csv").string()});
   ASSERT_GT(pid, 0);
-  ASSERT_FALSE(wait_for_partial(dir / "slow.csv", 1000).empty()) << "the run wrote no trajectory in 20 s";
-  ::kill(pid, SIGINT);
   int raw = 0;
-  waitpid(pid, &raw, 0);
+  if (wait_for_partial(dir / "slow.csv", 1000).empty()) {
+    ::kill(pid, SIGKILL);
+    waitpid(pid, &raw, 0);
+    FAIL() << "the run wrote no trajectory in 20 s";
+  }
+  ::kill(pid, SIGINT);
+  bool ended = false;
+  for (int i = 0; i < 600 && !ended; ++i) {  // 60 s at most, against the 30 s of grace it used to take
+    ended = ::waitpid(pid, &raw, WNOHANG) == pid;
+    if (!ended) ::usleep(100000);
+  }
+  if (!ended) {
+    ::kill(pid, SIGKILL);
+    waitpid(pid, &raw, 0);
+    FAIL() << "Ctrl-C did not end the run within 60 s";
+  }
   const std::string err = read_file(dir / "err.txt");
   EXPECT_EQ(WEXITSTATUS(raw), 130) << err;
   EXPECT_EQ(err.find("30 s"), std::string::npos) << err;

@@ -43,8 +43,9 @@ constexpr bool is_symplectic = std::is_same_v<T, SymplecticEuler> || std::is_sam
                                std::is_same_v<T, Yoshida4> || std::is_same_v<T, ExternalMechanicalStep>;
 
 // A description built by hand (not by the scene loader, which checks all this with the file's
-// field paths): what the engine would otherwise read out of bounds. Its fields as a scene file
-// names them.
+// field paths): what the engine would otherwise read out of bounds. Bodies are named as a scene
+// file names them; a force by its kind and place in the ForceSet (forces.springs[0].a), since a
+// ForceSet keeps no file's order.
 void check_mechanical(const MechanicalDescription& m) {
   if (m.dimensions < 1 || m.dimensions > 3) throw SceneError("dimensions", "must be 1, 2 or 3");
   const auto d = static_cast<size_t>(m.dimensions);
@@ -64,14 +65,14 @@ void check_mechanical(const MechanicalDescription& m) {
   };
   // (The loader's forces array lists them in any order; these are by kind.)
   for (size_t f = 0; f < m.forces.springs.size(); ++f) {
-    body(m.forces.springs[f].a, false, "springs[" + std::to_string(f) + "].a");
-    body(m.forces.springs[f].b, true, "springs[" + std::to_string(f) + "].b");
+    body(m.forces.springs[f].a, false, "forces.springs[" + std::to_string(f) + "].a");
+    body(m.forces.springs[f].b, true, "forces.springs[" + std::to_string(f) + "].b");
   }
-  for (size_t f = 0; f < m.forces.drag.size(); ++f) body(m.forces.drag[f].body, true, "drag[" + std::to_string(f) + "].body");
+  for (size_t f = 0; f < m.forces.drag.size(); ++f) body(m.forces.drag[f].body, true, "forces.drag[" + std::to_string(f) + "].body");
   for (size_t f = 0; f < m.forces.central_gravity.size(); ++f)
-    body(m.forces.central_gravity[f].body, true, "central_gravity[" + std::to_string(f) + "].body");
+    body(m.forces.central_gravity[f].body, true, "forces.central_gravity[" + std::to_string(f) + "].body");
   for (size_t f = 0; f < m.forces.pendulums.size(); ++f)
-    body(m.forces.pendulums[f].body, false, "pendulums[" + std::to_string(f) + "].body");
+    body(m.forces.pendulums[f].body, false, "forces.pendulums[" + std::to_string(f) + "].body");
 }
 
 }  // namespace

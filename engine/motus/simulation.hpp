@@ -34,7 +34,8 @@ struct Energy {
 class Simulation {
 public:
   // Throws SceneError("integrator", ...) for a symplectic integrator on a first-order
-  // system, and SceneError for a scene the engine cannot build. `parts` replace the
+  // system, and SceneError for a scene the engine cannot build (for a description built by hand,
+  // a body named as a file names it, bodies[2].position; a force by kind, forces.springs[0].a). `parts` replace the
   // engine's collision response or constraint projection for this run (a plug-in's);
   // what they point at must outlive the Simulation.
   Simulation(const SceneDescription& scene, Method method, ExternalParts parts = {});

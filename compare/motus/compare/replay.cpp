@@ -24,8 +24,8 @@ using motus::plot::html_escape;
 
 void check_written(std::ofstream& out, const std::string& path) {
   out.flush();
-  // (errno says why: no such folder, no space left, ...; it is not always a full disk)
-  if (!out) throw std::runtime_error(path + ": could not be written (" + std::strerror(errno) + ")");
+  // (errno says why: the failing open or write set it — no such folder, no space left, ...)
+  if (!out) throw std::runtime_error(path + ": could not be written" + (errno ? std::string(" (") + std::strerror(errno) + ")" : ""));
 }
 
 // JSON (and so JavaScript) text; bytes that are not UTF-8 in a name become U+FFFD.

@@ -28,8 +28,8 @@ const EngineRun* find_motus(const std::vector<EngineRun>& runs) {
 // A report file that could not be written whole (a full disk) is an error naming it.
 void check_written(std::ofstream& out, const std::string& path) {
   out.flush();
-  // (errno says why: no such folder, no space left, ...; it is not always a full disk)
-  if (!out) throw std::runtime_error(path + ": could not be written (" + std::strerror(errno) + ")");
+  // (errno says why: the failing open or write set it — no such folder, no space left, ...)
+  if (!out) throw std::runtime_error(path + ": could not be written" + (errno ? std::string(" (") + std::strerror(errno) + ")" : ""));
 }
 
 void write_text(const std::string& path, const std::string& text) {

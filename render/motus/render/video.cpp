@@ -50,12 +50,17 @@ void encode_video(const std::string& frame_pattern, double fps, const std::strin
   const int log_fd = ::mkstemp(log.data());
   if (log_fd < 0) log.clear();  // (then its messages go where motus's do)
   else ::close(log_fd);
+  struct Removed {  // (however this function is left)
+    const std::string& file;
+    ~Removed() {
+      if (!file.empty()) ::unlink(file.c_str());
+    }
+  } removed{log};
   const process::Outcome ffmpeg_run = process::run_program(args, "", log);
   std::string said;
   if (!log.empty()) {
     std::ifstream in(log);
     std::getline(in, said);  // the first line: the error, as ffmpeg words it
-    ::unlink(log.c_str());
   }
   if (!ffmpeg_run.started) throw RenderError("ffmpeg (" + ffmpeg + ") could not be started");
   if (!ffmpeg_run.ok() || !said.empty())
