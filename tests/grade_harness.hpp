@@ -100,21 +100,28 @@ inline fs::path copy_solution(const TempDir& dir, const std::string& assignment,
   return to;
 }
 
-// The integrators solution with `line` put first in its euler_step (and `includes` before the
-// file): a submission that misbehaves there. Empty (and a failure) if the solution has no such step.
-inline fs::path solution_with_euler_step_starting(const TempDir& dir, const std::string& name, const std::string& line,
-                                                  const std::string& includes = "") {
+// The integrators solution with `find` (which must be in it) replaced by `replacement`, and
+// `includes` before the file: a submission with one mistake, or one that misbehaves there. Empty
+// (and a failure) if the solution has no `find`.
+inline fs::path integrators_solution_with(const TempDir& dir, const std::string& name, const std::string& find,
+                                          const std::string& replacement, const std::string& includes = "") {
   const fs::path submission = copy_solution(dir, "integrators", name);
   std::string source = read_file(submission / "integrators.cpp");
-  const std::string anchor = "void euler_step(const MechanicalSystem& s, double t, double h, VectorInOut x, VectorInOut v) {\n";
-  const size_t at = source.find(anchor);
+  const size_t at = source.find(find);
   if (at == std::string::npos) {
-    ADD_FAILURE() << "the integrators solution has no " << anchor;
+    ADD_FAILURE() << "the integrators solution has no " << find;
     return {};
   }
-  source.replace(at, anchor.size(), anchor + "  " + line + "\n");
+  source.replace(at, find.size(), replacement);
   write_file(submission / "integrators.cpp", includes + source);
   return submission;
+}
+
+// The same with `line` put first in its euler_step.
+inline fs::path solution_with_euler_step_starting(const TempDir& dir, const std::string& name, const std::string& line,
+                                                  const std::string& includes = "") {
+  const std::string anchor = "void euler_step(const MechanicalSystem& s, double t, double h, VectorInOut x, VectorInOut v) {\n";
+  return integrators_solution_with(dir, name, anchor, anchor + "  " + line + "\n", includes);
 }
 
 // A copy of the integrators assignment whose public tests are `tests` (each worth 1 point, visible)

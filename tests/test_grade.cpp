@@ -446,12 +446,9 @@ TEST(Grade, AStudentsEscapeSequencesNeverReachTheTerminal) {
 TEST(Grade, AStepSizeThatShrinksWithoutEndIsTheStudentsErrorWithItsHint) {
   NEEDS_SANDBOX();
   TempDir dir;
-  const fs::path submission = copy_solution(dir, "integrators", "inverted");
-  std::string source = read_file(submission / "integrators.cpp");
-  const std::string controller = "std::pow(error_ratio, -1.0 / 5)";
-  ASSERT_NE(source.find(controller), std::string::npos);
-  source.replace(source.find(controller), controller.size(), "std::pow(error_ratio, 1.0 / 5)");
-  write_file(submission / "integrators.cpp", source);
+  const fs::path submission =
+      integrators_solution_with(dir, "inverted", "std::pow(error_ratio, -1.0 / 5)", "std::pow(error_ratio, 1.0 / 5)");
+  ASSERT_FALSE(submission.empty());
   const auto r = run_motus(dir, {"grade", "integrators", submission.string(), "--results", (dir / "results.json").string()});
   ASSERT_EQ(r.status, 0) << r.err;
   const json result = read_json(dir / "results.json");  // (kept: test_named points into it)

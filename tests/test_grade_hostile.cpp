@@ -174,18 +174,13 @@ TEST(Grade, NoExpectedValueReachesTheStudentsCode) {
   // proves nothing.)
   NEEDS_SANDBOX();
   TempDir dir;
-  const fs::path submission = copy_solution(dir, "integrators", "spy");
-  std::string source = read_file(submission / "integrators.cpp");
   const std::string anchor = "void rk4_step(const FirstOrderSystem& f, double t, double h, VectorInOut y) {\n";
-  ASSERT_NE(source.find(anchor), std::string::npos);
-  source.replace(source.find(anchor), anchor.size(),
-                 anchor +
-                     // (The scene travels as a JSON string in the request: its keys' quotes escaped.)
-                     R"(  std::lock_guard<std::mutex> lock(seen_lock);
+  // (The scene travels as a JSON string in the request: its keys' quotes escaped.)
+  const std::string checks = R"(  std::lock_guard<std::mutex> lock(seen_lock);
   if (seen.find(R"-("op")-") == std::string::npos) throw std::runtime_error("SAW NOTHING");
   if (seen.find(R"-(\"dt\")-") == std::string::npos) throw std::runtime_error("SAW NO SCENE");
   if (seen.find(R"-(\"reference\")-") != std::string::npos) throw std::runtime_error("SAW THE REFERENCE");
-)");
+)";
   const std::string spy = R"(#include <unistd.h>
 #include <mutex>
 #include <stdexcept>
@@ -213,7 +208,8 @@ struct Spy {
 } spy;
 }  // namespace
 )";
-  write_file(submission / "integrators.cpp", spy + source);
+  const fs::path submission = integrators_solution_with(dir, "spy", anchor, anchor + checks, spy);
+  ASSERT_FALSE(submission.empty());
   const auto r = run_motus(dir, {"grade", "integrators", submission.string(), "--hidden", hidden("integrators"),
                                  "--time-limit", "5", "--results", (dir / "results.json").string()});
   ASSERT_EQ(r.status, 0) << r.err;
