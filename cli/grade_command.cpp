@@ -164,9 +164,7 @@ int grade_one(const GradeCommandOptions& o, const std::string& folder) {
 // a line break, quotes doubled). A name a spreadsheet would take for a formula (=, +, -, @ first)
 // is prefixed with ' so that it opens as the text it is: the names come from the students.
 std::string csv_field(const std::string& name) {
-  std::string field;
-  for (const char c : name)  // (control characters, an escape sequence among them, are no name's: '?')
-    field += static_cast<unsigned char>(c) < 0x20 && c != '\n' && c != '\r' && c != '\t' ? '?' : c;
+  std::string field = grade::terminal_safe(name);  // (an escape sequence is no name's: '?')
   if (!field.empty() && std::string("=+-@\t\r").find(field[0]) != std::string::npos) field = "'" + field;
   if (field.find_first_of(",\"\r\n") == std::string::npos) return field;
   std::string quoted = "\"";
@@ -250,8 +248,8 @@ int grade_batch(const GradeCommandOptions& o, const std::string& folder) {
   fmt::print(stderr, "motus: graded {} submissions of {} in {:.1f} s with {} job{}; results in {}/\n", submissions.size(),
              assignment.name, wall, jobs, jobs == 1 ? "" : "s", out);
   for (const auto& f : failures) {
-    std::string line;  // (a student's folder name and an error: one line, no control characters)
-    for (const char c : f) line += static_cast<unsigned char>(c) < 0x20 ? '?' : c;
+    std::string line = grade::terminal_safe(f);  // (a student's folder name and an error: one line)
+    std::replace(line.begin(), line.end(), '\n', ' ');
     fmt::print(stderr, "motus: the grader failed on {}\n", line);
   }
   return failures.empty() ? 0 : kExitFailure;

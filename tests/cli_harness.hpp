@@ -179,6 +179,18 @@ inline bool wait_until_catching(pid_t pid, int signal) {
   return false;
 }
 
+// Waits up to `seconds` for process `pid` to end, its wait status in `raw`; if it has not ended
+// by then, kills it, reaps it and returns false (a test that then fails leaves nothing running).
+inline bool ended_within(pid_t pid, int seconds, int& raw) {
+  for (int i = 0; i < 10 * seconds; ++i) {
+    if (::waitpid(pid, &raw, WNOHANG) == pid) return true;
+    ::usleep(100000);
+  }
+  ::kill(pid, SIGKILL);
+  ::waitpid(pid, &raw, 0);
+  return false;
+}
+
 // Runs `motus ARGS...` as above.
 inline Result run_motus(const TempDir& dir, const std::vector<std::string>& args,
                         const std::vector<std::string>& environment = {}) {

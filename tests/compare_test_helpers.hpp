@@ -36,6 +36,17 @@ inline std::unique_ptr<Backend> built(const std::string& engine, const SceneDesc
   return b;
 }
 
+// What `engine` refuses to build of `scene`, as Unsupported lists it; empty when it builds it.
+inline std::vector<std::string> refused(const std::string& engine, const SceneDescription& scene, Integrator integrator,
+                                        double dt = 0.01) {
+  try {
+    make_backend(engine)->build(scene, integrator, dt);
+  } catch (const Unsupported& e) {
+    return e.elements();
+  }
+  return {};
+}
+
 inline Snapshot state(const Backend& b) {
   Snapshot s;
   b.read(s);

@@ -244,13 +244,7 @@ TEST(Grade, CtrlCEndsTheGradingWhileTheStudentsCodeRuns) {
     ::sleep(3);  // (the compiler or the first test underway: either way motus waits for a sandbox)
     ::kill(pid, SIGINT);
     int raw = 0;
-    for (int i = 0; i < 600; ++i) {  // 60 s at most, against the 600 s it would wait
-      if (::waitpid(pid, &raw, WNOHANG) == pid) return raw;
-      ::usleep(100000);
-    }
-    ::kill(pid, SIGKILL);
-    ::waitpid(pid, &raw, 0);
-    return -2;
+    return ended_within(pid, 60, raw) ? raw : -2;  // (60 s at most, against the 600 s it would wait)
   };
   const int one = interrupt({"grade", "integrators", submission.string(), "--time-limit", "600", "--results",
                              (dir / "results.json").string()});

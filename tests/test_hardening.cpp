@@ -430,16 +430,8 @@ TEST(Hardening, CtrlCBetweenSlowStepsStopsAtTheNextOne) {
     FAIL() << "the run wrote no trajectory in 20 s";
   }
   ::kill(pid, SIGINT);
-  bool ended = false;
-  for (int i = 0; i < 600 && !ended; ++i) {  // 60 s at most, against the 30 s of grace it used to take
-    ended = ::waitpid(pid, &raw, WNOHANG) == pid;
-    if (!ended) ::usleep(100000);
-  }
-  if (!ended) {
-    ::kill(pid, SIGKILL);
-    waitpid(pid, &raw, 0);
-    FAIL() << "Ctrl-C did not end the run within 60 s";
-  }
+  // (60 s at most, against the 30 s of grace it used to take)
+  if (!ended_within(pid, 60, raw)) FAIL() << "Ctrl-C did not end the run within 60 s";
   const std::string err = read_file(dir / "err.txt");
   EXPECT_EQ(WEXITSTATUS(raw), 130) << err;
   EXPECT_EQ(err.find("30 s"), std::string::npos) << err;

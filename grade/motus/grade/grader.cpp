@@ -228,8 +228,6 @@ nlohmann::json gradescope_json(const GradeResult& r) {
           {"tests", tests}};
 }
 
-namespace {
-
 // What the student's code wrote (its exception messages, its output), made safe for a terminal:
 // control characters but the line break and the tab (an escape sequence could clear the
 // instructor's screen, or rewrite what the lines above say) become '?', as do C1 controls.
@@ -249,8 +247,6 @@ std::string terminal_safe(const std::string& text) {
   }
   return safe;
 }
-
-}  // namespace
 
 std::string text_summary(const GradeResult& r) {
   std::string text = terminal_safe(r.output) + fmt::format(" ({:.1f} s)\n", r.seconds);

@@ -52,6 +52,9 @@ GradeResult grade_submission(const Assignment& assignment, const std::string& su
 nlohmann::json gradescope_json(const GradeResult& result);
 // The same as a person reads it.
 std::string text_summary(const GradeResult& result);
+// What a student wrote (their code's output, a folder name), made safe for a terminal: control
+// characters but the line break and the tab become '?', as do C1 controls.
+std::string terminal_safe(const std::string& text);
 // The results.json of a grading that could not finish (an internal failure): valid, and says so.
 nlohmann::json failed_json(const std::string& assignment, const std::string& why);
 // A results.json's text. What the student's code and compiler said may be in any encoding (an
