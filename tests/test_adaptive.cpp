@@ -7,8 +7,10 @@
 //  1. Local error (the controller's contract, integrators.md "Step-size control":
 //     accept a step when err ≤ 1, err = √(mean_i (e_i/sc_i)²), sc_i = atol + rtol·
 //     max(|y0_i|, |y1_i|)): with e = the TRUE local error of each accepted step (the
-//     result minus the exact solution started from the step's start), err ≤ 10 —
-//     the tolerance met within a factor of 10.
+//     result minus the exact solution started from the step's start), err ≤ 1. Both
+//     methods go on with the more accurate of the two results they compare (rk45 the
+//     fifth-order one, rk4-doubling the two half steps), whose true error is below the
+//     estimate the controller holds to 1 (measured: 0.34 for rk45, 0.80 for rk4-doubling).
 //  2. Fewer derivative evaluations (Simulation::evaluations(), rejected attempts
 //     included) than fixed-step RK4 needs for the same final global error (the issue).
 //  3. rk45 agrees with an independent implementation, SciPy's solve_ivp RK45
@@ -92,13 +94,13 @@ std::string name_of(const ::testing::TestParamInfo<Integrator>& info) {
 
 class Adaptive : public ::testing::TestWithParam<Integrator> {};
 
-TEST_P(Adaptive, TrueLocalErrorWithinTenTimesTolerance) {
+TEST_P(Adaptive, TrueLocalErrorWithinTolerance) {
   for (double tol : kTolerances) {
     const Outcome a = adaptive(GetParam(), tol);
     std::printf("  %-12s tol %.0e: worst scaled true local error %.3g; %ld steps, %ld rejected; global error %.3e"
                 " (error/tol %.0f)\n",
                 motus::info(GetParam()).name, tol, a.worst_local, a.steps, a.rejected, a.error, a.error / tol);
-    EXPECT_LE(a.worst_local, 10) << "tol = " << tol;  // integrators.md: err ≤ 1; the issue: within a factor 10
+    EXPECT_LE(a.worst_local, 1) << "tol = " << tol;  // integrators.md: a step is accepted when err ≤ 1
   }
 }
 
@@ -124,23 +126,26 @@ TEST_P(Adaptive, DISABLED_GlobalErrorWithinTenTimesTolerance) {
 INSTANTIATE_TEST_SUITE_P(Kepler, Adaptive, ::testing::Values(Integrator::Rk45, Integrator::Rk4Doubling), name_of);
 
 TEST(Rk45, MatchesScipySolveIvpRk45) {
-  // tests/reference/README.md: SciPy 1.10.1 solve_ivp(RK45), same problem and settings.
+  // tests/reference/README.md: SciPy 1.10.1 solve_ivp(RK45), same problem and settings, with
+  // SciPy's cap on a step's growth (10) set to motus's (5, step_size_control.hpp).
   struct ScipyRow {
     double tol, error;
     long nfev, steps;
   };
-  constexpr std::array<ScipyRow, 5> scipy = {{{1e-6, 8.3498e-04, 253, 32},
-                                              {1e-7, 7.8141e-05, 373, 49},
-                                              {1e-8, 6.3727e-06, 463, 75},
-                                              {1e-9, 4.9770e-07, 703, 117},
-                                              {1e-10, 3.8906e-08, 1123, 186}}};
+  constexpr std::array<ScipyRow, 5> scipy = {{{1e-6, 8.4333530085e-04, 253, 32},
+                                              {1e-7, 7.8140532492e-05, 373, 49},
+                                              {1e-8, 6.3726824955e-06, 463, 75},
+                                              {1e-9, 4.9770190934e-07, 703, 117},
+                                              {1e-10, 3.8905685614e-08, 1123, 186}}};
   for (const auto& row : scipy) {
     const Outcome a = adaptive(Integrator::Rk45, row.tol);
     // Same pair, same controller: the same steps and evaluations.
     EXPECT_EQ(a.evaluations, row.nfev) << "tol = " << row.tol;
     EXPECT_EQ(a.steps, row.steps) << "tol = " << row.tol;
-    // The same global error, to 2% (the last, landing step is cut differently).
-    EXPECT_NEAR(a.error / row.error, 1, 0.02) << "tol = " << row.tol;
+    // The same global error but for rounding: the same arithmetic in another order, over at most
+    // 186 steps of 6 stages on a state of size ≤ 4 (an ulp 9e-16), leaves the two ends within
+    // 1e-12 (a thousand ulps; measured: 9e-14 at most), against errors of 3.9e-8 and more.
+    EXPECT_NEAR(a.error, row.error, 1e-12) << "tol = " << row.tol;
   }
 }
 

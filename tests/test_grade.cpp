@@ -462,6 +462,25 @@ TEST(Grade, AStepSizeThatShrinksWithoutEndIsTheStudentsErrorWithItsHint) {
       << output;
 }
 
+// An order check whose finer runs blow up measures no order: it says which step size's error was
+// not finite, rather than an order of −∞ (or one from the coarser runs alone, which would pass).
+TEST(Grade, AnOrderCheckWhoseRunBlowsUpSaysWhereAndFails) {
+  NEEDS_SANDBOX();
+  TempDir dir;
+  // euler.order halves h = 0.01 three times; from h = 0.0025 on, this Euler overflows.
+  const fs::path submission = solution_with_euler_step_starting(dir, "overflows", "if (h < 0.004) x[0] = 1e300 * 1e300;");
+  ASSERT_FALSE(submission.empty());
+  const auto r = run_motus(dir, {"grade", "integrators", submission.string(), "--results", (dir / "results.json").string()});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const json result = read_json(dir / "results.json");  // (kept: test_named points into it)
+  const json* t = test_named(result, "euler.order");
+  ASSERT_NE(t, nullptr);
+  EXPECT_EQ((*t)["status"], "failed");
+  const std::string output = (*t)["output"].get<std::string>();
+  EXPECT_NE(output.find("no order: the error at h = 0.0025 is not finite"), std::string::npos) << output;
+  EXPECT_EQ(output.find("global order"), std::string::npos) << output;
+}
+
 // scores.csv is CSV whatever the students named their folders: a comma or a quote is quoted,
 // and a name a spreadsheet would run as a formula opens as text.
 TEST(Grade, TheScoresAreCsvWhateverTheFoldersAreCalled) {

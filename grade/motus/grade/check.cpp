@@ -277,14 +277,21 @@ public:
       hs.push_back(h);
       errors.push_back(error);
     }
-    // The order of the finest pair whose errors stand above rounding.
+    // The order of the finest pair whose errors stand above rounding; none when a run blew up
+    // (an order from the coarser pairs would pass code that fails at small steps).
+    const auto blew_up = std::find_if(errors.begin(), errors.end(), [](double e) { return !std::isfinite(e); });
     double order = NAN;
-    for (size_t k = errors.size() - 1; k >= 1 && std::isnan(order); --k)
-      if (errors[k] > 1e-12 && std::isfinite(errors[k - 1])) order = std::log2(errors[k - 1] / errors[k]);
+    for (size_t k = errors.size() - 1; blew_up == errors.end() && k >= 1 && std::isnan(order); --k)
+      if (errors[k] > 1e-12) order = std::log2(errors[k - 1] / errors[k]);
+    std::string what = fmt::format("global order {}", num(order));
+    if (blew_up != errors.end())
+      what = fmt::format("no order: the error at h = {} is not finite (the run blew up, or gave NaN)",
+                         num(hs[static_cast<size_t>(blew_up - errors.begin())]));
+    else if (std::isnan(order))
+      what = "no order: every error is at rounding's level (below 1e-12)";
     std::vector<std::string> table;
     for (size_t k = 0; k < hs.size(); ++k) table.push_back(fmt::format("h = {}: error {}", num(hs[k]), num(errors[k])));
-    const std::string measured =
-        fmt::format("global order {} from the errors at the end ({})", num(order), fmt::join(table, "; "));
+    const std::string measured = fmt::format("{} from the errors at the end ({})", what, fmt::join(table, "; "));
     const std::string expected = fmt::format("order {} ± {}", num(expected_), num(tolerance_));
     return std::abs(order - expected_) <= tolerance_ ? pass(measured) : fail(measured, expected, hint_);
   }
