@@ -167,6 +167,12 @@ TEST(Targets, InterpolatesOnLogLogAxes) {
   ASSERT_TRUE(for_good);
   EXPECT_NEAR(for_good->evaluations, 1000 * std::pow(10.0, 0.5), 1e-6);  // halfway from 1e-3 to 1e-5
   EXPECT_FALSE(precision::at_target(c, 1e-6));
+  // A method whose steps evaluate nothing (symplectic Euler among collisions alone) is read too.
+  c.points = {point(1e-13, 1e-6, 0), point(1e-14, 2e-6, 0)};
+  const auto no_evaluations = precision::at_target(c, 1e-10);
+  ASSERT_TRUE(no_evaluations);
+  EXPECT_TRUE(no_evaluations->upper_bound);
+  EXPECT_EQ(no_evaluations->evaluations, 0);
 }
 
 // ---------------------------------------------------------------------------------------------------------
@@ -253,6 +259,10 @@ TEST(BenchPrecisionCommand, MethodsThatCannotRunCollisionsAreReported) {
     EXPECT_TRUE(said) << method << "\n" << r.out;
   }
   EXPECT_NE(read_file(dir / "run" / "precision.csv").find(",symplectic-euler,"), std::string::npos);
+  // Its steps evaluate no force (collisions alone): its errors, rounding's (~1e-14), still meet
+  // every target, and the figure of evaluations says why it is not drawn there.
+  EXPECT_NE(read_file(dir / "run" / "targets.csv").find("1e-10,symplectic-euler,motus,"), std::string::npos);
+  EXPECT_NE(read_file(dir / "run" / "figures.gp").find("evaluate no force here: symplectic-euler"), std::string::npos);
 }
 
 TEST(BenchPrecisionCommand, BadPeersAndFlagsAreOneLineExitTwo) {

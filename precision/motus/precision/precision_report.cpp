@@ -1,6 +1,7 @@
 #include "motus/precision/precision_report.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <cmath>
@@ -55,6 +56,7 @@ std::vector<plot::Figure> diagrams(const ReportContext& c, const std::vector<Cur
               "Bullet with semi-implicit Euler)";
   }
   int motus_index = 0, peer_index = 0;
+  std::vector<std::string> no_evaluations;  // methods whose every point made no evaluation
   for (const Curve& curve : curves) {
     if (!curve.unsupported.empty() || curve.points.empty()) continue;
     const bool peer = curve.engine != "motus";
@@ -68,12 +70,21 @@ std::vector<plot::Figure> diagrams(const ReportContext& c, const std::vector<Cur
       if (!p.failed.empty()) continue;
       s.x.push_back(p.seconds);
       s.y.push_back(p.error);
+      // (A step with no force evaluates nothing, symplectic Euler among collisions: 0 has no
+      // place on a log axis.)
+      if (p.evaluations <= 0) continue;
       e.x.push_back(static_cast<double>(p.evaluations));
       e.y.push_back(p.error);
     }
     time.series.push_back(std::move(s));
-    work.series.push_back(std::move(e));
+    if (e.x.empty() && !time.series.back().x.empty()) {
+      no_evaluations.push_back(curve.method);
+    } else {
+      work.series.push_back(std::move(e));
+    }
   }
+  if (!no_evaluations.empty())
+    work.note += "; not drawn, as they evaluate no force here: " + fmt::format("{}", fmt::join(no_evaluations, ", "));
   return {time, work};
 }
 

@@ -8,7 +8,8 @@ std::optional<AtTarget> at_target(const Curve& curve, double target) {
   // The points that were measured, cheapest first (the sweep's order).
   std::vector<const Point*> points;
   for (const Point& p : curve.points)
-    if (p.failed.empty() && p.seconds > 0 && std::isfinite(p.seconds) && p.evaluations > 0) points.push_back(&p);
+    // (Evaluations may be 0: a step with no force evaluates nothing, symplectic Euler among collisions.)
+    if (p.failed.empty() && p.seconds > 0 && std::isfinite(p.seconds) && p.evaluations >= 0) points.push_back(&p);
   // An adaptive method's error is not monotone in its tolerance (dop853 on Kepler reaches 3e-7 at
   // rtol 1e-6 and 6e-7 at 1e-8): read the curve where it goes below the target for good, after its
   // last point above it, never at a lucky dip.
@@ -23,8 +24,11 @@ std::optional<AtTarget> at_target(const Curve& curve, double target) {
   // log t = log t0 + f (log t1 − log t0), f = (log E − log e0) / (log e1 − log e0)
   const double f = std::log(target / previous.error) / std::log(p.error / previous.error);
   auto between = [f](double a, double b) { return std::exp(std::log(a) + f * std::log(b / a)); };
-  return AtTarget{between(previous.seconds, p.seconds), between(previous.median_seconds, p.median_seconds),
-                  between(static_cast<double>(previous.evaluations), static_cast<double>(p.evaluations)), false};
+  const double evaluations = previous.evaluations > 0 && p.evaluations > 0
+                                 ? between(static_cast<double>(previous.evaluations), static_cast<double>(p.evaluations))
+                                 : static_cast<double>(p.evaluations);
+  return AtTarget{between(previous.seconds, p.seconds), between(previous.median_seconds, p.median_seconds), evaluations,
+                  false};
 }
 
 std::optional<Fastest> fastest(const std::vector<Curve>& curves, const std::string& engine, double target) {
