@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <fstream>
 #include <numbers>
+#include <span>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -77,6 +78,30 @@ TEST(RenderPixels, BallLandsWhereTheOrthographicFormulaSays) {
   // Just inside the rim on each side is still the ball (not background).
   EXPECT_NE(image.pixel(140 + 16, 60), options.background);
   EXPECT_NE(image.pixel(140, 60 + 16), options.background);
+}
+
+// A first-order scene's chart: each variable over its largest size. One that goes below 0 is
+// drawn on a −1 … 1 axis: its line stays inside the plot (whose bottom is 40 px above the
+// frame's), never below it and off the picture.
+TEST(RenderPixels, ATimeSeriesThatGoesNegativeStaysInsideThePlot) {
+  Canvas canvas(640, 480, 2);
+  const Viewport view = canvas.full();
+  DrawOptions options;
+  canvas.clear(options.background);
+  Recording rec;
+  for (int i = 0; i <= 100; ++i) {
+    const double t = 0.1 * i, y = std::cos(t);  // from 1 down to −1 and back
+    rec.add(t, std::span<const double>(&y, 1));
+  }
+  draw_time_series(canvas, view, rec, rec.size() - 1, {{"x"}, {}, "s"}, options);
+  const Image image = canvas.image();
+  int lowest = -1;  // the lowest row the line reaches
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 48; x < 400; ++x)
+      if (image.pixel(x, y) == body_color(0)) lowest = y;
+  ASSERT_GE(lowest, 0) << "no line drawn";
+  EXPECT_LE(lowest, 480 - 40 + 3) << "the line runs below the plot";  // (its 2.2 px width)
+  EXPECT_GE(lowest, 480 - 40 - 3) << "−1 is not at the plot's bottom";
 }
 
 // The same in a viewport (a panel) offset into a larger canvas: everything moves by the viewport's corner.

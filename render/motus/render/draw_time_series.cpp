@@ -43,7 +43,17 @@ void draw_time_series(Canvas& canvas, const Viewport& v, const Recording& rec, s
                bottom = v.y + v.height - 40;
   const double t0 = rec.times.front(), t1 = rec.times.back() > t0 ? rec.times.back() : t0 + 1;
   auto px = [&](double t) { return left + (t - t0) / (t1 - t0) * (right - left); };
-  auto py = [&](double y) { return bottom - y * (bottom - top); };
+  // Each variable over its largest magnitude over the run: from 0 to 1, or from −1 when one goes
+  // below 0 (Van der Pol's x and v swing both ways).
+  std::vector<double> peaks(count, 1), ends(count);
+  bool negative = false;
+  for (size_t k = 0; k < count; ++k) {
+    double peak = 0;
+    for (const auto& y : rec.states) peak = std::max(peak, std::abs(y[k])), negative = negative || y[k] < 0;
+    if (peak > 0) peaks[k] = peak;
+  }
+  const double low = negative ? -1 : 0;
+  auto py = [&](double y) { return bottom - (y - low) / (1 - low) * (bottom - top); };
   const Color grey{90, 94, 104, 255};
   // Axes, grid and tick labels; the time axis says what it counts.
   const TextStyle tick{11, grey, Align::center};
@@ -56,20 +66,16 @@ void draw_time_series(Canvas& canvas, const Viewport& v, const Recording& rec, s
   canvas.text(static_cast<int>((left + right) / 2), static_cast<int>(bottom) + 30,
               labels.time_unit == "year" ? "year" : "t [" + labels.time_unit + "]", {11, kInk, Align::center});
   for (int i = 0; i <= 4; ++i) {
-    thick_line(left, py(i / 4.0), right, py(i / 4.0), 1, kGrid);
-    canvas.text(static_cast<int>(left) - 6, static_cast<int>(py(i / 4.0)) + 4, format_number("%g", i / 4.0),
-                {11, grey, Align::right});
+    const double y = low + (1 - low) * i / 4.0;
+    thick_line(left, py(y), right, py(y), y == 0 && negative ? 1.5 : 1, y == 0 && negative ? grey : kGrid);
+    canvas.text(static_cast<int>(left) - 6, static_cast<int>(py(y)) + 4, format_number("%g", y), {11, grey, Align::right});
   }
   thick_line(left, bottom, right, bottom, 1.5, kInk);
   thick_line(left, top, left, bottom, 1.5, kInk);
-  canvas.text(static_cast<int>(left), static_cast<int>(top) - 8, "each variable / its largest value over the run",
+  canvas.text(static_cast<int>(left), static_cast<int>(top) - 8, "each variable / its largest magnitude over the run",
               {11, grey});
   // The lines, up to now; the end labels spread apart afterwards.
-  std::vector<double> peaks(count, 1), ends(count);
   for (size_t k = 0; k < count; ++k) {
-    double peak = 0;
-    for (const auto& y : rec.states) peak = std::max(peak, std::abs(y[k]));
-    if (peak > 0) peaks[k] = peak;
     const Color c = body_color(static_cast<int>(k));
     for (size_t i = 1; i <= upto; ++i)
       thick_line(px(rec.times[i - 1]), py(rec.states[i - 1][k] / peaks[k]), px(rec.times[i]),
