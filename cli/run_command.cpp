@@ -150,9 +150,15 @@ void print_table(std::FILE* out, const std::vector<std::vector<double>>& rows, c
   fmt::print(out, "{:>10}", "t");
   for (const auto& n : names) fmt::print(out, "{:>14}", n);
   fmt::print(out, "\n");
+  // A column is 14 wide and its number at most 13, so that a space always parts two (a negative
+  // number in exponent form, -1.2345678e-05, takes all 14 at 8 digits: it gets 7).
+  auto cell = [](double value) {
+    std::string text = fmt::format("{:.8g}", value);
+    for (int digits = 7; text.size() > 13 && digits >= 1; --digits) text = fmt::format("{:.{}g}", value, digits);
+    return fmt::format("{:>14}", text);
+  };
   for (const auto& row : rows) {
-    for (size_t k = 0; k < row.size(); ++k)
-      fmt::print(out, "{}", k == 0 ? fmt::format("{:>10.6g}", row[k]) : fmt::format("{:>14.8g}", row[k]));
+    for (size_t k = 0; k < row.size(); ++k) fmt::print(out, "{}", k == 0 ? fmt::format("{:>10.6g}", row[k]) : cell(row[k]));
     fmt::print(out, "\n");
   }
 }

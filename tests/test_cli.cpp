@@ -315,6 +315,28 @@ TEST(CliRun, StepsThreeEndsAtThreeOnTheNotesTable) {
   EXPECT_EQ(j.at("state").at("v")[0][0].get<double>(), -25.0);
 }
 
+// The step-by-step table parts every two numbers by a space, however long: the stick pendulum's
+// bob has vx = -0.00083536552 at its second step, which at 8 digits fills a column's 14.
+TEST(CliRun, TheStepTableKeepsItsColumnsApart) {
+  TempDir dir;
+  const Result r = run_motus(dir, {"run", scene("stick_pendulum"), "--steps", "3", "--repeats", "1"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  std::stringstream lines(r.out);
+  int rows = 0;
+  for (std::string line; std::getline(lines, line);) {
+    if (line.find("-9.81") == std::string::npos) continue;  // the table's rows: ay = -9.81
+    ++rows;
+    std::stringstream cells(line);
+    int columns = 0;
+    for (std::string cell; cells >> cell;) {
+      ++columns;
+      EXPECT_NO_THROW((void)std::stod(cell)) << cell;
+    }
+    EXPECT_EQ(columns, 13) << line;  // t and x, v, a of two bodies in 2-D
+  }
+  EXPECT_EQ(rows, 4) << r.out;
+}
+
 TEST(CliRun, TrajectoryRefusesToOverwriteUnlessAsked) {
   TempDir dir;
   const std::string csv = (dir / "trajectory.csv").string();
