@@ -224,6 +224,49 @@ struct Spy {
 // has a process group of its own, which the terminal's Ctrl-C never reaches, and motus used to
 // wait for the test's limit (or the compiler) before it looked at the interrupt; a batch aborted
 // ("terminate called without an active exception") and left its folder half filled.
+// A submission that stops reading its input: at its first call it shrinks its input pipe to one
+// page and has a thread hold stdin's lock, so that its server answers the first request and
+// never reads another. The grader's next request (a scene of 16 KB: more than the pipe holds)
+// used to wait in write() for ever — past the test's limit, and past Ctrl-C. It times out as
+// any other test does, and grading goes on.
+TEST(Grade, ASubmissionThatStopsReadingItsInputTimesOut) {
+  NEEDS_SANDBOX();
+  TempDir dir;
+  json test = definitions("integrators").at("euler.order");  // four runs, one server
+  ASSERT_EQ(test["scene"], "oscillator");
+  test.erase("scene");
+  test["scene_file"] = "scenes/long_oscillator.json";
+  const fs::path assignment = integrators_with_tests(dir, "long", json::array({test}));
+  json scene = read_json(fs::path(kScenes) / "oscillator.json");
+  scene.erase("$schema");
+  scene["description"] = std::string(16 << 10, 'x');
+  fs::create_directories(assignment / "tests/scenes");
+  write_file(assignment / "tests/scenes/long_oscillator.json", scene.dump(1));
+  const fs::path submission = solution_with_euler_step_starting(
+      dir, "stops-reading",
+      "static bool first = true; if (first) { first = false; ::fcntl(0, F_SETPIPE_SZ, 4096); "
+      "std::thread([] { ::flockfile(stdin); for (;;) ::pause(); }).detach(); ::usleep(100000); }",
+      "#include <fcntl.h>\n#include <unistd.h>\n#include <cstdio>\n#include <thread>\n");
+  ASSERT_FALSE(submission.empty());
+  MotusFiles files;
+  files.err = (dir / "err.txt").string();
+  files.folder = dir.path().string();
+  const pid_t pid = start_motus_with({"grade", assignment.string(), submission.string(), "--time-limit", "2", "--results",
+                                      (dir / "results.json").string()},
+                                     files);
+  ASSERT_GT(pid, 0);
+  int raw = 0;
+  ASSERT_TRUE(ended_within(pid, 120, raw)) << "grading hung: " << read_file(dir / "err.txt");
+  ASSERT_TRUE(WIFEXITED(raw) && WEXITSTATUS(raw) == 0) << raw << ": " << read_file(dir / "err.txt");
+  const json result = read_json(dir / "results.json");  // (kept: test_named points into it)
+  expect_valid_gradescope(result);
+  const json* t = test_named(result, "euler.order");
+  ASSERT_NE(t, nullptr);
+  EXPECT_EQ((*t)["status"], "failed");
+  EXPECT_NE((*t)["output"].get<std::string>().find("timed out after 2 s"), std::string::npos) << (*t)["output"];
+  EXPECT_TRUE(sandbox_processes_left().empty()) << ::testing::PrintToString(sandbox_processes_left());
+}
+
 TEST(Grade, CtrlCEndsTheGradingWhileTheStudentsCodeRuns) {
   NEEDS_SANDBOX();
   TempDir dir;

@@ -61,8 +61,9 @@ nlohmann::json Probe::ask(nlohmann::json request, std::chrono::steady_clock::tim
   if (!server_) start();
   const std::string op = request.value("op", std::string("?"));
   const std::string doing = op == "run" ? "a run of the scene" : op == "project" ? "satisfy_constraints" : op;
-  if (!server_->write_line(request.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace))) died(doing);
-  const auto line = server_->read_line(deadline);
+  const bool written =
+      server_->write_line(request.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace), deadline);
+  const auto line = written ? server_->read_line(deadline) : std::nullopt;
   if (!line && server_->interrupted()) {
     server_->kill();
     server_.reset();

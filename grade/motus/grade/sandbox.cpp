@@ -205,6 +205,9 @@ SandboxProcess::SandboxProcess(const SandboxSpec& spec, const Limits& limits)
   in_ = in[1];
   out_ = out[0];
   err_ = err[0];
+  // Writes never block: a program that stops reading its input (or shrinks the pipe) would hold
+  // the grader in write() past every limit. write_line waits in poll, with the deadline.
+  ::fcntl(in_, F_SETFL, ::fcntl(in_, F_GETFL) | O_NONBLOCK);
   ::signal(SIGPIPE, SIG_IGN);  // a sandbox that closed its input must not kill the grader
 }
 
@@ -214,25 +217,24 @@ SandboxProcess::~SandboxProcess() {
     if (fd >= 0) ::close(fd);
 }
 
-bool SandboxProcess::write_line(const std::string& line) {
+bool SandboxProcess::write_line(const std::string& line, std::chrono::steady_clock::time_point deadline) {
   if (in_ < 0) return false;
-  std::string text = line + "\n";
-  const char* p = text.data();
-  size_t left = text.size();
-  while (left > 0) {
-    const ssize_t n = ::write(in_, p, left);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) return false;
-    p += n;
-    left -= static_cast<size_t>(n);
-  }
-  return true;
+  pending_ = line + "\n";
+  pending_at_ = 0;
+  write_failed_ = false;
+  pump(deadline, false);
+  const bool written = pending_at_ == pending_.size() && !write_failed_;
+  pending_.clear();
+  pending_at_ = 0;
+  return written;
 }
 
 void SandboxProcess::pump(std::chrono::steady_clock::time_point deadline, bool want_line) {
   char buffer[65536];
-  while (out_ >= 0 || err_ >= 0) {
+  auto writing = [&] { return in_ >= 0 && !write_failed_ && pending_at_ < pending_.size(); };
+  while (out_ >= 0 || err_ >= 0 || writing()) {
     if (want_line && out_buffer_.find('\n') != std::string::npos) return;
+    if (!want_line && !writing()) return;
     const auto now = std::chrono::steady_clock::now();
     if (now >= deadline) {
       timed_out_ = true;
@@ -244,10 +246,18 @@ void SandboxProcess::pump(std::chrono::steady_clock::time_point deadline, bool w
     }
     const int wait_ms = static_cast<int>(std::min<long long>(
         std::chrono::duration_cast<std::chrono::milliseconds>(deadline - now).count() + 1, stop_ ? 100 : 1000));
-    pollfd fds[2] = {{out_, POLLIN, 0}, {err_, POLLIN, 0}};
-    const int ready = ::poll(fds, 2, wait_ms);
+    pollfd fds[3] = {{out_, POLLIN, 0}, {err_, POLLIN, 0}, {writing() ? in_ : -1, POLLOUT, 0}};
+    const int ready = ::poll(fds, 3, wait_ms);
     if (ready < 0 && errno != EINTR) return;
     if (ready <= 0) continue;
+    if (fds[2].fd >= 0 && (fds[2].revents & (POLLOUT | POLLERR | POLLHUP))) {
+      const ssize_t n = ::write(in_, pending_.data() + pending_at_, pending_.size() - pending_at_);
+      if (n > 0) {
+        pending_at_ += static_cast<size_t>(n);
+      } else if (!(n < 0 && (errno == EAGAIN || errno == EWOULDBLOCK || errno == EINTR))) {
+        write_failed_ = true;  // it closed its input (EPIPE), or is gone
+      }
+    }
     if (fds[1].fd >= 0 && (fds[1].revents & (POLLIN | POLLHUP | POLLERR))) {
       const ssize_t n = ::read(err_, buffer, sizeof buffer);
       if (n <= 0) {

@@ -89,8 +89,10 @@ public:
   SandboxProcess(const SandboxProcess&) = delete;
   SandboxProcess& operator=(const SandboxProcess&) = delete;
 
-  // One line to its standard input; false when it is gone.
-  bool write_line(const std::string& line);
+  // One line to its standard input, waiting until `deadline` (reading what it writes meanwhile:
+  // a program that stops reading cannot hold the grader); false when it is gone, at the deadline
+  // (then timed_out() is true) or when the spec's `stop` said so (interrupted()).
+  bool write_line(const std::string& line, std::chrono::steady_clock::time_point deadline);
   // Its next line of standard output, waiting until `deadline`; nullopt at end of file or
   // at the deadline (then timed_out() is true).
   std::optional<std::string> read_line(std::chrono::steady_clock::time_point deadline);
@@ -113,6 +115,9 @@ private:
   uid_t uid_ = 0;
   int in_ = -1, out_ = -1, err_ = -1;
   std::string out_buffer_, errors_;
+  std::string pending_;     // what write_line has still to write, from pending_at_
+  size_t pending_at_ = 0;
+  bool write_failed_ = false;
   size_t error_cap_;
   bool errors_cut_ = false;
   bool timed_out_ = false;
