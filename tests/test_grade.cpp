@@ -481,6 +481,40 @@ TEST(Grade, AnOrderCheckWhoseRunBlowsUpSaysWhereAndFails) {
   EXPECT_EQ(output.find("global order"), std::string::npos) << output;
 }
 
+// A projection check that asks only for the pins fails positions that are not numbers: std::max
+// kept 0 against a NaN distance, and a projection that left every body at NaN passed.
+TEST(Grade, APinsCheckFailsPositionsThatAreNotNumbers) {
+  NEEDS_SANDBOX();
+  TempDir dir;
+  const fs::path assignment = dir / "pins-only";
+  fs::copy(fs::path(kAssignments) / "cloth", assignment, fs::copy_options::recursive);
+  fs::remove_all(assignment / "hidden");
+  json meta = read_json(assignment / "assignment.json");
+  meta.erase("starter_passes");  // (it names tests this copy has not)
+  write_file(assignment / "assignment.json", meta.dump(2));
+  json test = definitions("cloth").at("pins.hold");
+  test["expect"] = {{"pins", 1e-12}};
+  write_file(assignment / "tests/public.json", json{{"tests", json::array({test})}}.dump(2));
+  write_file(assignment / "rubric.json",
+             json{{"tests", json::array({{{"name", "pins.hold"}, {"points", 1}, {"visibility", "visible"}}})}}.dump(2));
+  const fs::path submission = copy_solution(dir, "cloth", "nan");
+  std::string source = read_file(submission / "cloth.cpp");
+  const std::string anchor = "void satisfy_constraints(Bodies& bodies, const Constraints& c) {\n";
+  ASSERT_NE(source.find(anchor), std::string::npos);
+  // Every body at NaN when it returns (a destructor runs after the solution's own last line).
+  source.replace(source.find(anchor), anchor.size(),
+                 anchor + "  struct Nan { Bodies& b; ~Nan() { for (int i = 0; i < b.count; ++i) "
+                          "b.position(i).setConstant(std::nan(\"\")); } } nan{bodies};\n");
+  write_file(submission / "cloth.cpp", "#include <cmath>\n" + source);
+  const auto r = run_motus(dir, {"grade", assignment.string(), submission.string(), "--results", (dir / "results.json").string()});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const json result = read_json(dir / "results.json");  // (kept: test_named points into it)
+  const json* t = test_named(result, "pins.hold");
+  ASSERT_NE(t, nullptr);
+  EXPECT_EQ((*t)["status"], "failed") << (*t)["output"];
+  EXPECT_NE((*t)["output"].get<std::string>().find("off their pins by up to ∞"), std::string::npos) << (*t)["output"];
+}
+
 // scores.csv is CSV whatever the students named their folders: a comma or a quote is quoted,
 // and a name a spreadsheet would run as a formula opens as text.
 TEST(Grade, TheScoresAreCsvWhateverTheFoldersAreCalled) {

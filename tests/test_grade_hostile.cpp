@@ -60,6 +60,14 @@ TEST(Grade, HostileSubmissionsEndWithinTheirLimitsAndHarmNothing) {
        "for (int i = 0; i < 256; ++i) std::cout << junk; }",
        ""},
       {"write-outside", "#include <fstream>\n", "std::ofstream(\"" + marker.string() + "\") << \"escaped\";", ""},
+      // 8 MB of message: cut, as output is (it went whole into results.json).
+      {"huge-message", "#include <stdexcept>\n#include <string>\n", "throw std::runtime_error(std::string(8 << 20, 'A'));",
+       "threw std::runtime_error: AAAA"},
+      // /dev is a tmpfs of its own, unsized: writable, it held memory past every limit.
+      {"write-dev", "#include <fstream>\n#include <stdexcept>\n",
+       "for (const char* f : {\"/dev/filled\", \"/dev/shm/filled\"}) if (std::ofstream(f) << \"x\") "
+       "throw std::runtime_error(\"WROTE TO /dev\");",
+       ""},
       {"read-hidden", "#include <fstream>\n#include <stdexcept>\n",
        "for (const char* f : {\"" + hidden_file + "\", \"" + solution +
            "\"}) if (std::ifstream(f)) throw std::runtime_error(\"READ THE ANSWERS\");",
@@ -100,7 +108,7 @@ TEST(Grade, HostileSubmissionsEndWithinTheirLimitsAndHarmNothing) {
                                  "--time-limit", "2", "--out", (dir / "results").string()});
   ::close(listener);
   ASSERT_EQ(r.status, 0) << r.err;
-  // (15 submissions, 2 at a time, each test at most 2 s: a grader that hung would meet ctest's TIMEOUT.)
+  // (17 submissions, 2 at a time, each test at most 2 s: a grader that hung would meet ctest's TIMEOUT.)
 
   double public_max = 0;
   const auto defs = definitions("integrators");

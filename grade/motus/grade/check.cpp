@@ -839,6 +839,8 @@ public:
     if (!std::isnan(pins_max_)) {
       double worst = 0;
       for (const auto& p : pins_) worst = std::max(worst, (at(x, p.body) - Eigen::Map<const Vector>(p.position.data(), d_)).norm());
+      // (std::max keeps 0 against a NaN distance: positions that are not numbers are off their pins.)
+      if (!std::all_of(x.begin(), x.end(), [](double v) { return std::isfinite(v); })) worst = INFINITY;
       add(worst <= pins_max_, "pinned bodies off their pins by up to " + num(worst) + " m", "at most " + num(pins_max_) + " m");
     }
     if (!std::isnan(centre_max_)) {

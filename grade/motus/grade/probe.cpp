@@ -3,6 +3,10 @@
 #include <filesystem>
 
 namespace motus::grade {
+namespace {
+// The most of a student's error message a test's output keeps (their output's end is cut to 1200).
+constexpr size_t kMessageBytes = 2000;
+}  // namespace
 
 Probe::Probe(ProbeSetup setup) : setup_(std::move(setup)) {}
 
@@ -77,7 +81,14 @@ nlohmann::json Probe::ask(nlohmann::json request, std::chrono::steady_clock::tim
     died(doing);
   }
   if (!reply.value("ok", false)) {
-    const std::string error = reply.value("error", std::string("failed"));
+    // The student's own words (an exception's message), cut as its output is: 8 MB of them went
+    // whole into results.json.
+    std::string error = reply.value("error", std::string("failed"));
+    if (error.size() > kMessageBytes) {
+      size_t cut = kMessageBytes;
+      while (cut > 0 && (static_cast<unsigned char>(error[cut]) & 0xC0) == 0x80) --cut;  // (not inside a UTF-8 character)
+      error = error.substr(0, cut) + "… (cut: " + std::to_string(error.size()) + " bytes in all)";
+    }
     // The memory limit shows up as a failed allocation in the student's code.
     if (error.find("std::bad_alloc") != std::string::npos)
       throw ProbeFailure("your code ran out of its " + std::to_string(setup_.limits.memory_mb) + " MB (" + error + ")");

@@ -140,7 +140,9 @@ SandboxProcess::SandboxProcess(const SandboxSpec& spec, const Limits& limits)
     args = {bwrap, "--unshare-all", "--die-with-parent", "--new-session",
             "--ro-bind", "/usr", "/usr", "--symlink", "usr/lib", "/lib", "--symlink", "usr/lib64", "/lib64",
             "--symlink", "usr/bin", "/bin", "--symlink", "usr/sbin", "/sbin",
-            "--proc", "/proc", "--dev", "/dev",
+            // /dev's own tmpfs read-only (its devices stay usable): unsized, it held as much as
+            // half the machine's memory past every limit; scratch space is the sized /tmp.
+            "--proc", "/proc", "--dev", "/dev", "--remount-ro", "/dev",
             "--size", std::to_string(limits.tmpfs_mb << 20), "--tmpfs", "/tmp"};
     for (const auto& m : spec.mounts) {
       args.push_back(m.writable ? "--bind" : "--ro-bind");
@@ -222,19 +224,20 @@ bool SandboxProcess::write_line(const std::string& line, std::chrono::steady_clo
   pending_ = line + "\n";
   pending_at_ = 0;
   write_failed_ = false;
-  pump(deadline, false);
+  pump(deadline, Until::written);
   const bool written = pending_at_ == pending_.size() && !write_failed_;
   pending_.clear();
   pending_at_ = 0;
   return written;
 }
 
-void SandboxProcess::pump(std::chrono::steady_clock::time_point deadline, bool want_line) {
+void SandboxProcess::pump(std::chrono::steady_clock::time_point deadline, Until until) {
+  const bool want_line = until == Until::line;
   char buffer[65536];
   auto writing = [&] { return in_ >= 0 && !write_failed_ && pending_at_ < pending_.size(); };
   while (out_ >= 0 || err_ >= 0 || writing()) {
     if (want_line && out_buffer_.find('\n') != std::string::npos) return;
-    if (!want_line && !writing()) return;
+    if (until == Until::written && !writing()) return;
     const auto now = std::chrono::steady_clock::now();
     if (now >= deadline) {
       timed_out_ = true;
@@ -289,7 +292,7 @@ void SandboxProcess::pump(std::chrono::steady_clock::time_point deadline, bool w
 }
 
 std::optional<std::string> SandboxProcess::read_line(std::chrono::steady_clock::time_point deadline) {
-  pump(deadline, true);
+  pump(deadline, Until::line);
   const size_t end = out_buffer_.find('\n');
   if (end == std::string::npos) return std::nullopt;
   std::string line = out_buffer_.substr(0, end);
@@ -329,7 +332,7 @@ Ending SandboxProcess::finish(std::chrono::steady_clock::time_point deadline) {
     ::close(in_);
     in_ = -1;
   }
-  pump(deadline, false);
+  pump(deadline, Until::end);
   if (timed_out_ || interrupted_) return kill();
   return reap(false);
 }

@@ -108,7 +108,10 @@ public:
   const std::string& errors() const { return errors_; }
 
 private:
-  void pump(std::chrono::steady_clock::time_point deadline, bool want_line);
+  // Reads its output (and writes what write_line has pending) until `until` holds, its output
+  // ends, the deadline passes or `stop` says so.
+  enum class Until { line, written, end };
+  void pump(std::chrono::steady_clock::time_point deadline, Until until);
   Ending reap(bool killed);
 
   pid_t pid_ = -1;
