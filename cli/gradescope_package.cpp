@@ -7,6 +7,7 @@
 #include <fstream>
 
 #include "cli_common.hpp"
+#include "motus/grade/grader.hpp"
 #include "motus/process/run_program.hpp"
 
 namespace fs = std::filesystem;
@@ -63,9 +64,7 @@ int write_gradescope_package(const std::string& assignment_folder, const std::st
   check_can_replace(zip, overwrite);
   const std::string source = source_directory();
   if (source.empty()) throw InputError("--package: needs the source tree motus was built from (it goes into the zip)");
-  std::string pattern = (fs::temp_directory_path() / "motus-package-XXXXXX").string();
-  if (!::mkdtemp(pattern.data())) throw std::runtime_error("cannot make a temporary folder");
-  const fs::path staging(pattern);
+  const fs::path staging(grade::make_temporary_folder("", "motus-package-"));
   struct Cleanup {
     fs::path path;
     ~Cleanup() {

@@ -425,6 +425,28 @@ TEST(Grade, WhatStopsTheGradingStillLeavesAResultsFileThatSaysWhy) {
   EXPECT_NE(result["output"].get<std::string>().find("nor in --hidden"), std::string::npos) << result.dump(2);
 }
 
+// A sandbox that cannot reach a folder is the grader's fault: with TMPDIR a 0700 folder of root's,
+// the sandbox's user could not enter the work folder, and every student scored 0 with "does not
+// compile" (bubblewrap's "Permission denied" shown as the compiler's words). Now the grading stops
+// as a grader failure (exit 1; results.json says so) naming the folder. (Root only: without root
+// the sandbox runs as the grader's own user, who can enter it.)
+TEST(Grade, AFolderTheSandboxCannotEnterIsTheGradersFaultNamed) {
+  NEEDS_SANDBOX();
+  if (::geteuid() != 0) GTEST_SKIP() << "needs root: the sandbox's user is then another";
+  TempDir dir;
+  const fs::path closed = dir / "closed";
+  fs::create_directories(closed);
+  fs::permissions(closed, fs::perms::owner_all);  // 0700
+  const fs::path submission = copy_solution(dir, "integrators", "solution");
+  const auto r = run_motus(dir, {"grade", "integrators", submission.string(), "--results", (dir / "results.json").string()},
+                           {"TMPDIR=" + closed.string()});
+  EXPECT_EQ(r.status, 1) << r.err;
+  EXPECT_NE(r.err.find(closed.string() + " (mode 0700): the sandbox's user"), std::string::npos) << r.err;
+  const json result = read_json(dir / "results.json");
+  EXPECT_EQ(result["extra_data"]["internal_error"], true) << result.dump(2);
+  EXPECT_NE(result["output"].get<std::string>().find("fault of the grader"), std::string::npos) << result.dump(2);
+}
+
 // What a student's code writes reaches the instructor's terminal without its control characters:
 // an escape sequence could clear the screen or rewrite the lines above it (the JSON escapes them).
 TEST(Grade, AStudentsEscapeSequencesNeverReachTheTerminal) {

@@ -70,7 +70,8 @@ BuildResult build_plugin(const Assignment& a, const std::string& staged, const s
   limits.tmpfs_mb = 256;
   BuildResult result;
   bool interrupted = false;
-  try {
+  {
+    // (A sandbox that cannot be made is the grader's fault, never the student's: it throws on.)
     SandboxProcess compiler(spec, limits);
     const auto started = std::chrono::steady_clock::now();
     const Ending ending = compiler.finish(started + std::chrono::seconds(90));
@@ -80,8 +81,11 @@ BuildResult build_plugin(const Assignment& a, const std::string& staged, const s
     result.ok = ending.exited && ending.status == 0 && fs::is_regular_file(fs::path(out) / "student.so");
     if (!ending.exited || ending.status != 0)
       result.output += "(the compiler " + ending.describe(limits, wall) + ")\n";
-  } catch (const std::exception& e) {
-    result.output = std::string("the compiler could not be started: ") + e.what();
+    // bubblewrap's own failure (it prints "bwrap: …" and exits 1) is the sandbox's, not the code's.
+    // (The compiler's words start with a file's name, and only the handout's names are taken.)
+    if (!result.ok && !interrupted && compiler.errors().rfind("bwrap: ", 0) == 0)
+      throw std::runtime_error("the sandbox could not start the compiler: " +
+                               compiler.errors().substr(0, compiler.errors().find('\n')));
   }
   if (interrupted) throw GradingInterrupted();
   result.plugin = (fs::path(out) / "student.so").string();

@@ -7,6 +7,7 @@
 #include <cctype>
 #include <chrono>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 
 #include "motus/grade/probe.hpp"
@@ -46,9 +47,7 @@ constexpr std::uintmax_t kMaxFileBytes = 1 << 20;  // a handed-in file larger th
 class WorkFolder {
 public:
   explicit WorkFolder(const std::string& root) {
-    std::string pattern = (fs::path(root.empty() ? fs::temp_directory_path().string() : root) / "motus-grade-XXXXXX").string();
-    if (!::mkdtemp(pattern.data())) throw std::runtime_error("cannot make a temporary folder in " + root);
-    path_ = pattern;
+    path_ = make_temporary_folder(root, "motus-grade-");
     ::chmod(path_.c_str(), 0711);  // the sandbox's user may enter, not list
   }
   ~WorkFolder() {
@@ -70,6 +69,27 @@ TestResult gate(const std::string& name, const std::string& number, const std::s
 }
 
 }  // namespace
+
+std::string make_temporary_folder(const std::string& root, const std::string& prefix) {
+  fs::path folder = root;
+  if (root.empty()) {
+    std::error_code error;
+    folder = fs::temp_directory_path(error);
+    if (error) {
+      const char* tmpdir = std::getenv("TMPDIR");
+      throw std::runtime_error((tmpdir ? "TMPDIR=" + std::string(tmpdir) : std::string("the temporary folder")) +
+                               ": cannot make a temporary folder there (" + error.message() + ")");
+    }
+  }
+  std::string pattern = (folder / (prefix + "XXXXXX")).string();
+  if (!::mkdtemp(pattern.data())) {
+    const std::string why = std::strerror(errno);
+    const char* tmpdir = std::getenv("TMPDIR");
+    throw std::runtime_error((root.empty() && tmpdir ? "TMPDIR=" : "") + folder.string() +
+                             ": cannot make a temporary folder there (" + why + ")");
+  }
+  return pattern;
+}
 
 GradeResult grade_submission(const Assignment& a, const std::string& submission, const GradeOptions& o) {
   const auto began = std::chrono::steady_clock::now();

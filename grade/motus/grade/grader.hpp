@@ -55,6 +55,10 @@ std::string text_summary(const GradeResult& result);
 // What a student wrote (their code's output, a folder name), made safe for a terminal: control
 // characters but the line break and the tab become '?', as do C1 controls.
 std::string terminal_safe(const std::string& text);
+
+// A new folder `prefix`XXXXXX in `root` ("": the system's temporary folder, TMPDIR's), mode 0700.
+// Throws std::runtime_error naming the folder (and TMPDIR) and why not.
+std::string make_temporary_folder(const std::string& root, const std::string& prefix);
 // The results.json of a grading that could not finish (an internal failure): valid, and says so.
 nlohmann::json failed_json(const std::string& assignment, const std::string& why);
 // A results.json's text. What the student's code and compiler said may be in any encoding (an

@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <stdexcept>
@@ -81,6 +82,37 @@ std::string format_seconds(double s) {
   return text;
 }
 
+
+// Why the sandbox's user (uid, no supplementary groups) cannot reach `host` for a mount, or "":
+// bubblewrap runs as that user, who must pass through every folder on the way and read the
+// file (a TMPDIR or an assignment under a 0700 folder of root's gave every student 0 points,
+// "does not compile", with bubblewrap's "Permission denied" as the compiler's words).
+std::string unreachable_for(uid_t uid, const std::string& host) {
+  std::error_code error;
+  const fs::path path = fs::canonical(host, error);
+  if (error) return host + ": " + error.message();
+  auto allowed = [uid](const struct stat& st, mode_t user, mode_t group, mode_t other) {
+    return st.st_uid == uid ? (st.st_mode & user) != 0 : st.st_gid == uid ? (st.st_mode & group) != 0 : (st.st_mode & other) != 0;
+  };
+  auto mode = [](const struct stat& st) {
+    char text[8];
+    std::snprintf(text, sizeof text, "%04o", static_cast<unsigned>(st.st_mode & 07777));
+    return std::string(text);
+  };
+  fs::path at = path.root_path();
+  for (auto part = path.begin(); part != path.end(); ++part) {
+    if (part != path.begin()) at /= *part;
+    struct stat st {};
+    if (::stat(at.c_str(), &st) != 0) return at.string() + ": " + std::strerror(errno);
+    const bool last = std::next(part) == path.end();
+    if (S_ISDIR(st.st_mode) && !allowed(st, S_IXUSR, S_IXGRP, S_IXOTH))
+      return at.string() + " (mode " + mode(st) + "): the sandbox's user (uid " + std::to_string(uid) +
+             ") cannot pass through it" + (last ? "" : " to " + path.string());
+    if (last && !S_ISDIR(st.st_mode) && !allowed(st, S_IRUSR, S_IRGRP, S_IROTH))
+      return at.string() + " (mode " + mode(st) + "): the sandbox's user (uid " + std::to_string(uid) + ") cannot read it";
+  }
+  return "";
+}
 }  // namespace
 
 SandboxUser::SandboxUser() : uid_(::geteuid()) {
@@ -161,6 +193,11 @@ SandboxProcess::SandboxProcess(const SandboxSpec& spec, const Limits& limits)
   const uid_t uid = spec.uid;
   uid_ = uid;
   const bool drop = ::geteuid() == 0;
+  if (spec.isolate && drop)
+    for (const auto& m : spec.mounts)
+      if (const std::string why = unreachable_for(uid, m.host); !why.empty())
+        throw std::runtime_error(why + ". motus grade runs the student's code as a user of its own: every folder it "
+                                       "mounts must be open to others on the way (chmod o+x), TMPDIR's too");
   const rlim_t cpu = static_cast<rlim_t>(std::ceil(limits.cpu_seconds));
   const rlim_t memory = static_cast<rlim_t>(limits.memory_mb) << 20;
   const rlim_t file = static_cast<rlim_t>(limits.file_mb) << 20;
