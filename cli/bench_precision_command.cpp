@@ -128,7 +128,7 @@ int bench_precision_command(const BenchPrecisionOptions& o) {
     if (end == run.end()) throw InputError("--csv: " + o.csv + " is in the run's folder " + folder + "; put the copy elsewhere");
     check_can_write(o.csv, o.overwrite);
   }
-  if (fs::exists(folder)) throw InputError(folder + ": already exists; bench precision never overwrites a run (choose another --out)");
+  if (output_exists(folder)) throw InputError(folder + ": already exists; bench precision never overwrites a run (choose another --out)");
   PartialFolder partial(folder);
 
   precision::Sweep sweep;

@@ -318,6 +318,21 @@ void write_whole_file(const std::string& path, const std::string& text, bool ove
   if (partial) partial->complete(overwrite);
 }
 
+bool output_exists(const std::string& path) {
+  std::error_code error;
+  const auto status = fs::symlink_status(path, error);
+  if (error && error != std::errc::no_such_file_or_directory) throw InputError(path + ": " + error.message());
+  if (!fs::exists(status)) {
+    // (A dangling link, or one part of the way that is not a folder, is looked at from its folder.)
+    const fs::path parent = fs::path(path).parent_path();
+    if (!parent.empty()) {
+      (void)fs::status(parent, error);
+      if (error && error != std::errc::no_such_file_or_directory) throw InputError(path + ": " + error.message());
+    }
+  }
+  return fs::exists(status);
+}
+
 void check_can_write(const std::string& path, bool overwrite) {
   std::error_code error;
   const auto status = fs::status(path, error);

@@ -180,6 +180,10 @@ std::string partial_folder_pattern_for(const std::string& path);
 // link, which the rename replaces and does not follow) may be overwritten.
 void check_can_replace(const std::string& path, bool overwrite);
 
+// Whether something is at `path`, a folder an output would go to. A path that cannot be looked
+// at (a name too long, a loop of links, a folder not to be entered) is bad input naming it.
+bool output_exists(const std::string& path);
+
 // For the options that name a file or folder to write: an empty one is refused, not taken for
 // "not given" (which would write nothing, or somewhere else, and say nothing).
 const CLI::Validator& non_empty_path();

@@ -176,7 +176,7 @@ int compare_command(const CompareOptions& o) {
     Simulation check(scene, options.plugin->method.value_or(options.method), options.plugin->parts);
 
   const std::string folder = o.out.empty() ? new_run_folder(scene.name) : o.out;
-  if (fs::exists(folder)) throw InputError(folder + ": already exists; compare never overwrites a report (choose another --out)");
+  if (output_exists(folder)) throw InputError(folder + ": already exists; compare never overwrites a report (choose another --out)");
   // The report is written into a folder beside the final one and renamed when it is whole:
   // a run that fails or is interrupted leaves no folder that looks complete. Made now, so a
   // folder that cannot be made is refused before any engine runs.

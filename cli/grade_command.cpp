@@ -175,7 +175,7 @@ std::string csv_field(const std::string& name) {
 int grade_batch(const GradeCommandOptions& o, const std::string& folder) {
   if (!fs::is_directory(o.batch)) throw InputError(o.batch + ": --batch: no such folder");
   const std::string out = o.out.empty() ? new_folder("grade-" + safe_file_name(fs::path(folder).filename().string())) : o.out;
-  if (fs::exists(out)) throw InputError(out + ": --out: already exists; grading never writes over earlier results");
+  if (output_exists(out)) throw InputError(out + ": --out: already exists; grading never writes over earlier results");
   const grade::Assignment assignment = load(o, folder);
   check_limits(o);
   std::vector<fs::path> submissions;

@@ -170,7 +170,7 @@ int render_command(const RenderOptions& o) {
   }
   Simulation& sim = *built;
   const std::string video_name = o.video.empty() ? "" : safe_file_name(scene.name) + "." + o.video;  // a name is not a path
-  const bool made_folder = !fs::exists(o.out);
+  const bool made_folder = !output_exists(o.out) && !fs::exists(o.out);  // (a path not to be looked at: bad input)
   prepare_folder(o.out, o.overwrite, frames, video_name);
   UnfinishedRender unfinished(o.out, made_folder);
 

@@ -217,7 +217,7 @@ int stress_command(const StressOptions& o) {
                      (report.cannot_run.empty() ? "" : " (" + report.cannot_run.front().first + ": " + report.cannot_run.front().second + ")"));
 
   const std::string folder = o.out.empty() ? new_stress_folder(scene.name) : o.out;
-  if (fs::exists(folder)) throw InputError(folder + ": already exists; stress never overwrites a page (choose another --out)");
+  if (output_exists(folder)) throw InputError(folder + ": already exists; stress never overwrites a page (choose another --out)");
   PartialFolder partial(folder);
 
   // The work, counted in units for the progress bar: one unit per integrator and section, or per row.

@@ -327,6 +327,21 @@ TEST(Hardening, AReportFolderThatCannotBeMadeIsRefusedFirst) {
   EXPECT_TRUE(r.out.empty());  // no table: no engine ran
 }
 
+// An output folder whose path cannot even be looked at (a loop of links, a name too long) is bad
+// input naming it, before any work: it was "the run failed: filesystem error: status: …", exit 1.
+TEST(Hardening, AnOutputPathThatCannotBeLookedAtIsBadInput) {
+  TempDir dir;
+  fs::create_symlink("loop", dir / "loop");
+  const std::string looped = (dir / "loop/report").string(), long_name = (dir / std::string(300, 'x')).string();
+  for (const std::vector<std::string>& args :
+       {std::vector<std::string>{"compare", "spring", "--out", looped}, {"render", "spring", "--out", looped},
+        {"stress", "spring", "--out", looped}, {"bench", "precision", "spring", "--out", looped},
+        {"grade", "integrators", "--batch", dir.path().string(), "--out", looped}, {"compare", "spring", "--out", long_name}}) {
+    const auto r = run_motus(dir, args);
+    expect_one_line_exit_2(r, args.back() == long_name ? "File name too long" : "Too many levels of symbolic links");
+  }
+}
+
 // ---- Nothing lost, nothing pretended ------------------------------------------------------------------
 
 // 15. A full disk: a failed write is exit 1 with one line naming the file, never 0.
