@@ -4,12 +4,14 @@
 #include <fmt/ranges.h>
 
 #include <chrono>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <optional>
+#include <system_error>
 #include <nlohmann/json.hpp>
 
 #include "cli_common.hpp"
@@ -67,11 +69,13 @@ public:
   // (a full disk) is an error naming the file, not a run that went well.
   void finish(const Simulation& sim) {
     if (sim.time() > last_) row(sim);
+    errno = 0;
     out_->flush();
-    if (!*out_) throw std::runtime_error(path_ + ": could not be written (disk full?)");
+    check_written(*out_);
     if (partial_) {
+      errno = 0;
       file_.close();
-      if (!file_) throw std::runtime_error(path_ + ": could not be written (disk full?)");
+      check_written(file_);
       partial_->complete(overwrite_);
     }
   }
@@ -80,7 +84,15 @@ public:
   TrajectoryWriter& operator=(const TrajectoryWriter&) = delete;
 
 private:
+  // A write that failed stops the run at once (a reader gone, a full disk: the rest of the run
+  // would be lost work), with the system's reason when it gave one.
+  void check_written(const std::ostream& stream) const {
+    if (stream) return;
+    if (const int e = errno) throw std::system_error(e, std::generic_category(), path_ + ": could not be written");
+    throw std::runtime_error(path_ + ": could not be written (disk full?)");
+  }
   void row(const Simulation& sim) {
+    errno = 0;  // (so that a failed write's errno is the write's)
     *out_ << fmt::format("{:.17g}", sim.time());
     for (double v : sim.state()) *out_ << fmt::format(",{:.17g}", v);
     if (const auto e = sim.energy()) *out_ << fmt::format(",{:.17g},{:.17g},{:.17g}", e->kinetic, e->potential, e->total);
@@ -90,6 +102,7 @@ private:
       for (double v : aux_) *out_ << fmt::format(",{:.17g}", v);
     }
     *out_ << '\n';
+    check_written(*out_);
     last_ = sim.time();
     if (interval_ <= 0) {
       next_ = -INFINITY;  // every step

@@ -697,6 +697,29 @@ TEST(Hardening, AReaderThatGoesAwayIsAFailedWriteWithOneLine) {
   EXPECT_NE(err.find("standard output could not be written"), std::string::npos) << err;
 }
 
+// A trajectory whose reader went away stops the run at the next row, with the system's reason:
+// the run went on to its end (a billion steps here: hours) and then said "disk full?".
+TEST(Hardening, ATrajectoryWhoseReaderWentAwayStopsTheRunAtOnce) {
+  TempDir dir;
+  int pipe_ends[2];
+  ASSERT_EQ(::pipe(pipe_ends), 0);
+  ::close(pipe_ends[0]);  // nobody reads
+  MotusFiles files;
+  files.err = (dir / "err.txt").string();
+  files.out_fd = pipe_ends[1];
+  files.folder = dir.path().string();
+  const pid_t pid = start_motus_with(
+      {"run", scene("spring"), "--repeats", "1", "--duration", "1e7", "--dt", "0.01", "--trajectory", "-"}, files);
+  ::close(pipe_ends[1]);
+  ASSERT_GT(pid, 0);
+  int raw = 0;
+  ASSERT_TRUE(ended_within(pid, 60, raw)) << "the run went on without its reader";
+  ASSERT_TRUE(WIFEXITED(raw)) << "ended by signal " << WTERMSIG(raw);
+  EXPECT_EQ(WEXITSTATUS(raw), 1);
+  const std::string err = read_file(dir / "err.txt");
+  EXPECT_NE(err.find("standard output could not be written (Broken pipe)"), std::string::npos) << err;
+}
+
 }  // namespace
 
 namespace {
