@@ -247,6 +247,7 @@ int compare_command(const CompareOptions& o) {
     } else {
       picture_warning = "pictures skipped: " + error;
     }
+    context.pictures_note = picture_warning;  // (the page says so too, not only the terminal)
   }
   progress.note("writing the report");
   const std::string warning = compare::write_report(work, context, runs);

@@ -307,6 +307,19 @@ TEST(RenderCommand, MissingFfmpegExits2WithOneLine) {
   EXPECT_NE(r.err.find("ffmpeg not found on PATH"), std::string::npos) << r.err;
 }
 
+// compare --render without ffmpeg still writes its report and pictures; the page says why there
+// is no video (only the terminal did).
+TEST(RenderCommand, ACompareWithoutFfmpegSaysOnItsPageWhyThereIsNoVideo) {
+  TempDir dir;
+  fs::create_directories(dir / "empty");
+  const auto r = run_motus(dir, {"compare", "head_on", "--render", "--duration", "0.3", "--repeats", "1", "--out",
+                                 (dir / "report").string()},
+                           {"PATH=" + (dir / "empty").string()});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.err.find("video skipped: ffmpeg not found on PATH"), std::string::npos) << r.err;
+  EXPECT_NE(read_file(dir / "report/index.html").find("video skipped: ffmpeg not found on PATH"), std::string::npos);
+}
+
 TEST(RenderCommand, MissingFontExits2WithOneLine) {
   TempDir dir;
   const auto r = run_motus(dir, {"render", "spring", "--out", (dir / "frames").string()}, {"MOTUS_FONT=/nonexistent/font.ttf"});

@@ -356,8 +356,9 @@ std::string write_report(const std::string& folder, const ReportContext& c, cons
   if (!c.first_and_last.empty())
     html << "<h2>At the start and at the end</h2>\n<p><img src=\"" << html_escape(c.first_and_last)
          << "\" alt=\"every engine at the first and the last instant\"></p>\n";
-  if (!c.video.empty() || !c.contact_sheet.empty()) {
+  if (!c.video.empty() || !c.contact_sheet.empty() || !c.pictures_note.empty()) {
     html << "<h2>Side by side</h2>\n";
+    if (!c.pictures_note.empty()) html << "<p class=\"no\">" << html_escape(c.pictures_note) << "</p>\n";
     if (!c.video.empty())
       html << "<video src=\"" << html_escape(c.video) << "\" controls loop muted style=\"max-width:100%\"></video>\n";
     if (!c.contact_sheet.empty())

@@ -21,6 +21,7 @@ struct ReportContext {
   int repeats = 0;  // timing rounds
   std::string video, contact_sheet;  // file names in the folder (--render), or ""
   std::string first_and_last;        // the engines side by side at the start and the end (file name), or ""
+  std::string pictures_note;         // why --render's pictures (or its video) are missing, or ""
   bool momentum_conserved = false;          // the scene keeps it (no walls, no outside force)
   bool angular_momentum_conserved = false;  // about the origin
 };
