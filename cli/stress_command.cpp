@@ -186,12 +186,21 @@ int stress_command(const StressOptions& o) {
   };
   const std::string energy_why = sticks ? "the scene has sticks or pins, whose projection is dissipative: its energy is not an integrator's"
                                         : "the scene has contacts: between them every step is symplectic Euler's or Verlet's drift";
+  // A damper or drag takes energy out by design: the drift would measure the physics.
+  const bool dissipative = !m.forces.drag.empty() || std::any_of(m.forces.springs.begin(), m.forces.springs.end(),
+                                                                 [](const Spring& s) { return s.damping != 0; });
   if (!contacts && !sticks) {
-    report.sections = {"stability", "drift"};
+    report.sections = {"stability"};
+    if (dissipative)
+      report.not_applied.emplace_back("drift", "the scene loses energy by design (a damper or drag): its energy's change "
+                                               "is the physics, not the integrator's");
+    else
+      report.sections.push_back("drift");
     if (!report.stiffness_knob.empty())
       report.sections.push_back("stiffness");
     else
-      report.not_applied.emplace_back("stiffness", "the scene has no spring, gravity or pendulum to stiffen");
+      report.not_applied.emplace_back("stiffness", "the scene has no spring, orbit (central or mutual gravity) or pendulum "
+                                                   "to stiffen (uniform gravity has no frequency)");
     report.not_applied.emplace_back("mass_ratio", "the scene has no contacts or sticks between bodies");
     report.not_applied.emplace_back("speed", "the scene has no balls or walls to tunnel through");
     report.not_applied.emplace_back("sticks", "the scene has no sticks");
