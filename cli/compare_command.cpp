@@ -260,15 +260,15 @@ int compare_command(const CompareOptions& o) {
   if (o.json) {
     fmt::print("{}\n", summary.dump(2, ' ', false, nlohmann::json::error_handler_t::replace));  // (a path not in UTF-8)
   } else {
-    fmt::print("{}: {} bodies, {}-D, dt = {:g} s, {:g} s ({} steps); motus integrator {}\n", scene.name,
-               context.bodies, context.dimensions, options.dt, options.duration,
+    fmt::print("{}: {} {}, {}-D, dt = {:g} s, {:g} s ({} steps); motus integrator {}\n", scene.name,
+               context.bodies, context.bodies == 1 ? "body" : "bodies", context.dimensions, options.dt, options.duration,
                fixed_step_count(options.duration, options.dt), integrator_name);
     // Where the scene has an exact answer, the distance from it matters more than from motus.
     const bool exact_known = has_exact_solution(scene);
     const char* distance_key = exact_known ? "max_distance_from_exact" : "max_distance_from_motus";
-    fmt::print("us/step: CPU time per step, the fastest of {} rounds (engines taking turns), the median beside it; "
+    fmt::print("us/step: CPU time per step, {} (engines taking turns), the median beside it; "
                "spread = (slowest - fastest) / fastest\n\n",
-               context.repeats);
+               context.repeats == 1 ? std::string("one round") : fmt::format("the fastest of {} rounds", context.repeats));
     const bool joules = summary["energy_unit"] == "J";
     fmt::print("{:<8}{:>13}{:>13}{:>13}{:>13}{:>13}{:>13}{:>11}{:>11}{:>8}{:>12}\n", "engine",
                joules ? "E drift [J]" : "energy drift", joules ? "max |dE| [J]" : "max |dE|/E0", "momentum",

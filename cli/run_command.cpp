@@ -423,8 +423,11 @@ int run_command(const RunOptions& o) {
   }
   fmt::print(out, "\nsteps        {} accepted, {} rejected\n", sim.steps(), sim.rejected());
   fmt::print(out, "evaluations  {} derivative evaluations\n", sim.evaluations());
-  fmt::print(out, "time         {} per step: the fastest of {} runs (CPU time), median {}, spread {:.0f}%\n",
-             duration_text(1e-9 * time.min), time.rounds, duration_text(1e-9 * time.median), 100 * time.spread());
+  if (time.rounds == 1)
+    fmt::print(out, "time         {} per step: one run (CPU time)\n", duration_text(1e-9 * time.min));
+  else
+    fmt::print(out, "time         {} per step: the fastest of {} runs (CPU time), median {}, spread {:.0f}%\n",
+               duration_text(1e-9 * time.min), time.rounds, duration_text(1e-9 * time.median), 100 * time.spread());
   fmt::print(out, "wall time    {} ({} per step, the first run)\n", duration_text(wall),
              duration_text(sim.steps() ? wall / static_cast<double>(sim.steps()) : 0.0));
   if (world) fmt::print(out, "passes       {}\n", fmt::join(world->passes(), ", "));

@@ -239,6 +239,19 @@ TEST(Compare, AScenesStartingWithNoEnergyHasItsEnergyColumnsInJoules) {
   EXPECT_EQ(nlohmann::json::parse(head_on.out).at("energy_unit"), "E0");
 }
 
+// A pendulum's coordinate is its angle (scene-format.md, Units): its distance from the exact
+// answer is in radians, as the closing sentence says (it said metres).
+TEST(Compare, APendulumsDistanceFromTheExactAnswerIsInRadians) {
+  TempDir dir;
+  const Result r = run_motus(dir, {"compare", scene("pendulum"), "--engines", "motus", "--repeats", "1", "--duration", "1",
+                                   "--out", (dir / "p").string()});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("strays over the run: motus "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find(" rad."), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find(" m."), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("pendulum: 1 body, 1-D"), std::string::npos) << r.out;  // (not "1 bodies")
+}
+
 TEST(Compare, MetricsCsvAgreesWithTheSummary) {
   // --samples 300 over head_on's 400 steps: 300 samples and the start (it took 400, one every
   // floor(400/300) = 1 step); the momentum change of the last row is the summary's momentum drift

@@ -237,9 +237,11 @@ std::string what_to_notice(const SceneDescription& scene, const std::vector<Engi
   }
   // Any other exact answer: the largest distance from it over the run.
   if (has_exact_solution(scene)) {
+    // (A pendulum's coordinate is its angle θ: the distance is in radians.)
+    const std::string unit = m.forces.pendulums.empty() ? " m" : " rad";
     std::vector<std::string> parts;
     for (const EngineRun* r : engines)
-      if (r->max_from_exact() >= 0) parts.push_back(r->engine + " " + number(r->max_from_exact()) + " m");
+      if (r->max_from_exact() >= 0) parts.push_back(r->engine + " " + number(r->max_from_exact()) + unit);
     if (!parts.empty())
       return "Against " + solution_name(scene) + ", the farthest each engine strays over the run: " + joined(parts) +
              unsupported_tail(runs) + ".";
