@@ -268,7 +268,9 @@ int compare_command(const CompareOptions& o) {
     const char* distance_key = exact_known ? "max_distance_from_exact" : "max_distance_from_motus";
     fmt::print("us/step: CPU time per step, {} (engines taking turns), the median beside it; "
                "spread = (slowest - fastest) / fastest\n\n",
-               context.repeats == 1 ? std::string("one round") : fmt::format("the fastest of {} rounds", context.repeats));
+               context.repeats == 0   ? std::string("no round (no engine ran)")
+               : context.repeats == 1 ? std::string("one round")
+                                      : fmt::format("the fastest of {} rounds", context.repeats));
     const bool joules = summary["energy_unit"] == "J";
     fmt::print("{:<8}{:>13}{:>13}{:>13}{:>13}{:>13}{:>13}{:>11}{:>11}{:>8}{:>12}\n", "engine",
                joules ? "E drift [J]" : "energy drift", joules ? "max |dE| [J]" : "max |dE|/E0", "momentum",

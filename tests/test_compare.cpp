@@ -305,6 +305,11 @@ TEST(Compare, AFigureNoEngineCouldDrawIsStillThereForItsLink) {
   if (!fs::exists("/usr/bin/gnuplot")) GTEST_SKIP() << "no gnuplot here";
   EXPECT_TRUE(fs::exists(dir / "r" / "energy.svg"));
   EXPECT_TRUE(fs::exists(dir / "r" / "energy.png"));
+  // It says there is nothing to draw (it said "every value is exactly 0", on a one-second axis).
+  const std::string script = read_file(dir / "r" / "figures.gp");
+  EXPECT_NE(script.find("nothing to draw: no run has data for this figure"), std::string::npos);
+  EXPECT_EQ(script.find("every value is exactly 0"), std::string::npos);
+  EXPECT_NE(r.out.find("no round (no engine ran)"), std::string::npos) << r.out;
 }
 
 TEST(Compare, BadInputIsOneLineAndExitTwo) {

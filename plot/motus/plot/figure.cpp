@@ -126,9 +126,13 @@ std::string draw(const std::vector<Figure>& figures, const std::string& folder) 
     if (x_high > x_low && f.x_scale == Scale::linear)
       gp << "set xrange [" << number(x_low) << ":" << number(x_high) << "]\n";
     if (points == 0) {  // nothing to draw: give the axes a range, and say why it is empty
+      // (Values that are all 0 on a log axis, or no values at all: every series is an engine
+      // that could not run the scene.)
+      const bool values = std::any_of(f.series.begin(), f.series.end(), [](const Series& s) { return !s.x.empty(); });
       if (!(x_high > x_low)) gp << "set xrange [0:1]\n";
       gp << "set yrange " << (f.y_scale == Scale::log ? "[1e-17:1e-13]" : "[-1:1]") << "\n"
-         << "set label 2 'every value is exactly 0' at graph 0.5, graph 0.5 center tc rgb '#555555'\n";
+         << "set label 2 '" << (values ? "every value is exactly 0" : "nothing to draw: no run has data for this figure")
+         << "' at graph 0.5, graph 0.5 center tc rgb '#555555'\n";
     }
     if (plot_line.empty()) {
       // No series at all (no engine or method could run the scene): the figure is still drawn, as
