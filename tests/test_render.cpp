@@ -20,6 +20,7 @@
 #include "motus/render/canvas.hpp"
 #include "motus/render/compose.hpp"
 #include "motus/render/draw.hpp"
+#include "motus/render/draw_primitives.hpp"
 #include "motus/render/image.hpp"
 #include "motus/render/text.hpp"
 #include "motus/scene_file/scene_file.hpp"
@@ -381,6 +382,23 @@ TEST(RenderCommand, GifThroughFfmpeg) {
 // Every shipped scene draws through the drawing module: its first frame has the size asked
 // for and is more than the background (DrawOptions' background colour, unchanged where
 // nothing is drawn).
+// The camera leaves the scale bar's band free: a body at the bottom of a run's extent (free_fall's
+// ball at its start, below where it flies) was drawn half under the bar's box.
+TEST(RenderPixels, TheCameraKeepsBodiesAboveTheScaleBar) {
+  const SceneDescription scene = one_ball(2, {0.0, 0.0}, 0.5);
+  Recording rec;
+  for (const double y : {0.0, 5.0}) {  // from the bottom up: (0, 0) is the extent's lowest point
+    const std::vector<double> state{0.0, y, 0.0, 0.0};
+    rec.add(0.1 * y, state);
+  }
+  const Viewport view{0, 0, 640, 480};
+  const Camera camera = fit_camera(scene, rec, view);
+  const double lowest = project(camera, view, {0.0, -0.5, 0})[1];  // the ball's bottom, in pixels down
+  // draw_scale_bar: its box's top is 0.9 + 1.5 text sizes above the frame's bottom.
+  const double bar_top = 480 - 2.4 * motus::render::detail::overlay_text_size(view);
+  EXPECT_LT(lowest, bar_top) << "the ball reaches into the scale bar's box";
+}
+
 TEST(RenderCommand, DrawsTheFirstFrameOfEveryShippedScene) {
   TempDir dir;
   const Color background = DrawOptions{}.background;

@@ -113,10 +113,13 @@ Camera fit_camera(const SceneDescription& scene, const Recording& rec, const Vie
       if (std::abs(p.normal[1]) > 0.99) b.add((b.x0 + b.x1) / 2, p.offset / p.normal[1] - 0.05 * (b.y1 - b.y0));
   double w = b.x1 - b.x0, h = b.y1 - b.y0;
   if (w <= 0 && h <= 0) w = h = 1;
-  // Below the overlay's band, with a margin of 5% on each side.
-  const double band = overlay_height(v), usable = std::max(v.height - band, 0.5 * v.height);
+  // Below the overlay's band and above the scale bar's (draw_scale_bar: its box reaches 2.4 text
+  // sizes up from the bottom; a body there was drawn under it), with a margin of 5% on each side.
+  const double band = overlay_height(v), bar = 2.4 * overlay_text_size(v);
+  const double usable = std::max(v.height - band - bar, 0.5 * v.height);
   const double scale = std::min(w > 0 ? v.width * 0.9 / w : kInf, h > 0 ? usable * 0.9 / h : kInf);
-  return Camera::orthographic((b.x0 + b.x1) / 2, (b.y0 + b.y1) / 2 + (v.height - usable) / 2 / scale, scale);
+  // (The usable band's middle is (band − bar)/2 pixels below the frame's.)
+  return Camera::orthographic((b.x0 + b.x1) / 2, (b.y0 + b.y1) / 2 + (band - bar) / 2 / scale, scale);
 }
 
 void fit_ground(const SceneDescription& scene, const Recording& rec, DrawOptions& options) {
