@@ -273,7 +273,8 @@ int compare_command(const CompareOptions& o) {
                                       : fmt::format("the fastest of {} rounds", context.repeats));
     const bool joules = summary["energy_unit"] == "J";
     fmt::print("{:<8}{:>13}{:>13}{:>13}{:>13}{:>13}{:>13}{:>11}{:>11}{:>8}{:>12}\n", "engine",
-               joules ? "E drift [J]" : "energy drift", joules ? "max |dE| [J]" : "max |dE|/E0", "momentum",
+               joules ? "E drift [J]" : "energy drift", joules ? "max |dE| [J]" : "max |dE|/E0",
+               summary["momentum_unit"] == "scale" ? "momentum" : "p [kg m/s]",
                "penetration", "constraint", exact_known ? "from exact" : "from motus",
                "us/step", "median", "spread", "time/motus");
     for (const auto& e : summary["engines"]) {

@@ -237,6 +237,12 @@ TEST(Compare, AScenesStartingWithNoEnergyHasItsEnergyColumnsInJoules) {
                                          (dir / "h").string(), "--json", "--duration", "0.1"});
   ASSERT_EQ(head_on.status, 0) << head_on.err;
   EXPECT_EQ(nlohmann::json::parse(head_on.out).at("energy_unit"), "E0");
+  // So is the momentum: nothing moves at the start, so there is no scale, and its column is the
+  // change itself, in kg·m/s, and says so; head_on's is a fraction of the momentum in play.
+  EXPECT_EQ(j.at("momentum_unit"), "kg·m/s");
+  EXPECT_NE(table.out.find("p [kg m/s]"), std::string::npos) << table.out;
+  EXPECT_NE(read_file(dir / "p" / "index.html").find("<th>momentum drift [kg·m/s]"), std::string::npos);
+  EXPECT_EQ(nlohmann::json::parse(head_on.out).at("momentum_unit"), "scale");
 }
 
 // A pendulum's coordinate is its angle (scene-format.md, Units): its distance from the exact

@@ -20,12 +20,27 @@ Timings EngineRun::microseconds_per_step() const {
   return summarize(per_step);
 }
 
-bool energy_in_joules(const std::vector<EngineRun>& runs) {
+namespace {
+// The run whose start decides the columns' units: motus's, else the first that ran.
+const EngineRun* unit_reference(const std::vector<EngineRun>& runs) {
   const EngineRun* reference = nullptr;
   for (const auto& r : runs)
     if (r.supported && !r.rows.empty() && (!reference || (r.engine == "motus" && reference->engine != "motus")))
       reference = &r;
+  return reference;
+}
+}  // namespace
+
+bool energy_in_joules(const std::vector<EngineRun>& runs) {
+  const EngineRun* reference = unit_reference(runs);
   return reference && reference->rows.front().total == 0;
+}
+
+bool momentum_in_kg_m_s(const std::vector<EngineRun>& runs) {
+  const EngineRun* reference = unit_reference(runs);
+  if (!reference || reference->scale_of_momentum > 0) return false;
+  return std::all_of(reference->rows.front().momentum.begin(), reference->rows.front().momentum.end(),
+                     [](double p) { return p == 0; });
 }
 
 double EngineRun::energy_drift() const { return relative(rows.back().total - rows.front().total, rows.front().total); }

@@ -45,6 +45,9 @@ struct EngineRun {
 // there is no fraction to take. Decided on motus's run (else the first that ran), so that
 // every engine's column is in one unit.
 bool energy_in_joules(const std::vector<EngineRun>& runs);
+// Whether the momentum columns are changes in kg·m/s: the scene starts with nothing moving (p₀ = 0
+// and Σ m|v₀| = 0), so there is no scale to divide by.
+bool momentum_in_kg_m_s(const std::vector<EngineRun>& runs);
 
 // A plug-in's column: motus's world with the plug-in's parts, and its integrator when it
 // brings the one asked for.

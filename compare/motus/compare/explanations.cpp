@@ -132,7 +132,9 @@ std::vector<ColumnDefinition> column_definitions(const SceneDescription& scene, 
   }
   d.push_back({"momentum drift",
                "|p_end − p₀| / scale, where p = Σ m v is the total momentum and the scale is the larger of |p₀| and Σ m "
-               "|v₀| (the momentum in play: in a head-on collision p₀ is 0, and dividing by it would mean nothing). " +
+               "|v₀| (the momentum in play: in a head-on collision p₀ is 0, and dividing by it would mean nothing); "
+               "a scene that starts with nothing moving has no scale, and the column is then |p_end − p₀| in kg·m/s "
+               "(the summary's momentum_unit says which). " +
                    std::string(momentum_conserved
                                    ? "This scene keeps its momentum exactly (no walls, no outside force), so any change "
                                      "is the engine's error."

@@ -171,7 +171,8 @@ nlohmann::json summary_json(const ReportContext& c, const std::vector<EngineRun>
   j["dimensions"] = c.dimensions;
   j["bodies"] = c.bodies;
   j["repeats"] = c.repeats;
-  j["energy_unit"] = energy_in_joules(runs) ? "J" : "E0";  // energy_drift, max_energy_error: joules, or fractions of |E₀|
+  j["energy_unit"] = energy_in_joules(runs) ? "J" : "E0";
+  j["momentum_unit"] = momentum_in_kg_m_s(runs) ? "kg·m/s" : "scale";  // momentum_drift: kg·m/s, or fractions of the scale  // energy_drift, max_energy_error: joules, or fractions of |E₀|
   const EngineRun* motus = find_motus(runs);
   const Timings motus_time = motus ? motus->microseconds_per_step() : Timings{};
   j["engines"] = nlohmann::json::array();
@@ -293,7 +294,7 @@ std::string write_report(const std::string& folder, const ReportContext& c, cons
   const int columns = exact_known ? 11 : 10;
   html << "<div class=\"wide\"><table><tr><th>engine</th>"
        << (energy_in_joules(runs) ? "<th>energy drift [J]</th><th>max |ΔE| [J]</th>" : "<th>energy drift</th><th>max |ΔE|/E₀</th>")
-       << "<th>momentum drift"
+       << "<th>momentum drift" << (momentum_in_kg_m_s(runs) ? " [kg·m/s]" : "")
        << (c.momentum_conserved ? "" : "*") << "</th><th>max penetration [m]</th><th>constraint error</th>"
        << "<th>max distance from motus [m]</th>" << (exact_known ? "<th>max distance from exact [m]</th>" : "")
        << "<th>µs per step (min)</th><th>median</th><th>spread</th><th>time / motus</th></tr>\n";
