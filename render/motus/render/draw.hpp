@@ -85,13 +85,14 @@ void draw_time_series(Canvas& canvas, const Viewport& viewport, const Recording&
                       const SeriesLabels& labels, const DrawOptions& options = {});
 
 // Text in the viewport's top-left corner: a title, the time, and (when given) the
-// relative energy drift (E − E₀)/|E₀|.
+// relative energy drift (E − E₀)/|E₀| — or, for a scene that starts with E₀ = 0, E − E₀ in joules.
 struct Overlay {
   std::string title;
   double time = 0;
   std::optional<double> energy_drift;
   std::string note;  // a further line (the integrator, say)
   std::string time_unit = "s";  // "year" (World2) shows the calendar year instead of t = … s
+  bool energy_in_joules = false;  // energy_drift is E − E₀ in J (E₀ = 0: no scale to divide by)
 };
 void draw_overlay(Canvas& canvas, const Viewport& viewport, const Overlay& overlay);
 // A scale bar at the bottom left of an orthographic (2-D) view: a round length in metres.

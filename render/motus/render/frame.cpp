@@ -165,8 +165,11 @@ void draw_frame(Canvas& canvas, const Viewport& v, const SceneDescription& scene
     // A length to read the picture by, where the view is a flat map in metres (not the pendulum's
     // or the 1-D spring's own layouts, which draw their own).
     if (options.overlay && scene.mechanical->dimensions == 2) draw_scale_bar(canvas, v, camera);
-    if (index < rec.energies.size() && rec.energies.front() != 0)
-      overlay.energy_drift = (rec.energies[index] - rec.energies.front()) / std::abs(rec.energies.front());
+    if (index < rec.energies.size()) {
+      overlay.energy_in_joules = rec.energies.front() == 0;  // (nothing to divide by: the change itself)
+      overlay.energy_drift = (rec.energies[index] - rec.energies.front()) /
+                             (overlay.energy_in_joules ? 1.0 : std::abs(rec.energies.front()));
+    }
   } else {
     const size_t count = rec.states[index].size();
     const auto labels = series_labels(scene, count);

@@ -26,7 +26,9 @@ void draw_overlay(Canvas& canvas, const Viewport& v, const Overlay& o) {
                                                  : "t = " + format_number("%.2f", o.time) + " " + o.time_unit;
   const std::string first = o.title + "    " + time;
   int box = text_width(first, title);
-  if (o.energy_drift) box = std::max(box, text_width("\u0394E/|E\u2080| = +0.00e+00", small));
+  const std::string drift_label = o.energy_in_joules ? "\u0394E = " : "\u0394E/|E\u2080| = ";
+  const std::string drift_unit = o.energy_in_joules ? " J" : "";
+  if (o.energy_drift) box = std::max(box, text_width(drift_label + "+0.00e+00" + drift_unit, small));
   if (!o.note.empty() && v.width >= 400) box = std::max(box, text_width(o.note, {0.8 * size, kInk}));
   begin_pixels(canvas, v);
   gl_color({255, 255, 255, 255}, 0.78);
@@ -36,7 +38,7 @@ void draw_overlay(Canvas& canvas, const Viewport& v, const Overlay& o) {
               time, small);
   if (o.energy_drift) {
     y += line;
-    canvas.text(x, static_cast<int>(y), "\u0394E/|E\u2080| = " + format_number("%+.2e", *o.energy_drift), small);
+    canvas.text(x, static_cast<int>(y), drift_label + format_number("%+.2e", *o.energy_drift) + drift_unit, small);
   }
   if (!o.note.empty() && v.width >= 400) {
     y += line;
