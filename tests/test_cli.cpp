@@ -122,6 +122,10 @@ const std::vector<BadInput> kBadInputs = {
     {"set_name_right_after_index", "@spring", {"--set", "bodies[0]mass=4"}, "bodies[0]mass",
      "a '.' must come between an index and a field name"},
     {"set_number_overflow", "@spring", {"--set", "dt=1e309"}, "dt", "number overflow: 1e309 (numbers must be finite)"},
+    // A name or description with an escape sequence would rewrite the terminal it is printed on.
+    {"escape_in_name", "@spring", {"--set", "name=sp\x1b[2Jring"}, "name", "has a control character (code 27)"},
+    {"escape_in_description", "@spring", {"--set", "description=a\rcarriage return"}, "description",
+     "has a control character (code 13)"},
     // Two reference states at one time: bench precision measured against whichever it read.
     {"reference_time_twice", "@lorenz", {"--set", "reference[1].t=1"}, "reference[1].t",
      "reference[0] has this time too"},
