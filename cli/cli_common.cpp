@@ -75,6 +75,11 @@ std::string resolve_scene_path(const std::string& argument) {
     fs::path shipped = fs::path(scenes_directory()) / argument;
     if (shipped.extension() != ".json") shipped += ".json";
     if (fs::exists(shipped, error)) return shipped.string();
+    // Where it was looked for, when MOTUS_SCENES chose the folder (else the loader's "no such
+    // file (motus list shows the scenes)" says it).
+    if (const char* env = std::getenv("MOTUS_SCENES"); env && *env)
+      throw InputError(argument + ": no such file here, nor " + shipped.filename().string() + " in MOTUS_SCENES=" + env +
+                       " (motus list shows the scenes)");
   }
   return argument;  // the loader says "no such file"
 }

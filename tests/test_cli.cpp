@@ -385,6 +385,11 @@ TEST(CliList, AScenesFolderThatIsNotThereIsBadInput) {
   r = run_motus(dir, {"list"}, {"MOTUS_SCENES=" + (dir / "scenes").string()});
   EXPECT_EQ(r.status, 0) << r.err;
   EXPECT_NE(r.out.find("two_lines            first second\n"), std::string::npos) << r.out;
+  // A scene named that is not in the folder MOTUS_SCENES names says where it looked.
+  r = run_motus(dir, {"run", "spring"}, {"MOTUS_SCENES=" + (dir / "nowhere").string()});
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_EQ(r.err, "motus: error: spring: no such file here, nor spring.json in MOTUS_SCENES=" + (dir / "nowhere").string() +
+                       " (motus list shows the scenes)\n");
 }
 
 TEST(CliRun, TrajectoryRowsComeEveryOutputIntervalHoweverSmall) {
