@@ -324,15 +324,19 @@ void write_whole_file(const std::string& path, const std::string& text, bool ove
 }
 
 bool output_exists(const std::string& path) {
+  // (Nothing there, or a part of the way that is a file, is for the folder's making to report.)
+  auto absent = [](const std::error_code& e) {
+    return !e || e == std::errc::no_such_file_or_directory || e == std::errc::not_a_directory;
+  };
   std::error_code error;
   const auto status = fs::symlink_status(path, error);
-  if (error && error != std::errc::no_such_file_or_directory) throw InputError(path + ": " + error.message());
+  if (!absent(error)) throw InputError(path + ": " + error.message());
   if (!fs::exists(status)) {
-    // (A dangling link, or one part of the way that is not a folder, is looked at from its folder.)
+    // (A part of the way that is a loop of links shows when its folder is looked at.)
     const fs::path parent = fs::path(path).parent_path();
     if (!parent.empty()) {
       (void)fs::status(parent, error);
-      if (error && error != std::errc::no_such_file_or_directory) throw InputError(path + ": " + error.message());
+      if (!absent(error)) throw InputError(path + ": " + error.message());
     }
   }
   return fs::exists(status);

@@ -337,13 +337,12 @@ SceneDescription read_scene(const nlohmann::json& document, const std::string& s
   scene.name = f.string("name", stem);
   scene.description = f.string("description", "");
   // Both are printed on the terminal and in every report: a control character (an escape
-  // sequence, a carriage return) there would rewrite the user's screen, not name a scene. (A
-  // description may run over lines, with tabs: it is printed on one line.)
-  for (const unsigned char c : scene.name)
-    if (c < 0x20 || c == 0x7f) f.fail("name", "has a control character (code " + std::to_string(c) + "); a name is one line of text");
-  for (const unsigned char c : scene.description)
-    if ((c < 0x20 && c != '\n' && c != '\t') || c == 0x7f)
-      f.fail("description", "has a control character (code " + std::to_string(c) + "); only line breaks and tabs may be in it");
+  // sequence, a carriage return) there would rewrite the user's screen, not name a scene. (Line
+  // breaks and tabs may be in them: they are printed on one line.)
+  for (const auto& [key, text] : {std::pair<const char*, const std::string&>{"name", scene.name}, {"description", scene.description}})
+    for (const unsigned char c : text)
+      if ((c < 0x20 && c != '\n' && c != '\t') || c == 0x7f)
+        f.fail(key, "has a control character (code " + std::to_string(c) + "); only line breaks and tabs may be in it");
 
   if (f.has("system") && f.has("bodies")) f.fail("system", "a scene has either \"system\" or \"bodies\", not both");
   if (f.has("system")) {
