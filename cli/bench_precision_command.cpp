@@ -198,7 +198,7 @@ int bench_precision_command(const BenchPrecisionOptions& o) {
     if (std::find(engines.begin(), engines.end(), c.engine) == engines.end()) engines.push_back(c.engine);
   fmt::print("\ntargets: the fastest method of each engine at each target error, each curve interpolated on log-log "
              "axes;\nus = microseconds of the fastest runs (the median runs'); <= : the cheapest point is already "
-             "below the target\n{:<8}", "target");
+             "below the target (a ratio with one such side is a bound)\n{:<8}", "target");
   for (const auto& e : engines) fmt::print("  {:<30}{:>18}", e, "us");
   for (size_t k = 1; k < engines.size(); ++k) fmt::print("{:>22}", "motus/" + engines[k]);
   fmt::print("\n");
@@ -207,12 +207,13 @@ int bench_precision_command(const BenchPrecisionOptions& o) {
     std::vector<std::optional<precision::Fastest>> best;
     for (const auto& e : engines) {
       best.push_back(precision::fastest(curves, e, target));
-      fmt::print("  {:<30}{:>18}", best.back() ? best.back()->method : "not reached", microseconds(best.back()));
+      fmt::print("  {:<30}{:>18}",
+                 best.back()                       ? best.back()->method
+                 : precision::engine_runs(curves, e) ? "not reached"
+                                                     : "cannot run this scene",
+                 microseconds(best.back()));
     }
-    for (size_t k = 1; k < engines.size(); ++k)
-      fmt::print("{:>22}", best[0] && best[k] ? fmt::format("{:.2f} ({:.2f})", best[0]->at.seconds / best[k]->at.seconds,
-                                                            best[0]->at.median_seconds / best[k]->at.median_seconds)
-                                              : "-");
+    for (size_t k = 1; k < engines.size(); ++k) fmt::print("{:>22}", precision::ratio_text(best[0], best[k], true));
     fmt::print("\n");
   }
 

@@ -244,6 +244,10 @@ TEST(BenchPrecisionCommand, APeerThatCannotRunTheSceneIsReported) {
     EXPECT_TRUE(said) << engine << "\n" << r.out;
   }
   EXPECT_NE(read_file(out / "index.html").find("cannot run this scene"), std::string::npos);
+  // The targets table says it too, as the page does (it said "not reached").
+  const size_t targets = r.out.find("targets:");
+  ASSERT_NE(targets, std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("cannot run this scene", targets), std::string::npos) << r.out.substr(targets);
 }
 
 TEST(BenchPrecisionCommand, MethodsThatCannotRunCollisionsAreReported) {
@@ -314,6 +318,39 @@ TEST(BenchPrecisionCommand, FixedStepsLandOnASceneKnownOnlyAtItsReferenceTime) {
   // An error was measured there (its size is the curves' to show: 0.91 here, Arenstorf's orbit
   // being hard on fixed steps; not this test's).
   EXPECT_TRUE(std::isfinite(std::stod(cells[7])) && std::stod(cells[7]) > 0) << row;
+}
+
+// Odeint's fixed steps land there too, with the same h: its runge_kutta4 ran to 17.066 and the
+// whole command failed ("no reference state at t = 17.066000", exit 1). On the same right-hand
+// side with the same steps it gives motus's rk4's numbers.
+TEST(BenchPrecisionCommand, OdeintsFixedStepsLandOnTheReferenceTimeToo) {
+  TempDir dir;
+  const auto r = run_motus(dir, {"bench", "precision", "arenstorf", "--integrators", "rk4", "--peers", "odeint", "--levels",
+                                 "1", "--per-decade", "1", "--repeats", "1", "--out", (dir / "a").string()});
+  ASSERT_EQ(r.status, 0) << r.err;
+  std::map<std::string, std::vector<std::string>> rows;  // method → its one row
+  std::istringstream csv(read_file(dir / "a" / "precision.csv"));
+  for (std::string line; std::getline(csv, line);) {
+    std::vector<std::string> cells;
+    std::istringstream cell_stream(line);
+    for (std::string cell; std::getline(cell_stream, cell, ',');) cells.push_back(cell);
+    if (cells.size() >= 8 && (cells[1] == "rk4" || cells[1] == "odeint:runge_kutta4")) rows[cells[1]] = cells;
+  }
+  ASSERT_EQ(rows.size(), 2u) << read_file(dir / "a" / "precision.csv");
+  EXPECT_EQ(rows["odeint:runge_kutta4"][2], rows["rk4"][2]);  // h
+  EXPECT_EQ(rows["odeint:runge_kutta4"][4], "17066");         // steps
+  EXPECT_NEAR(std::stod(rows["odeint:runge_kutta4"][7]), std::stod(rows["rk4"][7]), 1e-9 * std::stod(rows["rk4"][7]));
+}
+
+// A ratio where one side's time is only a bound (its cheapest point already below the target)
+// is a bound itself, and where both are, none: free fall is exact for both adaptive methods.
+TEST(Targets, ARatioWithABoundIsABound) {
+  const precision::Fastest bound{"a", {1e-6, 1e-6, 10, true}}, exact{"b", {2e-6, 2e-6, 20, false}};
+  EXPECT_EQ(precision::ratio_text(bound, exact, true), "<=0.50 (0.50)");
+  EXPECT_EQ(precision::ratio_text(exact, bound, true), ">=2.00 (2.00)");
+  EXPECT_EQ(precision::ratio_text(bound, bound, true), "-");
+  EXPECT_EQ(precision::ratio_text(exact, exact, true), "1.00 (1.00)");
+  EXPECT_EQ(precision::ratio_text(std::nullopt, exact, true), "-");
 }
 
 }  // namespace

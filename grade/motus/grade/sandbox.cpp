@@ -82,7 +82,6 @@ std::string format_seconds(double s) {
   return text;
 }
 
-
 // Why the sandbox's user (uid, no supplementary groups) cannot reach `host` for a mount, or "":
 // bubblewrap runs as that user, who must pass through every folder on the way and read the
 // file (a TMPDIR or an assignment under a 0700 folder of root's gave every student 0 points,

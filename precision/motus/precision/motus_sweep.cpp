@@ -12,10 +12,16 @@
 
 namespace motus::precision {
 
-std::vector<double> fixed_steps(const Sweep& sweep) {
-  std::vector<double> h;
-  for (int k = 0; k < sweep.levels; ++k) h.push_back(sweep.dt / std::ldexp(1.0, k));
-  return h;
+std::vector<double> fixed_steps(const SceneDescription& scene, const Sweep& sweep) {
+  const bool land_on_end = last_reference_time(scene).has_value();
+  const double span = sweep.end - scene.start_time;
+  std::vector<double> steps;
+  for (int k = 0; k < sweep.levels; ++k) {
+    double h = sweep.dt / std::ldexp(1.0, k);
+    if (land_on_end && span > 0) h = span / std::ceil(span / h - 1e-9);
+    steps.push_back(h);
+  }
+  return steps;
 }
 
 std::vector<double> tolerances(const Sweep& sweep) {
@@ -94,12 +100,7 @@ Curve sweep_motus(const SceneDescription& scene, const Method& method, const Swe
       if (sweep.point_done) sweep.point_done();
     }
   } else {
-    // Where only reference states are known (no formula for every t), the steps must land on
-    // the reference time: each level's h is shortened to the nearest that divides the run.
-    const bool land_on_end = last_reference_time(scene).has_value();
-    const double span = sweep.end - scene.start_time;
-    for (double h : fixed_steps(sweep)) {
-      if (land_on_end && span > 0) h = span / std::ceil(span / h - 1e-9);
+    for (const double h : fixed_steps(scene, sweep)) {
       c.points.push_back(measure(scene, method, h, 0, sweep.end, sweep.repeats));
       if (sweep.point_done) sweep.point_done();
     }

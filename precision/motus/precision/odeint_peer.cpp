@@ -100,7 +100,12 @@ Point measure(const SceneDescription& scene, long& evaluations, double h, double
       p.t_end = o.t_end;
       p.steps = o.steps;
       p.evaluations = evaluations - before;
-      p.error = state_error(scene, o.state, o.t_end);
+      try {
+        p.error = state_error(scene, o.state, o.t_end);
+      } catch (const std::exception& e) {  // (no exact state where it ended: that point, not the run)
+        p.failed = e.what();
+        return p;
+      }
       if (repeats == 0) times.add(seconds);
     } else {
       times.add(seconds);
@@ -130,7 +135,7 @@ void runge_kutta(const SceneDescription& scene, System& f, const Vector& y0, con
   const double t0 = scene.start_time, end = sweep.end;
 
   Curve rk4 = curve("runge_kutta4", "Odeint's classic fourth-order Runge-Kutta, fixed step", false);
-  for (double h : fixed_steps(sweep)) {
+  for (const double h : fixed_steps(scene, sweep)) {
     const long n = fixed_step_count(end - t0, h);
     rk4.points.push_back(measure(scene, evaluations, h, 0, sweep.repeats, [&] {
       ode::runge_kutta4<State> stepper;
@@ -183,7 +188,7 @@ void symplectic_rkn(const SceneDescription& scene, MechanicalSystem& system, con
       system.acceleration_of_one_body<D>(0, q.data(), zero.data(), dpdt.data());
   };
   const double t0 = scene.start_time;
-  for (double h : fixed_steps(sweep)) {
+  for (const double h : fixed_steps(scene, sweep)) {
     const long steps = fixed_step_count(sweep.end - t0, h);
     c.points.push_back(measure(scene, system.evaluations, h, 0, sweep.repeats, [&] {
       ode::symplectic_rkn_sb3a_mclachlan<Coor> stepper;

@@ -57,13 +57,19 @@ std::vector<plot::Figure> diagrams(const ReportContext& c, const std::vector<Cur
   }
   int motus_index = 0, peer_index = 0;
   std::vector<std::string> no_evaluations;  // methods whose every point made no evaluation
+  bool plugin_drawn = false;
   for (const Curve& curve : curves) {
     if (!curve.unsupported.empty() || curve.points.empty()) continue;
-    const bool peer = curve.engine != "motus";
+    // motus's methods: solid, filled circles; a plug-in's (a student's): solid, open circles; the
+    // peers: dashed, with squares, triangles and diamonds (never motus's circle).
+    const bool peer = curve.engine == "odeint" || curve.engine == "box2d" || curve.engine == "bullet";
+    const bool plugin = !peer && curve.engine != "motus";
+    plugin_drawn = plugin_drawn || plugin;
+    constexpr int kPeerPoints[] = {5, 9, 11, 13};
     plot::Series s{curve.method, {}, {}};
     s.style = "linespoints";
     s.dashed = peer;
-    s.point_type = peer ? 5 + 2 * (peer_index++ % 4) : 7;  // squares, triangles, … for the peers
+    s.point_type = peer ? kPeerPoints[peer_index++ % 4] : plugin ? 6 : 7;
     if (!peer) ++motus_index;
     plot::Series e = s;
     for (const Point& p : curve.points) {
@@ -83,6 +89,8 @@ std::vector<plot::Figure> diagrams(const ReportContext& c, const std::vector<Cur
       work.series.push_back(std::move(e));
     }
   }
+  if (plugin_drawn)
+    for (plot::Figure* f : {&time, &work}) f->note += "; open circles: the plug-in's";
   if (!no_evaluations.empty())
     work.note += "; not drawn, as they evaluate no force here: " + fmt::format("{}", fmt::join(no_evaluations, ", "));
   return {time, work};
@@ -150,18 +158,12 @@ std::string write_precision_report(const std::string& folder, const ReportContex
     std::vector<std::optional<Fastest>> best;
     for (const auto& e : engines) {
       best.push_back(fastest(curves, e, target));
-      // (an engine none of whose curves could run the scene has reached nothing: it cannot run it)
-      const bool runs = std::any_of(curves.begin(), curves.end(),
-                                    [&](const Curve& curve) { return curve.engine == e && curve.unsupported.empty(); });
-      html += best.back() ? "<td>" + html_escape(best.back()->method) + "</td><td>" + micro(best.back()->at) + "</td>"
-              : runs      ? "<td class=\"no\">not reached</td><td>–</td>"
-                          : "<td class=\"no\">cannot run this scene</td><td>–</td>";
+      html += best.back()            ? "<td>" + html_escape(best.back()->method) + "</td><td>" + micro(best.back()->at) + "</td>"
+              : engine_runs(curves, e) ? "<td class=\"no\">not reached</td><td>–</td>"
+                                       : "<td class=\"no\">cannot run this scene</td><td>–</td>";
     }
     for (size_t k = 1; k < engines.size(); ++k)
-      html += engines[0] == "motus" && best[0] && best[k]
-                  ? fmt::format("<td>{:.2f} ({:.2f})</td>", best[0]->at.seconds / best[k]->at.seconds,
-                                best[0]->at.median_seconds / best[k]->at.median_seconds)
-                  : "<td>–</td>";
+      html += "<td>" + html_escape(engines[0] == "motus" ? ratio_text(best[0], best[k]) : "–") + "</td>";
     html += "</tr>\n";
   }
   html += "</table>\n";

@@ -1,5 +1,8 @@
 #include "motus/precision/targets.hpp"
 
+#include <fmt/format.h>
+
+#include <algorithm>
 #include <cmath>
 
 namespace motus::precision {
@@ -39,6 +42,21 @@ std::optional<Fastest> fastest(const std::vector<Curve>& curves, const std::stri
     if (at && (!best || at->seconds < best->at.seconds)) best = Fastest{c.method, *at};
   }
   return best;
+}
+
+bool engine_runs(const std::vector<Curve>& curves, const std::string& engine) {
+  return std::any_of(curves.begin(), curves.end(),
+                     [&](const Curve& c) { return c.engine == engine && c.unsupported.empty(); });
+}
+
+std::string ratio_text(const std::optional<Fastest>& motus, const std::optional<Fastest>& peer, bool ascii) {
+  const std::string none = ascii ? "-" : "–";
+  if (!motus || !peer || (motus->at.upper_bound && peer->at.upper_bound)) return none;
+  // A time that is a bound (at most) makes the ratio one: at most when it is motus's, at least
+  // when it is the peer's.
+  const std::string bound = motus->at.upper_bound ? (ascii ? "<=" : "≤ ") : peer->at.upper_bound ? (ascii ? ">=" : "≥ ") : "";
+  return fmt::format("{}{:.2f} ({:.2f})", bound, motus->at.seconds / peer->at.seconds,
+                     motus->at.median_seconds / peer->at.median_seconds);
 }
 
 std::vector<double> default_targets() { return {1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10}; }

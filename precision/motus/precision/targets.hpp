@@ -30,6 +30,15 @@ struct Fastest {
 // "motus"; a plug-in's: its name; "odeint", "box2d", "bullet").
 std::optional<Fastest> fastest(const std::vector<Curve>& curves, const std::string& engine, double target);
 
+// Whether any of `engine`'s curves could run the scene (one that cannot has reached nothing: it is
+// "cannot run this scene", not "not reached").
+bool engine_runs(const std::vector<Curve>& curves, const std::string& engine);
+
+// motus's time over a peer's at a target, fastest runs (median runs): "0.52 (0.55)"; a bound where
+// one side is (its cheapest point already below the target): "≤ …" when motus's is, "≥ …" when
+// the peer's is; "–" when both are, or either reached nothing. `ascii`: "<=", ">=" and "-".
+std::string ratio_text(const std::optional<Fastest>& motus, const std::optional<Fastest>& peer, bool ascii = false);
+
 // Every decade from 1e-4 to 1e-10 (the targets).
 std::vector<double> default_targets();
 

@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "motus/scene.hpp"
+
 namespace motus::precision {
 
 struct Point {
@@ -40,7 +42,10 @@ struct Sweep {
   std::function<void()> point_done;  // called after every point (a progress bar), may be empty
 };
 
-std::vector<double> fixed_steps(const Sweep& sweep);
+// The fixed steps dt/2^k; where only reference states are known (no formula for every t), each
+// shortened to the nearest that divides the run, so that the steps land on the reference time —
+// for motus's methods and Odeint's alike.
+std::vector<double> fixed_steps(const SceneDescription& scene, const Sweep& sweep);
 std::vector<double> tolerances(const Sweep& sweep);
 
 // The peers' steps (Box2D and Bullet run at the frame rates of games): 1/30, 1/60, … 1/960 s.
