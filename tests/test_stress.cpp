@@ -264,6 +264,8 @@ TEST(StressErrors, BadInputIsOneLineAndExitTwo) {
       {"stress", "oscillator", "--out", dir.path().string()},  // exists
       {"stress", "oscillator", "--steps", "10"},
       {"stress", "ball_gas", "--integrators", "rk4", "--out", (dir / "d").string()},
+      // (adaptive methods only: every section said "adaptive: it chooses its own steps", exit 0)
+      {"stress", "oscillator", "--integrators", "rk45", "--out", (dir / "g").string()},
       // (at t = 1e17 times are 16 apart: steps of 0.1 never moved the clock, and stress hung)
       {"stress", "oscillator", "--set", "start_time=1e17", "--integrators", "verlet", "--out", (dir / "f").string()},
   };
@@ -276,6 +278,7 @@ TEST(StressErrors, BadInputIsOneLineAndExitTwo) {
   EXPECT_FALSE(fs::exists(dir / "a"));
   EXPECT_FALSE(fs::exists(dir / "d"));
   EXPECT_FALSE(fs::exists(dir / "e"));
+  EXPECT_FALSE(fs::exists(dir / "g"));
 }
 
 // Ctrl-C while the page is being drawn (a stand-in gnuplot that waits): exit 130, and no folder,
