@@ -202,7 +202,8 @@ std::string write_precision_report(const std::string& folder, const ReportContex
   html += ". Odeint's steppers call motus's own right-hand side (the scene's system by its concrete type), with the "
           "state in a std::array where its size is known at compile time; their tolerances are in Odeint's error "
           "norm, so only errors reached are compared. Box2D and Bullet integrate with semi-implicit Euler: their "
-          "lines lie along motus's <code>symplectic-euler</code>, error ∝ dt.</p>\n";
+          "lines lie along motus's <code>symplectic-euler</code>, a first-order method (error ∝ dt over a stretch of "
+          "time; at a closed orbit's whole period its errors cancel to dt²).</p>\n";
   html += "<p>Data: <a href=\"precision.csv\">precision.csv</a> (every point), <a href=\"targets.csv\">targets.csv</a> "
           "(every method at every target); the diagrams are redrawn by <code>gnuplot figures.gp</code> in this "
           "folder.</p>\n</body></html>\n";
