@@ -445,6 +445,18 @@ TEST(Grade, AFolderTheSandboxCannotEnterIsTheGradersFaultNamed) {
   const json result = read_json(dir / "results.json");
   EXPECT_EQ(result["extra_data"]["internal_error"], true) << result.dump(2);
   EXPECT_NE(result["output"].get<std::string>().find("fault of the grader"), std::string::npos) << result.dump(2);
+  // The same without the sandbox (the code still runs as the sandbox's user), and through a link
+  // out of the closed folder (the way as given is what is followed).
+  fs::create_directories(dir / "open");
+  fs::create_directory_symlink("../open", closed / "link");
+  for (const auto& [tmpdir, extra] : {std::pair<fs::path, std::string>{closed, "--no-sandbox"}, {closed / "link", ""}}) {
+    std::vector<std::string> args = {"grade", "integrators", submission.string(), "--results", (dir / "again.json").string(),
+                                     "--overwrite"};
+    if (!extra.empty()) args.push_back(extra);
+    const auto again = run_motus(dir, args, {"TMPDIR=" + tmpdir.string()});
+    EXPECT_EQ(again.status, 1) << tmpdir << " " << extra << ": " << again.err;
+    EXPECT_NE(again.err.find(closed.string() + " (mode 0700): the sandbox's user"), std::string::npos) << again.err;
+  }
 }
 
 // What a student's code writes reaches the instructor's terminal without its control characters:

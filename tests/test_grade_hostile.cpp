@@ -63,6 +63,13 @@ TEST(Grade, HostileSubmissionsEndWithinTheirLimitsAndHarmNothing) {
       // 8 MB of message: cut, as output is (it went whole into results.json).
       {"huge-message", "#include <stdexcept>\n#include <string>\n", "throw std::runtime_error(std::string(8 << 20, 'A'));",
        "threw std::runtime_error: AAAA"},
+      // At its exit (after its answers): 70 MB down every descriptor, the answers' too, then a wait
+      // for ever. The grader stopped reading past 64 MB and then waited for it in waitpid, for ever.
+      {"holds-on-at-exit", "#include <cstdlib>\n#include <string>\n#include <unistd.h>\n",
+       "static const bool hooked = [] { std::atexit([] { static const std::string junk(1 << 20, 'x'); "
+       "for (int fd = 1; fd < 10; ++fd) for (int i = 0; i < 70; ++i) if (::write(fd, junk.data(), junk.size()) < 0) break; "
+       "for (;;) ::pause(); }); return true; }(); (void)hooked;",
+       ""},
       // /dev is a tmpfs of its own, unsized: writable, it held memory past every limit.
       {"write-dev", "#include <fstream>\n#include <stdexcept>\n",
        "for (const char* f : {\"/dev/filled\", \"/dev/shm/filled\"}) if (std::ofstream(f) << \"x\") "
@@ -108,7 +115,7 @@ TEST(Grade, HostileSubmissionsEndWithinTheirLimitsAndHarmNothing) {
                                  "--time-limit", "2", "--out", (dir / "results").string()});
   ::close(listener);
   ASSERT_EQ(r.status, 0) << r.err;
-  // (17 submissions, 2 at a time, each test at most 2 s: a grader that hung would meet ctest's TIMEOUT.)
+  // (18 submissions, 2 at a time, each test at most 2 s: a grader that hung would meet ctest's TIMEOUT.)
 
   double public_max = 0;
   const auto defs = definitions("integrators");

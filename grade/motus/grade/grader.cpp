@@ -135,6 +135,16 @@ GradeResult grade_submission(const Assignment& a, const std::string& submission,
     if (::chown(out.c_str(), user.uid(), user.uid()) != 0) throw std::runtime_error("cannot hand the build folder to the sandbox's user");
   }
   ::chmod(out.c_str(), 0700);
+  // As root the student's code runs as the sandbox's user, sandbox or not (--no-sandbox): what it
+  // will read must be within its reach, or every student fails for the grader's fault.
+  if (::geteuid() == 0) {
+    std::vector<std::string> used = {staged.string(), out.string(), o.headers.student, o.headers.plugin, o.headers.external, o.motus};
+    for (const auto& f : a.provided) used.push_back((fs::path(a.folder) / f).string());
+    used.insert(used.end(), o.modules.begin(), o.modules.end());
+    for (const auto& path : used)
+      if (!path.empty())
+        if (const std::string why = unreachable_for(user.uid(), path); !why.empty()) throw std::runtime_error(why + kReachHint);
+  }
 
   // 1. The files the handout names, and only those, as regular files of a sensible size.
   TestResult files = gate("files", "0.1", "The handed-in files: " + fmt::format("{}", fmt::join(a.files, ", ")));

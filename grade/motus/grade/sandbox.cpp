@@ -82,14 +82,9 @@ std::string format_seconds(double s) {
   return text;
 }
 
-// Why the sandbox's user (uid, no supplementary groups) cannot reach `host` for a mount, or "":
-// bubblewrap runs as that user, who must pass through every folder on the way and read the
-// file (a TMPDIR or an assignment under a 0700 folder of root's gave every student 0 points,
-// "does not compile", with bubblewrap's "Permission denied" as the compiler's words).
-std::string unreachable_for(uid_t uid, const std::string& host) {
-  std::error_code error;
-  const fs::path path = fs::canonical(host, error);
-  if (error) return host + ": " + error.message();
+// The first folder on `path` (absolute) the user cannot pass through, or the file at its end it
+// cannot read; "" when there is none.
+std::string unreachable_along(uid_t uid, const fs::path& path) {
   auto allowed = [uid](const struct stat& st, mode_t user, mode_t group, mode_t other) {
     return st.st_uid == uid ? (st.st_mode & user) != 0 : st.st_gid == uid ? (st.st_mode & group) != 0 : (st.st_mode & other) != 0;
   };
@@ -112,7 +107,22 @@ std::string unreachable_for(uid_t uid, const std::string& host) {
   }
   return "";
 }
+
 }  // namespace
+
+// Why the sandbox's user (uid, no supplementary groups) cannot reach `host` for a mount, or "":
+// bubblewrap runs as that user, who must pass through every folder on the way and read the
+// file (a TMPDIR or an assignment under a 0700 folder of root's gave every student 0 points,
+// "does not compile", with bubblewrap's "Permission denied" as the compiler's words).
+std::string unreachable_for(uid_t uid, const std::string& host) {
+  // The way as given (bubblewrap follows it, links and all), then the way it leads.
+  std::error_code error;
+  const fs::path canonical = fs::canonical(host, error);
+  if (error) return host + ": " + error.message();
+  for (const fs::path& path : {fs::absolute(host).lexically_normal(), canonical})
+    if (std::string why = unreachable_along(uid, path); !why.empty()) return why;
+  return "";
+}
 
 SandboxUser::SandboxUser() : uid_(::geteuid()) {
   if (::geteuid() != 0) return;
@@ -194,9 +204,7 @@ SandboxProcess::SandboxProcess(const SandboxSpec& spec, const Limits& limits)
   const bool drop = ::geteuid() == 0;
   if (spec.isolate && drop)
     for (const auto& m : spec.mounts)
-      if (const std::string why = unreachable_for(uid, m.host); !why.empty())
-        throw std::runtime_error(why + ". motus grade runs the student's code as a user of its own: every folder it "
-                                       "mounts must be open to others on the way (chmod o+x), TMPDIR's too");
+      if (const std::string why = unreachable_for(uid, m.host); !why.empty()) throw std::runtime_error(why + kReachHint);
   const rlim_t cpu = static_cast<rlim_t>(std::ceil(limits.cpu_seconds));
   const rlim_t memory = static_cast<rlim_t>(limits.memory_mb) << 20;
   const rlim_t file = static_cast<rlim_t>(limits.file_mb) << 20;
@@ -317,10 +325,14 @@ void SandboxProcess::pump(std::chrono::steady_clock::time_point deadline, Until 
         if (want_line) return;
       } else {
         out_buffer_.append(buffer, static_cast<size_t>(n));
-        if (out_buffer_.size() > (64u << 20)) {  // a line longer than any answer: stop reading it
-          ::close(out_);
-          out_ = -1;
-          return;
+        if (out_buffer_.size() > (64u << 20)) {  // a line longer than any answer
+          if (until == Until::end) {
+            out_buffer_.clear();  // (no line is wanted now: read on and drop, until it ends)
+          } else {
+            ::close(out_);
+            out_ = -1;
+            return;
+          }
         }
       }
     }
@@ -369,6 +381,19 @@ Ending SandboxProcess::finish(std::chrono::steady_clock::time_point deadline) {
     in_ = -1;
   }
   pump(deadline, Until::end);
+  // Its output has ended; it must end too by the deadline: a program that closed its output and
+  // waits for ever would hold the grader in waitpid. (WNOWAIT: reap() collects it.)
+  while (!timed_out_ && !interrupted_) {
+    siginfo_t info{};
+    if (::waitid(P_PID, static_cast<id_t>(pid_), &info, WEXITED | WNOHANG | WNOWAIT) == 0 && info.si_pid == pid_) break;
+    if (std::chrono::steady_clock::now() >= deadline) {
+      timed_out_ = true;
+    } else if (stop_ && stop_()) {
+      interrupted_ = true;
+    } else {
+      ::usleep(5000);
+    }
+  }
   if (timed_out_ || interrupted_) return kill();
   return reap(false);
 }
