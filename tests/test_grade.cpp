@@ -425,6 +425,30 @@ TEST(Grade, WhatStopsTheGradingStillLeavesAResultsFileThatSaysWhy) {
   EXPECT_NE(result["output"].get<std::string>().find("nor in --hidden"), std::string::npos) << result.dump(2);
 }
 
+// Only the handed-in files themselves are taken: a link (to the solution, say) is not followed,
+// and a file over 1 MB is no source code; each says why. (Read through one descriptor that
+// follows no link: a link swapped in after a look would otherwise be followed.)
+TEST(Grade, AHandedInLinkOrAHugeFileIsNotTaken) {
+  TempDir dir;
+  const std::string solution = (fs::path(kAssignments) / "integrators/solution/integrators.cpp").string();
+  fs::create_directories(dir / "linked");
+  fs::create_symlink(solution, dir / "linked/integrators.cpp");
+  fs::create_directories(dir / "huge");
+  write_file(dir / "huge/integrators.cpp", std::string((1 << 20) + 1, ' '));
+  for (const auto& [folder, why] : {std::pair<std::string, std::string>{"linked", "not a regular file (a folder or a link is not taken)"},
+                                    {"huge", "larger than 1 MB"}}) {
+    const auto r = run_motus(dir, {"grade", "integrators", (dir / folder).string(), "--no-sandbox", "--results",
+                                   (dir / (folder + ".json")).string()});
+    ASSERT_EQ(r.status, 0) << r.err;
+    const json result = read_json(dir / (folder + ".json"));  // (kept: test_named points into it)
+    const json* files = test_named(result, "files");
+    ASSERT_NE(files, nullptr);
+    EXPECT_EQ((*files)["status"], "failed");
+    EXPECT_NE((*files)["output"].get<std::string>().find("integrators.cpp: " + why), std::string::npos) << (*files)["output"];
+    EXPECT_EQ(result["score"].get<double>(), 0);
+  }
+}
+
 // A sandbox that cannot reach a folder is the grader's fault: with TMPDIR a 0700 folder of root's,
 // the sandbox's user could not enter the work folder, and every student scored 0 with "does not
 // compile" (bubblewrap's "Permission denied" shown as the compiler's words). Now the grading stops

@@ -47,25 +47,44 @@ std::string where_it_might_be(const std::string& submission, const std::string& 
 
 constexpr std::uintmax_t kMaxFileBytes = 1 << 20;  // a handed-in file larger than 1 MB is not source code
 
-// A handed-in file's bytes, read through a descriptor opened without following a link; nullopt
-// when it is a link, not a regular file, or larger than kMaxFileBytes by the time it is read.
-std::optional<std::string> read_regular_file(const fs::path& path) {
-  const int fd = ::open(path.c_str(), O_RDONLY | O_NOFOLLOW | O_CLOEXEC | O_NONBLOCK);
-  if (fd < 0) return std::nullopt;
-  struct stat st {};
+// A handed-in file: its bytes, or why it is not taken ("missing", or a reason to show).
+struct HandedIn {
   std::optional<std::string> text;
-  if (::fstat(fd, &st) == 0 && S_ISREG(st.st_mode) && static_cast<std::uintmax_t>(st.st_size) <= kMaxFileBytes) {
-    std::string bytes(kMaxFileBytes + 1, '\0');
+  std::string why;
+};
+
+// Reads `name` in the submission's folder (open as `folder`) through one descriptor that follows
+// no link: a link swapped in for the file, or for the folder once it is open, is not followed
+// (on a machine the student also uses, it could lead the grader to the solution).
+HandedIn read_handed_in(int folder, const std::string& name) {
+  const char* not_regular = "not a regular file (a folder or a link is not taken)";
+  const int fd = ::openat(folder, name.c_str(), O_RDONLY | O_NOFOLLOW | O_CLOEXEC | O_NONBLOCK);
+  if (fd < 0) {
+    const int e = errno;
+    return {std::nullopt, e == ENOENT ? "missing" : e == ELOOP ? not_regular : std::string("cannot be read (") + std::strerror(e) + ")"};
+  }
+  HandedIn in;
+  struct stat st {};
+  if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
+    in.why = not_regular;
+  } else if (static_cast<std::uintmax_t>(st.st_size) > kMaxFileBytes) {
+    in.why = "larger than 1 MB";
+  } else {
+    std::string bytes(kMaxFileBytes + 1, '\0');  // (one more: a file that grew past the limit shows)
     size_t got = 0;
     for (ssize_t n; got < bytes.size() && (n = ::read(fd, bytes.data() + got, bytes.size() - got)) != 0;) {
       if (n < 0 && errno == EINTR) continue;
-      if (n < 0) break;
+      if (n < 0) {
+        in.why = std::string("cannot be read (") + std::strerror(errno) + ")";
+        break;
+      }
       got += static_cast<size_t>(n);
     }
-    if (got <= kMaxFileBytes) bytes.resize(got), text = std::move(bytes);
+    if (in.why.empty() && got > kMaxFileBytes) in.why = "larger than 1 MB";
+    if (in.why.empty()) bytes.resize(got), in.text = std::move(bytes);
   }
   ::close(fd);
-  return text;
+  return in;
 }
 
 // A fresh folder of our own for one grading, removed when done.
@@ -149,28 +168,21 @@ GradeResult grade_submission(const Assignment& a, const std::string& submission,
   // 1. The files the handout names, and only those, as regular files of a sensible size.
   TestResult files = gate("files", "0.1", "The handed-in files: " + fmt::format("{}", fmt::join(a.files, ", ")));
   std::string missing;
+  // (The folder as given, links and all, opened once: what is read is in it, whatever is renamed.)
+  const int folder = ::open(submission.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
   for (const auto& name : a.files) {
-    const fs::path from = fs::path(submission) / name;
-    std::error_code error;
-    const auto status = fs::symlink_status(from, error);
-    if (error || !fs::exists(status)) {
-      missing += "  " + name + ": missing" + where_it_might_be(submission, name) + "\n";
-    } else if (!fs::is_regular_file(status)) {
-      missing += "  " + name + ": not a regular file (a folder or a link is not taken)\n";
-    } else if (fs::file_size(from) > kMaxFileBytes) {
-      missing += "  " + name + ": larger than 1 MB\n";
-    } else if (const auto text = read_regular_file(from)) {
-      // (Read through one descriptor that follows no link: a link put in its place after the
-      // look above, on a machine the student also uses, is not followed.)
-      std::ofstream out(staged / name, std::ios::binary | std::ios::trunc);
-      out << *text;
-      out.close();
-      if (!out) throw std::runtime_error((staged / name).string() + ": could not be written");
-      ::chmod((staged / name).c_str(), 0644);
-    } else {
-      missing += "  " + name + ": not a regular file (a folder or a link is not taken)\n";
+    const HandedIn in = folder >= 0 ? read_handed_in(folder, name) : HandedIn{std::nullopt, "missing"};
+    if (!in.text) {
+      missing += "  " + name + ": " + in.why + (in.why == "missing" ? where_it_might_be(submission, name) : "") + "\n";
+      continue;
     }
+    std::ofstream out(staged / name, std::ios::binary | std::ios::trunc);
+    out << *in.text;
+    out.close();
+    if (!out) throw std::runtime_error((staged / name).string() + ": could not be written");
+    ::chmod((staged / name).c_str(), 0644);
   }
+  if (folder >= 0) ::close(folder);
   files.passed = missing.empty();
   files.output = files.passed ? "Every file the handout names is there."
                               : "Not graded: these files are missing or cannot be taken (the handout names them; "
