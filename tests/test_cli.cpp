@@ -126,6 +126,7 @@ const std::vector<BadInput> kBadInputs = {
     {"escape_in_name", "@spring", {"--set", "name=sp\x1b[2Jring"}, "name", "has a control character (code 27)"},
     {"escape_in_description", "@spring", {"--set", "description=a\rcarriage return"}, "description",
      "has a control character (code 13)"},
+    {"c1_control_in_name", "@spring", {"--set", "name=c1\xc2\x9b" "2J"}, "name", "has a control character (U+009B)"},
     // Two reference states at one time: bench precision measured against whichever it read.
     {"reference_time_twice", "@lorenz", {"--set", "reference[1].t=1"}, "reference[1].t",
      "reference[0] has this time too"},

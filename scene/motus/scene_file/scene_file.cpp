@@ -1,6 +1,7 @@
 #include "motus/scene_file/scene_file.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -337,12 +338,21 @@ SceneDescription read_scene(const nlohmann::json& document, const std::string& s
   scene.name = f.string("name", stem);
   scene.description = f.string("description", "");
   // Both are printed on the terminal and in every report: a control character (an escape
-  // sequence, a carriage return) there would rewrite the user's screen, not name a scene. (Line
-  // breaks and tabs may be in them: they are printed on one line.)
+  // sequence, C0's or C1's, a carriage return) there would rewrite the user's screen, not name a
+  // scene. Line breaks and tabs may be in them: the name is made one line here (every command
+  // prints it as a line's start), the description where it is printed.
   for (const auto& [key, text] : {std::pair<const char*, const std::string&>{"name", scene.name}, {"description", scene.description}})
-    for (const unsigned char c : text)
-      if ((c < 0x20 && c != '\n' && c != '\t') || c == 0x7f)
-        f.fail(key, "has a control character (code " + std::to_string(c) + "); only line breaks and tabs may be in it");
+    for (size_t i = 0; i < text.size(); ++i) {
+      const unsigned char c = static_cast<unsigned char>(text[i]);
+      const bool c1 = c == 0xc2 && i + 1 < text.size() && static_cast<unsigned char>(text[i + 1]) >= 0x80 &&
+                      static_cast<unsigned char>(text[i + 1]) <= 0x9f;  // U+0080 … U+009F in UTF-8
+      if ((c < 0x20 && c != '\n' && c != '\t') || c == 0x7f || c1) {
+        char code[16];
+        std::snprintf(code, sizeof code, c1 ? "U+%04X" : "code %u", c1 ? static_cast<unsigned char>(text[i + 1]) : c);
+        f.fail(key, "has a control character (" + std::string(code) + "); only line breaks and tabs may be in it");
+      }
+    }
+  std::replace_if(scene.name.begin(), scene.name.end(), [](char c) { return c == '\n' || c == '\t'; }, ' ');
 
   if (f.has("system") && f.has("bodies")) f.fail("system", "a scene has either \"system\" or \"bodies\", not both");
   if (f.has("system")) {
