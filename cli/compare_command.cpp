@@ -260,9 +260,10 @@ int compare_command(const CompareOptions& o) {
   if (o.json) {
     fmt::print("{}\n", summary.dump(2, ' ', false, nlohmann::json::error_handler_t::replace));  // (a path not in UTF-8)
   } else {
-    fmt::print("{}: {} {}, {}-D, dt = {:g} s, {:g} s ({} steps); motus integrator {}\n", scene.name,
-               context.bodies, context.bodies == 1 ? "body" : "bodies", context.dimensions, options.dt, options.duration,
-               fixed_step_count(options.duration, options.dt), integrator_name);
+    const long steps = fixed_step_count(options.duration, options.dt);
+    fmt::print("{}: {} {}, {}-D, dt = {:g} s, {:g} s ({} step{}); motus integrator {}\n", scene.name, context.bodies,
+               context.bodies == 1 ? "body" : "bodies", context.dimensions, options.dt, options.duration, steps,
+               steps == 1 ? "" : "s", integrator_name);
     // Where the scene has an exact answer, the distance from it matters more than from motus.
     const bool exact_known = has_exact_solution(scene);
     const char* distance_key = exact_known ? "max_distance_from_exact" : "max_distance_from_motus";

@@ -256,6 +256,9 @@ TEST(Compare, APendulumsDistanceFromTheExactAnswerIsInRadians) {
   EXPECT_NE(r.out.find(" rad."), std::string::npos) << r.out;
   EXPECT_EQ(r.out.find(" m."), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("pendulum: 1 body, 1-D"), std::string::npos) << r.out;  // (not "1 bodies")
+  const std::string page = read_file(dir / "p" / "index.html");
+  EXPECT_NE(page.find("1 body in 1 dimension;"), std::string::npos);
+  EXPECT_NE(page.find("over one timing round."), std::string::npos);
 }
 
 TEST(Compare, MetricsCsvAgreesWithTheSummary) {

@@ -281,13 +281,17 @@ std::string write_report(const std::string& folder, const ReportContext& c, cons
           "dt{font-weight:bold;margin-top:.5em}dd{margin-left:1.5em}.dim{color:#777}"
           "img{max-width:100%}code{background:#f3f3f3;padding:0 .2em}</style></head><body>\n";
   html << "<h1>" << html_escape(c.scene_name) << "</h1>\n<p>" << html_escape(c.description) << "</p>\n";
-  html << fmt::format("<p>{} {} in {} dimensions; dt = {:g} s for {:g} s; motus integrator <code>{}</code>. "
+  const std::string timing =
+      c.repeats == 0   ? "No engine ran, so nothing was timed."
+      : c.repeats == 1 ? "Times are CPU time per step over one timing round."
+                       : fmt::format("Times are CPU time per step over {} timing rounds, the engines taking turns in each: the "
+                                     "fastest round, with the median and the spread (largest − smallest) / smallest beside it.",
+                                     c.repeats);
+  html << fmt::format("<p>{} {} in {} dimension{}; dt = {:g} s for {:g} s; motus integrator <code>{}</code>. "
                       "Every engine runs the same parsed scene in one process; every metric is computed by the same "
-                      "code from each engine's positions and velocities. Times are CPU time per step over {} timing "
-                      "rounds, the engines taking turns in each: the fastest round, with the median and the spread "
-                      "(largest − smallest) / smallest beside it.</p>\n",
-                      c.bodies, c.bodies == 1 ? "body" : "bodies", c.dimensions, c.dt, c.duration, html_escape(c.integrator),
-                      c.repeats);
+                      "code from each engine's positions and velocities. {}</p>\n",
+                      c.bodies, c.bodies == 1 ? "body" : "bodies", c.dimensions, c.dimensions == 1 ? "" : "s", c.dt,
+                      c.duration, html_escape(c.integrator), timing);
   const bool exact_known = c.scene && has_exact_solution(*c.scene);
   if (summary.contains("notice"))
     html << "<p class=\"notice\"><b>What to notice.</b> " << html_escape(summary["notice"].get<std::string>()) << "</p>\n";
