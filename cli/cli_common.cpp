@@ -18,6 +18,7 @@
 
 #include <fmt/format.h>
 
+#include "motus/plot/write_failure.hpp"
 #include "motus/simulation.hpp"
 
 namespace fs = std::filesystem;
@@ -316,9 +317,10 @@ void write_whole_file(const std::string& path, const std::string& text, bool ove
   {
     std::ofstream out(partial ? partial->path() : path, std::ios::binary | std::ios::trunc);
     if (!out) throw std::runtime_error(path + ": cannot be written");
+    errno = 0;
     out << text;
     out.flush();
-    if (!out) throw std::runtime_error(path + ": could not be written (disk full?)");
+    if (!out) throw std::runtime_error(plot::write_failure(path));
   }
   if (partial) partial->complete(overwrite);
 }

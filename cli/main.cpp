@@ -125,7 +125,8 @@ int main(int argc, char** argv) {
       fmt::print(stderr, "motus: interrupted; nothing half-written was left behind\n");
       return kExitInterrupted;
     }
-    if (std::ferror(stdout)) {  // fmt's "cannot write to file" is standard output's: named as such
+    const std::string what = e.what();
+    if (std::ferror(stdout) && what.rfind("standard output", 0) != 0) {  // fmt's "cannot write to file" is standard output's: named as such
       const auto* system = dynamic_cast<const std::system_error*>(&e);
       fmt::print(stderr, "motus: the run failed: standard output could not be written ({})\n",
                  system ? system->code().message() : one_line(e.what()));

@@ -16,6 +16,7 @@
 
 #include "cli_common.hpp"
 #include "motus/compare/timing.hpp"
+#include "motus/plot/write_failure.hpp"
 #include "motus/simulation.hpp"
 #include "progress_bar.hpp"
 #include "motus/scene_file/scene_file.hpp"
@@ -87,9 +88,7 @@ private:
   // A write that failed stops the run at once (a reader gone, a full disk: the rest of the run
   // would be lost work), with the system's reason when it gave one.
   void check_written(const std::ostream& stream) const {
-    if (stream) return;
-    if (const int e = errno) throw std::system_error(e, std::generic_category(), path_ + ": could not be written");
-    throw std::runtime_error(path_ + ": could not be written (disk full?)");
+    if (!stream) throw std::runtime_error(plot::write_failure(path_));
   }
   void row(const Simulation& sim) {
     errno = 0;  // (so that a failed write's errno is the write's)

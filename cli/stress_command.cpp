@@ -187,8 +187,9 @@ int stress_command(const StressOptions& o) {
   const std::string energy_why = sticks ? "the scene has sticks or pins, whose projection is dissipative: its energy is not an integrator's"
                                         : "the scene has contacts: between them every step is symplectic Euler's or Verlet's drift";
   // A damper or drag takes energy out by design: the drift would measure the physics.
-  const bool dissipative = !m.forces.drag.empty() || std::any_of(m.forces.springs.begin(), m.forces.springs.end(),
-                                                                 [](const Spring& s) { return s.damping != 0; });
+  const bool dissipative =
+      std::any_of(m.forces.drag.begin(), m.forces.drag.end(), [](const LinearDrag& d) { return d.coefficient != 0; }) ||
+      std::any_of(m.forces.springs.begin(), m.forces.springs.end(), [](const Spring& s) { return s.damping != 0; });
   if (!contacts && !sticks) {
     report.sections = {"stability"};
     if (dissipative)

@@ -8,6 +8,7 @@
 
 #include "motus/plot/figure.hpp"
 #include "motus/plot/html.hpp"
+#include "motus/plot/write_failure.hpp"
 
 namespace motus::cli::stress {
 namespace {
@@ -30,7 +31,7 @@ public:
   explicit File(std::string path) : path_(std::move(path)), out_(path_, std::ios::binary) {}
   ~File() noexcept(false) {
     out_.flush();
-    if (!out_ && std::uncaught_exceptions() == 0) throw std::runtime_error(path_ + ": could not be written (disk full?)");
+    if (!out_ && std::uncaught_exceptions() == 0) throw std::runtime_error(plot::write_failure(path_));
   }
   template <class T>
   File& operator<<(const T& x) {

@@ -680,16 +680,31 @@ namespace {
 
 // 20. A reader that goes away (motus list | head -1): the write fails, exit 1 with one line
 //     naming standard output (SIGPIPE ended motus without a word).
+// Motus's files for a run whose standard output is a pipe nobody reads (its read end closed);
+// its standard error goes to DIR/err.txt. The pipe's write end is closed by close_output().
+struct OutputNobodyReads {
+  MotusFiles files;
+  explicit OutputNobodyReads(const TempDir& dir) {
+    int ends[2];
+    if (::pipe(ends) != 0) return;
+    ::close(ends[0]);  // nobody reads
+    files.out_fd = ends[1];
+    files.err = (dir / "err.txt").string();
+    files.folder = dir.path().string();
+  }
+  void close_output() {
+    if (files.out_fd >= 0) ::close(files.out_fd);
+    files.out_fd = -1;
+  }
+  ~OutputNobodyReads() { close_output(); }
+};
+
 TEST(Hardening, AReaderThatGoesAwayIsAFailedWriteWithOneLine) {
   TempDir dir;
-  int pipe_ends[2];
-  ASSERT_EQ(::pipe(pipe_ends), 0);
-  ::close(pipe_ends[0]);  // nobody reads
-  MotusFiles files;
-  files.err = (dir / "err.txt").string();
-  files.out_fd = pipe_ends[1];
-  const int raw = run_motus_with({"list"}, files);
-  ::close(pipe_ends[1]);
+  OutputNobodyReads output(dir);
+  ASSERT_GE(output.files.out_fd, 0);
+  const int raw = run_motus_with({"list"}, output.files);
+  output.close_output();
   const std::string err = read_file(dir / "err.txt");
   ASSERT_TRUE(WIFEXITED(raw)) << "ended by signal " << WTERMSIG(raw);
   EXPECT_EQ(WEXITSTATUS(raw), 1);
@@ -701,23 +716,18 @@ TEST(Hardening, AReaderThatGoesAwayIsAFailedWriteWithOneLine) {
 // the run went on to its end (a billion steps here: hours) and then said "disk full?".
 TEST(Hardening, ATrajectoryWhoseReaderWentAwayStopsTheRunAtOnce) {
   TempDir dir;
-  int pipe_ends[2];
-  ASSERT_EQ(::pipe(pipe_ends), 0);
-  ::close(pipe_ends[0]);  // nobody reads
-  MotusFiles files;
-  files.err = (dir / "err.txt").string();
-  files.out_fd = pipe_ends[1];
-  files.folder = dir.path().string();
+  OutputNobodyReads output(dir);
+  ASSERT_GE(output.files.out_fd, 0);
   const pid_t pid = start_motus_with(
-      {"run", scene("spring"), "--repeats", "1", "--duration", "1e7", "--dt", "0.01", "--trajectory", "-"}, files);
-  ::close(pipe_ends[1]);
+      {"run", scene("spring"), "--repeats", "1", "--duration", "1e7", "--dt", "0.01", "--trajectory", "-"}, output.files);
+  output.close_output();
   ASSERT_GT(pid, 0);
   int raw = 0;
   ASSERT_TRUE(ended_within(pid, 60, raw)) << "the run went on without its reader";
   ASSERT_TRUE(WIFEXITED(raw)) << "ended by signal " << WTERMSIG(raw);
   EXPECT_EQ(WEXITSTATUS(raw), 1);
   const std::string err = read_file(dir / "err.txt");
-  EXPECT_NE(err.find("standard output could not be written (Broken pipe)"), std::string::npos) << err;
+  EXPECT_NE(err.find("standard output: could not be written (Broken pipe)"), std::string::npos) << err;
 }
 
 }  // namespace

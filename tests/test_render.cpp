@@ -379,9 +379,6 @@ TEST(RenderCommand, GifThroughFfmpeg) {
   EXPECT_EQ(gif.substr(0, 6), "GIF89a");
 }
 
-// Every shipped scene draws through the drawing module: its first frame has the size asked
-// for and is more than the background (DrawOptions' background colour, unchanged where
-// nothing is drawn).
 // The camera leaves the scale bar's band free: a body at the bottom of a run's extent (free_fall's
 // ball at its start, below where it flies) was drawn half under the bar's box.
 TEST(RenderPixels, TheCameraKeepsBodiesAboveTheScaleBar) {
@@ -399,6 +396,9 @@ TEST(RenderPixels, TheCameraKeepsBodiesAboveTheScaleBar) {
   EXPECT_LT(lowest, bar_top) << "the ball reaches into the scale bar's box";
 }
 
+// Every shipped scene draws through the drawing module: its first frame has the size asked
+// for and is more than the background (DrawOptions' background colour, unchanged where
+// nothing is drawn).
 TEST(RenderCommand, DrawsTheFirstFrameOfEveryShippedScene) {
   TempDir dir;
   const Color background = DrawOptions{}.background;

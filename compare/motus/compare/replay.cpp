@@ -14,6 +14,7 @@
 
 #include "motus/compare/replay_js.hpp"  // kReplayJs: compare/replay/replay.js, generated at build time
 #include "motus/plot/html.hpp"
+#include "motus/plot/write_failure.hpp"
 
 namespace motus::compare {
 namespace {
@@ -25,7 +26,7 @@ using motus::plot::html_escape;
 void check_written(std::ofstream& out, const std::string& path) {
   out.flush();
   // (errno says why: the failing open or write set it — no such folder, no space left, ...)
-  if (!out) throw std::runtime_error(path + ": could not be written" + (errno ? std::string(" (") + std::strerror(errno) + ")" : ""));
+  if (!out) throw std::runtime_error(plot::write_failure(path));
 }
 
 // JSON (and so JavaScript) text; bytes that are not UTF-8 in a name become U+FFFD.

@@ -13,6 +13,7 @@
 #include "motus/exact/exact_solution.hpp"
 #include "motus/plot/figure.hpp"
 #include "motus/plot/html.hpp"
+#include "motus/plot/write_failure.hpp"
 
 namespace motus::compare {
 namespace {
@@ -29,7 +30,7 @@ const EngineRun* find_motus(const std::vector<EngineRun>& runs) {
 void check_written(std::ofstream& out, const std::string& path) {
   out.flush();
   // (errno says why: the failing open or write set it — no such folder, no space left, ...)
-  if (!out) throw std::runtime_error(path + ": could not be written" + (errno ? std::string(" (") + std::strerror(errno) + ")" : ""));
+  if (!out) throw std::runtime_error(plot::write_failure(path));
 }
 
 void write_text(const std::string& path, const std::string& text) {
@@ -171,8 +172,8 @@ nlohmann::json summary_json(const ReportContext& c, const std::vector<EngineRun>
   j["dimensions"] = c.dimensions;
   j["bodies"] = c.bodies;
   j["repeats"] = c.repeats;
-  j["energy_unit"] = energy_in_joules(runs) ? "J" : "E0";
-  j["momentum_unit"] = momentum_in_kg_m_s(runs) ? "kg·m/s" : "scale";  // momentum_drift: kg·m/s, or fractions of the scale  // energy_drift, max_energy_error: joules, or fractions of |E₀|
+  j["energy_unit"] = energy_in_joules(runs) ? "J" : "E0";  // energy_drift, max_energy_error: joules, or fractions of |E₀|
+  j["momentum_unit"] = momentum_in_kg_m_s(runs) ? "kg·m/s" : "scale";  // momentum_drift: kg·m/s, or fractions of the scale
   const EngineRun* motus = find_motus(runs);
   const Timings motus_time = motus ? motus->microseconds_per_step() : Timings{};
   j["engines"] = nlohmann::json::array();

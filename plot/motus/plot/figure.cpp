@@ -1,4 +1,5 @@
 #include "motus/plot/figure.hpp"
+#include "motus/plot/write_failure.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -159,13 +160,14 @@ std::string draw(const std::vector<Figure>& figures, const std::string& folder) 
     }
   }
   data.flush();
-  if (!data) throw std::runtime_error(data_file + ": could not be written (disk full?)");
+  if (!data) throw std::runtime_error(write_failure(data_file));
   const std::string script_file = folder + "/figures.gp";
   {
+    errno = 0;
     std::ofstream script(script_file);
     script << gp.str() << "set output\n";
     script.flush();
-    if (!script) throw std::runtime_error(script_file + ": could not be written (disk full?)");
+    if (!script) throw std::runtime_error(write_failure(script_file));
   }
   const std::string gnuplot = gnuplot_program();
   if (gnuplot.empty()) return "plots skipped: gnuplot not found on PATH (apt-get install gnuplot-nox)";

@@ -12,6 +12,7 @@
 #include "motus/plot/figure.hpp"
 #include "motus/precision/targets.hpp"
 #include "motus/plot/html.hpp"
+#include "motus/plot/write_failure.hpp"
 
 namespace motus::precision {
 namespace {
@@ -25,10 +26,11 @@ std::string csv_text(const std::string& text) {
 }
 
 void write_file(const std::string& path, const std::string& text) {
+  errno = 0;
   std::ofstream out(path, std::ios::binary);
   out << text;
   out.flush();
-  if (!out) throw std::runtime_error(path + ": could not be written (disk full?)");
+  if (!out) throw std::runtime_error(plot::write_failure(path));
 }
 
 // Microseconds, or "–".
