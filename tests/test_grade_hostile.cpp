@@ -282,6 +282,27 @@ TEST(Grade, ASubmissionThatStopsReadingItsInputTimesOut) {
   EXPECT_TRUE(sandbox_processes_left().empty()) << ::testing::PrintToString(sandbox_processes_left());
 }
 
+// Without a sandbox the student's code can reach the folder its plug-in was built in: one that
+// replaced its own plug-in with a link (here to /etc/hostname) had the grader copy what the link
+// leads to into --plugin-out. The grader now refuses to copy anything but the file it built.
+TEST(Grade, ASubmissionThatReplacesItsOwnPluginGetsNoCopyOfWhatItPointsAt) {
+  TempDir dir;
+  const fs::path submission = solution_with_euler_step_starting(
+      dir, "replaces-itself",
+      "static bool done = false; if (!done) { done = true; std::ifstream maps(\"/proc/self/maps\"); "
+      "for (std::string line; std::getline(maps, line);) { const auto at = line.find('/'); "
+      "if (at != std::string::npos && line.find(\"student.so\") != std::string::npos) { "
+      "const std::string so = line.substr(at); std::filesystem::remove(so); "
+      "std::filesystem::create_symlink(\"/etc/hostname\", so); break; } } }",
+      "#include <filesystem>\n#include <fstream>\n#include <string>\n");
+  ASSERT_FALSE(submission.empty());
+  const auto r = run_motus(dir, {"grade", "integrators", submission.string(), "--no-sandbox", "--results",
+                                 (dir / "results.json").string(), "--plugin-out", (dir / "plugin.so").string()});
+  EXPECT_EQ(r.status, 1) << r.err;
+  EXPECT_NE(r.err.find("the built plug-in is no longer a file"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir / "plugin.so"));
+}
+
 TEST(Grade, CtrlCEndsTheGradingWhileTheStudentsCodeRuns) {
   NEEDS_SANDBOX();
   TempDir dir;

@@ -244,7 +244,16 @@ GradeResult grade_submission(const Assignment& a, const std::string& submission,
     result.tests.push_back(r);
   }
   probe.stop();
-  if (built.ok && !o.plugin_out.empty()) fs::copy_file(built.plugin, o.plugin_out, fs::copy_options::overwrite_existing);
+  if (built.ok && !o.plugin_out.empty()) {
+    // The student's code ran as the user that owns the build's folder (and, without a sandbox,
+    // could reach it): the plug-in there must still be a file, not a link to one of the grader's.
+    // (Every process of that user has ended: nothing can change it between this look and the copy.)
+    std::error_code error;
+    if (!fs::is_regular_file(fs::symlink_status(built.plugin, error)))
+      throw std::runtime_error(built.plugin + ": the built plug-in is no longer a file (the submission's code replaced "
+                                              "it); --plugin-out is not written");
+    fs::copy_file(built.plugin, o.plugin_out, fs::copy_options::overwrite_existing);
+  }
 
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count();
   // The overall message is shown to students at once, whatever the tests' visibility: it counts
