@@ -220,12 +220,13 @@ GradeResult grade_submission(const Assignment& a, const std::string& submission,
       r.output = files.passed ? "Not run: the submission does not compile (see \"build\")."
                               : "Not run: a file is missing (see \"files\").";
     } else {
-      const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                                                                    std::chrono::duration<double>(limits.cpu_seconds));
       // A server of its own: RLIMIT_CPU counts a process's whole life, so a server kept from
       // the tests before would leave this one only what they did not use (and the student's
-      // code could carry state from one test into the next).
+      // code could carry state from one test into the next). The test's clock starts once the
+      // last one's server is gone (its ending may take a second: not this test's time).
       probe.stop();
+      const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                                                    std::chrono::duration<double>(limits.cpu_seconds));
       try {
         const CheckResult c = t.check->run(probe, deadline);
         r.passed = c.passed;
