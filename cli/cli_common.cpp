@@ -331,16 +331,8 @@ bool output_exists(const std::string& path) {
     return !e || e == std::errc::no_such_file_or_directory || e == std::errc::not_a_directory;
   };
   std::error_code error;
-  const auto status = fs::symlink_status(path, error);
+  const auto status = fs::symlink_status(path, error);  // (fails through a loop of links on the way, too)
   if (!absent(error)) throw InputError(path + ": " + error.message());
-  if (!fs::exists(status)) {
-    // (A part of the way that is a loop of links shows when its folder is looked at.)
-    const fs::path parent = fs::path(path).parent_path();
-    if (!parent.empty()) {
-      (void)fs::status(parent, error);
-      if (!absent(error)) throw InputError(path + ": " + error.message());
-    }
-  }
   return fs::exists(status);
 }
 

@@ -11,7 +11,6 @@
 #include <fstream>
 #include <iostream>
 #include <optional>
-#include <system_error>
 #include <nlohmann/json.hpp>
 
 #include "cli_common.hpp"

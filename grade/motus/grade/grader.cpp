@@ -115,23 +115,19 @@ TestResult gate(const std::string& name, const std::string& number, const std::s
 }  // namespace
 
 std::string make_temporary_folder(const std::string& root, const std::string& prefix) {
+  const char* tmpdir = root.empty() ? std::getenv("TMPDIR") : nullptr;  // (named when it chose the folder)
   fs::path folder = root;
   if (root.empty()) {
     std::error_code error;
     folder = fs::temp_directory_path(error);
-    if (error) {
-      const char* tmpdir = std::getenv("TMPDIR");
+    if (error)
       throw std::runtime_error((tmpdir ? "TMPDIR=" + std::string(tmpdir) : std::string("the temporary folder")) +
                                ": cannot make a temporary folder there (" + error.message() + ")");
-    }
   }
   std::string pattern = (folder / (prefix + "XXXXXX")).string();
-  if (!::mkdtemp(pattern.data())) {
-    const std::string why = std::strerror(errno);
-    const char* tmpdir = std::getenv("TMPDIR");
-    throw std::runtime_error((root.empty() && tmpdir ? "TMPDIR=" : "") + folder.string() +
-                             ": cannot make a temporary folder there (" + why + ")");
-  }
+  if (!::mkdtemp(pattern.data()))
+    throw std::runtime_error((tmpdir ? "TMPDIR=" : "") + folder.string() + ": cannot make a temporary folder there (" +
+                             std::strerror(errno) + ")");
   return pattern;
 }
 
@@ -155,14 +151,17 @@ GradeResult grade_submission(const Assignment& a, const std::string& submission,
   }
   ::chmod(out.c_str(), 0700);
   // As root the student's code runs as the sandbox's user, sandbox or not (--no-sandbox): what it
-  // will read must be within its reach, or every student fails for the grader's fault.
+  // will read (and the sandbox mount) must be within its reach, or every student fails for the
+  // grader's fault. Every such path is here: the build's, the servers', the modules.
   if (::geteuid() == 0) {
     std::vector<std::string> used = {staged.string(), out.string(), o.headers.student, o.headers.plugin, o.headers.external, o.motus};
     for (const auto& f : a.provided) used.push_back((fs::path(a.folder) / f).string());
     used.insert(used.end(), o.modules.begin(), o.modules.end());
     for (const auto& path : used)
       if (!path.empty())
-        if (const std::string why = unreachable_for(user.uid(), path); !why.empty()) throw std::runtime_error(why + kReachHint);
+        if (const std::string why = unreachable_for(user.uid(), path); !why.empty())
+          throw std::runtime_error(why + ". motus grade runs the student's code as a user of its own: every folder it "
+                                         "uses must be open to others on the way (chmod o+x), TMPDIR's too");
   }
 
   // 1. The files the handout names, and only those, as regular files of a sensible size.

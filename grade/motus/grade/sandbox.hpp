@@ -134,10 +134,6 @@ private:
 // grader runs the student's code (and bubblewrap) as such a user, who must reach every folder it
 // mounts or reads: a TMPDIR under a 0700 folder of root's gave every student 0, "does not compile".
 std::string unreachable_for(uid_t uid, const std::string& host);
-// What to do about it, after that line.
-inline constexpr const char* kReachHint =
-    ". motus grade runs the student's code as a user of its own: every folder it uses must be open to others on the "
-    "way (chmod o+x), TMPDIR's too";
 
 // Whether a sandbox can be made here, and if not the one line that says why.
 std::optional<std::string> sandbox_unavailable();

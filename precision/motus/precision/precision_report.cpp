@@ -57,7 +57,7 @@ std::vector<plot::Figure> diagrams(const ReportContext& c, const std::vector<Cur
     f->note = "down and to the left is better; dashed: the peers (Odeint on the same right-hand side, Box2D and "
               "Bullet with semi-implicit Euler)";
   }
-  int motus_index = 0, peer_index = 0;
+  int peer_index = 0;
   std::vector<std::string> no_evaluations;  // methods whose every point made no evaluation
   bool plugin_drawn = false;
   for (const Curve& curve : curves) {
@@ -72,7 +72,6 @@ std::vector<plot::Figure> diagrams(const ReportContext& c, const std::vector<Cur
     s.style = "linespoints";
     s.dashed = peer;
     s.point_type = peer ? kPeerPoints[peer_index++ % 4] : plugin ? 6 : 7;
-    if (!peer) ++motus_index;
     plot::Series e = s;
     for (const Point& p : curve.points) {
       if (!p.failed.empty()) continue;
