@@ -269,7 +269,7 @@ CLI::App* add_grade_command(CLI::App& app, GradeCommandOptions& o) {
       ->check(CLI::IsMember({"text", "gradescope"}));
   g->add_option("--hidden", o.hidden, "The folder of hidden tests (the instructor's; not given: only the public tests run)");
   g->add_option("--time-limit", o.time_limit, "Seconds each test may take (CPU and wall clock)")->capture_default_str();
-  g->add_option("--memory-limit", o.memory_limit, "Megabytes of address space each process of the student's code may use")->capture_default_str();
+  g->add_option("--memory-limit", o.memory_limit, "Megabytes of address space the student's code may use (its server can start no other process)")->capture_default_str();
   g->add_flag("--no-sandbox", o.no_sandbox,
               "Grade without bubblewrap (limits and another user only): for machines without user namespaces, knowingly");
   g->add_option("--plugin-out", o.plugin_out, "Also keep the plug-in built from the submission here (for motus run --plugin)")->check(non_empty_path());

@@ -53,6 +53,15 @@ TEST(Grade, HostileSubmissionsEndWithinTheirLimitsAndHarmNothing) {
       {"memory", "#include <vector>\n",
        "std::vector<double> big(size_t(10) << 27); big[12345] = 1; if (big[12345] > 2) return;", "ran out of its 512 MB"},
       {"fork-bomb", "#include <unistd.h>\n", "for (;;) ::fork();", "timed out after 2 s"},
+      // Children that each hold memory: each under the 512 MB, together past it (20 of 300 MB used 6 GB
+      // of the machine and scored full marks). Now fork and programs are refused: the tests pass on
+      // the solution's own numbers, and a fork or a program that did start fails them.
+      {"fork-memory", "#include <cstdlib>\n#include <cstring>\n#include <stdexcept>\n#include <unistd.h>\n",
+       "static bool tried = false; if (!tried) { tried = true; for (int c = 0; c < 4; ++c) { const pid_t child = ::fork(); "
+       "if (child == 0) { void* held = std::malloc(size_t(300) << 20); if (held) std::memset(held, 1, size_t(300) << 20); "
+       "::pause(); ::_exit(0); } if (child > 0) throw std::runtime_error(\"FORKED\"); } "
+       "if (std::system(\"exit 0\") == 0) throw std::runtime_error(\"RAN A PROGRAM\"); }",
+       ""},
       {"flood", "#include <iostream>\n#include <string>\n",
        // 256 MB at the first call of each test: drained, it costs a fraction of the 2 s, and the
        // tests pass. (A gigabyte on every call passed or timed out, by the machine's load.)
@@ -115,7 +124,7 @@ TEST(Grade, HostileSubmissionsEndWithinTheirLimitsAndHarmNothing) {
                                  "--time-limit", "2", "--out", (dir / "results").string()});
   ::close(listener);
   ASSERT_EQ(r.status, 0) << r.err;
-  // (18 submissions, 2 at a time, each test at most 2 s: a grader that hung would meet ctest's TIMEOUT.)
+  // (19 submissions, 2 at a time, each test at most 2 s: a grader that hung would meet ctest's TIMEOUT.)
 
   double public_max = 0;
   const auto defs = definitions("integrators");

@@ -1,0 +1,87 @@
+#include "motus/grade/no_new_processes.hpp"
+
+#include <linux/audit.h>
+#include <linux/filter.h>
+#include <linux/seccomp.h>
+#include <sched.h>
+#include <sys/prctl.h>
+#include <sys/syscall.h>
+
+#include <cerrno>
+#include <cstddef>
+#include <cstring>
+#include <stdexcept>
+#include <vector>
+
+namespace motus::grade {
+namespace {
+
+#if defined(__x86_64__)
+constexpr unsigned kArchitecture = AUDIT_ARCH_X86_64;
+#elif defined(__aarch64__)
+constexpr unsigned kArchitecture = AUDIT_ARCH_AARCH64;
+#else
+constexpr unsigned kArchitecture = 0;  // none: forbid_new_processes refuses
+#endif
+
+// Classic BPF, one instruction at a time, read top to bottom: the filter looks at the system
+// call's architecture, number and (for clone) its flags, and answers allow, an error, or kill.
+sock_filter load(unsigned offset) { return BPF_STMT(BPF_LD | BPF_W | BPF_ABS, offset); }
+sock_filter answer(unsigned what) { return BPF_STMT(BPF_RET | BPF_K, what); }
+// If the accumulator equals `value`, skip `then_skip` instructions, else `else_skip`.
+sock_filter jump_if_equal(unsigned value, unsigned char then_skip, unsigned char else_skip) {
+  return BPF_JUMP(BPF_JMP | BPF_JEQ | BPF_K, value, then_skip, else_skip);
+}
+
+}  // namespace
+
+void forbid_new_processes() {
+  if (kArchitecture == 0)
+    throw std::runtime_error("no seccomp filter for this machine's architecture: the probe server cannot forbid new processes");
+  constexpr unsigned kArch = offsetof(seccomp_data, arch), kNumber = offsetof(seccomp_data, nr);
+  // (The flags are clone's first argument; its low 32 bits come first on these little-endian machines.)
+  constexpr unsigned kFlags = offsetof(seccomp_data, args);
+  const sock_filter refuse = answer(SECCOMP_RET_ERRNO | EPERM);
+  std::vector<sock_filter> filter = {
+      // A system call of another architecture (32-bit int 0x80 on x86-64) would bypass the numbers below.
+      load(kArch), jump_if_equal(kArchitecture, 1, 0), answer(SECCOMP_RET_KILL_PROCESS),
+      load(kNumber),
+  };
+#if defined(__x86_64__)
+  // x32's numbers (bit 30 set) name the same calls under other numbers: none is needed.
+  filter.push_back(BPF_JUMP(BPF_JMP | BPF_JGE | BPF_K, 0x40000000u, 0, 1));
+  filter.push_back(answer(SECCOMP_RET_KILL_PROCESS));
+#endif
+  // Programs and processes: refused.
+  const std::vector<unsigned> refused = {
+#ifdef __NR_fork
+      __NR_fork,
+#endif
+#ifdef __NR_vfork
+      __NR_vfork,
+#endif
+      __NR_execve, __NR_execveat};
+  for (const unsigned number : refused) {
+    filter.push_back(jump_if_equal(number, 0, 1));
+    filter.push_back(refuse);
+  }
+  // clone3 keeps its flags in memory, out of a filter's reach: "not implemented", on which glibc
+  // falls back to clone for its threads.
+  filter.push_back(jump_if_equal(__NR_clone3, 0, 1));
+  filter.push_back(answer(SECCOMP_RET_ERRNO | ENOSYS));
+  // clone: with CLONE_VM — a thread, or a task sharing this process's memory, which the same
+  // address-space limit holds (LeakSanitizer's tracer is one) — allowed; a copy of the memory (a
+  // process, fork's way) refused.
+  filter.push_back(jump_if_equal(__NR_clone, 0, 3));
+  filter.push_back(load(kFlags));
+  filter.push_back(BPF_JUMP(BPF_JMP | BPF_JSET | BPF_K, CLONE_VM, 1, 0));
+  filter.push_back(refuse);
+  filter.push_back(answer(SECCOMP_RET_ALLOW));
+  const sock_fprog program{static_cast<unsigned short>(filter.size()), filter.data()};
+  // (No new privileges: a filter may then be installed without CAP_SYS_ADMIN. The sandbox set it already.)
+  if (::prctl(PR_SET_NO_NEW_PRIVS, 1, 0, 0, 0) != 0 || ::prctl(PR_SET_SECCOMP, SECCOMP_MODE_FILTER, &program) != 0)
+    throw std::runtime_error(std::string("the kernel refused the seccomp filter that forbids new processes: ") +
+                             std::strerror(errno));
+}
+
+}  // namespace motus::grade
