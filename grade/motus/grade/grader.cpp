@@ -175,10 +175,16 @@ GradeResult grade_submission(const Assignment& a, const std::string& submission,
       missing += "  " + name + ": " + in.why + (in.why == "missing" ? where_it_might_be(submission, name) : "") + "\n";
       continue;
     }
+    errno = 0;
     std::ofstream out(staged / name, std::ios::binary | std::ios::trunc);
     out << *in.text;
     out.close();
-    if (!out) throw std::runtime_error((staged / name).string() + ": could not be written");
+    if (!out) {
+      const int why = errno;  // (what the failed open, write or close left)
+      if (folder >= 0) ::close(folder);
+      throw std::runtime_error((staged / name).string() + ": could not be written (" +
+                               (why ? std::strerror(why) : "the stream failed") + ")");
+    }
     ::chmod((staged / name).c_str(), 0644);
   }
   if (folder >= 0) ::close(folder);
