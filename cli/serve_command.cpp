@@ -10,7 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli_common.hpp"
-#include "motus/grade/no_new_processes.hpp"
+#include "motus/grade/server_filter.hpp"
 #include "motus/grade/wire.hpp"
 #include "motus/scene_file/scene_file.hpp"
 #include "motus/simulation.hpp"
@@ -201,9 +201,10 @@ int serve_command(const ServeOptions& o) {
   };
   if (!out) return failed_write();
   // Before the student's code runs at all (a plug-in's constructors run as it loads): no new
-  // processes, so that the sandbox's memory limit holds all of the student's code at once.
+  // processes and no memory outside this one's address space, so that the sandbox's memory limit
+  // holds all of the student's code at once.
   try {
-    grade::forbid_new_processes();
+    grade::install_server_filter();
   } catch (const std::exception& e) {
     fmt::print(stderr, "motus serve: {} (this machine's, not the submission's)\n", e.what());
     return kExitFailure;

@@ -62,6 +62,24 @@ TEST(Grade, HostileSubmissionsEndWithinTheirLimitsAndHarmNothing) {
        "::pause(); ::_exit(0); } if (child > 0) throw std::runtime_error(\"FORKED\"); } "
        "if (std::system(\"exit 0\") == 0) throw std::runtime_error(\"RAN A PROGRAM\"); }",
        ""},
+      // Memory outside the address space, which the limit does not see: memfd files and System V
+      // shared memory filled and unmapped (12 + 12 of 60 MB: 1.4 GB held), a socket's queue, and
+      // descriptors past the sandbox's 256 (the machine allows 20,000). All refused now.
+      {"memory-elsewhere",
+       "#include <sys/ipc.h>\n#include <sys/mman.h>\n#include <sys/shm.h>\n#include <sys/socket.h>\n#include <unistd.h>\n"
+       "#include <cstring>\n#include <stdexcept>\n#include <string>\n",
+       "static bool tried = false; if (!tried) { tried = true; const size_t chunk = size_t(60) << 20; size_t held = 0; "
+       "for (int i = 0; i < 12; ++i) { const int fd = ::memfd_create(\"held\", 0); if (fd < 0 || ::ftruncate(fd, chunk) != 0) break; "
+       "void* p = ::mmap(nullptr, chunk, PROT_READ | PROT_WRITE, MAP_SHARED, fd, 0); if (p == MAP_FAILED) break; "
+       "std::memset(p, 1, chunk); ::munmap(p, chunk); held += chunk; } "
+       "for (int i = 0; i < 12; ++i) { const int id = ::shmget(IPC_PRIVATE, chunk, IPC_CREAT | 0600); if (id < 0) break; "
+       "void* p = ::shmat(id, nullptr, 0); if (p == reinterpret_cast<void*>(-1)) break; std::memset(p, 1, chunk); ::shmdt(p); "
+       "held += chunk; } "
+       "if (held > 0) throw std::runtime_error(\"HELD \" + std::to_string(held >> 20) + \" MB OUTSIDE ITS ADDRESS SPACE\"); "
+       "int pair[2]; if (::socketpair(AF_UNIX, SOCK_STREAM, 0, pair) == 0) throw std::runtime_error(\"MADE A SOCKET PAIR\"); "
+       "int opened = 0; while (opened < 300 && ::dup(0) >= 0) ++opened; "
+       "if (opened == 300) throw std::runtime_error(\"OPENED 300 DESCRIPTORS\"); }",
+       ""},
       {"flood", "#include <iostream>\n#include <string>\n",
        // 256 MB at the first call of each test: drained, it costs a fraction of the 2 s, and the
        // tests pass. (A gigabyte on every call passed or timed out, by the machine's load.)
@@ -124,7 +142,7 @@ TEST(Grade, HostileSubmissionsEndWithinTheirLimitsAndHarmNothing) {
                                  "--time-limit", "2", "--out", (dir / "results").string()});
   ::close(listener);
   ASSERT_EQ(r.status, 0) << r.err;
-  // (19 submissions, 2 at a time, each test at most 2 s: a grader that hung would meet ctest's TIMEOUT.)
+  // (20 submissions, 2 at a time, each test at most 2 s: a grader that hung would meet ctest's TIMEOUT.)
 
   double public_max = 0;
   const auto defs = definitions("integrators");

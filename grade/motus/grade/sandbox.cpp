@@ -205,6 +205,7 @@ SandboxProcess::SandboxProcess(const SandboxSpec& spec, const Limits& limits)
   const rlim_t cpu = static_cast<rlim_t>(std::ceil(limits.cpu_seconds));
   const rlim_t memory = static_cast<rlim_t>(limits.memory_mb) << 20;
   const rlim_t file = static_cast<rlim_t>(limits.file_mb) << 20;
+  const rlim_t descriptors = static_cast<rlim_t>(limits.descriptors);
   // RLIMIT_NPROC counts every process of the user: those it has now (the grader's own, without
   // root; a killed sandbox's zombies not reaped yet) plus the sandbox's allowance.
   const rlim_t processes = static_cast<rlim_t>(limits.processes + processes_of(uid));
@@ -223,7 +224,7 @@ SandboxProcess::SandboxProcess(const SandboxSpec& spec, const Limits& limits)
     ::dup2(err[1], 2);
     ::close_range(3, ~0U, 0);
     const rlimit cpu_limit{cpu, cpu + 1}, memory_limit{memory, memory}, file_limit{file, file}, no_core{0, 0},
-        process_limit{processes, processes};
+        process_limit{processes, processes}, descriptor_limit{descriptors, descriptors};
     ::setrlimit(RLIMIT_CPU, &cpu_limit);
 #ifndef MOTUS_SANITIZE  // AddressSanitizer reserves terabytes of address space: no RLIMIT_AS under it
     ::setrlimit(RLIMIT_AS, &memory_limit);
@@ -232,6 +233,7 @@ SandboxProcess::SandboxProcess(const SandboxSpec& spec, const Limits& limits)
 #endif
     ::setrlimit(RLIMIT_FSIZE, &file_limit);
     ::setrlimit(RLIMIT_CORE, &no_core);
+    ::setrlimit(RLIMIT_NOFILE, &descriptor_limit);
     if (drop) {
       if (::setgroups(0, nullptr) || ::setresgid(uid, uid, uid) || ::setresuid(uid, uid, uid)) ::_exit(126);
     }

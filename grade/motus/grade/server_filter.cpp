@@ -1,4 +1,4 @@
-#include "motus/grade/no_new_processes.hpp"
+#include "motus/grade/server_filter.hpp"
 
 #include <linux/audit.h>
 #include <linux/filter.h>
@@ -21,7 +21,7 @@ constexpr unsigned kArchitecture = AUDIT_ARCH_X86_64;
 #elif defined(__aarch64__)
 constexpr unsigned kArchitecture = AUDIT_ARCH_AARCH64;
 #else
-constexpr unsigned kArchitecture = 0;  // none: forbid_new_processes refuses
+constexpr unsigned kArchitecture = 0;  // none: install_server_filter refuses
 #endif
 
 // Classic BPF, one instruction at a time, read top to bottom: the filter looks at the system
@@ -35,9 +35,9 @@ sock_filter jump_if_equal(unsigned value, unsigned char then_skip, unsigned char
 
 }  // namespace
 
-void forbid_new_processes() {
+void install_server_filter() {
   if (kArchitecture == 0)
-    throw std::runtime_error("no seccomp filter for this machine's architecture: the probe server cannot forbid new processes");
+    throw std::runtime_error("no seccomp filter for this machine's architecture: the probe server cannot hold the student's code to its limits");
   constexpr unsigned kArch = offsetof(seccomp_data, arch), kNumber = offsetof(seccomp_data, nr);
   // (The flags are clone's first argument; its low 32 bits come first on these little-endian machines.)
   constexpr unsigned kFlags = offsetof(seccomp_data, args);
@@ -52,7 +52,7 @@ void forbid_new_processes() {
   filter.push_back(BPF_JUMP(BPF_JMP | BPF_JGE | BPF_K, 0x40000000u, 0, 1));
   filter.push_back(answer(SECCOMP_RET_KILL_PROCESS));
 #endif
-  // Programs and processes: refused.
+  // Programs and processes, and memory outside the address space: refused.
   const std::vector<unsigned> refused = {
 #ifdef __NR_fork
       __NR_fork,
@@ -60,7 +60,9 @@ void forbid_new_processes() {
 #ifdef __NR_vfork
       __NR_vfork,
 #endif
-      __NR_execve, __NR_execveat};
+      __NR_execve, __NR_execveat, __NR_memfd_create, __NR_shmget, __NR_msgget,
+      // (a socket's queue holds up to twice net.core.wmem_max, 8 MB here, outside the address space)
+      __NR_socket, __NR_socketpair};
   for (const unsigned number : refused) {
     filter.push_back(jump_if_equal(number, 0, 1));
     filter.push_back(refuse);
@@ -80,7 +82,7 @@ void forbid_new_processes() {
   const sock_fprog program{static_cast<unsigned short>(filter.size()), filter.data()};
   // (No new privileges: a filter may then be installed without CAP_SYS_ADMIN. The sandbox set it already.)
   if (::prctl(PR_SET_NO_NEW_PRIVS, 1, 0, 0, 0) != 0 || ::prctl(PR_SET_SECCOMP, SECCOMP_MODE_FILTER, &program) != 0)
-    throw std::runtime_error(std::string("the kernel refused the seccomp filter that forbids new processes: ") +
+    throw std::runtime_error(std::string("the kernel refused the probe server's seccomp filter: ") +
                              std::strerror(errno));
 }
 
