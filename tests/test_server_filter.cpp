@@ -1,0 +1,91 @@
+// The probe server's seccomp filter (grade/motus/grade/server_filter.hpp), installed in a child of
+// this test: what it refuses fails with the errno it names, and what a student's ordinary code
+// uses (threads, std::async, memory, files) still works. The whole path — a hostile submission
+// graded in the sandbox — is tests/test_grade_hostile.cpp's "fork-memory" and "memory-elsewhere".
+#include <gtest/gtest.h>
+#include <sys/ipc.h>
+#include <sys/mman.h>
+#include <sys/msg.h>
+#include <sys/shm.h>
+#include <sys/socket.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdlib>
+#include <future>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "motus/grade/server_filter.hpp"
+
+namespace {
+
+// What the child found, one bit per check that went wrong.
+enum Wrong : int {
+  kForked = 1 << 0,
+  kExecuted = 1 << 1,
+  kMemfd = 1 << 2,
+  kSharedMemory = 1 << 3,
+  kMessageQueue = 1 << 4,
+  kSocket = 1 << 5,
+  kSystem = 1 << 6,
+  kNoThread = 1 << 7,
+  kNoAsync = 1 << 8,
+  kNoMemory = 1 << 9,
+  kNotInstalled = 1 << 10,
+};
+
+int checks_after_the_filter() {
+  try {
+    motus::grade::install_server_filter();
+  } catch (...) {
+    return kNotInstalled;
+  }
+  int wrong = 0;
+  auto refused = [](long result, int expected_errno) { return result == -1 && errno == expected_errno; };
+  const pid_t child = ::fork();
+  if (child == 0) ::_exit(0);
+  if (!refused(child, EPERM)) wrong |= kForked;
+  char* const argv[] = {const_cast<char*>("/bin/true"), nullptr};
+  if (!refused(::execve("/bin/true", argv, nullptr), EPERM)) wrong |= kExecuted;
+  if (!refused(::memfd_create("held", 0), EPERM)) wrong |= kMemfd;
+  if (!refused(::shmget(IPC_PRIVATE, 1 << 20, IPC_CREAT | 0600), EPERM)) wrong |= kSharedMemory;
+  if (!refused(::msgget(IPC_PRIVATE, IPC_CREAT | 0600), EPERM)) wrong |= kMessageQueue;
+  int pair[2];
+  if (!refused(::socket(AF_UNIX, SOCK_STREAM, 0), EPERM) || !refused(::socketpair(AF_UNIX, SOCK_STREAM, 0, pair), EPERM))
+    wrong |= kSocket;
+  if (std::system("exit 0") == 0) wrong |= kSystem;  // (its child cannot start the shell)
+  // What ordinary code does: threads, std::async, memory.
+  int from_thread = 0;
+  std::thread([&] { from_thread = 42; }).join();
+  if (from_thread != 42) wrong |= kNoThread;
+  if (std::async(std::launch::async, [] { return 7; }).get() != 7) wrong |= kNoAsync;
+  std::vector<double> memory(size_t(16) << 20, 1.0);  // 128 MB
+  if (memory[12345] != 1.0) wrong |= kNoMemory;
+  return wrong;
+}
+
+TEST(ServerFilter, RefusesProcessesAndMemoryOutsideTheAddressSpaceAndKeepsThreads) {
+  const pid_t child = ::fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) ::_exit(checks_after_the_filter());
+  int status = 0;
+  ASSERT_EQ(::waitpid(child, &status, 0), child);
+  ASSERT_TRUE(WIFEXITED(status)) << "killed by signal " << WTERMSIG(status);
+  const int wrong = WEXITSTATUS(status);
+  EXPECT_EQ(wrong & kNotInstalled, 0) << "the kernel refused the filter";
+  EXPECT_EQ(wrong & kForked, 0) << "fork was not refused with EPERM";
+  EXPECT_EQ(wrong & kExecuted, 0) << "execve was not refused with EPERM";
+  EXPECT_EQ(wrong & kMemfd, 0) << "memfd_create was not refused with EPERM";
+  EXPECT_EQ(wrong & kSharedMemory, 0) << "shmget was not refused with EPERM";
+  EXPECT_EQ(wrong & kMessageQueue, 0) << "msgget was not refused with EPERM";
+  EXPECT_EQ(wrong & kSocket, 0) << "socket or socketpair was not refused with EPERM";
+  EXPECT_EQ(wrong & kSystem, 0) << "system() ran a shell";
+  EXPECT_EQ(wrong & kNoThread, 0) << "a std::thread did not run";
+  EXPECT_EQ(wrong & kNoAsync, 0) << "std::async did not run";
+  EXPECT_EQ(wrong & kNoMemory, 0) << "128 MB could not be allocated";
+}
+
+}  // namespace
