@@ -80,6 +80,19 @@ TEST(Grade, HostileSubmissionsEndWithinTheirLimitsAndHarmNothing) {
        "int opened = 0; while (opened < 300 && ::dup(0) >= 0) ++opened; "
        "if (opened == 300) throw std::runtime_error(\"OPENED 300 DESCRIPTORS\"); }",
        ""},
+      // Kernel memory by other ways (a red-team pass found each holding 1.1 to 1.5 GB): a user and mount
+      // namespace of its own, to mount a tmpfs of any size; System V semaphores; a page spliced into a
+      // pipe (it keeps its huge page); a million empty files in /tmp (a tmpfs limits bytes, not files).
+      {"kernel-memory",
+       "#include <fcntl.h>\n#include <sched.h>\n#include <sys/ipc.h>\n#include <sys/sem.h>\n#include <sys/uio.h>\n"
+       "#include <unistd.h>\n#include <stdexcept>\n",
+       "static bool tried = false; if (!tried) { tried = true; "
+       "if (::unshare(CLONE_NEWUSER | CLONE_NEWNS) == 0) throw std::runtime_error(\"MADE A NAMESPACE\"); "
+       "if (::semget(IPC_PRIVATE, 32000, IPC_CREAT | 0600) >= 0) throw std::runtime_error(\"MADE SEMAPHORES\"); "
+       "int ends[2]; static char page[4096]; iovec piece{page, sizeof page}; "
+       "if (::pipe(ends) == 0 && ::vmsplice(ends[1], &piece, 1, SPLICE_F_NONBLOCK) > 0) throw std::runtime_error(\"SPLICED\"); "
+       "if (::open(\"/tmp/one-of-a-million\", O_CREAT | O_WRONLY, 0600) >= 0) throw std::runtime_error(\"MADE A FILE\"); }",
+       ""},
       {"flood", "#include <iostream>\n#include <string>\n",
        // 256 MB at the first call of each test: drained, it costs a fraction of the 2 s, and the
        // tests pass. (A gigabyte on every call passed or timed out, by the machine's load.)
@@ -142,7 +155,7 @@ TEST(Grade, HostileSubmissionsEndWithinTheirLimitsAndHarmNothing) {
                                  "--time-limit", "2", "--out", (dir / "results").string()});
   ::close(listener);
   ASSERT_EQ(r.status, 0) << r.err;
-  // (20 submissions, 2 at a time, each test at most 2 s: a grader that hung would meet ctest's TIMEOUT.)
+  // (21 submissions, 2 at a time, each test at most 2 s: a grader that hung would meet ctest's TIMEOUT.)
 
   double public_max = 0;
   const auto defs = definitions("integrators");

@@ -1,13 +1,19 @@
 // The probe server's seccomp filter (grade/motus/grade/server_filter.hpp), installed in a child of
 // this test: what it refuses fails with the errno it names, and what a student's ordinary code
-// uses (threads, std::async, memory, files) still works. The whole path — a hostile submission
-// graded in the sandbox — is tests/test_grade_hostile.cpp's "fork-memory" and "memory-elsewhere".
+// uses (threads, std::async, memory) still works. The whole path — a hostile submission
+// graded in the sandbox — is tests/test_grade_hostile.cpp's "fork-memory", "memory-elsewhere" and
+// "kernel-memory".
+#include <fcntl.h>
 #include <gtest/gtest.h>
+#include <sched.h>
 #include <sys/ipc.h>
 #include <sys/mman.h>
+#include <sys/mount.h>
 #include <sys/msg.h>
+#include <sys/sem.h>
 #include <sys/shm.h>
 #include <sys/socket.h>
+#include <sys/uio.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -35,7 +41,13 @@ enum Wrong : int {
   kNoAsync = 1 << 8,
   kNoMemory = 1 << 9,
   kNotInstalled = 1 << 10,
+  kSemaphores = 1 << 11,
+  kSpliced = 1 << 12,
+  kNamespace = 1 << 13,
+  kSharedMemoryProcess = 1 << 14,
 };
+
+int child_of_clone(void*) { return 0; }
 
 int checks_after_the_filter() {
   try {
@@ -57,6 +69,20 @@ int checks_after_the_filter() {
   if (!refused(::socket(AF_UNIX, SOCK_STREAM, 0), EPERM) || !refused(::socketpair(AF_UNIX, SOCK_STREAM, 0, pair), EPERM))
     wrong |= kSocket;
   if (std::system("exit 0") == 0) wrong |= kSystem;  // (its child cannot start the shell)
+  if (!refused(::semget(IPC_PRIVATE, 16, IPC_CREAT | 0600), EPERM)) wrong |= kSemaphores;
+  int ends[2];
+  static char page[4096];
+  iovec piece{page, sizeof page};
+  if (::pipe(ends) != 0 || !refused(::vmsplice(ends[1], &piece, 1, SPLICE_F_NONBLOCK), EPERM)) wrong |= kSpliced;
+  if (!refused(::unshare(CLONE_NEWUSER | CLONE_NEWNS), EPERM) || !refused(::unshare(CLONE_FILES), EPERM) ||
+      !refused(::mount("none", "/tmp", "tmpfs", 0, "size=4g"), EPERM))
+    wrong |= kNamespace;
+#ifndef MOTUS_SANITIZE  // (there a task sharing the memory is allowed: LeakSanitizer's tracer is one)
+  // A process that shares the memory but has its own descriptors: refused (a thread is not).
+  static char stack[1 << 16];
+  const int sharing = ::clone(child_of_clone, stack + sizeof stack, CLONE_VM | SIGCHLD, nullptr);
+  if (!refused(sharing, EPERM)) wrong |= kSharedMemoryProcess;
+#endif
   // What ordinary code does: threads, std::async, memory.
   int from_thread = 0;
   std::thread([&] { from_thread = 42; }).join();
@@ -86,6 +112,10 @@ TEST(ServerFilter, RefusesProcessesAndMemoryOutsideTheAddressSpaceAndKeepsThread
   EXPECT_EQ(wrong & kNoThread, 0) << "a std::thread did not run";
   EXPECT_EQ(wrong & kNoAsync, 0) << "std::async did not run";
   EXPECT_EQ(wrong & kNoMemory, 0) << "128 MB could not be allocated";
+  EXPECT_EQ(wrong & kSemaphores, 0) << "semget was not refused with EPERM";
+  EXPECT_EQ(wrong & kSpliced, 0) << "vmsplice was not refused with EPERM";
+  EXPECT_EQ(wrong & kNamespace, 0) << "unshare or mount was not refused with EPERM";
+  EXPECT_EQ(wrong & kSharedMemoryProcess, 0) << "clone(CLONE_VM) without CLONE_THREAD was not refused with EPERM";
 }
 
 }  // namespace

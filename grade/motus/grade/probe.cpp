@@ -17,6 +17,7 @@ void Probe::start() {
   spec.isolate = setup_.isolate;
   spec.stop = setup_.stop;
   spec.uid = setup_.uid;
+  spec.writable_tmp = false;  // (the student's code answers on its output; it has no file to write)
   if (setup_.isolate) {
     spec.mounts = {{setup_.motus, "/motus/motus", false}, {setup_.plugin, "/box/student.so", false}};
     for (const auto& m : setup_.modules)

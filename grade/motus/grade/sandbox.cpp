@@ -178,7 +178,9 @@ SandboxProcess::SandboxProcess(const SandboxSpec& spec, const Limits& limits)
   if (spec.isolate) {
     const std::string bwrap = bubblewrap_program();
     if (bwrap.empty()) throw std::runtime_error("bubblewrap (bwrap) is not installed: apt-get install bubblewrap");
-    args = {bwrap, "--unshare-all", "--die-with-parent", "--new-session",
+    // (A user namespace of its own, in which it cannot make another: inside a nested one the code
+    // could mount a tmpfs of any size, and fill it.)
+    args = {bwrap, "--unshare-all", "--unshare-user", "--disable-userns", "--die-with-parent", "--new-session",
             "--ro-bind", "/usr", "/usr", "--symlink", "usr/lib", "/lib", "--symlink", "usr/lib64", "/lib64",
             "--symlink", "usr/bin", "/bin", "--symlink", "usr/sbin", "/sbin",
             // /dev's own tmpfs read-only (its devices stay usable): unsized, it held as much as
@@ -190,12 +192,19 @@ SandboxProcess::SandboxProcess(const SandboxSpec& spec, const Limits& limits)
       args.push_back(m.host);
       args.push_back(m.inside);
     }
+    // A tmpfs limits its bytes, not its files: a million empty ones held a gigabyte of the kernel's
+    // memory. Code that needs no scratch space gets none.
+    if (!spec.writable_tmp) args.insert(args.end(), {"--remount-ro", "/tmp"});
     for (const char* e : {"--chdir", spec.workdir.c_str(), "--clearenv", "--setenv", "PATH", "/usr/bin:/bin",
-                          "--setenv", "TMPDIR", "/tmp", "--setenv", "HOME", "/tmp", "--setenv", "LANG", "C.UTF-8", "--"})
+                          "--setenv", "TMPDIR", "/tmp", "--setenv", "HOME", "/tmp", "--setenv", "LANG", "C.UTF-8",
+                          "--setenv", "MALLOC_ARENA_MAX", "2", "--"})
       args.emplace_back(e);
   }
   args.insert(args.end(), spec.argv.begin(), spec.argv.end());
-  std::vector<std::string> environment = {"PATH=/usr/bin:/bin", "TMPDIR=/tmp", "HOME=/tmp", "LANG=C.UTF-8"};
+  // (MALLOC_ARENA_MAX: glibc gives each thread that allocates an arena of 64 MB of address space;
+  // with two in all, a student's threads are not out of memory at the fifteenth.)
+  std::vector<std::string> environment = {"PATH=/usr/bin:/bin", "TMPDIR=/tmp", "HOME=/tmp", "LANG=C.UTF-8",
+                                          "MALLOC_ARENA_MAX=2"};
   auto argv = pointers(args);
   auto envp = pointers(environment);
   // Everything the child needs is computed here: between fork and exec it only makes system calls.
@@ -224,7 +233,10 @@ SandboxProcess::SandboxProcess(const SandboxSpec& spec, const Limits& limits)
     ::dup2(err[1], 2);
     ::close_range(3, ~0U, 0);
     const rlimit cpu_limit{cpu, cpu + 1}, memory_limit{memory, memory}, file_limit{file, file}, no_core{0, 0},
-        process_limit{processes, processes}, descriptor_limit{descriptors, descriptors};
+        process_limit{processes, processes}, descriptor_limit{descriptors, descriptors},
+        // (set, not inherited from whoever started the grader: io_uring's rings and POSIX message
+        // queues are charged to these, outside the address space)
+        locked_limit{8 << 20, 8 << 20}, queue_limit{800 << 10, 800 << 10};
     ::setrlimit(RLIMIT_CPU, &cpu_limit);
 #ifndef MOTUS_SANITIZE  // AddressSanitizer reserves terabytes of address space: no RLIMIT_AS under it
     ::setrlimit(RLIMIT_AS, &memory_limit);
@@ -234,6 +246,8 @@ SandboxProcess::SandboxProcess(const SandboxSpec& spec, const Limits& limits)
     ::setrlimit(RLIMIT_FSIZE, &file_limit);
     ::setrlimit(RLIMIT_CORE, &no_core);
     ::setrlimit(RLIMIT_NOFILE, &descriptor_limit);
+    ::setrlimit(RLIMIT_MEMLOCK, &locked_limit);
+    ::setrlimit(RLIMIT_MSGQUEUE, &queue_limit);
     if (drop) {
       if (::setgroups(0, nullptr) || ::setresgid(uid, uid, uid) || ::setresuid(uid, uid, uid)) ::_exit(126);
     }

@@ -39,6 +39,7 @@ struct SandboxSpec {
   std::vector<std::string> argv;  // argv[0]: a path inside the sandbox
   std::vector<Mount> mounts;      // besides /usr (read-only), /proc, /dev and /tmp
   std::string workdir = "/tmp";
+  bool writable_tmp = true;       // false: /tmp is there, empty and read-only (the probe server writes no file)
   bool isolate = true;            // false: --no-sandbox (limits and user only, no bubblewrap)
   uid_t uid = 0;                  // the user it runs as (a SandboxUser's)
   // Asked at least every 0.1 s while the grader waits for it: true (Ctrl-C) ends the wait, and

@@ -3,17 +3,21 @@
 // sandbox's memory limit (RLIMIT_AS) holds one process's address space, and code that held memory
 // anywhere else would escape it — in forked children (20 of 300 MB held 6 GB of the machine), in
 // memfd files or System V shared memory filled and unmapped again (40 of 60 MB held 2.4 GB), in
-// message queues, or in sockets' queues. Threads stay allowed: they share the process's memory, and
-// so its limit. (Pipes' buffers are bounded by the kernel per user; descriptors by the sandbox.)
+// semaphores, message queues, sockets' queues, pages spliced into pipes, or a tmpfs mounted in a
+// namespace of its own. Threads stay allowed: they share the process's memory, and so its limit.
+// (Pipes' buffers are bounded by the kernel per user; descriptors, locked memory and POSIX queues by
+// the sandbox's rlimits. Page tables are not: 65,530 mappings, the kernel's most, can hold about
+// 1 GB of them; only a memory cgroup would count them, and motus makes none.)
 #include <string>
 
 namespace motus::grade {
 
 // From here on this process (and its threads) cannot start a process or a program, nor hold memory
-// outside its address space: fork, vfork and clone without CLONE_VM fail with EPERM, execve (so
+// outside its address space: fork, vfork and clone without CLONE_THREAD fail with EPERM, execve (so
 // posix_spawn's and system's child) with EPERM, clone3 with ENOSYS (glibc then makes its threads
-// with clone); memfd_create, shmget, msgget, socket and socketpair with EPERM. A seccomp filter:
-// it cannot be lifted, and it holds for every thread made after it. Throws std::runtime_error when the kernel refuses
+// with clone); memfd_create, shmget, msgget, semget, socket, socketpair, vmsplice, splice, tee,
+// unshare, setns and the mount calls with EPERM. A seccomp filter: it cannot be lifted, and it
+// holds for every thread made after it. Throws std::runtime_error when the kernel refuses
 // the filter or this machine's architecture has no filter here (x86-64 and AArch64 do).
 void install_server_filter();
 
