@@ -29,6 +29,7 @@
 
 #include "motus/collide/colliders.hpp"
 #include "motus/external/external_parts.hpp"
+#include "motus/huge_pages.hpp"
 #include "motus/vector.hpp"
 
 namespace motus {
@@ -182,8 +183,9 @@ private:
     bool fast = false;     // searches along its path this step (not by its list)
     bool escaped = false;  // off the lists until they are built again: fast every step
   };
-  std::vector<BallState> state_;
-  std::vector<int> fast_, balls_, points_, moved_;
+  BigArray<BallState> state_;
+  BigArray<int> balls_;
+  std::vector<int> fast_, points_, moved_;
   // The contacts found at the start of a step (nearly all of a step's) are sorted once
   // (sort_by_time.hpp) and taken in order; those found after a contact go into a heap, and
   // the two are merged.
@@ -200,14 +202,15 @@ private:
   Point origin_, grid_low_, grid_high_;
   double cell_size_ = 1, inverse_cell_size_ = 1;
   Cell dims_{}, stride_{};
-  std::vector<int> cell_start_, sorted_, ball_cell_;
+  // (The arrays of one number or more per ball or cell are BigArrays: huge_pages.hpp.)
+  BigArray<int> cell_start_, sorted_, ball_cell_;
   int slow_count_ = 0;  // the balls in the grid (sorted_ has padding after them)
   std::vector<int> candidate_i_, candidate_k_, hits_;  // the pair search's batch (find_initial_events)
   struct Placed {
     int ball, cell;
   };
   std::vector<int> block_start_, local_count_;  // the sort's first level, and its second's counts
-  std::vector<Placed> by_block_;
+  BigArray<Placed> by_block_;
   std::vector<int> forward_rows_;
   int max_forward_ = 0;  // the farthest forward row's offset
 
@@ -230,14 +233,14 @@ private:
   // (The pairs are the arrays' first pair_count_: their size only grows, so that a build writes
   // no zeros over them.) A build lists the balls of sorted_ up to listed_, and has sorted the
   // first gap_sorted_ batches by gap.
-  std::vector<int> pair_i_, pair_k_;
+  BigArray<int> pair_i_, pair_k_;
   int pair_count_ = 0, listed_ = 0, gap_sorted_ = 0;
-  std::vector<double> pair_d2_;  // (a build's: the pairs' squared distances then, for their classes)
+  BigArray<double> pair_d2_;  // (a build's: the pairs' squared distances then, for their classes)
   std::vector<int> class_start_;
   // From the pair pass's batch b on, no pair has a body numbered below frontier_[b]: those are
   // moved to the end of the step after batch b − 1. (frontier_[batches] = every body.)
   std::vector<int> frontier_;
-  std::vector<int> neighbour_start_, neighbours_;  // both ways, by ball: ball i's are [start[i], start[i + 1])
+  BigArray<int> neighbour_start_, neighbours_;  // both ways, by ball: ball i's are [start[i], start[i + 1])
   struct NearFace {
     int ball, wall;
   };
