@@ -37,7 +37,9 @@ sock_filter jump_if_equal(unsigned value, unsigned char then_skip, unsigned char
 
 void install_server_filter() {
   if (kArchitecture == 0)
-    throw std::runtime_error("no seccomp filter for this machine's architecture: the probe server cannot hold the student's code to its limits");
+    throw std::runtime_error(
+        "no seccomp filter for this machine's architecture: the probe server cannot hold the student's code to its "
+        "limits");
   constexpr unsigned kArch = offsetof(seccomp_data, arch), kNumber = offsetof(seccomp_data, nr);
   // (The flags are clone's first argument; its low 32 bits come first on these little-endian machines.)
   constexpr unsigned kFlags = offsetof(seccomp_data, args);
