@@ -333,7 +333,8 @@ TEST(Plugins, APluginsBrokenNumbersAreItsOwnFailureNeverAPerfectRun) {
   r = run_motus(dir, {"compare", "oscillator", "--plugin", plugin, "--integrator", "bad:nan", "--engines", "motus,bad",
                       "--out", (dir / "c").string(), "--json"});
   ASSERT_EQ(r.status, 0) << r.err;
-  for (const auto& e : nlohmann::json::parse(r.out).at("engines"))
+  const nlohmann::json report = nlohmann::json::parse(r.out);  // (a range-for over parse(...).at(...) reads a dead temporary)
+  for (const auto& e : report.at("engines"))
     if (e.at("engine") == "bad") {
       for (const char* field : {"max_energy_error", "max_distance_from_exact"})
         EXPECT_FALSE(e.at(field).is_number() && e.at(field).get<double>() == 0) << field << ": " << e.dump();
