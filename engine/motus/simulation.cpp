@@ -98,7 +98,8 @@ Simulation::Simulation(const SceneDescription& scene, Method method, ExternalPar
     const int n = static_cast<int>(m.bodies.size()) * m.dimensions;
     y_.resize(2 * n);
     // (Before its first touch: the state of 10^6 balls, read in the collision grid's order, on huge
-    // pages. Eigen takes a block this big from the kernel, fresh.)
+    // pages. Eigen takes it from malloc, which maps a block this big fresh from the kernel — above its
+    // threshold, 128 kB and after big frees up to 32 MB; a block it hands out again keeps its pages.)
     advise_huge_pages(y_.data(), sizeof(double) * static_cast<size_t>(y_.size()));
     for (size_t i = 0; i < m.bodies.size(); ++i) {
       for (int k = 0; k < m.dimensions; ++k) {

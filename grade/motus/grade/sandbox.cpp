@@ -174,6 +174,11 @@ std::string Ending::describe(const Limits& limits, double wall_seconds) const {
 SandboxProcess::SandboxProcess(const SandboxSpec& spec, const Limits& limits)
     : error_cap_(limits.output_bytes), stop_(spec.stop) {
   if (spec.argv.empty()) throw std::invalid_argument("a sandbox needs a program to run");
+  // Its whole environment, with or without bubblewrap. (MALLOC_ARENA_MAX: glibc gives each thread
+  // that allocates an arena of 64 MB of address space; with two in all, a student's threads are not
+  // out of memory at the fifteenth.)
+  std::vector<std::string> environment = {"PATH=/usr/bin:/bin", "TMPDIR=/tmp", "HOME=/tmp", "LANG=C.UTF-8",
+                                          "MALLOC_ARENA_MAX=2"};
   std::vector<std::string> args;
   if (spec.isolate) {
     const std::string bwrap = bubblewrap_program();
@@ -195,16 +200,14 @@ SandboxProcess::SandboxProcess(const SandboxSpec& spec, const Limits& limits)
     // A tmpfs limits its bytes, not its files: a million empty ones held a gigabyte of the kernel's
     // memory. Code that needs no scratch space gets none.
     if (!spec.writable_tmp) args.insert(args.end(), {"--remount-ro", "/tmp"});
-    for (const char* e : {"--chdir", spec.workdir.c_str(), "--clearenv", "--setenv", "PATH", "/usr/bin:/bin",
-                          "--setenv", "TMPDIR", "/tmp", "--setenv", "HOME", "/tmp", "--setenv", "LANG", "C.UTF-8",
-                          "--setenv", "MALLOC_ARENA_MAX", "2", "--"})
-      args.emplace_back(e);
+    args.insert(args.end(), {"--chdir", spec.workdir, "--clearenv"});
+    for (const std::string& e : environment) {
+      const size_t equals = e.find('=');
+      args.insert(args.end(), {"--setenv", e.substr(0, equals), e.substr(equals + 1)});
+    }
+    args.emplace_back("--");
   }
   args.insert(args.end(), spec.argv.begin(), spec.argv.end());
-  // (MALLOC_ARENA_MAX: glibc gives each thread that allocates an arena of 64 MB of address space;
-  // with two in all, a student's threads are not out of memory at the fifteenth.)
-  std::vector<std::string> environment = {"PATH=/usr/bin:/bin", "TMPDIR=/tmp", "HOME=/tmp", "LANG=C.UTF-8",
-                                          "MALLOC_ARENA_MAX=2"};
   auto argv = pointers(args);
   auto envp = pointers(environment);
   // Everything the child needs is computed here: between fork and exec it only makes system calls.
@@ -215,6 +218,7 @@ SandboxProcess::SandboxProcess(const SandboxSpec& spec, const Limits& limits)
   const rlim_t memory = static_cast<rlim_t>(limits.memory_mb) << 20;
   const rlim_t file = static_cast<rlim_t>(limits.file_mb) << 20;
   const rlim_t descriptors = static_cast<rlim_t>(limits.descriptors);
+  const rlim_t locked = static_cast<rlim_t>(limits.locked_mb) << 20, queues = static_cast<rlim_t>(limits.queue_kb) << 10;
   // RLIMIT_NPROC counts every process of the user: those it has now (the grader's own, without
   // root; a killed sandbox's zombies not reaped yet) plus the sandbox's allowance.
   const rlim_t processes = static_cast<rlim_t>(limits.processes + processes_of(uid));
@@ -234,9 +238,7 @@ SandboxProcess::SandboxProcess(const SandboxSpec& spec, const Limits& limits)
     ::close_range(3, ~0U, 0);
     const rlimit cpu_limit{cpu, cpu + 1}, memory_limit{memory, memory}, file_limit{file, file}, no_core{0, 0},
         process_limit{processes, processes}, descriptor_limit{descriptors, descriptors},
-        // (set, not inherited from whoever started the grader: io_uring's rings and POSIX message
-        // queues are charged to these, outside the address space)
-        locked_limit{8 << 20, 8 << 20}, queue_limit{800 << 10, 800 << 10};
+        locked_limit{locked, locked}, queue_limit{queues, queues};
     ::setrlimit(RLIMIT_CPU, &cpu_limit);
 #ifndef MOTUS_SANITIZE  // AddressSanitizer reserves terabytes of address space: no RLIMIT_AS under it
     ::setrlimit(RLIMIT_AS, &memory_limit);

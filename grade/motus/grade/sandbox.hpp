@@ -1,13 +1,14 @@
 #pragma once
 // Running a student's code where it can do no harm: in its own process, as an unprivileged
 // user, inside bubblewrap (no network, a read-only system, only the files it is given, a
-// small size-limited tmpfs), with limits on CPU time, address space, processes and file
-// size, no core files, and a wall-clock kill. Its standard error (where its standard output
-// goes too, in the probe server) is kept up to a cap.
+// small size-limited tmpfs), with limits on CPU time, address space, processes, file size,
+// descriptors, locked memory and message queues, no core files, and a wall-clock kill. Its
+// standard error (where its standard output goes too, in the probe server) is kept up to a cap.
 //
 // On Debian 12 without cgroup v2 these are the tools there are: bubblewrap for namespaces and
 // mounts, setrlimit for the limits, setresuid for the user (the grader does the last two
-// itself, in the child, before it starts bwrap — no shell, no prlimit or setpriv programs).
+// itself, in the child, before it starts bwrap — no shell, no prlimit or setpriv programs), and
+// the probe server's own seccomp filter (server_filter.hpp) for what the limits do not count.
 #include <sys/types.h>
 
 #include <chrono>
@@ -26,6 +27,10 @@ struct Limits {
   // RLIMIT_NOFILE: each descriptor can hold kernel memory outside the address space (a socket's
   // queued bytes, up to 200 kB): 10,000 socket pairs held 2 GB under the machine's own 20,000.
   int descriptors = 256;
+  // RLIMIT_MEMLOCK and RLIMIT_MSGQUEUE: set, not inherited from whoever started the grader (io_uring's
+  // rings and POSIX message queues are charged to them, outside the address space).
+  long locked_mb = 8;
+  long queue_kb = 800;
   long tmpfs_mb = 64;        // the writable /tmp
   size_t output_bytes = 64 * 1024;  // standard error kept (the rest is read and dropped)
 };
