@@ -7,8 +7,9 @@
 // on its own, and the gas at 10^5 and 10^6 with its balls numbered at random (not row by row,
 // as the lattice numbers them). The ratios at the end are issue 13's: per-ball cost at 10^6 /
 // at 10^3 (target ≤ 1.3), 3-D / 2-D (target ≤ 1.5); and what numbering at random costs. Beside
-// them, the drift alone (x += h·v over the same balls, nothing else) at 10^3 and 10^6: what the
-// memory alone charges a big gas per ball. And a million balls as a thousand (or a hundred)
+// them, the gas at 10^3 and 10^6 timed over the same window after 10 s of running (a long
+// run's cost, once the speeds have their tail), and the drift alone (x += h·v over the same
+// balls, nothing else) at 10^3 and 10^6: what the memory alone charges a big gas per ball. And a million balls as a thousand (or a hundred)
 // separate gases stepped in turn, K steps each: how much of that a step that took each region
 // several steps ahead while it is in cache could win back, at best.
 // Also: the course's spring stepped through the full world (motus::Simulation) against
@@ -19,6 +20,8 @@
 //       machine's slow spells then fall on all of them alike)
 //   build/bench/bench_collisions --benchmark_filter='BallGas/(2d|3d)/(1000|1000000)/|BallGasInRegions'
 //       --benchmark_repetitions=5 --benchmark_enable_random_interleaving=true   (the regions)
+//   build/bench/bench_collisions --benchmark_filter='BallGas/(2d|3d)/(1000|1000000)/|BallGasSettled'
+//       --benchmark_repetitions=3   (the same window after 10 s of the gas: a long run's cost)
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -68,14 +71,14 @@ double thread_seconds() {
 // takes seconds to reach its collision rate) and only N itself differs.
 constexpr long kWindow = 120;
 
-void BallGas(benchmark::State& state, int dimensions, bool numbered_at_random = false) {
+void BallGas(benchmark::State& state, int dimensions, bool numbered_at_random = false, long settle_steps = 0) {
   const long n = state.range(0);
   const SceneDescription scene = ball_gas(n, dimensions, numbered_at_random);
   double seconds = 0, worst_energy = 0, collisions = 0, builds = 0;
   long windows = 0;
   for (auto _ : state) {
     Simulation sim(scene, Integrator::SymplecticEuler);
-    sim.advance(sim.time() + scene.dt, scene.dt, {});
+    sim.advance(sim.time() + static_cast<double>(1 + settle_steps) * scene.dt, scene.dt, {});
     const double e0 = sim.energy()->total;
     const CollisionCounters before = sim.world()->collision_counters();
     const double start = thread_seconds();
@@ -107,6 +110,17 @@ BENCHMARK_CAPTURE(BallGas, 3d, 3)->RangeMultiplier(10)->Range(1000, 1000000)->Us
 // that order is worth: at 10^5 and 10^6 balls the data no longer fit in cache.
 BENCHMARK_CAPTURE(BallGas, 2d_numbered_at_random, 2, true)->Arg(100000)->Arg(1000000)->UseManualTime()->Unit(benchmark::kMillisecond)->ComputeStatistics("min", minimum);
 BENCHMARK_CAPTURE(BallGas, 3d_numbered_at_random, 3, true)->Arg(100000)->Arg(1000000)->UseManualTime()->Unit(benchmark::kMillisecond)->ComputeStatistics("min", minimum);
+
+// The same window after the gas has run for 10 s (600 steps, not timed): a fresh lattice's speeds
+// are uniform in [−1, 1]^d, and the first seconds' collisions turn them into Maxwell's
+// distribution, whose tail has no end. Then a ball meets a third more others per step, and a
+// bigger gas has a faster fastest ball: its neighbour lists' half skin runs out sooner (their
+// life is set by that ball) and they are built more often than a small gas's. Its balls have
+// also wandered further from the lattice's numbering. What a long run of a big gas costs.
+constexpr long kSettleSteps = 600;
+void BallGasSettled(benchmark::State& state, int dimensions) { BallGas(state, dimensions, false, kSettleSteps); }
+BENCHMARK_CAPTURE(BallGasSettled, 2d, 2)->Arg(1000)->Arg(1000000)->UseManualTime()->Unit(benchmark::kMillisecond)->ComputeStatistics("min", minimum);
+BENCHMARK_CAPTURE(BallGasSettled, 3d, 3)->Arg(1000)->Arg(1000000)->UseManualTime()->Unit(benchmark::kMillisecond)->ComputeStatistics("min", minimum);
 
 // The least a step of the gas can do: every ball moved on by h·v, one pass over x and v and
 // nothing else (no pair, no grid, no contact), over the same balls and the same 120 steps.
@@ -299,6 +313,13 @@ int main(int argc, char** argv) {
   for (const char* n : {"1000", "10000", "100000", "1000000"})
     reporter.add_ratio(std::string("ball gas at ") + n + ": 3-D / 2-D per ball (target <= 1.5)", gas("3d", n),
                        gas("2d", n));
+  auto settled = [](const std::string& d, const char* n) { return "BallGasSettled/" + d + "/" + n + "/manual_time"; };
+  for (const std::string d : {"2d", "3d"})
+    reporter.add_ratio("ball gas " + std::string(d == "2d" ? "2-D" : "3-D") + " after 10 s: per ball at 10^6 / at 10^3",
+                       settled(d, "1000000"), settled(d, "1000"), 1000);
+  for (const char* n : {"1000", "1000000"})
+    reporter.add_ratio(std::string("ball gas at ") + n + " after 10 s: 3-D / 2-D per ball", settled("3d", n),
+                       settled("2d", n));
   for (const std::string d : {"2d", "3d"})
     for (const auto& [n, power] : {std::pair{"100000", "10^5"}, std::pair{"1000000", "10^6"}})
       reporter.add_ratio("ball gas " + std::string(d == "2d" ? "2-D" : "3-D") + " at " + power +
