@@ -220,20 +220,28 @@ void Simulation::advance(double end_time, double dt, Tolerance tolerance,
         if (after_step) after_step(*this);
       }
     } else {
-      const long n = fixed_step_count(end_time - t_, dt);
-      const double t0 = t_;
+      // One clock across calls: time is origin + k·dt, k the steps of this dt since the clock was
+      // set (at the start, or after a step of another kind or size). A caller that steps to
+      // t0 + k·dt one call at a time (compare's backend, a loop over frames) lands on exactly its
+      // times; summed call by call, t + dt would drift by a rounding each time, and after about
+      // 10^4 calls the gap passes fixed_step_count's 1e-9 and one call takes two steps.
+      if (dt != clock_dt_ || t_ != clock_origin_ + static_cast<double>(clock_steps_) * clock_dt_)
+        clock_origin_ = t_, clock_steps_ = 0, clock_dt_ = dt;
+      const long n = std::max(0L, fixed_step_count(end_time - clock_origin_, dt) - clock_steps_);
+      const double t0 = clock_origin_;
+      const long k0 = clock_steps_;
       const long steps0 = steps_;
       const Eigen::Index half = y_.size() / 2;
       // x and v as views into the state, made once: a step then passes them on as they are.
       Eigen::Map<Vector> x(y_.data(), half), v(y_.data() + half, half);
-      double t = t0;  // local, so the loop keeps it in a register
+      double t = t_;  // local, so the loop keeps it in a register
       for (long i = 0; i < n; ++i) {
         if constexpr (!is_symplectic<S>) {
           stepper.step(system, t, dt, y_);
         } else {
           world_->step(stepper, t, dt, x, v);
         }
-        t = t0 + static_cast<double>(i + 1) * dt;  // no drift from adding dt a million times
+        t = t0 + static_cast<double>(k0 + i + 1) * dt;  // no drift from adding dt a million times
         if (after_step) {
           t_ = t;
           steps_ = steps0 + i + 1;
@@ -242,6 +250,7 @@ void Simulation::advance(double end_time, double dt, Tolerance tolerance,
       }
       t_ = t;
       steps_ = steps0 + n;
+      clock_steps_ = k0 + n;
     }
   };
 

@@ -71,7 +71,8 @@ public:
   // Advance to end_time.
   //   Fixed-step integrators take whole steps of dt: round((end_time − t)/dt) of them when
   //   that lands within 1e-9 of end_time, else one more, so time() may pass end_time by
-  //   less than dt.
+  //   less than dt. Steps of one dt keep one clock across calls: after k of them from t0,
+  //   time() is t0 + k·dt exactly (so advancing to t0 + k·dt one step a call never takes two).
   //   Adaptive ones start from dt (or the step they last chose), pick their own steps
   //   within `tolerance`, and land exactly on end_time.
   // after_step, if given, is called after every accepted step. A part from outside that
@@ -93,6 +94,10 @@ private:
   Vector y_;
   double t_ = 0;
   double adaptive_h_ = 0;  // the step an adaptive integrator would like to take next
+  // The fixed steps' clock (see advance): t_ is clock_origin_ + clock_steps_ · clock_dt_ while
+  // the steps are all of clock_dt_.
+  double clock_origin_ = 0, clock_dt_ = 0;
+  long clock_steps_ = 0;
   long steps_ = 0, rejected_ = 0;
 };
 
