@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <vector>
 
@@ -243,6 +244,48 @@ TEST(Compare, AScenesStartingWithNoEnergyHasItsEnergyColumnsInJoules) {
   EXPECT_NE(table.out.find("p [kg m/s]"), std::string::npos) << table.out;
   EXPECT_NE(read_file(dir / "p" / "index.html").find("<th>momentum drift [kg·m/s]"), std::string::npos);
   EXPECT_EQ(nlohmann::json::parse(head_on.out).at("momentum_unit"), "scale");
+}
+
+// Every engine's energy columns are in the one unit the scene's start decides (motus's E₀), and
+// each is that engine's own change in it. This ball starts where its energy is exactly 0 in doubles
+// (½·1·0.1² = 0.005 of motion, −1·1·0.005 of height) but not in Box2D's floats (2.6e-10 J): Box2D's
+// column, in joules, was its change divided by those 2.6e-10 J (−1.9e7, the same in metrics.csv
+// and the energy figure).
+TEST(Compare, EveryEnginesEnergyColumnIsInTheUnitTheTableSays) {
+  TempDir dir;
+  write_file(dir / "e0.json", R"({"name": "e0", "dimensions": 2, "bodies": [{"mass": 1, "radius": 0.01,
+    "position": [0, -0.005000000000000001], "velocity": [0.1, 0]}], "forces": [{"type": "gravity", "g": [0, -1]}],
+    "integrator": "symplectic-euler", "dt": 0.01, "duration": 1})");
+  const Result r = run_motus(dir, {"compare", (dir / "e0.json").string(), "--engines", "motus,box2d", "--out",
+                                   (dir / "r").string(), "--json"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  ASSERT_EQ(j.at("energy_unit"), "J");
+  // In free fall from rest vertically, the energy the symplectic Euler steps lose is the same in
+  // both engines to Box2D's float rounding: E_end − E₀ = −0.0050 J (measured: motus −5.000e-3).
+  const double motus = engine(j, "motus")->at("energy_drift").get<double>();
+  const double box2d = engine(j, "box2d")->at("energy_drift").get<double>();
+  EXPECT_NEAR(motus, -0.005, 1e-4);
+  EXPECT_NEAR(box2d, motus, 1e-5) << "box2d's column is not in joules";
+  EXPECT_NEAR(engine(j, "box2d")->at("max_energy_error").get<double>(), std::abs(motus), 1e-5);
+  std::vector<std::string> last;  // box2d's last row of metrics.csv: its energy_error, in joules too
+  for (const auto& row : csv_rows(read_file(dir / "r" / "metrics.csv")))
+    if (row.at(0) == "box2d") last = row;
+  ASSERT_FALSE(last.empty());
+  EXPECT_NEAR(std::stod(last.at(5)), box2d, 1e-6);
+}
+
+// A long run steps motus exactly as many times as the peers: compare's motus column advances to
+// t0 + k·dt one step at a time, and took two steps at once after ~17,000 (simulation.hpp's clock).
+TEST(Compare, ALongRunEndsMotusAtItsLastStepsTime) {
+  TempDir dir;
+  const Result r = run_motus(dir, {"compare", scene("head_on"), "--engines", "motus", "--dt", "0.01", "--duration",
+                                   "200", "--samples", "4", "--repeats", "1", "--out", (dir / "r").string(), "--json"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(engine(nlohmann::json::parse(r.out), "motus")->at("steps").get<long>(), 20000);
+  const auto rows = csv_rows(read_file(dir / "r" / "metrics.csv"));
+  ASSERT_FALSE(rows.empty());
+  EXPECT_EQ(std::stod(rows.back().at(1)), 200.0) << rows.back().at(1);  // (it ended at 200.01)
 }
 
 // A pendulum's coordinate is its angle (scene-format.md, Units): its distance from the exact

@@ -10,7 +10,7 @@
 namespace motus::compare {
 namespace {
 
-double relative(double change, double scale) { return scale != 0 ? change / std::abs(scale) : change; }
+double relative(double change, double divisor) { return divisor != 0 ? change / divisor : change; }
 
 }  // namespace
 
@@ -43,11 +43,20 @@ bool momentum_in_kg_m_s(const std::vector<EngineRun>& runs) {
                      [](double p) { return p == 0; });
 }
 
-double EngineRun::energy_drift() const { return relative(rows.back().total - rows.front().total, rows.front().total); }
+double energy_divisor(const std::vector<EngineRun>& runs, const EngineRun& r) {
+  const EngineRun* reference = unit_reference(runs);
+  if (!reference || reference->rows.front().total == 0) return 0;  // in joules
+  const double own = r.rows.empty() ? 0 : r.rows.front().total;
+  return std::abs(own != 0 ? own : reference->rows.front().total);
+}
 
-double EngineRun::max_energy_error() const {
+double EngineRun::energy_drift(double divisor) const {
+  return relative(rows.back().total - rows.front().total, divisor);
+}
+
+double EngineRun::max_energy_error(double divisor) const {
   double worst = 0;
-  for (const auto& r : rows) worst = worse(worst, std::abs(relative(r.total - rows.front().total, rows.front().total)));
+  for (const auto& r : rows) worst = worse(worst, std::abs(relative(r.total - rows.front().total, divisor)));
   return worst;
 }
 

@@ -26,8 +26,9 @@ struct EngineRun {
   std::vector<double> round_seconds;
 
   // Summaries (meaningful when supported and rows is not empty).
-  double energy_drift() const;       // (E_end − E_0)/|E_0|
-  double max_energy_error() const;   // max |E − E_0|/|E_0| over the samples
+  // `divisor`: energy_divisor's for this run (0: the changes in joules).
+  double energy_drift(double divisor) const;      // (E_end − E_0)/divisor
+  double max_energy_error(double divisor) const;  // max |E − E_0|/divisor over the samples
   double momentum_drift() const;     // |p_end − p_0| / momentum_scale()
   double momentum_scale() const;     // max(|p_0|, Σ m|v_0|), or 1 (changes in kg·m/s) when both are 0
   double max_penetration() const;    // m
@@ -45,6 +46,10 @@ struct EngineRun {
 // there is no fraction to take. Decided on motus's run (else the first that ran), so that
 // every engine's column is in one unit.
 bool energy_in_joules(const std::vector<EngineRun>& runs);
+// What run r's energy changes are divided by in every column, figure and file: 0 when they are in
+// joules (every engine's change itself, whatever its own start), else |E₀| of r's own start — or
+// motus's, should r's be exactly 0 where motus's is not (a peer's start rounded to its floats).
+double energy_divisor(const std::vector<EngineRun>& runs, const EngineRun& r);
 // Whether the momentum columns are changes in kg·m/s: the scene starts with nothing moving (p₀ = 0
 // and Σ m|v₀| = 0), so there is no scale to divide by.
 bool momentum_in_kg_m_s(const std::vector<EngineRun>& runs);

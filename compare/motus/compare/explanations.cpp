@@ -257,7 +257,8 @@ std::string what_to_notice(const SceneDescription& scene, const std::vector<Engi
   }
   std::vector<std::string> parts;
   for (const EngineRun* r : engines)
-    parts.push_back(r->engine + " " + signed_number(r->energy_drift()) + " (at worst " + number(r->max_energy_error()) + ")");
+    parts.push_back(r->engine + " " + signed_number(r->energy_drift(energy_divisor(runs, *r))) + " (at worst " +
+                    number(r->max_energy_error(energy_divisor(runs, *r))) + ")");
   const std::string measure = energy_in_joules(runs) ? "in J (the scene starts with E₀ = 0): " : "relative to E₀: ";
   if (conserves_energy(scene))
     return "The scene keeps its energy exactly, so every change is the engine's error; " + measure + joined(parts) +
