@@ -49,13 +49,9 @@ std::string format_or_dash(const nlohmann::json& v, const char* format) {
   return v.is_null() ? std::string("-") : fmt::format(fmt::runtime(format), v.get<double>());
 }
 
-// A time per step to three significant figures, as the report shows it, without an exponent:
-// 0.0784, 0.709, 5.38, 400 (two decimals made kepler's 0.0408 and 0.64 read as 16x beside 15.68x).
+// A time per step as the report shows it (compare::microseconds_text).
 std::string micros_or_dash(const nlohmann::json& v) {
-  if (v.is_null()) return "-";
-  const double us = v.get<double>();
-  const char* format = us >= 100 ? "{:.0f}" : us >= 10 ? "{:.1f}" : us >= 1 ? "{:.2f}" : "{:.3g}";
-  return fmt::format(fmt::runtime(format), us);
+  return v.is_null() ? std::string("-") : compare::microseconds_text(v.get<double>());
 }
 
 }  // namespace

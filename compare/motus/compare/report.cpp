@@ -143,6 +143,11 @@ nlohmann::json number_or_null(double x) { return std::isfinite(x) ? nlohmann::js
 
 }  // namespace
 
+std::string microseconds_text(double us) {
+  const char* format = us >= 100 ? "{:.0f}" : us >= 10 ? "{:.1f}" : us >= 1 ? "{:.2f}" : "{:.3g}";
+  return fmt::format(fmt::runtime(format), us);
+}
+
 Conserved conserved_quantities(const SceneDescription& scene) {
   Conserved c;
   if (!scene.mechanical) return c;
@@ -315,12 +320,13 @@ std::string write_report(const std::string& folder, const ReportContext& c, cons
     auto cell = [](const nlohmann::json& v, const char* format) {
       return v.is_null() ? std::string("–") : fmt::format(fmt::runtime(format), v.get<double>());
     };
+    auto micros = [](const nlohmann::json& v) { return v.is_null() ? std::string("–") : microseconds_text(v.get<double>()); };
     html << "<tr><td>" << html_escape(e["engine"].get<std::string>()) << "</td><td>" << cell(e["energy_drift"], "{:+.2e}")
          << "</td><td>" << cell(e["max_energy_error"], "{:.2e}") << "</td><td>" << cell(e["momentum_drift"], "{:.2e}")
          << "</td><td>" << cell(e["max_penetration"], "{:.2e}") << "</td><td>" << cell(e["constraint_error"], "{:.2e}")
          << "</td><td>" << cell(e["max_distance_from_motus"], "{:.2e}")
          << (exact_known ? "</td><td>" + cell(e["max_distance_from_exact"], "{:.2e}") : std::string())
-         << "</td><td>" << cell(e["us_per_step"], "{:.3g}") << "</td><td>" << cell(e["us_per_step_median"], "{:.3g}")
+         << "</td><td>" << micros(e["us_per_step"]) << "</td><td>" << micros(e["us_per_step_median"])
          << "</td><td>"
          << (e["us_per_step_spread"].is_null() ? std::string("–")
                                                : fmt::format("{:.0f}%", 100 * e["us_per_step_spread"].get<double>()))
