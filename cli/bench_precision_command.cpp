@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <optional>
+#include <string_view>
 
 #include "cli_common.hpp"
 #include "interrupt.hpp"
@@ -197,9 +198,12 @@ int bench_precision_command(const BenchPrecisionOptions& o) {
   for (const auto& c : curves)
     if (std::find(engines.begin(), engines.end(), c.engine) == engines.end()) engines.push_back(c.engine);
   fmt::print("\ntargets: the fastest method of each engine at each target error, each curve interpolated on log-log "
-             "axes;\nus = microseconds of the fastest runs (the median runs'); <= : the cheapest point is already "
-             "below the target (a ratio with one such side is a bound)\n{:<8}", "target");
-  for (const auto& e : engines) fmt::print("  {:<30}{:>18}", e, "us");
+             "axes;\nus = microseconds of the fastest runs (the median runs'); <= : at most this (the cheapest point, or "
+             "one after a blow-up, is already below the target; a ratio with one such side is a bound)\n{:<8}", "target");
+  // (The method column as wide as its longest entry: odeint's symplectic_rkn_sb3a_mclachlan is 36.)
+  size_t method_width = std::string_view("cannot run this scene").size();
+  for (const auto& c : curves) method_width = std::max(method_width, c.method.size());
+  for (const auto& e : engines) fmt::print("  {:<{}}{:>18}", e, method_width, "us");
   for (size_t k = 1; k < engines.size(); ++k) fmt::print("{:>22}", "motus/" + engines[k]);
   fmt::print("\n");
   for (double target : targets) {
@@ -207,11 +211,11 @@ int bench_precision_command(const BenchPrecisionOptions& o) {
     std::vector<std::optional<precision::Fastest>> best;
     for (const auto& e : engines) {
       best.push_back(precision::fastest(curves, e, target));
-      fmt::print("  {:<30}{:>18}",
+      fmt::print("  {:<{}}{:>18}",
                  best.back()                       ? best.back()->method
                  : precision::engine_runs(curves, e) ? "not reached"
                                                      : "cannot run this scene",
-                 microseconds(best.back()));
+                 method_width, microseconds(best.back()));
     }
     for (size_t k = 1; k < engines.size(); ++k) fmt::print("{:>22}", precision::ratio_text(best[0], best[k], true));
     fmt::print("\n");

@@ -104,7 +104,7 @@ std::string precision_csv(const std::string& scene, const std::vector<Curve>& cu
   for (const Curve& c : curves)
     for (const Point& p : c.points)
       csv += fmt::format("{},{},{:.17g},{},{},{},{:.17g},{:.6e},{:.6e},{},{},{:.6e}\n", csv_text(scene), csv_text(c.method), p.h,
-                         c.adaptive ? fmt::format("{:.6g}", p.tolerance) : "", p.steps, p.evaluations, p.t_end,
+                         c.adaptive ? fmt::format("{:.17g}", p.tolerance) : "", p.steps, p.evaluations, p.t_end,
                          p.failed.empty() ? p.error : NAN, p.failed.empty() ? p.seconds : NAN, csv_text(c.engine),
                          csv_text(p.failed), p.failed.empty() ? p.median_seconds : NAN);
   return csv;

@@ -1,9 +1,10 @@
 #pragma once
 // A curve read at a target error: the run time (and evaluations) a method needs to reach it,
 // interpolated on log–log axes between the two points of its sweep that bracket the target where
-// the curve goes below it for good — the point after the last one above the target, and that one.
-// A curve whose every point is below the target gives its first (cheapest) point's time as an
-// upper bound; one that ends above the target gives nothing.
+// the curve first gets below it to stay for at least two points in a row (or at its last point) —
+// that first point below, and the one before it, above. A curve whose cheapest point is already
+// there gives that point's time as an upper bound (so does a point after a blow-up, or with an
+// error of exactly 0: nothing to interpolate on log axes); one that never gets there gives nothing.
 #include <optional>
 #include <string>
 #include <vector>
@@ -16,7 +17,7 @@ struct AtTarget {
   double seconds = 0;         // from the points' fastest runs
   double median_seconds = 0;  // from the points' median runs
   double evaluations = 0;
-  bool upper_bound = false;  // the cheapest point was already below the target
+  bool upper_bound = false;  // the time is at most `seconds` (see at_target)
 };
 
 std::optional<AtTarget> at_target(const Curve& curve, double target);
