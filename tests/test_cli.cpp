@@ -342,6 +342,30 @@ TEST(CliRun, TheStepTableKeepsItsColumnsApart) {
   EXPECT_EQ(rows, 4) << r.out;
 }
 
+// The step table's times, and the start on the time line, tell every step apart: a start at 1 with
+// dt = 1e-7 printed "1" six times (six figures), and a start of 1234.56789 as 1234.57.
+TEST(CliRun, TheStepTableTellsItsTimesApart) {
+  TempDir dir;
+  const Result r = run_motus(dir, {"run", scene("oscillator"), "--set", "start_time=1", "--dt", "1e-7", "--steps", "5",
+                                   "--repeats", "1"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("1 -> 1.0000005"), std::string::npos) << r.out;
+  std::stringstream lines(r.out);
+  std::vector<std::string> times;
+  for (std::string line; std::getline(lines, line);) {
+    std::stringstream cells(line);
+    std::vector<std::string> c;
+    for (std::string cell; cells >> cell;) c.push_back(cell);
+    if (c.size() == 4 && c[3] == "-1") times.push_back(c[0]);  // the rows: a = -x = -1
+  }
+  EXPECT_EQ(times, (std::vector<std::string>{"1", "1.0000001", "1.0000002", "1.0000003", "1.0000004", "1.0000005"}))
+      << r.out;
+  const Result late = run_motus(dir, {"run", scene("oscillator"), "--set", "start_time=1234.56789", "--steps", "2",
+                                      "--repeats", "1"});
+  ASSERT_EQ(late.status, 0) << late.err;
+  EXPECT_NE(late.out.find("time         1234.56789 -> "), std::string::npos) << late.out;
+}
+
 TEST(CliRun, TrajectoryRefusesToOverwriteUnlessAsked) {
   TempDir dir;
   const std::string csv = (dir / "trajectory.csv").string();
