@@ -58,11 +58,11 @@ CLI::App* add_bench_precision_command(CLI::App& bench, BenchPrecisionOptions& o)
   add_list_option(p, "--peers", o.peers,
                   "Comma-separated peers on the same problem: odeint (Boost.Odeint's steppers on the "
                   "same right-hand side), box2d, bullet (mechanical scenes, dt = 1/30 ... 1/960)");
-  p->add_option("--levels", o.levels, "Fixed-step methods: h = dt / 2^k for k = 0 ... N-1")->check(CLI::Range(1, 20));
+  p->add_option("--levels", o.levels, "Fixed-step methods: h = dt / 2^k for k = 0 ... N-1")->check(whole_number_in(1, 20));
   p->add_option("--per-decade", o.per_decade, "Adaptive methods: tolerances 1e-3 ... 1e-13, this many per decade")
-      ->check(CLI::Range(1, 10));
+      ->check(whole_number_in(1, 10));
   p->add_option("--repeats", o.repeats, "Timed runs per point, after one untimed run; the fastest counts")
-      ->check(CLI::Range(1, 100));
+      ->check(whole_number_in(1, 100));
   add_list_option(p, "--targets", o.targets,
                   "Comma-separated target errors to read every curve at (default 1e-4 ... 1e-10)");
   p->add_option("--duration", o.duration, "End time (default: the scene's; for reference states, the last one within it)");

@@ -3,6 +3,7 @@
 #include "motus/systems/system_catalog.hpp"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <cstdlib>
 #include <fcntl.h>
@@ -382,6 +383,17 @@ const CLI::Validator& non_empty_path() {
       [](const std::string& path) { return path.empty() ? std::string("an empty path names no file") : std::string(); },
       "PATH");
   return validator;
+}
+
+CLI::Validator whole_number_in(long low, long high) {
+  return CLI::Validator(
+      [low, high](const std::string& text) {
+        long value = 0;
+        const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+        if (error == std::errc() && end == text.data() + text.size() && value >= low && value <= high) return std::string();
+        return fmt::format("must be a whole number from {} to {} (got {})", low, high, one_line(text, 40));
+      },
+      fmt::format("INT in [{} - {}]", low, high));
 }
 
 std::string time_unit_of(const SceneDescription& scene) {

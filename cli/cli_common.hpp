@@ -188,4 +188,10 @@ bool output_exists(const std::string& path);
 // "not given" (which would write nothing, or somewhere else, and say nothing).
 const CLI::Validator& non_empty_path();
 
+// For the options that count (steps, repeats, samples, levels): a whole number from `low` to `high`,
+// as written. CLI11's Range said "Value 1e4 not in range 100 to 10000000" of a number inside the
+// range that is not whole; this says what is wrong: "must be a whole number from 100 to 10000000
+// (got 1e4)".
+CLI::Validator whole_number_in(long low, long high);
+
 }  // namespace motus::cli

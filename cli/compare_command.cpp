@@ -70,12 +70,12 @@ CLI::App* add_compare_command(CLI::App& app, CompareOptions& o) {
   c->add_option("--duration", o.duration, "Time to run, s (default: the scene's)");
   c->add_option("--set", o.sets, "Override a scene field (repeatable), e.g. --set lattice.count=10000")->type_name("PATH=VALUE");
   c->add_option("--out", o.out, "Report folder (default: a new folder under runs/); must not exist yet")->check(non_empty_path());
-  c->add_option("--samples", o.samples, "Metric samples over the run")->check(CLI::Range(2L, 100000L));
+  c->add_option("--samples", o.samples, "Metric samples over the run")->check(whole_number_in(2, 100000));
   c->add_option("--repeats", o.repeats,
                 "Timing rounds: every engine runs the scene again this many times, taking turns; the time per step "
                 "is the fastest round's CPU time, with the median and the spread beside it (default: 5, or as many "
                 "as fit in about 3 s when one round takes longer)")
-      ->check(CLI::Range(1, 100));
+      ->check(whole_number_in(1, 100));
   c->add_flag("--json", o.json, "Print the summary as one JSON object instead of the table");
   c->add_flag("--render", o.render,
               "Also draw the same instants of every engine side by side: PNG frames, an MP4 (ffmpeg) and a contact "

@@ -50,9 +50,11 @@ void print_tables(const stress::Report& r) {
         continue;
       }
       const double z = r.omega ? *r.omega * s.limit : 0;
-      fmt::print("  {:<20}{:>14}{:>11}  {}{}\n", info(s.integrator).name, s.limit > 0 ? fmt::format("{:.6g}", s.limit) : "none",
+      fmt::print("  {:<20}{:>14}{:>11}  {}{}{}\n", info(s.integrator).name, s.limit > 0 ? fmt::format("{:.6g}", s.limit) : "none",
                  r.omega && s.limit > 0 ? fmt::format("{:.5f}", z) : "", s.theory.text,
-                 s.theory.z > 0 && s.limit > 0 ? fmt::format(" ({:.5f})", z / s.theory.z) : "");
+                 s.theory.z > 0 && s.limit > 0 ? fmt::format(" ({:.5f})", z / s.theory.z) : "",
+                 // (the search's top, as the page says: a step that large still did not blow up)
+                 s.limit > 0 && s.first_blowup == 0 ? " (no blow-up found: the largest h tried)" : "");
     }
   }
   if (!r.drift.empty()) {
@@ -117,9 +119,9 @@ CLI::App* add_stress_command(CLI::App& app, StressOptions& o) {
                   "Comma-separated integrators (default: every one that can run the scene)");
   c->add_option("--set", o.sets, "Override a scene field (repeatable), e.g. --set forces[0].stiffness=4")->type_name("PATH=VALUE");
   c->add_option("--out", o.out, "The page's folder (default: a new folder under runs/); must not exist yet")->check(non_empty_path());
-  c->add_option("--steps", o.steps, "Steps of each stability and stiffness trial")->check(CLI::Range(100L, 10000000L))->capture_default_str();
+  c->add_option("--steps", o.steps, "Steps of each stability and stiffness trial")->check(whole_number_in(100, 10000000))->capture_default_str();
   c->add_option("--drift-steps", o.drift_steps, "Steps of the long run (10^5 to 10^7 and more)")
-      ->check(CLI::Range(100L, 100000000L))
+      ->check(whole_number_in(100, 100000000))
       ->capture_default_str();
   c->add_option("--energy-factor", o.energy_factor, "Blown up: |E - E0| beyond this many times |E0|")->capture_default_str();
   c->add_option("--duration", o.duration, "Simulated seconds of each mass-ratio and sticks run (at most the scene's)")->capture_default_str();

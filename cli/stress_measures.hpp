@@ -32,6 +32,7 @@ struct StabilityTrial {
 struct StabilityTheory {
   double z = 0;           // the limit of ω h; 0 when it is not known
   bool stable_below = true;  // false: unstable at every h, and z is where a run of the trial's steps first passes the factor
+  bool limit_included = false;  // whether ωh = z itself is still stable (RK4's ≤ 2√2; a run at Euler's z just reaches the factor)
   std::string text;       // "ωh < 2", "none: ...", "not known for this scene"
 };
 struct StabilityResult {

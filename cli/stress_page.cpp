@@ -232,8 +232,11 @@ double theory_first_failure(const Report& r, Integrator integrator) {
   if (!r.omega) return 0;
   const StabilityTheory t = stability_theory(integrator, r.settings.steps, r.settings.energy_factor);
   if (t.z <= 0) return 0;
-  for (double factor : stiffness_factors())
-    if (*r.omega * std::sqrt(factor) * r.dt > t.z) return factor;  // ω grows as √k; Euler's and midpoint's z: the run's
+  for (double factor : stiffness_factors()) {
+    const double omega_h = *r.omega * std::sqrt(factor) * r.dt;  // ω grows as √k; Euler's and midpoint's z: the run's
+    // (At the limit itself: RK4's ωh = 2√2 is stable, the symplectic ones' ωh = 2 is not.)
+    if (t.limit_included ? omega_h > t.z : omega_h >= t.z) return factor;
+  }
   return 0;
 }
 
@@ -272,8 +275,12 @@ nlohmann::json summary_json(const Report& r) {
       j["drift"].push_back({{"integrator", name(d.integrator)},
                             {"skipped", d.skipped},
                             {"steps", d.steps},
-                            {"first_hundredth_max", number_or_null(d.first_hundredth_max)},
-                            {"last_tenth_max", number_or_null(d.last_tenth_max)},
+                            // (null where it was not measured, as the page's and the terminal's "–":
+                            // a skipped integrator, or a run that blew up before its last tenth)
+                            {"first_hundredth_max", d.skipped.empty() ? number_or_null(d.first_hundredth_max)
+                                                                      : nlohmann::json(nullptr)},
+                            {"last_tenth_max", d.skipped.empty() && d.blown.empty() ? number_or_null(d.last_tenth_max)
+                                                                                    : nlohmann::json(nullptr)},
                             {"blown", d.blown},
                             {"verdict", d.verdict}});
   }

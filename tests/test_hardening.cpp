@@ -184,7 +184,12 @@ TEST(Hardening, AStepCountThatOverflowsIsBadInput) {
   expect_one_line_exit_2(run_motus(dir, {"run", "spring", "--duration", "1e19"}), "--duration");
   // (The number as written: it was read as the largest long, 9.22337e+18, and reported so.)
   expect_one_line_exit_2(run_motus(dir, {"run", "spring", "--steps", "99999999999999999999"}),
-                         "--steps: Value 99999999999999999999 not in range");
+                         "--steps: must be a whole number from 1 to 1000000000000000 (got 99999999999999999999)");
+  // A count inside the range that is not whole says so (it said "Value 1e4 not in range 100 to 10000000").
+  expect_one_line_exit_2(run_motus(dir, {"stress", "oscillator", "--steps", "1e4"}),
+                         "--steps: must be a whole number from 100 to 10000000 (got 1e4)");
+  expect_one_line_exit_2(run_motus(dir, {"run", "spring", "--repeats", "2.5"}),
+                         "--repeats: must be a whole number from 1 to 100 (got 2.5)");
   expect_one_line_exit_2(run_motus(dir, {"compare", "head_on", "--dt", "1e-300", "--out", (dir / "r").string()}),
                          "more than a run can take");
   EXPECT_FALSE(fs::exists(dir / "r"));

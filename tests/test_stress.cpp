@@ -252,6 +252,42 @@ TEST(StressPages, ADampedSpringHasNoDriftSection) {
       << p.summary.at("not_applied").dump();
 }
 
+// What was not measured, or not found, says so everywhere, and the theory holds at its limit itself:
+// - at dt = 0.2 the oscillator stiffened 100 times has ωh = 10 · 0.2 = 2 exactly, where the symplectic
+//   methods' "ωh < 2" already fails (the run does blow up there) — the theory column said 1000;
+//   RK4's "ωh ≤ 2√2" holds at 100 (2 < 2.83) and fails at 1000;
+// - explicit Euler at dt = 0.5 gains 25 % of its energy a step and is no longer finite after about
+//   3,200 of 5,000 steps, before the run's last tenth: summary.json had 0 for that tenth's largest
+//   error, never measured;
+// - free fall has no stable-step limit for midpoint: the search stops at its largest h, which the
+//   terminal printed as if it were a limit.
+TEST(StressPages, WhatWasNotMeasuredSaysSoAndTheTheoryHoldsAtItsLimit) {
+  TempDir dir;
+  const Result stiff = run_motus(dir, {"stress", "oscillator", "--set", "dt=0.2", "--steps", "1000", "--drift-steps",
+                                       "100", "--integrators", "symplectic-euler,rk4", "--out", (dir / "a").string()});
+  ASSERT_EQ(stiff.status, 0) << stiff.err;
+  const auto a = nlohmann::json::parse(read_file(dir / "a" / "summary.json"));
+  std::map<std::string, double> theory;
+  for (const auto& s : a.at("stiffness").at("integrators"))
+    theory[s.at("integrator").get<std::string>()] = s.at("theory_first_failure").get<double>();
+  EXPECT_EQ(theory["symplectic-euler"], 100);
+  EXPECT_EQ(theory["rk4"], 1000);
+
+  const Result euler = run_motus(dir, {"stress", "oscillator", "--set", "dt=0.5", "--steps", "1000", "--drift-steps",
+                                       "5000", "--integrators", "euler", "--out", (dir / "b").string()});
+  ASSERT_EQ(euler.status, 0) << euler.err;
+  const auto b = nlohmann::json::parse(read_file(dir / "b" / "summary.json"));
+  ASSERT_EQ(b.at("drift").size(), 1u);
+  EXPECT_FALSE(b.at("drift")[0].at("blown").get<std::string>().empty());
+  EXPECT_TRUE(b.at("drift")[0].at("last_tenth_max").is_null()) << b.at("drift")[0].dump();
+  EXPECT_TRUE(b.at("drift")[0].at("first_hundredth_max").is_number());
+
+  const Result fall = run_motus(dir, {"stress", "free_fall", "--steps", "200", "--drift-steps", "200",
+                                      "--integrators", "midpoint", "--out", (dir / "c").string()});
+  ASSERT_EQ(fall.status, 0) << fall.err;
+  EXPECT_NE(fall.out.find("(no blow-up found: the largest h tried)"), std::string::npos) << fall.out;
+}
+
 // ---- bad input -------------------------------------------------------------------------------
 
 TEST(StressErrors, BadInputIsOneLineAndExitTwo) {
