@@ -701,7 +701,7 @@ private:
           auto depth_into = [&](const double* normal, double offset) {
             double height = -offset - r;
             for (int k = 0; k < d; ++k) height += normal[k] * y[i * d + k];
-            return -height / std::max(r, 1.0);
+            return -height / (r > 0 ? r : 1.0);  // (max(r, 1) read every ball under 1 m in metres)
           };
           for (const auto& p : scene.colliders.planes) {
             double length = 0;
