@@ -8,11 +8,8 @@
 #include "motus/systems/mechanical_system.hpp"
 
 namespace motus::compare {
-namespace {
 
-double relative(double change, double divisor) { return divisor != 0 ? change / divisor : change; }
-
-}  // namespace
+double in_energy_unit(double change, double divisor) { return divisor != 0 ? change / divisor : change; }
 
 Timings EngineRun::microseconds_per_step() const {
   std::vector<double> per_step;
@@ -51,12 +48,12 @@ double energy_divisor(const std::vector<EngineRun>& runs, const EngineRun& r) {
 }
 
 double EngineRun::energy_drift(double divisor) const {
-  return relative(rows.back().total - rows.front().total, divisor);
+  return in_energy_unit(rows.back().total - rows.front().total, divisor);
 }
 
 double EngineRun::max_energy_error(double divisor) const {
   double worst = 0;
-  for (const auto& r : rows) worst = worse(worst, std::abs(relative(r.total - rows.front().total, divisor)));
+  for (const auto& r : rows) worst = worse(worst, std::abs(in_energy_unit(r.total - rows.front().total, divisor)));
   return worst;
 }
 

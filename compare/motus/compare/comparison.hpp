@@ -50,6 +50,8 @@ bool energy_in_joules(const std::vector<EngineRun>& runs);
 // joules (every engine's change itself, whatever its own start), else |E₀| of r's own start — or
 // motus's, should r's be exactly 0 where motus's is not (a peer's start rounded to its floats).
 double energy_divisor(const std::vector<EngineRun>& runs, const EngineRun& r);
+// An energy change in the columns' unit: divided by energy_divisor's divisor, or itself when that is 0.
+double in_energy_unit(double change, double divisor);
 // Whether the momentum columns are changes in kg·m/s: the scene starts with nothing moving (p₀ = 0
 // and Σ m|v₀| = 0), so there is no scale to divide by.
 bool momentum_in_kg_m_s(const std::vector<EngineRun>& runs);

@@ -256,9 +256,11 @@ std::string what_to_notice(const SceneDescription& scene, const std::vector<Engi
            unsupported_tail(runs) + ".";
   }
   std::vector<std::string> parts;
-  for (const EngineRun* r : engines)
-    parts.push_back(r->engine + " " + signed_number(r->energy_drift(energy_divisor(runs, *r))) + " (at worst " +
-                    number(r->max_energy_error(energy_divisor(runs, *r))) + ")");
+  for (const EngineRun* r : engines) {
+    const double divisor = energy_divisor(runs, *r);
+    parts.push_back(r->engine + " " + signed_number(r->energy_drift(divisor)) + " (at worst " +
+                    number(r->max_energy_error(divisor)) + ")");
+  }
   const std::string measure = energy_in_joules(runs) ? "in J (the scene starts with E₀ = 0): " : "relative to E₀: ";
   if (conserves_energy(scene))
     return "The scene keeps its energy exactly, so every change is the engine's error; " + measure + joined(parts) +

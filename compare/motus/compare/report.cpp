@@ -82,7 +82,7 @@ std::vector<plot::Figure> figures(const ReportContext& c, const std::vector<Engi
     s.colour = colour_of(runs, r);
     const double e0 = r.rows.front().total, divisor = energy_divisor(runs, r);
     for (const auto& row : r.rows) {
-      const double error = divisor != 0 ? (row.total - e0) / divisor : row.total - e0;
+      const double error = in_energy_unit(row.total - e0, divisor);
       s.x.push_back(row.t);
       s.y.push_back(error);
       negative = negative || error < 0;
@@ -190,8 +190,9 @@ nlohmann::json summary_json(const ReportContext& c, const std::vector<EngineRun>
     e["unsupported"] = r.unsupported;
     if (r.supported && !r.rows.empty()) {
       e["steps"] = r.steps;
-      e["energy_drift"] = number_or_null(r.energy_drift(energy_divisor(runs, r)));
-      e["max_energy_error"] = number_or_null(r.max_energy_error(energy_divisor(runs, r)));
+      const double divisor = energy_divisor(runs, r);
+      e["energy_drift"] = number_or_null(r.energy_drift(divisor));
+      e["max_energy_error"] = number_or_null(r.max_energy_error(divisor));
       e["momentum_drift"] = number_or_null(r.momentum_drift());
       e["max_penetration"] = r.max_penetration();
       e["constraint_error"] = r.max_constraint_error();
@@ -255,6 +256,7 @@ std::string write_report(const std::string& folder, const ReportContext& c, cons
       if (!r.supported) continue;
       const auto& first = r.rows.front();
       const double scale = r.momentum_scale();  // (the summary's momentum_drift's)
+      const double divisor = energy_divisor(runs, r);
       for (const auto& row : r.rows) {
         double change = 0;
         double p[3] = {0, 0, 0};
@@ -262,8 +264,7 @@ std::string write_report(const std::string& folder, const ReportContext& c, cons
           change += (row.momentum[k] - first.momentum[k]) * (row.momentum[k] - first.momentum[k]);
           p[k] = row.momentum[k];
         }
-        const double divisor = energy_divisor(runs, r);
-        const double e_error = divisor != 0 ? (row.total - first.total) / divisor : row.total - first.total;
+        const double e_error = in_energy_unit(row.total - first.total, divisor);
         csv << fmt::format("{},{:.17g},{:.17g},{:.17g},{:.17g},{:.6e},{:.6e},{:.17g},{:.17g},{:.17g},{:.6e},{:.6e},{},{}\n",
                            r.engine, row.t, row.kinetic, row.potential, row.total, e_error, std::sqrt(change) / scale, p[0],
                            p[1], p[2], row.penetration, row.constraint_error,
