@@ -291,6 +291,10 @@ int compare_command(const CompareOptions& o) {
     }
     for (const auto& e : summary["engines"])
       for (const auto& n : e["notes"]) fmt::print("note ({}): {}\n", e["engine"].get<std::string>(), n.get<std::string>());
+    for (const auto& e : summary["engines"])
+      if (e.contains("not_finite_from") && !e["not_finite_from"].is_null())
+        fmt::print("note ({}): blew up: its state is not finite from t = {:g} s on\n",
+                   e["engine"].get<std::string>(), e["not_finite_from"].get<double>());
     if (summary.contains("notice")) fmt::print("\n{}\n", summary["notice"].get<std::string>());
     fmt::print("\nreport: {} (what each column means, the plots{})\n", summary["report"].get<std::string>(),
                summary.contains("exact") ? ", the exact answer" : "");

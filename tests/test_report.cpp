@@ -8,9 +8,20 @@
 
 #include "cli_harness.hpp"
 
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
 namespace {
 
 using namespace motus_test;
+
+// A number as motus's figures write it (figure.cpp: %.10g).
+std::string fmt_number(double x) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.10g", x);
+  return text;
+}
 
 struct Report {
   nlohmann::json summary;
@@ -151,6 +162,116 @@ TEST(Report, EveryEngineKeepsItsColourAndOneThatCouldNotRunIsInTheLegend) {
     EXPECT_GT(count(title), 0) << title << " in:\n" << gp;
     EXPECT_EQ(count("lc rgb '" + colour + "' " + title), count(title)) << title << " in:\n" << gp;
   }
+}
+
+
+// Found by an audit of what the report's pictures show.
+// A run that blew up was drawn as "exactly 0 throughout" (its NaN left out like a log axis's 0), the
+// report printed "-nan", and summary.json had null where a reader could not tell "blew up" from
+// "no exact answer". Now the legend says from when it is not finite, and the JSON says so.
+TEST(Report, ARunThatBlewUpIsDrawnAndWrittenAsNotFinite) {
+  TempDir dir;
+  const auto r = compare(dir, "oscillator",
+                         {"--integrator", "euler", "--dt", "10", "--duration", "20000", "--repeats", "1", "--engines",
+                          "motus"});
+  const auto& motus = engine(r, "motus");
+  // When, from the samples themselves: the first row of metrics.csv whose total energy is not finite.
+  std::istringstream csv(read_file(r.folder / "metrics.csv"));
+  std::string line;
+  std::getline(csv, line);  // the header
+  double first_not_finite = -1;
+  while (std::getline(csv, line)) {
+    std::vector<std::string> cells;
+    std::stringstream row(line);
+    for (std::string cell; std::getline(row, cell, ',');) cells.push_back(cell);
+    const double total = std::strtod(cells.at(4).c_str(), nullptr);
+    if (!std::isfinite(total)) {
+      first_not_finite = std::strtod(cells.at(1).c_str(), nullptr);
+      break;
+    }
+  }
+  ASSERT_GT(first_not_finite, 0) << "explicit Euler at ωh = 10 must blow up within 2,000 steps";
+  EXPECT_EQ(motus["not_finite_from"].get<double>(), first_not_finite);
+  EXPECT_EQ(motus["max_distance_from_motus"].get<double>(), 0.0);  // itself, also once not finite
+  EXPECT_EQ(r.html.find("nan"), std::string::npos);
+  EXPECT_NE(r.html.find("motus blew up"), std::string::npos);
+  const std::string gp = read_file(r.folder / "figures.gp");
+  EXPECT_NE(gp.find("motus: not finite from t = " + fmt_number(first_not_finite) + " s (blew up)"), std::string::npos) << gp;
+  EXPECT_EQ(gp.find("exactly 0 throughout"), std::string::npos) << gp;
+}
+
+// The drop loses energy by design (e = 0.8): its figure was titled "energy error" with "0 is
+// exact" under it, calling the bounces' loss every engine's error.
+TEST(Report, AnEnergyLostByDesignIsDrawnAsAChangeNotAnError) {
+  TempDir dir;
+  const auto drop = compare(dir, "drop", {"--repeats", "1", "--engines", "motus"});
+  const std::string gp = read_file(drop.folder / "figures.gp");
+  EXPECT_NE(gp.find("drop: energy change against time"), std::string::npos) << gp;
+  EXPECT_NE(gp.find("loses energy by design"), std::string::npos) << gp;
+  EXPECT_EQ(gp.find("0 is exact"), std::string::npos) << gp;
+  const auto kepler = compare(dir, "kepler", {"--repeats", "1", "--engines", "motus", "--duration", "1"});
+  EXPECT_NE(read_file(kepler.folder / "figures.gp").find("kepler: energy error against time"), std::string::npos);
+}
+
+// A pendulum's coordinate is its angle: the report said "max distance from exact [m]" and "m/s"
+// beside the sentence's "rad".
+TEST(Report, APendulumsDistancesAndSpeedsAreInRadians) {
+  TempDir dir;
+  const auto r = compare(dir, "pendulum", {"--repeats", "1", "--engines", "motus"});
+  EXPECT_NE(r.html.find("max distance from exact [rad]"), std::string::npos);
+  EXPECT_NE(r.html.find("max distance from motus [rad]"), std::string::npos);
+  EXPECT_EQ(r.html.find("from exact [m]"), std::string::npos);
+  EXPECT_NE(r.html.find("velocity [rad/s]"), std::string::npos);
+  EXPECT_EQ(r.html.find(" m/s</td>"), std::string::npos);
+}
+
+// Newton's cradle starts with L₀ = 0: its angular momentum was drawn in kg·m²/s under the label
+// "|L - L0| / |L0|".
+TEST(Report, AChangeFromNothingIsLabelledInItsUnit) {
+  TempDir dir;
+  const auto r = compare(dir, "newtons_cradle", {"--repeats", "1"});
+  const std::string gp = read_file(r.folder / "figures.gp");
+  EXPECT_NE(gp.find("|L - L0| [kg m^2/s]   (L0 = 0)"), std::string::npos) << gp;
+  EXPECT_EQ(gp.find("|L - L0| / |L0|"), std::string::npos) << gp;
+}
+
+// The symlog energy axis of stick_pendulum ran from −8.79 J to +0.0726 J exactly, its lines along
+// the frame, with labels only down to −1e-01 and up to 1e-06 (a threshold of 1e-16 J, fixed). Now
+// it reaches the next whole decade beyond the data on each side, labelled.
+TEST(Report, ASymlogAxisReachesTheNextDecadeBeyondItsData) {
+  TempDir dir;
+  const auto r = compare(dir, "stick_pendulum", {"--repeats", "1"});
+  double low = 0, high = 0;
+  std::istringstream csv(read_file(r.folder / "metrics.csv"));
+  std::string line;
+  std::getline(csv, line);
+  while (std::getline(csv, line)) {
+    std::vector<std::string> cells;
+    std::stringstream row(line);
+    for (std::string cell; std::getline(row, cell, ',');) cells.push_back(cell);
+    const double e = std::strtod(cells.at(5).c_str(), nullptr);  // energy_error, J (E₀ = 0)
+    low = std::min(low, e), high = std::max(high, e);
+  }
+  ASSERT_LT(low, 0);
+  ASSERT_GT(high, 0);
+  const double bottom = -std::pow(10.0, std::ceil(std::log10(-low))), top = std::pow(10.0, std::ceil(std::log10(high)));
+  const std::string gp = read_file(r.folder / "figures.gp");
+  EXPECT_NE(gp.find("set yrange [" + fmt_number(bottom) + ":" + fmt_number(top) + "]"), std::string::npos) << gp;
+  char label[32];
+  std::snprintf(label, sizeof label, "'-%.0e' %s", -bottom, fmt_number(bottom).c_str());
+  EXPECT_NE(gp.find(label), std::string::npos) << label << " in\n" << gp;
+}
+
+// compare's stick error was the largest over its 200 samples (ragdoll: motus 0.052), while motus
+// run, bench_constraints and the peers' notes take every step (0.057): the same quantity with two
+// numbers. Now compare takes every step too, and agrees with run.
+TEST(Report, TheStickErrorIsOverEveryStepAsRunMeasuresIt) {
+  TempDir dir;
+  const auto r = compare(dir, "ragdoll", {"--repeats", "1", "--engines", "motus"});
+  const auto run = run_motus(dir, {"run", "ragdoll", "--json", "--repeats", "1"});
+  ASSERT_EQ(run.status, 0) << run.err;
+  const auto j = nlohmann::json::parse(run.out);
+  EXPECT_EQ(engine(r, "motus")["constraint_error"].get<double>(), j["constraint_error"]["max"].get<double>());
 }
 
 }  // namespace

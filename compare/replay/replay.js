@@ -270,7 +270,7 @@
     if (p.time) p.time.textContent = "t = " + e.t[f].toFixed(decimals) + " s";
     if (p.energy)
       p.energy.textContent = (e.energy_relative ? "\u0394E/E\u2080 = " : "\u0394E = ") + signed(e.energy_error[f]) +
-                             (e.energy_relative ? "" : " (E\u2080 = 0)");
+                             (e.energy_relative ? "" : " J (E\u2080 = 0)");
   }
 
   // ---- Playing.

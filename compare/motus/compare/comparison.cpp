@@ -80,9 +80,15 @@ double EngineRun::max_penetration() const {
 }
 
 double EngineRun::max_constraint_error() const {
-  double worst = 0;
+  double worst = stick_error_every_step;
   for (const auto& r : rows) worst = worse(worst, r.constraint_error);
   return worst;
+}
+
+double EngineRun::not_finite_from() const {
+  for (const auto& r : rows)
+    if (!std::isfinite(r.total)) return r.t;
+  return NAN;
 }
 
 double EngineRun::max_from_motus() const {
@@ -100,6 +106,7 @@ double EngineRun::max_from_exact() const {
 std::vector<EngineRun> run_comparison(const SceneDescription& scene, const ComparisonOptions& options,
                                       const std::function<void(double)>& progress) {
   const Metrics metrics(scene);
+  const bool sticks = !scene.mechanical->sticks.empty();
   const long steps = fixed_step_count(options.duration, options.dt);
   // The samples after the start: `samples` of them (every step when the run has fewer), at the
   // steps nearest to k·steps/samples, k = 1 … samples — the last at the end.
@@ -182,7 +189,15 @@ std::vector<EngineRun> run_comparison(const SceneDescription& scene, const Compa
       // Step to the next sample (or frame).
       long batch = next_sample - i;
       if (options.frame_every > 0) batch = std::min(batch, options.frame_every - i % options.frame_every);
-      for (long b = 0; b < batch; ++b) backend->step();
+      if (sticks) {  // (the stick error every step: reading the state costs little beside a stick scene's step)
+        for (long b = 0; b < batch; ++b) {
+          backend->step();
+          backend->read(s);
+          run.stick_error_every_step = worse(run.stick_error_every_step, metrics.stick_error(s));
+        }
+      } else {
+        for (long b = 0; b < batch; ++b) backend->step();
+      }
       i += batch;
       backend->read(s);
       if (i == next_sample) {

@@ -32,13 +32,18 @@ struct EngineRun {
   double momentum_drift() const;     // |p_end − p_0| / momentum_scale()
   double momentum_scale() const;     // max(|p_0|, Σ m|v_0|), or 1 (changes in kg·m/s) when both are 0
   double max_penetration() const;    // m
-  double max_constraint_error() const;
+  double max_constraint_error() const;  // over every step (stick_error_every_step) and every sample
+  double not_finite_from() const;    // the first sample's time whose state is not finite; NaN: none
   double max_from_motus() const;     // m
   double max_from_exact() const;     // m; −1 when the scene has no analytic solution
   // Microseconds per step over the timing rounds: min, median, max (0 without rounds).
   Timings microseconds_per_step() const;
 
   double scale_of_momentum = 0;  // Σ m|v_0|, set by run_comparison
+  // The largest relative stick-length error over every step of the metrics run (a stick can
+  // stretch most between two samples: motus run, bench_constraints and the peers' notes take it
+  // every step too). 0 in a scene without sticks.
+  double stick_error_every_step = 0;
 };
 
 // Whether the energy columns are changes in joules rather than fractions of |E₀|: when the

@@ -67,6 +67,8 @@ std::string solution_name(const SceneDescription& scene) {
   return "the scene's reference states";
 }
 
+}  // namespace
+
 bool conserves_energy(const SceneDescription& scene) {
   const auto& m = *scene.mechanical;
   for (const auto& b : m.bodies)
@@ -81,6 +83,13 @@ bool conserves_energy(const SceneDescription& scene) {
     if (s.damping != 0) return false;
   return m.forces.drag.empty();
 }
+
+std::string coordinate_unit(const SceneDescription& scene) {
+  // (A pendulum's coordinate is its angle θ.)
+  return scene.mechanical && !scene.mechanical->forces.pendulums.empty() ? "rad" : "m";
+}
+
+namespace {
 
 // "ball 4" for a ball, "body 4" for a point mass.
 std::string body_name(const SceneDescription& scene, int i) {
@@ -108,7 +117,9 @@ std::string format_vector(const std::vector<double>& v) {
   std::string out = "(";
   for (size_t k = 0; k < v.size(); ++k) {
     const double x = std::abs(v[k]) < 5e-13 ? 0.0 : v[k];  // rounding noise reads as 0
-    out += (k ? ", " : "") + fmt::format("{:.3g}", x);
+    // (fmt writes a NaN as "-nan" or "nan": a run that blew up says so in words)
+    if (k) out += ", ";
+    out += std::isnan(x) ? std::string("not a number") : fmt::format("{:.3g}", x);
   }
   return out + ")";
 }
@@ -146,12 +157,14 @@ std::vector<ColumnDefinition> column_definitions(const SceneDescription& scene, 
   d.push_back({"constraint error",
                scene.mechanical->sticks.empty()
                    ? "the largest |length − rest length| / rest length of a stick; this scene has no sticks (0)."
-                   : "the largest |length − rest length| / rest length of any stick " + over + "."});
-  d.push_back({"max distance from motus [m]",
+                   : "the largest |length − rest length| / rest length of any stick over every step of the run (a "
+                     "stick stretches most between samples), as motus run measures it."});
+  const std::string unit = coordinate_unit(scene);
+  d.push_back({fmt::format("max distance from motus [{}]", unit),
                "the farthest any body gets from where motus has it at the same time, " + over +
                    ": where two engines part ways, not which is right."});
   if (has_exact_solution(scene))
-    d.push_back({"max distance from exact [m]",
+    d.push_back({fmt::format("max distance from exact [{}]", unit),
                  "the same against the exact answer, " + solution_name(scene) + ": the engine's error itself."});
   d.push_back({"µs per step (min)",
                "CPU time spent inside the engine's steps, divided by the number of steps, in the fastest of the timing "
@@ -240,10 +253,10 @@ std::string what_to_notice(const SceneDescription& scene, const std::vector<Engi
   // Any other exact answer: the largest distance from it over the run.
   if (has_exact_solution(scene)) {
     // (A pendulum's coordinate is its angle θ: the distance is in radians.)
-    const std::string unit = m.forces.pendulums.empty() ? " m" : " rad";
+    const std::string unit = coordinate_unit(scene);
     std::vector<std::string> parts;
     for (const EngineRun* r : engines)
-      if (r->max_from_exact() >= 0) parts.push_back(r->engine + " " + number(r->max_from_exact()) + unit);
+      if (r->max_from_exact() >= 0) parts.push_back(fmt::format("{} {} {}", r->engine, number(r->max_from_exact()), unit));
     if (!parts.empty())
       return "Against " + solution_name(scene) + ", the farthest each engine strays over the run: " + joined(parts) +
              unsupported_tail(runs) + ".";

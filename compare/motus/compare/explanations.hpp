@@ -48,6 +48,14 @@ std::optional<ExactAnswer> exact_answer(const SceneDescription& scene, const std
 std::string what_to_notice(const SceneDescription& scene, const std::vector<EngineRun>& runs,
                            const std::optional<ExactAnswer>& exact);
 
+// Whether the scene keeps its energy exactly (every restitution 1, no damping, no drag): then an
+// energy change is an engine's error; otherwise it is partly the physics.
+bool conserves_energy(const SceneDescription& scene);
+
+// The unit of the bodies' coordinates and of distances between them: "rad" for a pendulum (its
+// coordinate is its angle θ), else "m".
+std::string coordinate_unit(const SceneDescription& scene);
+
 // A vector as "(1, −0.5)" with three significant digits (the report's and the table's style).
 std::string format_vector(const std::vector<double>& v);
 

@@ -38,19 +38,31 @@ MetricsRow Metrics::measure(const Snapshot& s, const Snapshot* motus) const {
   row.angular_momentum.assign(l.data(), l.data() + l.size());
   row.penetration = deepest_penetration(s.x);
 
-  for (const auto& stick : scene_.mechanical->sticks) {
-    const double length = (x.segment(stick.a * d_, d_) - x.segment(stick.b * d_, d_)).norm();
-    row.constraint_error = worse(row.constraint_error, std::abs(length - stick.length) / stick.length);
-  }
+  row.constraint_error = stick_error(s);
   auto farthest = [&](const Vector& other_x) {
     double worst = 0;
     for (Eigen::Index i = 0; i < x.size(); i += d_) worst = worse(worst, (x.segment(i, d_) - other_x.segment(i, d_)).norm());
     return worst;
   };
-  if (motus) row.from_motus = farthest(Eigen::Map<const Vector>(motus->x.data(), static_cast<Eigen::Index>(motus->x.size())));
+  // (motus against itself: 0, also once its state is not finite, where ∞ − ∞ would read as ∞)
+  if (motus == &s) row.from_motus = 0;
+  else if (motus) row.from_motus = farthest(Eigen::Map<const Vector>(motus->x.data(), static_cast<Eigen::Index>(motus->x.size())));
   if (has_exact_solution(scene_))
     if (const auto exact = exact_state(scene_, s.t)) row.from_exact = farthest(exact->head(x.size()));
   return row;
+}
+
+double Metrics::stick_error(const Snapshot& s) const {
+  double worst = 0;
+  for (const auto& stick : scene_.mechanical->sticks) {
+    double length2 = 0;
+    for (int k = 0; k < d_; ++k) {
+      const double d = s.x[static_cast<size_t>(stick.a * d_ + k)] - s.x[static_cast<size_t>(stick.b * d_ + k)];
+      length2 += d * d;
+    }
+    worst = worse(worst, std::abs(std::sqrt(length2) - stick.length) / stick.length);
+  }
+  return worst;
 }
 
 double Metrics::deepest_penetration(const std::vector<double>& x) const {

@@ -36,6 +36,8 @@ public:
 
   // `motus` is motus's snapshot at the same time (nullptr: not known).
   MetricsRow measure(const Snapshot& s, const Snapshot* motus) const;
+  // The largest relative stick-length error in s (0 without sticks; +∞ once not finite).
+  double stick_error(const Snapshot& s) const;
 
 private:
   double deepest_penetration(const std::vector<double>& x) const;

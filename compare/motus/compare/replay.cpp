@@ -1,4 +1,5 @@
 #include "motus/compare/replay.hpp"
+#include "motus/compare/explanations.hpp"
 
 #include <fmt/format.h>
 
@@ -264,8 +265,12 @@ std::string replay_section(const SceneDescription& scene, const std::vector<Engi
   if (const EngineRun* r = longest_run(runs); r && r->frames.size() >= 2)
     notes += fmt::format("{} frames, {:g} s apart (the first and the last state included); ",
                          r->frames.size(), r->frames[1].t - r->frames[0].t);
-  notes += "the same view for every engine. Under each panel, the time and the energy error ΔE/E₀ = (E − E₀)/|E₀| "
-           "of that frame (E₀: the energy of the first frame). ";
+  // (The change is partly the physics in a scene that loses energy by design; an engine whose
+  // first frame has E₀ = 0 shows ΔE itself, in joules.)
+  notes += std::string("the same view for every engine. Under each panel, the time and the energy ") +
+           (conserves_energy(scene) ? "error" : "change (this scene loses energy by design)") +
+           " ΔE/E₀ = (E − E₀)/|E₀| of that frame (E₀: the energy of the first frame; where E₀ = 0, ΔE = E − E₀ in "
+           "joules). ";
   if (m.dimensions == 3) notes += "A 3-D scene, seen along −z: x to the right, y up, nearer balls drawn over farther ones. ";
   if (m.dimensions == 1) {
     notes += "A 1-D scene: the bodies on a horizontal line, x to the right";

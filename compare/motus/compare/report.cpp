@@ -70,10 +70,14 @@ plot::Series not_run(const std::vector<EngineRun>& runs, const EngineRun& r) {
 // The report's figures: the energy error of every engine (on a log axis of |ΔE/E₀|, or symlog
 // when it changes sign), and the momenta where the scene keeps them.
 std::vector<plot::Figure> figures(const ReportContext& c, const std::vector<EngineRun>& runs) {
+  // A scene that loses energy by design (restitution below 1, damping, drag): what is drawn is each
+  // engine's energy change, the physics and the error together, to be compared between engines.
+  const bool kept = c.scene && c.scene->mechanical && conserves_energy(*c.scene);
   plot::Figure energy;
   energy.stem = "energy";
-  energy.title = c.scene_name + ": energy error against time";
+  energy.title = c.scene_name + (kept ? ": energy error against time" : ": energy change against time");
   energy.x_label = "t [s]";
+  energy.x_from = 0;
   bool changes_sign = false, negative = false, positive = false;
   for (const auto& r : runs) {
     if (!r.supported) energy.series.push_back(not_run(runs, r));
@@ -81,7 +85,10 @@ std::vector<plot::Figure> figures(const ReportContext& c, const std::vector<Engi
     plot::Series s{r.engine, {}, {}};
     s.colour = colour_of(runs, r);
     const double e0 = r.rows.front().total, divisor = energy_divisor(runs, r);
+    // (From the first sample after the start: at t = 0 the change is 0 by definition, not an
+    // exact 0 a log axis would have to leave out.)
     for (const auto& row : r.rows) {
+      if (&row == &r.rows.front()) continue;
       const double error = in_energy_unit(row.total - e0, divisor);
       s.x.push_back(row.t);
       s.y.push_back(error);
@@ -93,17 +100,30 @@ std::vector<plot::Figure> figures(const ReportContext& c, const std::vector<Engi
   changes_sign = negative && positive;
   const bool joules = energy_in_joules(runs);  // (E₀ = 0: the changes themselves)
   if (changes_sign) {
+    // Linear within ±threshold: the decade of the smallest change drawn (so that every change
+    // that is not 0 is on the logarithmic part, and no decade below the data takes up the axis),
+    // but no finer than rounding in the energy (1e-16 of it).
+    double smallest = INFINITY, rounding = 1e-16;
+    for (const auto& r : runs)
+      for (const auto& row : r.rows)
+        if (joules && std::isfinite(row.total)) rounding = std::max(rounding, 1e-16 * std::abs(row.total));
+    for (const auto& s : energy.series)
+      for (double y : s.y)
+        if (y != 0 && std::isfinite(y)) smallest = std::min(smallest, std::abs(y));
     energy.y_scale = plot::Scale::symlog;
-    energy.symlog_threshold = 1e-16;
-    energy.y_label = joules ? "E - E0 [J]   (symlog: logarithmic beyond 1e-16 J)"
-                            : "(E - E0) / |E0|   (symlog: logarithmic beyond 1e-16)";
+    energy.symlog_threshold =
+        std::max(rounding, std::isfinite(smallest) ? std::pow(10.0, std::floor(std::log10(smallest))) : rounding);
+    energy.y_label = fmt::format("{}   (symlog: logarithmic beyond ±{:.0e}{})", joules ? "E - E0 [J]" : "(E - E0) / |E0|",
+                                 energy.symlog_threshold, joules ? " J" : "");
   } else {
     energy.y_scale = plot::Scale::log;
     energy.y_label = joules ? "|E - E0| [J]" : "|E - E0| / |E0|";
     for (auto& s : energy.series)
       for (double& y : s.y) y = std::abs(y);
   }
-  energy.note = "0 is exact; each decade up is ten times more energy gained or lost";
+  energy.note = kept ? "the scene keeps its energy: 0 is exact; each decade up is ten times more energy gained or lost"
+                     : "the scene loses energy by design (restitution below 1, damping or drag): compare the engines "
+                       "with each other, not with 0";
   std::vector<plot::Figure> all = {energy};
 
   auto change_of = [&](const char* stem, const char* what, bool angular) {
@@ -111,18 +131,32 @@ std::vector<plot::Figure> figures(const ReportContext& c, const std::vector<Engi
     f.stem = stem;
     f.title = c.scene_name + ": " + what + " change against time";
     f.x_label = "t [s]";
-    f.y_label = std::string("|") + (angular ? "L - L0" : "p - p0") + "| / " + (angular ? "|L0|" : "sum m |v0|");
+    f.x_from = 0;
     f.y_scale = plot::Scale::log;
+    // One scale for every engine, from the first that ran (motus's, in double precision): the
+    // size of L₀ (of p₀, or Σ m |v₀| when that is larger). A scene that starts with none (L₀ = 0)
+    // is drawn in kg·m²/s (kg·m/s), and says so: a peer's L₀ of float rounding would make a
+    // fraction of nothing.
+    double scale = 0;
+    for (const auto& r : runs) {
+      if (!r.supported || r.rows.empty()) continue;
+      const auto& first = angular ? r.rows.front().angular_momentum : r.rows.front().momentum;
+      double size = 0;
+      for (double x : first) size += x * x;
+      scale = angular ? std::sqrt(size) : std::max(std::sqrt(size), r.scale_of_momentum);
+      break;
+    }
+    f.y_label = std::string("|") + (angular ? "L - L0" : "p - p0") + "|" +
+                (scale > 0 ? std::string(" / ") + (angular ? "|L0|" : "max(|p0|, sum m |v0|)")
+                           : angular ? " [kg m^2/s]   (L0 = 0)" : " [kg m/s]   (nothing moves at the start)");
     for (const auto& r : runs) {
       if (!r.supported) f.series.push_back(not_run(runs, r));
       if (!r.supported || r.rows.empty()) continue;
       plot::Series s{r.engine, {}, {}};
       s.colour = colour_of(runs, r);
       const auto& first = angular ? r.rows.front().angular_momentum : r.rows.front().momentum;
-      double size = 0;
-      for (double x : first) size += x * x;
-      const double scale = angular ? std::sqrt(size) : std::max(std::sqrt(size), r.scale_of_momentum);
       for (const auto& row : r.rows) {
+        if (&row == &r.rows.front()) continue;  // (0 by definition at the start, as the energy's)
         const auto& now = angular ? row.angular_momentum : row.momentum;
         double change = 0;
         for (size_t k = 0; k < now.size() && k < first.size(); ++k) change += (now[k] - first[k]) * (now[k] - first[k]);
@@ -190,6 +224,9 @@ nlohmann::json summary_json(const ReportContext& c, const std::vector<EngineRun>
     e["unsupported"] = r.unsupported;
     if (r.supported && !r.rows.empty()) {
       e["steps"] = r.steps;
+      // When the state stopped being finite (a run that blew up; null: it never did). The figures
+      // that are not finite from then on are null below (JSON has no infinity).
+      e["not_finite_from"] = number_or_null(r.not_finite_from());
       const double divisor = energy_divisor(runs, r);
       e["energy_drift"] = number_or_null(r.energy_drift(divisor));
       e["max_energy_error"] = number_or_null(r.max_energy_error(divisor));
@@ -301,6 +338,7 @@ std::string write_report(const std::string& folder, const ReportContext& c, cons
                       c.bodies, c.bodies == 1 ? "body" : "bodies", c.dimensions, c.dimensions == 1 ? "" : "s", c.dt,
                       c.duration, html_escape(c.integrator), timing);
   const bool exact_known = c.scene && has_exact_solution(*c.scene);
+  const std::string unit = c.scene ? coordinate_unit(*c.scene) : "m";
   if (summary.contains("notice"))
     html << "<p class=\"notice\"><b>What to notice.</b> " << html_escape(summary["notice"].get<std::string>()) << "</p>\n";
   const int columns = exact_known ? 11 : 10;
@@ -308,7 +346,8 @@ std::string write_report(const std::string& folder, const ReportContext& c, cons
        << (energy_in_joules(runs) ? "<th>energy drift [J]</th><th>max |ΔE| [J]</th>" : "<th>energy drift</th><th>max |ΔE|/E₀</th>")
        << "<th>momentum drift" << (momentum_in_kg_m_s(runs) ? " [kg·m/s]" : "")
        << (c.momentum_conserved ? "" : "*") << "</th><th>max penetration [m]</th><th>constraint error</th>"
-       << "<th>max distance from motus [m]</th>" << (exact_known ? "<th>max distance from exact [m]</th>" : "")
+       << "<th>max distance from motus [" << unit << "]</th>"
+       << (exact_known ? "<th>max distance from exact [" + unit + "]</th>" : "")
        << "<th>µs per step (min)</th><th>median</th><th>spread</th><th>time / motus</th></tr>\n";
   for (const auto& e : summary["engines"]) {
     if (!e["supported"].get<bool>()) {
@@ -338,6 +377,11 @@ std::string write_report(const std::string& folder, const ReportContext& c, cons
          << "\" style=\"white-space:normal\">* This scene does not keep its momentum (walls or outside forces act on it): "
             "that column shows their push, not an engine's error.</td></tr>\n";
   html << "</table></div>\n";
+  for (const auto& e : summary["engines"])
+    if (e.contains("not_finite_from") && !e["not_finite_from"].is_null())
+      html << fmt::format("<p class=\"no\">{} blew up: its state is not finite from t = {:g} s on (its figures after "
+                          "that are infinite, or not a number).</p>\n",
+                          html_escape(e["engine"].get<std::string>()), e["not_finite_from"].get<double>());
   if (c.scene) {  // the engines side by side, played back in the page
     write_replay(folder, *c.scene, runs);
     html << replay_section(*c.scene, runs);
@@ -345,7 +389,7 @@ std::string write_report(const std::string& folder, const ReportContext& c, cons
   if (summary.contains("exact")) {
     const auto& x = summary["exact"];
     html << "<h2>The exact answer</h2>\n<p>" << html_escape(x["source"].get<std::string>()) << fmt::format(", at t = {:g} s", x["t"].get<double>())
-         << ": each body's velocity [m/s], then each engine's at the same time.</p>\n<div class=\"wide\"><table><tr><th>body</th><th>exact</th>";
+         << ": each body's velocity [" << unit << "/s], then each engine's at the same time.</p>\n<div class=\"wide\"><table><tr><th>body</th><th>exact</th>";
     for (const auto& e : x["engines"]) html << "<th>" << html_escape(e["engine"].get<std::string>()) << "</th>";
     html << "</tr>\n";
     for (size_t i = 0; i < x["bodies"].size(); ++i) {
@@ -354,9 +398,15 @@ std::string write_report(const std::string& folder, const ReportContext& c, cons
       html << "</tr>\n";
     }
     html << "<tr><td>largest |v − v_exact|</td><td></td>";
-    for (const auto& e : x["engines"]) html << fmt::format("<td>{:.2e} m/s</td>", e["max_speed_error"].get<double>());
+    // (A run that blew up: "not a number", as the velocities say, not fmt's "-nan".)
+    auto figure = [](const nlohmann::json& v) {
+      return v.is_number() && std::isfinite(v.get<double>()) ? fmt::format("{:.2e}", v.get<double>())
+             : v.is_number() && std::isinf(v.get<double>())  ? std::string("infinite")
+                                                             : std::string("not a number");
+    };
+    for (const auto& e : x["engines"]) html << "<td>" << figure(e["max_speed_error"]) << " " << unit << "/s</td>";
     html << "</tr>\n<tr><td>largest |x − x_exact| at the end</td><td></td>";
-    for (const auto& e : x["engines"]) html << fmt::format("<td>{:.2e} m</td>", e["final_distance"].get<double>());
+    for (const auto& e : x["engines"]) html << "<td>" << figure(e["final_distance"]) << " " << unit << "</td>";
     html << "</tr>\n</table></div>\n";
     if (c.scene && static_cast<long>(x["bodies"].size()) < static_cast<long>(c.scene->mechanical->bodies.size()))
       html << "<p class=\"dim\">The first " << x["bodies"].size() << " bodies are shown; the last two rows are over all of them.</p>\n";
@@ -380,7 +430,9 @@ std::string write_report(const std::string& folder, const ReportContext& c, cons
       html << "<p><img src=\"" << html_escape(c.contact_sheet) << "\" alt=\"the engines side by side at three instants\"></p>\n";
   }
   if (warning.empty()) {
-    html << "<h2>Energy</h2><p><a href=\"energy.png\"><img src=\"energy.svg\" alt=\"the energy error against time\"></a></p>\n";
+    const bool kept = c.scene && c.scene->mechanical && conserves_energy(*c.scene);
+    html << "<h2>Energy</h2><p><a href=\"energy.png\"><img src=\"energy.svg\" alt=\"the energy "
+         << (kept ? "error" : "change") << " against time\"></a></p>\n";
     if (c.momentum_conserved)
       html << "<h2>Momentum</h2><p><a href=\"momentum.png\"><img src=\"momentum.svg\" alt=\"the momentum change against "
               "time\"></a></p>\n";

@@ -59,6 +59,65 @@ void axis(std::ostream& gp, const char* name, Scale scale, double threshold) {
 
 bool plottable(double v, Scale scale) { return std::isfinite(v) && (scale != Scale::log || v > 0); }
 
+// "t = 1500 s" on a time axis, else "x = 1500".
+std::string at_x(const Figure& f, double x) {
+  return f.x_label.rfind("t [s]", 0) == 0 ? "t = " + number(x) + " s" : "x = " + number(x);
+}
+
+// What a series' legend entry adds to its name: why it has no line, where it stops being finite
+// (a run that blew up: its line ends there, and a figure looked at alone must say why), and the
+// exact zeros a log axis cannot show (its line has gaps there).
+std::string legend_tail(const Figure& f, const Series& s) {
+  if (!s.none_because.empty()) return ": " + s.none_because;
+  long finite = 0, zeros = 0, total = 0;
+  double first_not_finite = NAN;
+  for (size_t i = 0; i < s.x.size() && i < s.y.size(); ++i) {
+    ++total;
+    if (!std::isfinite(s.y[i])) {
+      if (std::isnan(first_not_finite)) first_not_finite = s.x[i];
+      continue;
+    }
+    ++finite;
+    zeros += s.y[i] == 0;
+  }
+  std::string tail;
+  const bool blew_up = !std::isnan(first_not_finite);
+  if (blew_up) tail = "not finite from " + at_x(f, first_not_finite) + " (blew up)";
+  if (f.y_scale == Scale::log && zeros > 0) {
+    const std::string exact = zeros == finite ? (blew_up ? "exactly 0 until then" : "exactly 0 throughout")
+                                              : "exactly 0 at " + std::to_string(zeros) + " of " +
+                                                    std::to_string(total) + " points (the gaps)";
+    tail = tail.empty() ? exact : tail + "; " + exact;
+  }
+  if (tail.empty() && finite == 0) tail = "no finite point";
+  return tail.empty() ? "" : ": " + tail;
+}
+
+// A symlog axis's range and tics: out to the next whole decade beyond the data on each side (so
+// that no line runs along the frame and the end tics are labelled), 0, and the decades from the
+// threshold up, every one of them or every second, third, ... so that each side has at most five.
+void symlog_range(std::ostream& gp, const char* name, double low, double high, double threshold) {
+  auto decade_above = [&](double v) { return std::max(threshold, std::pow(10.0, std::ceil(std::log10(v) - 1e-9))); };
+  const double top = high > 0 ? decade_above(high) : 0, bottom = low < 0 ? -decade_above(-low) : 0;
+  gp << "set " << name << "range [" << number(bottom == 0 && top == 0 ? -threshold : bottom) << ":"
+     << number(top == 0 && bottom == 0 ? threshold : top) << "]\n";
+  const int lowest = static_cast<int>(std::lround(std::log10(threshold)));
+  std::string tics = "'0' 0";
+  for (const bool above : {true, false}) {
+    const double end = above ? top : -bottom;
+    if (end <= 0) continue;
+    const int highest = static_cast<int>(std::lround(std::log10(end)));
+    const int stride = std::max(1, (highest - lowest + 5) / 5);
+    for (int k = highest; k >= lowest; k -= stride) {
+      char label[32];
+      std::snprintf(label, sizeof label, "%.0e", std::pow(10.0, k));
+      const std::string sign = above ? "" : "-";
+      tics += ", '" + sign + label + "' " + sign + number(std::pow(10.0, k));
+    }
+  }
+  gp << "set " << name << "tics (" << tics << ")\n";
+}
+
 }  // namespace
 
 std::string gnuplot_program() { return process::find_program("gnuplot"); }
@@ -77,13 +136,18 @@ std::string draw(const std::vector<Figure>& figures, const std::string& folder) 
     // Each series' plottable points as a block of the data file; a series with none (exactly 0
     // throughout, on a log axis) is still named in the legend, so that it is seen to be exact.
     std::vector<int> blocks;
-    double x_low = INFINITY, x_high = -INFINITY;
+    double x_low = INFINITY, x_high = -INFINITY, y_low = INFINITY, y_high = -INFINITY;
     long points = 0;
+    bool not_finite = false;  // some value (not all: then points > 0) is not finite
     for (const auto& s : f.series) {
       long mine = 0;
       for (size_t i = 0; i < s.x.size() && i < s.y.size(); ++i) {
         if (std::isfinite(s.x[i])) x_low = std::min(x_low, s.x[i]), x_high = std::max(x_high, s.x[i]);
-        mine += plottable(s.x[i], f.x_scale) && plottable(s.y[i], f.y_scale);
+        not_finite = not_finite || !std::isfinite(s.y[i]);
+        if (plottable(s.x[i], f.x_scale) && plottable(s.y[i], f.y_scale)) {
+          ++mine;
+          y_low = std::min(y_low, s.y[i]), y_high = std::max(y_high, s.y[i]);
+        }
       }
       if (mine == 0) {
         blocks.push_back(-1);
@@ -110,9 +174,7 @@ std::string draw(const std::vector<Figure>& figures, const std::string& folder) 
       const std::string colour = line_style(s.colour >= 0 ? static_cast<size_t>(s.colour) : k, s.dashed);
       if (blocks[k] < 0) {
         plot_line += (k ? ", " : "plot ") + std::string("1/0 with lines lw 1.8") + colour + " title " +
-                     quoted(s.name + (!s.none_because.empty()         ? ": " + s.none_because
-                                      : f.y_scale == Scale::log ? ": exactly 0 throughout"
-                                                                : ": no finite point"));
+                     quoted(s.name + legend_tail(f, s));
         continue;
       }
       const std::string pt = std::to_string(s.point_type);
@@ -120,10 +182,15 @@ std::string draw(const std::vector<Figure>& figures, const std::string& folder) 
                    (s.style == "points"        ? "points pt " + pt + " ps 0.8"
                     : s.style == "linespoints" ? "linespoints pt " + pt + " ps 0.6 lw 1.5"
                                                : std::string("lines lw 1.8")) +
-                   colour + " title " + quoted(s.name);
+                   colour + " title " + quoted(s.name + legend_tail(f, s));
     }
-    gp << "set autoscale\nunset label 2\nset key " << f.key << " Left reverse box opaque\n";
+    const bool below = f.key.empty() && f.series.size() <= 4;
+    const std::string key = !f.key.empty() ? f.key + " Left reverse box opaque"
+                            : below        ? std::string("below Left reverse box maxcols 1")
+                                           : std::string("outside right top Left reverse box");
+    gp << "set autoscale\nset xtics autofreq\nset ytics autofreq\nunset label 2\nset key " << key << "\n";
     // The whole run on the x axis, also where a line has gaps (exact values on a log axis).
+    if (!std::isnan(f.x_from) && f.x_scale == Scale::linear) x_low = std::min(x_low, f.x_from);
     if (x_high > x_low && f.x_scale == Scale::linear)
       gp << "set xrange [" << number(x_low) << ":" << number(x_high) << "]\n";
     if (points == 0) {  // nothing to draw: give the axes a range, and say why it is empty
@@ -132,7 +199,10 @@ std::string draw(const std::vector<Figure>& figures, const std::string& folder) 
       const bool values = std::any_of(f.series.begin(), f.series.end(), [](const Series& s) { return !s.x.empty(); });
       if (!(x_high > x_low)) gp << "set xrange [0:1]\n";
       gp << "set yrange " << (f.y_scale == Scale::log ? "[1e-17:1e-13]" : "[-1:1]") << "\n"
-         << "set label 2 '" << (values ? "every value is exactly 0" : "nothing to draw: no run has data for this figure")
+         << "set label 2 '"
+         << (!values      ? "nothing to draw: no run has data for this figure"
+             : not_finite ? "nothing finite to draw: the runs blew up (see the legend)"
+                          : "every value is exactly 0")
          << "' at graph 0.5, graph 0.5 center tc rgb '#555555'\n";
     }
     if (plot_line.empty()) {
@@ -146,11 +216,14 @@ std::string draw(const std::vector<Figure>& figures, const std::string& folder) 
     } else {
       axis(gp, "x", f.x_scale, f.symlog_threshold);
       axis(gp, "y", f.y_scale, f.symlog_threshold);
+      if (f.y_scale == Scale::symlog && points > 0) symlog_range(gp, "y", y_low, y_high, f.symlog_threshold);
     }
     // Plain text throughout (no "enhanced" markup: a scene called ball_gas keeps its underscore).
-    gp << "set title " << quoted(f.title) << "\nset xlabel " << quoted(f.x_label) << "\nset ylabel " << quoted(f.y_label)
-       << "\nunset label 1\nset bmargin " << (f.note.empty() ? 4 : 6) << "\n";
-    if (!f.note.empty()) gp << "set label 1 " << quoted(f.note) << " at screen 0.5, screen 0.025 center font ',9' tc rgb '#555555'\n";
+    // The note is the title's second line (the legend may be below the plot). The bottom margin
+    // holds the tics, the x label and, below them, a legend of one entry a line.
+    gp << "set title " << quoted(f.title) << (f.note.empty() ? "" : " . \"\\n\" . " + quoted(f.note))
+       << "\nset xlabel " << quoted(f.x_label) << "\nset ylabel " << quoted(f.y_label)
+       << "\nunset label 1\nset bmargin " << (below ? 4 + static_cast<int>(f.series.size()) : 4) << "\n";
     for (const char* format : {"png", "svg"}) {
       if (std::string(format) == "png")
         gp << "set terminal pngcairo size " << f.width << "," << f.height << " font 'DejaVu Sans,10' noenhanced\n";

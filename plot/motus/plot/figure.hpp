@@ -4,6 +4,7 @@
 // a few tens of milliseconds, where matplotlib takes a second: a small `motus compare` is done,
 // plots included, in well under half a second. The script and the data are left beside the
 // pictures (FOLDER/figures.gp, figures.dat), so anyone can redraw or restyle them.
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -33,7 +34,12 @@ struct Figure {
   double symlog_threshold = 1e-16;  // where a symlog axis turns linear
   std::vector<Series> series;
   std::string note;  // a line under the title (what to look at), or ""
-  std::string key = "top left";  // where the legend goes (gnuplot's words: "top right", "outside right top")
+  // Where the legend goes (gnuplot's words: "top left", "outside right top"), or "" for outside
+  // the plot: below it, one entry a line, for up to four series (an entry can be long: "bullet: not
+  // finite from t = 900 s (blew up)"), at the right for more. Never inside by default: a box there
+  // hides the lines that pass under it.
+  std::string key = "";
+  double x_from = NAN;  // where a linear x axis starts (NaN: at the data's lowest x)
   int width = 900, height = 480;
 };
 

@@ -5,6 +5,7 @@
 #include <GL/gl.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <vector>
 
@@ -147,6 +148,9 @@ std::optional<double> ground_height(const MechanicalDescription& m) {
 }
 
 std::string format_number(const char* format, double x) {
+  // (printf writes "-nan" or "inf": a label says in words that the run blew up.)
+  if (std::isnan(x)) return "not a number";
+  if (std::isinf(x)) return x > 0 ? "+infinite" : "-infinite";
   char buffer[64];
   std::snprintf(buffer, sizeof buffer, format, x);
   return buffer;
