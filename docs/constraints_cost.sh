@@ -1,7 +1,8 @@
 #!/bin/sh
 # The cloth's largest stick error against its cost (docs/constraints.md): scenes/cloth.json run by
 # `motus run` with the projection set three ways, and Bullet's cloth from `motus compare`, into
-# docs/constraints_cost.csv and the plot docs/pictures/constraints_cost.png (gnuplot).
+# docs/constraints_cost.csv and the plot docs/pictures/constraints_cost.png (gnuplot). Every row's
+# time is the fastest of the same ROUNDS runs (`--repeats`); its error is over every step.
 #   docs/constraints_cost.sh              uses build/motus
 #   MOTUS=build-x/motus docs/constraints_cost.sh
 #   PLOT_ONLY=1 docs/constraints_cost.sh  redraws the plot from the CSV as it is
@@ -9,12 +10,13 @@ set -eu
 cd "$(dirname "$0")/.."
 MOTUS=${MOTUS:-build/motus}
 CSV=docs/constraints_cost.csv
+ROUNDS=5
 WORK=$(mktemp -d)
 trap 'rm -rf "$WORK"' EXIT
 
-# One run: LABEL SUBSTEPS SWEEPS ROUNDS -> a CSV line: label,substeps,sweeps,us_min,us_median,largest stick error
+# One run: LABEL SUBSTEPS SWEEPS -> a CSV line: label,substeps,sweeps,us_min,us_median,largest stick error
 run() {
-  "$MOTUS" run cloth --json --repeats "$4" --set constraint_substeps="$2" --set constraint_iterations="$3" >"$WORK/run.json"
+  "$MOTUS" run cloth --json --repeats "$ROUNDS" --set constraint_substeps="$2" --set constraint_iterations="$3" >"$WORK/run.json"
   python3 -c "
 import json
 j = json.load(open('$WORK/run.json'))
@@ -25,15 +27,16 @@ print('$1,$2,$3,%.2f,%.2f,%.4e' % (t['min'] / 1e3, t['median'] / 1e3, j['constra
 if [ -z "${PLOT_ONLY:-}" ]; then
 {
   echo "series,substeps,sweeps,us_per_step_min,us_per_step_median,largest_stick_error"
-  for s in 12 25 50 100 200; do run "one step of N sweeps in scene order" 1 "$s" 1; done
-  for n in 4 8 16 32 64 128; do run "substeps of one sweep (colours)" "$n" 1 3; done
-  for n in 4 8 16 32; do run "substeps of four sweeps (colours)" "$n" 4 3; done
-  "$MOTUS" compare cloth --json --engines bullet --out "$WORK/compare" >"$WORK/compare.json"
+  for s in 12 25 50 100 200; do run "one step of N sweeps in scene order" 1 "$s"; done
+  for n in 4 8 16 32 64 128; do run "substeps of one sweep (colours)" "$n" 1; done
+  for n in 4 8 16 32; do run "substeps of four sweeps (colours)" "$n" 4; done
+  "$MOTUS" compare cloth --json --engines bullet --repeats "$ROUNDS" --out "$WORK/compare" >"$WORK/compare.json"
   python3 -c "
 import json
 e = json.load(open('$WORK/compare.json'))['engines'][0]
 print('Bullet 3 (its own constraint solver),1,10,%.2f,%.2f,%.4e' % (e['us_per_step'], e['us_per_step_median'], e['constraint_error']))"
-} >"$CSV"
+} >"$WORK/csv"
+mv "$WORK/csv" "$CSV"  # only a complete table replaces the old one
 fi
 cat "$CSV"
 
@@ -42,8 +45,8 @@ set terminal pngcairo size 720,440 font ",10"
 set output "docs/pictures/constraints_cost.png"
 set datafile separator ","
 set logscale xy
-set xlabel "CPU time per step of 1/240 s [µs] (the fastest run)"
-set ylabel "largest stick error over the 6 s (relative)"
+set xlabel "CPU time per step of 1/240 s [µs] (the fastest of $ROUNDS runs)"
+set ylabel "largest stick error over every step of the 6 s (relative)"
 set title "cloth.json (20 x 20, 1,482 sticks): error against cost"
 set key bottom left
 set grid
