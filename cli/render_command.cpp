@@ -122,7 +122,7 @@ CLI::App* add_render_command(CLI::App& app, RenderOptions& o) {
       ->type_name("PATH=VALUE");
   render->add_option("--video", o.video, "Also assemble the frames into SCENE.mp4 or SCENE.gif with ffmpeg")
       ->check(CLI::IsMember({"mp4", "gif"}));
-  render->add_flag("--overwrite", o.overwrite, "Reuse an existing --out folder (its frames and videos are replaced)");
+  render->add_flag("--overwrite", o.overwrite, "Reuse an existing --out folder (the frames and video an earlier render wrote there are replaced; nothing else is touched)");
   render->add_flag("--trails", o.trails, "Draw each body's recent path (scenes with at most 64 bodies)");
   render->add_flag("--arrows", o.arrows, "Draw velocity arrows (where each body will be in 0.25 s)");
   add_plugin_option(render, o.plugins);

@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cerrno>
 #include <cmath>
+#include <limits>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -133,9 +134,13 @@ int report_non_finite(double by, const Method& method) {
   return kExitFailure;
 }
 
+// A NaN without its sign: printf and fmt write a negative one as "-nan", which reads as a
+// number with a sign; every NaN of a blown-up run is "nan".
+double unsigned_nan(double x) { return std::isnan(x) ? std::numeric_limits<double>::quiet_NaN() : x; }
+
 std::string vec(ConstVectorRef v) {
   std::vector<std::string> parts;
-  for (Eigen::Index i = 0; i < v.size(); ++i) parts.push_back(fmt::format("{:.10g}", v[i]));
+  for (Eigen::Index i = 0; i < v.size(); ++i) parts.push_back(fmt::format("{:.10g}", unsigned_nan(v[i])));
   return fmt::format("({})", fmt::join(parts, ", "));
 }
 
@@ -408,7 +413,8 @@ int run_command(const RunOptions& o) {
     fmt::print(out, "{:<18}{:>22}{:>22}{:>14}\n", "", "start", "end", "change");
     auto row = [&](const char* name, double a, double b) {
       const double rel = a != 0 ? (b - a) / std::abs(a) : b - a;
-      fmt::print(out, "{:<18}{:>22.12g}{:>22.12g}{:>14.3e}{}\n", name, a, b, rel, a != 0 ? "" : " (abs)");
+      fmt::print(out, "{:<18}{:>22.12g}{:>22.12g}{:>14.3e}{}\n", name, unsigned_nan(a), unsigned_nan(b), unsigned_nan(rel),
+                 a != 0 ? "" : " (abs)");
     };
     row("kinetic energy", energy0->kinetic, e1->kinetic);
     row("potential energy", energy0->potential, e1->potential);
@@ -428,8 +434,8 @@ int run_command(const RunOptions& o) {
     const auto names = sim.state_names();
     fmt::print(out, "{:<18}{:>22}{:>22}\n", "", "start", "end");
     for (size_t i = 0; i < names.size(); ++i)
-      fmt::print(out, "{:<18}{:>22.12g}{:>22.12g}\n", names[i], state0[static_cast<Eigen::Index>(i)],
-                 sim.state()[static_cast<Eigen::Index>(i)]);
+      fmt::print(out, "{:<18}{:>22.12g}{:>22.12g}\n", names[i], unsigned_nan(state0[static_cast<Eigen::Index>(i)]),
+                 unsigned_nan(sim.state()[static_cast<Eigen::Index>(i)]));
   }
   fmt::print(out, "\nsteps        {} accepted, {} rejected\n", sim.steps(), sim.rejected());
   fmt::print(out, "evaluations  {} derivative evaluations\n", sim.evaluations());

@@ -50,9 +50,9 @@ void print_tables(const stress::Report& r) {
         continue;
       }
       const double z = r.omega ? *r.omega * s.limit : 0;
-      fmt::print("  {:<20}{:>14}{:>11}  {}{}{}\n", info(s.integrator).name, s.limit > 0 ? fmt::format("{:.6g}", s.limit) : "none",
-                 r.omega && s.limit > 0 ? fmt::format("{:.5f}", z) : "", s.theory.text,
-                 s.theory.z > 0 && s.limit > 0 ? fmt::format(" ({:.5f})", z / s.theory.z) : "",
+      fmt::print("  {:<20}{:>14}{:>11}  {}{}{}\n", info(s.integrator).name, s.limit > 0 ? fmt::format("{:.7g}", s.limit) : "none",
+                 r.omega && s.limit > 0 ? fmt::format("{:.6f}", z) : "", s.theory.text,
+                 s.theory.z > 0 && s.limit > 0 ? fmt::format(" ({:.6f})", z / s.theory.z) : "",
                  // (the search's top, as the page says: a step that large still did not blow up)
                  s.limit > 0 && s.first_blowup == 0 ? " (no blow-up found: the largest h tried)" : "");
     }

@@ -15,6 +15,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <numbers>
@@ -168,6 +169,35 @@ TEST(StressPages, OscillatorLimitsWithinOnePercentAndItsDrift) {
   ASSERT_EQ(p.result.status, 0) << p.result.err;
   expect_limits_within_one_percent_of_theory(p);
   expect_euler_grows_and_symplectic_bounded(p);
+}
+
+// Found by an outputs audit: the terminal printed symplectic Euler's limit (1.9999979972839355, just
+// under its strict ωh < 2) and Verlet's (2.0000000953674317, just over) both as "2" and "2.00000".
+// Each limit is printed to as many figures as tell it from the theory's and from the other's.
+TEST(StressPages, TheTerminalTellsTwoLimitsApartAsTheCsvDoes) {
+  TempDir dir;
+  const Result r = run_motus(dir, {"stress", "oscillator", "--integrators", "symplectic-euler,verlet", "--out",
+                                   (dir / "s").string()});
+  ASSERT_EQ(r.status, 0) << r.err;
+  std::istringstream csv(read_file(dir / "s" / "stability.csv"));
+  std::string line;
+  std::getline(csv, line);
+  std::vector<double> limits;
+  while (std::getline(csv, line)) limits.push_back(std::stod(line.substr(line.find(',') + 1)));
+  ASSERT_EQ(limits.size(), 2u);
+  ASSERT_GT(std::abs(limits[0] - limits[1]), 1e-6 * limits[0]) << "the two limits are apart in the CSV";
+  auto printed = [&](const std::string& name) {  // the row's "largest h" field
+    const size_t at = r.out.find("  " + name + " ");
+    EXPECT_NE(at, std::string::npos) << r.out;
+    std::istringstream row(r.out.substr(at));
+    std::string integrator, h;
+    row >> integrator >> h;
+    return h;
+  };
+  EXPECT_NE(printed("symplectic-euler"), printed("verlet")) << r.out;
+  char seven[32];  // seven figures: the search's bisection ends within a relative 1e-7 or so
+  std::snprintf(seven, sizeof seven, "%.7g", limits[0]);
+  EXPECT_EQ(printed("symplectic-euler"), seven);
 }
 
 // ---- the other pages -------------------------------------------------------------------------

@@ -56,6 +56,8 @@ std::string render_frames(const RenderJob& job) {
     render::DrawOptions options;
     options.trails = job.trails;
     options.velocity_arrows = job.arrows;
+    if (job.frame_index.size() >= 2)
+      options.frame_interval = recording.times[job.frame_index[1]] - recording.times[job.frame_index[0]];
     render::fit_ground(*job.scene, recording, options);
     render::Image image;
     for (size_t k = 0; k < job.frame_index.size(); ++k) {
@@ -92,6 +94,7 @@ std::string draw_comparison(const ComparisonJob& job, ComparisonPictures& pictur
     const render::Camera camera = render::fit_camera(*job.scene, *reference, view);
     render::DrawOptions options;
     render::fit_ground(*job.scene, *reference, options);
+    if (reference->size() >= 2) options.frame_interval = reference->times[1] - reference->times[0];
 
     std::vector<std::string> labels;
     for (const auto& panel : job.panels) labels.push_back(panel.label.empty() ? panel.engine : panel.label);

@@ -26,6 +26,9 @@ Canvas::Canvas(int width, int height, int supersample) : width_(width), height_(
   if (w * h * 4 > kMaxBufferBytes)
     throw RenderError("OSMesa could not draw " + std::to_string(width) + " x " + std::to_string(height) +
                       " pixels: the offscreen buffer would exceed 1 GiB; choose a smaller --size");
+  // Mesa would keep a cache of compiled shaders in ~/.cache/mesa_shader_cache: a write outside
+  // the folder the user gave, for shaders that take no time to compile. (Unless the user set it.)
+  ::setenv("MESA_SHADER_CACHE_DISABLE", "true", 0);
   OSMesaContext context = failure_requested() ? nullptr : OSMesaCreateContextExt(OSMESA_RGBA, 24, 0, 0, nullptr);
   if (!context)
     throw RenderError("OSMesa could not create an offscreen OpenGL context (install the Debian package libosmesa6)");

@@ -45,6 +45,9 @@ struct DrawOptions {
   std::optional<Vec3> ground_centre;
   double ground_half_width = 0;
   bool overlay = true;          // draw_frame: scene name, time, energy drift in the corner
+  // The time between two frames drawn (0: unknown): the overlay's time gets as many decimals as
+  // tell them apart (at 240 frames a second, "t = 0.00 s" twice would not).
+  double frame_interval = 0;
 };
 
 // One instant of a mechanical scene.
@@ -93,6 +96,7 @@ struct Overlay {
   std::string note;  // a further line (the integrator, say)
   std::string time_unit = "s";  // "year" (World2) shows the calendar year instead of t = … s
   bool energy_in_joules = false;  // energy_drift is E − E₀ in J (E₀ = 0: no scale to divide by)
+  double time_step = 0;  // between the frames drawn (DrawOptions::frame_interval), or 0
 };
 void draw_overlay(Canvas& canvas, const Viewport& viewport, const Overlay& overlay);
 // A scale bar at the bottom left of an orthographic (2-D) view: a round length in metres.

@@ -153,6 +153,7 @@ void draw_frame(Canvas& canvas, const Viewport& v, const SceneDescription& scene
   if (rec.size() == 0) return;
   index = std::min(index, rec.size() - 1);
   Overlay overlay{scene.name, rec.times[index], std::nullopt, note};
+  overlay.time_step = options.frame_interval;
   if (scene.mechanical) {
     const auto& state = rec.states[index];
     const size_t half = state.size() / 2;

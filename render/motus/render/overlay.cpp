@@ -22,8 +22,13 @@ void draw_overlay(Canvas& canvas, const Viewport& v, const Overlay& o) {
   // A light box behind the text, so that it stays legible over a body, a wall or a trail — and in
   // a GIF, whose 256 colours would otherwise blur a grey line into its background.
   const int lines = 1 + (o.energy_drift ? 1 : 0) + (!o.note.empty() && v.width >= 400 ? 1 : 0);
-  const std::string time = o.time_unit == "year" ? "year " + format_number("%.0f", o.time)
-                                                 : "t = " + format_number("%.2f", o.time) + " " + o.time_unit;
+  // Two decimals of a second (none of a year), or as many as tell two frames apart.
+  int decimals = o.time_unit == "year" ? 0 : 2;
+  if (o.time_step > 0 && std::isfinite(o.time_step))
+    decimals = std::clamp(static_cast<int>(std::ceil(-std::log10(o.time_step) - 1e-9)), decimals, 6);
+  const std::string format = "%." + std::to_string(decimals) + "f";
+  const std::string time = o.time_unit == "year" ? "year " + format_number(format.c_str(), o.time)
+                                                 : "t = " + format_number(format.c_str(), o.time) + " " + o.time_unit;
   const std::string first = o.title + "    " + time;
   int box = text_width(first, title);
   const std::string drift_label = o.energy_in_joules ? "\u0394E = " : "\u0394E/|E\u2080| = ";
