@@ -344,6 +344,38 @@ TEST(Plugins, APluginsBrokenNumbersAreItsOwnFailureNeverAPerfectRun) {
   EXPECT_NE(r.err.find("did not shrink a rejected step"), std::string::npos) << r.err;
 }
 
+// Found by an assignments audit: an impulse over the sum of the masses, or a bounce written for the
+// floor alone, showed only as "more than 1500 collisions in one step ... (does it find a contact
+// between balls that are moving apart?)" or as a NaN time of impact: a wrong impulse read as a
+// time of impact's mistake. motus checks Newton's law of restitution after each of the plug-in's
+// impulses and bounces, and names the function and the numbers.
+TEST(Plugins, AWrongImpulseOrBounceStopsTheRunNamingItsNumbers) {
+  TempDir dir;
+  const std::string plugin = kPlugins + "/wrong_impulses.so";
+  // head_on: masses 1 and 3 meet at u = (v_b - v_a).n = -1 - 1 = -2 m/s, e = 1. Over m_a + m_b
+  // the impulse is J = -(1 + 1)(-2)/4 = 1 (not 3): v_a' = 1 - 1/1 = 0, v_b' = -1 + 1/3, so
+  // u' = -2/3 — still approaching, where e = 1 asks them to separate at -e u = 2.
+  Result r = run_motus(dir, {"run", "head_on", "--plugin", plugin});
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_EQ(count_lines(r.err), 1) << r.err;
+  EXPECT_NE(r.err.find("the impulse between balls 0 and 1 left them approaching at -0.666667 m/s along the normal, "
+                       "where restitution e = 1 asks them to separate at -e u = 2 m/s (they met at u = -2 m/s)"),
+            std::string::npos)
+      << r.err;
+  // One ball at (2, 0) m/s into the right face of a box (normal (-1, 0)): the floor's rule flips
+  // v_y = 0 and leaves n.v = -2, where e = 1 asks +2.
+  write_file(dir / "side_wall.json", R"({"name": "side_wall", "dimensions": 2,
+    "bodies": [{"mass": 1, "radius": 0.5, "position": [5, 5], "velocity": [2, 0]}],
+    "colliders": [{"type": "box", "min": [0, 0], "max": [10, 10]}],
+    "integrator": "symplectic-euler", "dt": 0.01, "duration": 4})");
+  r = run_motus(dir, {"run", (dir / "side_wall.json").string(), "--plugin", plugin});
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_NE(r.err.find("the bounce off a wall left ball 0 with n.v = -2 m/s, where restitution e = 1 asks -e n.v = 2 "
+                       "m/s (it met the wall, normal (-1, 0), at n.v = -2 m/s)"),
+            std::string::npos)
+      << r.err;
+}
+
 TEST(Plugins, AnExceptionWhileLoadingNamesThePlugin) {
   // Its code runs as soon as it is opened: libstdc++'s two lines ("terminate called ...") and
   // no name before; now one line naming it (and the abort it dies of).

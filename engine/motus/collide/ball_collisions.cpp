@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <functional>
 #include <stdexcept>
@@ -1113,15 +1114,40 @@ double BallCollisions<D>::outside_plane_impact(const Point& p, const Point& v, d
   return t >= 0 && t <= horizon ? t : kNoImpact;
 }
 
+namespace {
+// A number in a message to a plug-in's author: six significant figures.
+std::string figure(double x) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.6g", x);
+  return text;
+}
+}  // namespace
+
 template <int D>
 void BallCollisions<D>::collide(int i, int k, const Point& n, double e) {
   if (!rules_) {
     collide_balls(velocity(i), velocity(k), inverse_mass_of(i), inverse_mass_of(k), n, e);
     return;
   }
+  const double closing = (velocity(k) - velocity(i)).dot(n);  // u, < 0: approaching
+  const double scale = velocity(i).norm() + velocity(k).norm();
   check_external(rules_->collide_balls(rules_->self, D, v_ + D * i, v_ + D * k, 1 / inverse_mass_of(i),
                                        1 / inverse_mass_of(k), n.data(), e),
                  "impulse between two balls", rules_->error, rules_->self);
+  // What any impulse along n must leave (Newton's law of restitution): the balls separating at
+  // u' = −e u. A plug-in's that does not — the masses summed, no (1 + e), the normal's sign — would
+  // otherwise show only much later, as contacts that never end or velocities that overflow, and be
+  // read as a time of impact's mistake. (Only for balls that approach: a plug-in's time of impact
+  // may have found a contact between balls moving apart, and that is its own mistake.)
+  const double after = (velocity(k) - velocity(i)).dot(n);
+  if (!std::isfinite(after))
+    throw ExternalError("the impulse between two balls returned velocities that are not finite (from finite ones)");
+  if (closing < 0 && !(std::abs(after + e * closing) <= 1e-9 * scale))
+    throw ExternalError("the impulse between balls " + std::to_string(i) + " and " + std::to_string(k) + " left them " +
+                        (after < 0 ? "approaching" : "separating") + " at " + figure(after) +
+                        " m/s along the normal, where restitution e = " + figure(e) +
+                        " asks them to separate at -e u = " + figure(-e * closing) + " m/s (they met at u = " +
+                        figure(closing) + " m/s): check (1 + e), the inverse masses and the normal's direction");
 }
 
 template <int D>
@@ -1130,8 +1156,25 @@ void BallCollisions<D>::bounce(int i, const Point& n, double e) {
     bounce_off_wall(velocity(i), n, e);
     return;
   }
+  const double into = velocity(i).dot(n);  // < 0: moving into the wall
+  const double scale = velocity(i).norm();
   check_external(rules_->bounce_off_wall(rules_->self, D, v_ + D * i, n.data(), e), "bounce off a wall",
                  rules_->error, rules_->self);
+  // The same law against a wall: n·v' = −e n·v (see collide).
+  const double after = velocity(i).dot(n);
+  if (!std::isfinite(after))
+    throw ExternalError("the bounce off a wall returned a velocity that is not finite (from a finite one)");
+  if (into < 0 && !(std::abs(after + e * into) <= 1e-9 * scale)) {
+    std::string normal;
+    for (int k = 0; k < D; ++k) {
+      if (k) normal += ", ";
+      normal += figure(n[k] + 0.0);  // (+ 0.0: a box face's −0 reads as 0)
+    }
+    throw ExternalError("the bounce off a wall left ball " + std::to_string(i) + " with n.v = " + figure(after) +
+                        " m/s, where restitution e = " + figure(e) + " asks -e n.v = " + figure(-e * into) +
+                        " m/s (it met the wall, normal (" + normal + "), at n.v = " + figure(into) +
+                        " m/s): only the part of v along the wall's normal changes");
+  }
 }
 
 template class BallCollisions<1>;
