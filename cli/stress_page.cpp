@@ -148,6 +148,7 @@ std::vector<plot::Figure> figures(const Report& r) {
       f.series.push_back(std::move(line));
     }
     f.note = "flat: bounded (the symplectic methods); rising: a drift; a line stops where it blew up or passed 100 (off the chart)";
+    f.gap_from = "off the chart from", f.gap_means = "above 100, or blew up";
     all.push_back(std::move(f));
   }
   if (has(r, "stiffness")) {
@@ -185,6 +186,7 @@ std::vector<plot::Figure> figures(const Report& r) {
       if (!pair.x.empty()) f.series.push_back(std::move(pair)), f.series.push_back(std::move(gas));
     }
     f.note = "a point missing from a line is exactly 0 (a log axis has no 0)";
+    f.gap_from = "no value from", f.gap_means = "the run failed: see the table";
     all.push_back(std::move(f));
   }
   if (has(r, "speed")) {
@@ -205,6 +207,7 @@ std::vector<plot::Figure> figures(const Report& r) {
       if (!overlap.x.empty()) f.series.push_back(std::move(overlap)), f.series.push_back(std::move(energy));
     }
     f.note = "the scene's balls with their velocities scaled; tunnelling is in the table";
+    f.gap_from = "no value from", f.gap_means = "the run failed: see the table";
     all.push_back(std::move(f));
   }
   if (has(r, "sticks")) {
@@ -221,6 +224,7 @@ std::vector<plot::Figure> figures(const Report& r) {
       f.series.push_back(std::move(line));
     }
     f.note = "the stick error: what the projection sweeps leave of a stretch";
+    f.gap_from = "no value from", f.gap_means = "the run failed: see the table";
     all.push_back(std::move(f));
   }
   return all;

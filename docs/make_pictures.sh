@@ -1,6 +1,6 @@
 #!/bin/sh
-# Regenerates the README's pictures in docs/pictures/ with `motus render` (docs/render.md), `motus compare` and
-# `motus stress`.
+# Regenerates the README's pictures in docs/pictures/ with `motus render` (docs/render.md), `motus compare`,
+# `motus bench precision` and `motus stress` (docs/constraints_cost.sh makes constraints_cost.png).
 #   docs/make_pictures.sh              uses build/motus
 #   MOTUS=build-x/motus docs/make_pictures.sh
 # Needs ffmpeg (for the GIFs). Every file stays well under 200 KB.
@@ -45,6 +45,11 @@ png world2 world2 --size 560x320 --fps 0.05 --duration 200
 "$MOTUS" compare newtons_cradle --size 300x150 --out "$WORK/compare" >/dev/null
 cp "$WORK/compare/first_and_last.png" "$OUT/compare_newtons_cradle.png"
 echo "$OUT/compare_newtons_cradle.png  $(wc -c <"$OUT/compare_newtons_cradle.png") bytes"
+
+# Run time against error on one Kepler orbit, beside Boost.Odeint (`motus bench precision`, README's tour, step 4).
+"$MOTUS" bench precision kepler --peers odeint --out "$WORK/precision" >/dev/null
+cp "$WORK/precision/error_against_time.png" "$OUT/precision_kepler_time.png"
+echo "$OUT/precision_kepler_time.png  $(wc -c <"$OUT/precision_kepler_time.png") bytes"
 
 # The stress test's long run on the oscillator (`motus stress`, docs/cli.md): the energy error over 10^5 steps.
 "$MOTUS" stress oscillator --out "$WORK/stress" >/dev/null

@@ -82,7 +82,7 @@ std::string legend_tail(const Figure& f, const Series& s) {
   }
   std::string tail;
   const bool blew_up = !std::isnan(first_not_finite);
-  if (blew_up) tail = "not finite from " + at_x(f, first_not_finite) + " (blew up)";
+  if (blew_up) tail = f.gap_from + " " + at_x(f, first_not_finite) + " (" + f.gap_means + ")";
   if (f.y_scale == Scale::log && zeros > 0) {
     const std::string exact = zeros == finite ? (blew_up ? "exactly 0 until then" : "exactly 0 throughout")
                                               : "exactly 0 at " + std::to_string(zeros) + " of " +
@@ -184,10 +184,16 @@ std::string draw(const std::vector<Figure>& figures, const std::string& folder) 
                                                : std::string("lines lw 1.8")) +
                    colour + " title " + quoted(s.name + legend_tail(f, s));
     }
-    const bool below = f.key.empty() && f.series.size() <= 4;
-    const std::string key = !f.key.empty() ? f.key + " Left reverse box opaque"
-                            : below        ? std::string("below Left reverse box maxcols 1")
-                                           : std::string("outside right top Left reverse box");
+    // The legend below the plot, in as many columns as its longest entry lets fit across the
+    // picture (about 6 px a character of the 10-point font, and the sample line): the plot keeps the
+    // picture's width whatever the entries say.
+    const bool below = f.key.empty();
+    size_t longest = 0;
+    for (const auto& s : f.series) longest = std::max(longest, s.name.size() + legend_tail(f, s).size());
+    const int columns = std::clamp((f.width - 80) / (6 * static_cast<int>(longest) + 70), 1, 4);
+    const int rows = (static_cast<int>(f.series.size()) + columns - 1) / columns;
+    const std::string key = !below ? f.key + " Left reverse box opaque"
+                                   : "below Left reverse box maxrows " + std::to_string(std::max(rows, 1));
     gp << "set autoscale\nset xtics autofreq\nset ytics autofreq\nunset label 2\nset key " << key << "\n";
     // The whole run on the x axis, also where a line has gaps (exact values on a log axis).
     if (!std::isnan(f.x_from) && f.x_scale == Scale::linear) x_low = std::min(x_low, f.x_from);
@@ -219,11 +225,18 @@ std::string draw(const std::vector<Figure>& figures, const std::string& folder) 
       if (f.y_scale == Scale::symlog && points > 0) symlog_range(gp, "y", y_low, y_high, f.symlog_threshold);
     }
     // Plain text throughout (no "enhanced" markup: a scene called ball_gas keeps its underscore).
-    // The note is the title's second line (the legend may be below the plot). The bottom margin
-    // holds the tics, the x label and, below them, a legend of one entry a line.
-    gp << "set title " << quoted(f.title) << (f.note.empty() ? "" : " . \"\\n\" . " + quoted(f.note))
-       << "\nset xlabel " << quoted(f.x_label) << "\nset ylabel " << quoted(f.y_label)
-       << "\nunset label 1\nset bmargin " << (below ? 4 + static_cast<int>(f.series.size()) : 4) << "\n";
+    // The title and the note under it (the legend may be below the plot) are labels centred on the
+    // picture, not on the plot (gnuplot's title is, and a legend at the right pushed a long note
+    // off the picture's left edge); the top margin keeps their lines. The bottom margin holds the
+    // tics, the x label and, below them, a legend of one entry a line.
+    const auto from_top = [&](double pixels) { return number(1 - pixels / f.height); };
+    gp << "unset title\nset label 3 " << quoted(f.title) << " at screen 0.5, screen " << from_top(16) << " center\n"
+       << "unset label 1\n";
+    if (!f.note.empty())
+      gp << "set label 1 " << quoted(f.note) << " at screen 0.5, screen " << from_top(32)
+         << " center font ',9' tc rgb '#555555'\n";
+    gp << "set tmargin " << (f.note.empty() ? 3 : 4) << "\nset xlabel " << quoted(f.x_label) << "\nset ylabel "
+       << quoted(f.y_label) << "\nset bmargin " << (below ? 4 + rows : 4) << "\n";
     for (const char* format : {"png", "svg"}) {
       if (std::string(format) == "png")
         gp << "set terminal pngcairo size " << f.width << "," << f.height << " font 'DejaVu Sans,10' noenhanced\n";

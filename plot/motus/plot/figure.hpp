@@ -40,6 +40,8 @@ struct Figure {
   // hides the lines that pass under it.
   std::string key = "";
   double x_from = NAN;  // where a linear x axis starts (NaN: at the data's lowest x)
+  // What a value that is not finite stands for, in the legend: "<gap_from> t = 50 s (<gap_means>)".
+  std::string gap_from = "not finite from", gap_means = "blew up";
   int width = 900, height = 480;
 };
 
