@@ -396,6 +396,32 @@ TEST(RenderPixels, TheCameraKeepsBodiesAboveTheScaleBar) {
   EXPECT_LT(lowest, bar_top) << "the ball reaches into the scale bar's box";
 }
 
+// Found by a pictures audit: the 3-D camera closed in to 0.9 of the bounding sphere's distance, and
+// the box's nearest bottom corner of bouncing_balls_3d, (6, 0, 6), was drawn at y = 503 in a 480 px
+// frame (docs/render.md: the camera fits the walls). Every corner of a scene's box is in the frame.
+TEST(RenderPixels, TheCameraKeepsEveryCornerOfA3dBoxInTheFrame) {
+  const SceneDescription scene = load_scene(kScenes + "/bouncing_balls_3d.json");
+  const auto& m = *scene.mechanical;
+  ASSERT_FALSE(m.colliders.boxes.empty());
+  Recording rec;
+  std::vector<double> state;
+  for (const auto& b : m.bodies) state.insert(state.end(), b.position.begin(), b.position.begin() + 3);
+  for (const auto& b : m.bodies) state.insert(state.end(), b.velocity.begin(), b.velocity.begin() + 3);
+  rec.add(0, state);
+  for (const Viewport view : {Viewport{0, 0, 640, 480}, Viewport{0, 0, 480, 360}, Viewport{0, 0, 300, 400}}) {
+    const Camera camera = fit_camera(scene, rec, view);
+    const auto& box = m.colliders.boxes.front();
+    for (int k = 0; k < 8; ++k) {
+      const Vec3 corner{k & 1 ? box.max[0] : box.min[0], k & 2 ? box.max[1] : box.min[1], k & 4 ? box.max[2] : box.min[2]};
+      const Vec3 p = project(camera, view, corner);
+      EXPECT_GE(p[0], 0) << view.width << "x" << view.height << ", corner " << k;
+      EXPECT_LE(p[0], view.width) << view.width << "x" << view.height << ", corner " << k;
+      EXPECT_GE(p[1], 0) << view.width << "x" << view.height << ", corner " << k;
+      EXPECT_LE(p[1], view.height) << view.width << "x" << view.height << ", corner " << k;
+    }
+  }
+}
+
 // Every shipped scene draws through the drawing module: its first frame has the size asked
 // for and is more than the background (DrawOptions' background colour, unchanged where
 // nothing is drawn).
