@@ -186,8 +186,8 @@ CLI::App* add_run_command(CLI::App& app, RunOptions& o) {
   auto* run = app.add_subcommand("run", "Integrate one scene and report energy, momentum, steps, derivative evaluations, wall time and the final state");
   run->add_option("scene", o.scene, "Scene file, or the name of a shipped scene (see `motus list`)")->required();
   run->add_option("--integrator", o.integrator, "Integrator (default: the scene's); see `motus list`");
-  run->add_option("--dt", o.dt, "Step size, s (the first step for adaptive integrators; default: the scene's)");
-  auto* duration = run->add_option("--duration", o.duration, "Time to integrate, s (default: the scene's)");
+  run->add_option("--dt", o.dt, "Step size, s (World2: years; the first step for adaptive integrators; default: the scene's)");
+  auto* duration = run->add_option("--duration", o.duration, "Time to integrate, s (World2: years; default: the scene's)");
   run->add_option("--steps", o.steps, "Number of steps of dt instead of a duration (1 to 10^15)")
       ->check(whole_number_in(1, 1'000'000'000'000'000))  // (checked as written: a number past a long is not taken for the largest)
       ->excludes(duration);
