@@ -43,6 +43,9 @@ public:
 
   // Queues text (baseline at canvas pixel y), drawn on the resolved image.
   void text(int x, int y, std::string text, const TextStyle& style = {});
+  // How many texts are queued (a frame drawn again over a cleared canvas queues its own again:
+  // the tests check that nothing piles up from frame to frame).
+  size_t queued_texts() const { return text_.size(); }
 
   // Finishes OpenGL, averages the supersamples, puts row 0 at the top (OSMesa's buffer
   // is bottom-up) and draws the queued text.
