@@ -124,6 +124,9 @@ void Canvas::image(Image& out) {
   const int s = supersample_;
   const size_t row_bytes = static_cast<size_t>(width_) * static_cast<size_t>(s) * 4;
   const unsigned samples = static_cast<unsigned>(s * s), half = samples / 2;
+  // The rounded average of a block's sum, looked up: a division per byte was half the resolve's time.
+  std::vector<std::uint8_t> average(255 * samples + 1);
+  for (unsigned sum = 0; sum < average.size(); ++sum) average[sum] = static_cast<std::uint8_t>((sum + half) / samples);
   std::vector<unsigned> sums(static_cast<size_t>(width_) * 4);
   for (int y = 0; y < height_; ++y) {
     std::fill(sums.begin(), sums.end(), 0u);
@@ -138,7 +141,7 @@ void Canvas::image(Image& out) {
         }
     }
     std::uint8_t* o = &out.rgba[static_cast<size_t>(y) * static_cast<size_t>(width_) * 4];
-    for (size_t k = 0; k < sums.size(); ++k) o[k] = static_cast<std::uint8_t>((sums[k] + half) / samples);
+    for (size_t k = 0; k < sums.size(); ++k) o[k] = average[sums[k]];
   }
   for (const auto& t : text_) draw_text(out, t.x, t.y, t.text, t.style);
 }
