@@ -252,4 +252,20 @@ inline Result interrupt_motus_while_plotting(const TempDir& dir, const std::vect
 
 inline long count_lines(const std::string& s) { return std::count(s.begin(), s.end(), '\n'); }
 
+// A CSV file's rows after its header, each split at its commas (the files motus writes quote no commas).
+inline std::vector<std::vector<std::string>> csv_data_rows(const std::string& csv) {
+  std::vector<std::vector<std::string>> rows;
+  std::istringstream lines(csv);
+  std::string line;
+  std::getline(lines, line);
+  while (std::getline(lines, line)) {
+    std::vector<std::string> cells;
+    std::istringstream cell_stream(line);
+    for (std::string cell; std::getline(cell_stream, cell, ',');) cells.push_back(cell);
+    if (!line.empty() && line.back() == ',') cells.emplace_back();
+    rows.push_back(cells);
+  }
+  return rows;
+}
+
 }  // namespace motus_test

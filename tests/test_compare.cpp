@@ -202,21 +202,6 @@ TEST(Compare, PenetrationCountsSegmentsAsItCountsPlanes) {
 }
 
 // metrics.csv's rows as cells, without the header.
-std::vector<std::vector<std::string>> csv_rows(const std::string& csv) {
-  std::vector<std::vector<std::string>> rows;
-  std::istringstream lines(csv);
-  std::string line;
-  std::getline(lines, line);
-  while (std::getline(lines, line)) {
-    std::vector<std::string> cells;
-    std::istringstream cell_stream(line);
-    for (std::string cell; std::getline(cell_stream, cell, ',');) cells.push_back(cell);
-    if (!line.empty() && line.back() == ',') cells.emplace_back();
-    rows.push_back(cells);
-  }
-  return rows;
-}
-
 TEST(Compare, AScenesStartingWithNoEnergyHasItsEnergyColumnsInJoules) {
   // stick_pendulum is let go at rest from its pivot's height: E₀ = 0, and (E − E₀)/|E₀| would be
   // no number. The columns are then in joules, and say so; head_on's (E₀ = 2 J) are fractions.
@@ -227,7 +212,7 @@ TEST(Compare, AScenesStartingWithNoEnergyHasItsEnergyColumnsInJoules) {
   const auto j = nlohmann::json::parse(pendulum.out);
   EXPECT_EQ(j.at("energy_unit"), "J");
   // The last sample's energy, in joules, is the drift: E_end − 0.
-  const auto rows = csv_rows(read_file(dir / "p" / "metrics.csv"));
+  const auto rows = csv_data_rows(read_file(dir / "p" / "metrics.csv"));
   EXPECT_DOUBLE_EQ(engine(j, "motus")->at("energy_drift").get<double>(), std::stod(rows.back().at(4)));
   EXPECT_NE(j.at("definitions").dump().find("energy drift [J]"), std::string::npos);
   EXPECT_NE(read_file(dir / "p" / "index.html").find("<th>energy drift [J]</th>"), std::string::npos);
@@ -271,7 +256,7 @@ TEST(Compare, EveryEnginesEnergyColumnIsInTheUnitTheTableSays) {
   EXPECT_NEAR(box2d, motus, 1e-5) << "box2d's column is not in joules";
   EXPECT_NEAR(engine(j, "box2d")->at("max_energy_error").get<double>(), std::abs(motus), 1e-5);
   std::vector<std::string> last;  // box2d's last row of metrics.csv: its energy_error, in joules too
-  for (const auto& row : csv_rows(read_file(dir / "r" / "metrics.csv")))
+  for (const auto& row : csv_data_rows(read_file(dir / "r" / "metrics.csv")))
     if (row.at(0) == "box2d") last = row;
   ASSERT_FALSE(last.empty());
   EXPECT_NEAR(std::stod(last.at(5)), box2d, 1e-6);
@@ -285,7 +270,7 @@ TEST(Compare, ALongRunEndsMotusAtItsLastStepsTime) {
                                    "200", "--samples", "4", "--repeats", "1", "--out", (dir / "r").string(), "--json"});
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_EQ(engine(nlohmann::json::parse(r.out), "motus")->at("steps").get<long>(), 20000);
-  const auto rows = csv_rows(read_file(dir / "r" / "metrics.csv"));
+  const auto rows = csv_data_rows(read_file(dir / "r" / "metrics.csv"));
   ASSERT_FALSE(rows.empty());
   EXPECT_EQ(std::stod(rows.back().at(1)), 200.0) << rows.back().at(1);  // (it ended at 200.01)
 }
@@ -337,13 +322,13 @@ TEST(Compare, MetricsCsvAgreesWithTheSummary) {
   Result r = run_motus(dir, {"compare", scene("head_on"), "--engines", "motus", "--samples", "300", "--out",
                              (dir / "s").string()});
   ASSERT_EQ(r.status, 0) << r.err;
-  EXPECT_EQ(csv_rows(read_file(dir / "s" / "metrics.csv")).size(), 301u);
+  EXPECT_EQ(csv_data_rows(read_file(dir / "s" / "metrics.csv")).size(), 301u);
 
   r = run_motus(dir, {"compare", scene("stick_pendulum"), "--engines", "motus,box2d", "--out", (dir / "p").string(),
                       "--json", "--duration", "1"});
   ASSERT_EQ(r.status, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
-  const auto rows = csv_rows(read_file(dir / "p" / "metrics.csv"));
+  const auto rows = csv_data_rows(read_file(dir / "p" / "metrics.csv"));
   for (const char* name : {"motus", "box2d"}) {
     std::vector<std::string> last;
     for (const auto& row : rows)
@@ -355,7 +340,7 @@ TEST(Compare, MetricsCsvAgreesWithTheSummary) {
 
   r = run_motus(dir, {"compare", scene("head_on"), "--engines", "box2d", "--out", (dir / "b").string(), "--duration", "0.1"});
   ASSERT_EQ(r.status, 0) << r.err;
-  for (const auto& row : csv_rows(read_file(dir / "b" / "metrics.csv"))) EXPECT_EQ(row.at(12), "") << row.at(1);
+  for (const auto& row : csv_data_rows(read_file(dir / "b" / "metrics.csv"))) EXPECT_EQ(row.at(12), "") << row.at(1);
 }
 
 TEST(Compare, ARunThatBlewUpIsNotReportedAsExact) {

@@ -176,20 +176,12 @@ TEST(Report, ARunThatBlewUpIsDrawnAndWrittenAsNotFinite) {
                           "motus"});
   const auto& motus = engine(r, "motus");
   // When, from the samples themselves: the first row of metrics.csv whose total energy is not finite.
-  std::istringstream csv(read_file(r.folder / "metrics.csv"));
-  std::string line;
-  std::getline(csv, line);  // the header
   double first_not_finite = -1;
-  while (std::getline(csv, line)) {
-    std::vector<std::string> cells;
-    std::stringstream row(line);
-    for (std::string cell; std::getline(row, cell, ',');) cells.push_back(cell);
-    const double total = std::strtod(cells.at(4).c_str(), nullptr);
-    if (!std::isfinite(total)) {
+  for (const auto& cells : csv_data_rows(read_file(r.folder / "metrics.csv")))
+    if (!std::isfinite(std::strtod(cells.at(4).c_str(), nullptr))) {
       first_not_finite = std::strtod(cells.at(1).c_str(), nullptr);
       break;
     }
-  }
   ASSERT_GT(first_not_finite, 0) << "explicit Euler at ωh = 10 must blow up within 2,000 steps";
   EXPECT_EQ(motus["not_finite_from"].get<double>(), first_not_finite);
   EXPECT_EQ(motus["max_distance_from_motus"].get<double>(), 0.0);  // itself, also once not finite
@@ -242,13 +234,7 @@ TEST(Report, ASymlogAxisReachesTheNextDecadeBeyondItsData) {
   TempDir dir;
   const auto r = compare(dir, "stick_pendulum", {"--repeats", "1"});
   double low = 0, high = 0;
-  std::istringstream csv(read_file(r.folder / "metrics.csv"));
-  std::string line;
-  std::getline(csv, line);
-  while (std::getline(csv, line)) {
-    std::vector<std::string> cells;
-    std::stringstream row(line);
-    for (std::string cell; std::getline(row, cell, ',');) cells.push_back(cell);
+  for (const auto& cells : csv_data_rows(read_file(r.folder / "metrics.csv"))) {
     const double e = std::strtod(cells.at(5).c_str(), nullptr);  // energy_error, J (E₀ = 0)
     low = std::min(low, e), high = std::max(high, e);
   }
