@@ -19,6 +19,7 @@ extern "C" const motus::PluginEntry* motus_plugin();
 namespace {
 
 using namespace motus;
+using motus::bench::minimum;
 
 SceneDescription kepler() {
   SceneDescription scene;
@@ -57,34 +58,34 @@ void run_orbits(benchmark::State& state, const Method& method) {
 }
 
 void MotusRk4(benchmark::State& state) { run_orbits(state, Integrator::Rk4); }
-BENCHMARK(MotusRk4);
+BENCHMARK(MotusRk4)->ComputeStatistics("min", minimum);
 
 void StudentRk4BuiltIn(benchmark::State& state) {
   run_orbits(state, Method(find(motus_plugin(), "rk4"), "student:rk4"));
 }
-BENCHMARK(StudentRk4BuiltIn);
+BENCHMARK(StudentRk4BuiltIn)->ComputeStatistics("min", minimum);
 
 void StudentRk4Plugin(benchmark::State& state) {
   static PluginSet plugins;
   if (plugins.empty()) plugins.load(MOTUS_SOLUTION_PLUGIN);
   run_orbits(state, *plugins.integrator("student:rk4"));
 }
-BENCHMARK(StudentRk4Plugin);
+BENCHMARK(StudentRk4Plugin)->ComputeStatistics("min", minimum);
 
 void MotusVelocityVerlet(benchmark::State& state) { run_orbits(state, Integrator::VelocityVerlet); }
-BENCHMARK(MotusVelocityVerlet);
+BENCHMARK(MotusVelocityVerlet)->ComputeStatistics("min", minimum);
 
 void StudentVelocityVerletBuiltIn(benchmark::State& state) {
   run_orbits(state, Method(find(motus_plugin(), "velocity-verlet"), "student:velocity-verlet"));
 }
-BENCHMARK(StudentVelocityVerletBuiltIn);
+BENCHMARK(StudentVelocityVerletBuiltIn)->ComputeStatistics("min", minimum);
 
 void StudentVelocityVerletPlugin(benchmark::State& state) {
   static PluginSet plugins;
   if (plugins.empty()) plugins.load(MOTUS_SOLUTION_PLUGIN);
   run_orbits(state, *plugins.integrator("student:velocity-verlet"));
 }
-BENCHMARK(StudentVelocityVerletPlugin);
+BENCHMARK(StudentVelocityVerletPlugin)->ComputeStatistics("min", minimum);
 
 }  // namespace
 

@@ -39,28 +39,33 @@ void RatioReporter::Finalize() {
   ConsoleReporter::Finalize();
   if (ratios_.empty()) return;
   std::printf("\nratios (same run, CPU time: the fastest repetitions, the medians' ratio beside it):\n");
-  // The fastest and the median repetition of a benchmark (0: it did not run).
-  auto fastest_and_median = [&](const std::string& name) -> std::pair<double, double> {
+  // The fastest and the median repetition of a benchmark (0: it did not run), and whether the
+  // fastest is known (false: only the median was reported, and it stands in for the fastest).
+  struct Times {
+    double fastest = 0, median = 0;
+    bool fastest_known = true;
+  };
+  auto times = [&](const std::string& name) -> Times {
     if (min_.count(name) && median_.count(name)) return {min_.at(name), median_.at(name)};
     const auto it = ns_per_iteration_.find(name);
     if (it == ns_per_iteration_.end() || it->second.empty())
-      return median_.count(name) ? std::pair{median_.at(name), median_.at(name)} : std::pair{0.0, 0.0};
+      return median_.count(name) ? Times{median_.at(name), median_.at(name), false} : Times{};
     return {*std::min_element(it->second.begin(), it->second.end()), median(it->second)};
   };
   for (const auto& r : ratios_) {
-    const auto [a_min, a_median] = fastest_and_median(r.numerator);
-    const auto [b_min, b_median] = fastest_and_median(r.denominator);
-    if (a_min <= 0 || b_min <= 0) continue;  // filtered out
-    const double fastest = a_min / r.numerator_per / b_min;
-    const double medians = a_median / r.numerator_per / b_median;
-    std::printf("  %-62s %7.3fx  (median %.3fx; %s / %s)\n", r.label.c_str(), fastest, medians, r.numerator.c_str(),
-                r.denominator.c_str());
+    const Times a = times(r.numerator), b = times(r.denominator);
+    if (a.fastest <= 0 || b.fastest <= 0) continue;  // filtered out
+    const double fastest = a.fastest / r.numerator_per / b.fastest;
+    const double medians = a.median / r.numerator_per / b.median;
+    std::printf("  %-62s %7.3fx  (median %.3fx; %s / %s)%s\n", r.label.c_str(), fastest, medians, r.numerator.c_str(),
+                r.denominator.c_str(),
+                a.fastest_known && b.fastest_known ? "" : "  [no \"min\" statistic: a median stands in for the fastest]");
   }
 }
 
-benchmark::internal::Benchmark* with_min(benchmark::internal::Benchmark* b) {
-  return b->ComputeStatistics("min", [](const std::vector<double>& v) { return *std::min_element(v.begin(), v.end()); });
-}
+double minimum(const std::vector<double>& v) { return *std::min_element(v.begin(), v.end()); }
+
+benchmark::internal::Benchmark* with_min(benchmark::internal::Benchmark* b) { return b->ComputeStatistics("min", minimum); }
 
 void initialize(int* argc, char** argv) {
   static std::vector<char*> args;

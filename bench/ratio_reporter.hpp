@@ -5,10 +5,14 @@
 // Times are CPU time (what Google Benchmark measures for the process besides wall time), so
 // that time the process spends waiting for a core on a busy machine is not counted — or, for a
 // benchmark that times itself (UseManualTime), the time it measured. With
-// repetitions (motus's programs run 5 by default, interleaved in a random order:
-// --benchmark_repetitions, --benchmark_enable_random_interleaving), each benchmark shows its
-// mean, median, minimum, standard deviation and coefficient of variation over them, and each
-// ratio is taken between the fastest repetitions, with the ratio of the medians beside it.
+// repetitions (bench_constraints runs 5 by default, interleaved in a random order, through
+// initialize() below; the other programs when given --benchmark_repetitions=5
+// --benchmark_enable_random_interleaving=true), each benchmark shows its mean, median, standard
+// deviation and coefficient of variation over them, and its minimum where the benchmark registers
+// it (with_min, or ->ComputeStatistics("min", minimum)); each ratio is taken between the fastest
+// repetitions, with the ratio of the medians beside it. A benchmark whose repetitions the reporter
+// did not see one by one (--benchmark_display_aggregates_only=true) and that has no "min"
+// statistic has no fastest repetition: its median then stands in for it, and its ratios say so.
 #include <benchmark/benchmark.h>
 
 #include <map>
@@ -42,6 +46,10 @@ private:
 // benchmark::Initialize with motus's defaults for what the command line does not set: 5
 // repetitions, interleaved in a random order, only the aggregates (and each ratio) printed.
 void initialize(int* argc, char** argv);
+
+// The minimum of a benchmark's repetitions, for ->ComputeStatistics("min", minimum) (the fastest
+// repetition, which the ratios use).
+double minimum(const std::vector<double>& v);
 
 // Adds the minimum over the repetitions to a benchmark's statistics (of its times and counters).
 benchmark::internal::Benchmark* with_min(benchmark::internal::Benchmark* b);
