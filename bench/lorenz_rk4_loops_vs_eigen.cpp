@@ -2,11 +2,12 @@
 // step with them written as Eigen expressions (y_stage = y + 0.5 * h * k1, …), on the concrete
 // Lorenz, in both kinds of storage the engine uses: stages of a size known at compile time (a
 // fresh set on the stack each step, as for the attractors and one body) and of a size known at
-// run time (Vectors sized once, as for any other system). The two forms are otherwise the same
-// code, the same arithmetic in the same order, and give the same numbers. Alone in its
-// translation unit, like lorenz_rk4_vs_hand.cpp, so that the four are inlined alike.
+// run time (Vectors sized once, as for any other system). The loops are the engine's own Rk4;
+// the expressions do the same arithmetic in the same order and give the same numbers. Alone in
+// its translation unit, like lorenz_rk4_vs_hand.cpp, so that the four are inlined alike.
 #include <benchmark/benchmark.h>
 
+#include "motus/integrate/rk4.hpp"
 #include "motus/systems/attractors.hpp"
 #include "ratio_reporter.hpp"
 
@@ -21,20 +22,13 @@ struct Stages {
   Eigen::Matrix<double, N, 1> k1, k2, k3, k4, y_stage;
 };
 
-// rk4.hpp's step, word for word.
-template <int N>
-void step_loops(Lorenz& f, double t, double h, VectorRef y, Stages<N>& s) {
-  auto& [k1, k2, k3, k4, y_stage] = s;
-  const Eigen::Index n = k1.size();
-  f.derivative(t, y, k1);
-  for (Eigen::Index i = 0; i < n; ++i) y_stage[i] = y[i] + 0.5 * h * k1[i];
-  f.derivative(t + 0.5 * h, y_stage, k2);
-  for (Eigen::Index i = 0; i < n; ++i) y_stage[i] = y[i] + 0.5 * h * k2[i];
-  f.derivative(t + 0.5 * h, y_stage, k3);
-  for (Eigen::Index i = 0; i < n; ++i) y_stage[i] = y[i] + h * k3[i];
-  f.derivative(t + h, y_stage, k4);
-  for (Eigen::Index i = 0; i < n; ++i) y[i] += h / 6 * (k1[i] + 2 * k2[i] + 2 * k3[i] + k4[i]);
-}
+// Lorenz without its size known at compile time (no static_size), still called directly (its
+// derivative is final): the engine's Rk4 then keeps its stages in Vectors sized once.
+struct LorenzOfRunTimeSize {
+  Lorenz lorenz;
+  int size() const { return lorenz.size(); }
+  void derivative(double t, ConstVectorRef y, VectorRef dydt) { lorenz.derivative(t, y, dydt); }
+};
 
 // The same with each loop an Eigen expression.
 template <int N>
@@ -53,12 +47,16 @@ void step_eigen(Lorenz& f, double t, double h, VectorRef y, Stages<N>& s) {
 template <bool kEigen>
 void LorenzRk4FixedSize(benchmark::State& state) {
   Lorenz f;
+  Rk4 engine;
   Vector y = Vector::Ones(3);
   double t = 0;
   for (auto _ : state) {
-    Stages<3> s;  // as Rk4::step makes them for a system of static_size 3
-    if constexpr (kEigen) step_eigen(f, t, kLorenzStep, y, s);
-    else step_loops(f, t, kLorenzStep, y, s);
+    if constexpr (kEigen) {
+      Stages<3> s;  // as Rk4::step makes them for a system of static_size 3
+      step_eigen(f, t, kLorenzStep, y, s);
+    } else {
+      engine.step(f, t, kLorenzStep, y);
+    }
     t += kLorenzStep;
     benchmark::DoNotOptimize(y.data());
   }
@@ -68,14 +66,16 @@ BENCHMARK(LorenzRk4FixedSize<true>)->Name("Lorenz/rk4-stages-fixed-size/eigen")-
 
 template <bool kEigen>
 void LorenzRk4DynamicSize(benchmark::State& state) {
-  Lorenz f;
-  Vector y = Vector::Ones(3);
+  LorenzOfRunTimeSize f;
+  Rk4 engine;
+  engine.resize(3);
   Stages<Eigen::Dynamic> s;  // as Rk4::resize sizes them once
   for (auto* v : {&s.k1, &s.k2, &s.k3, &s.k4, &s.y_stage}) v->resize(3);
+  Vector y = Vector::Ones(3);
   double t = 0;
   for (auto _ : state) {
-    if constexpr (kEigen) step_eigen(f, t, kLorenzStep, y, s);
-    else step_loops(f, t, kLorenzStep, y, s);
+    if constexpr (kEigen) step_eigen(f.lorenz, t, kLorenzStep, y, s);
+    else engine.step(f, t, kLorenzStep, y);
     t += kLorenzStep;
     benchmark::DoNotOptimize(y.data());
   }

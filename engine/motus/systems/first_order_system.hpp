@@ -28,8 +28,9 @@ public:
 };
 
 // What an integrator of the Runge–Kutta family needs from a system. Integrators
-// are templates on it so that a concrete, final system (Lorenz in a benchmark)
-// is called directly, while the command line goes through FirstOrderSystem.
+// are templates on it so that a concrete, final system is called directly: Simulation
+// does so for the built-in attractors and point masses (concrete_system.hpp), while World2
+// and a scene's own equations go through FirstOrderSystem, a virtual call per evaluation.
 template <class S>
 concept FirstOrder = requires(S& s, double t, const Vector& y, Vector& dydt) {
   { s.size() } -> std::convertible_to<int>;
