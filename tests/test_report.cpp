@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli_harness.hpp"
+#include "motus/render/image.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -160,10 +161,48 @@ TEST(Report, EveryEngineKeepsItsColourAndOneThatCouldNotRunIsInTheLegend) {
   for (const auto& [title, colour] : std::vector<std::pair<std::string, std::string>>{
            {"title 'motus'", "#4285d6"}, {"title 'box2d: not supported (1-D scenes)'", "#e67832"}, {"title 'bullet'", "#46aa64"}}) {
     EXPECT_GT(count(title), 0) << title << " in:\n" << gp;
-    EXPECT_EQ(count("lc rgb '" + colour + "' " + title), count(title)) << title << " in:\n" << gp;
+    // (its dash between the two: "lc rgb '#4285d6' dt solid title 'motus'")
+    long with_colour = 0;
+    for (const char* dash : {"dt solid ", "dt (40,20) ", "dt (12,48) "})
+      with_colour += count("lc rgb '" + colour + "' " + dash + title);
+    EXPECT_EQ(with_colour, count(title)) << title << " in:\n" << gp;
   }
 }
 
+
+// Engines that agree draw the same curve: free_fall's energy error is the same in all three, and
+// drawn at one width only the last engine's line (Bullet's green) could be seen. Each engine's
+// colour must show in the plot itself, not only in the legend below it.
+TEST(Report, EnginesThatAgreeAreAllSeenInThePicture) {
+  TempDir dir;
+  const auto r = compare(dir, "free_fall", {"--repeats", "1"});
+  // That they agree to less than a pixel, from the run's own figures: the axis spans 4 decades in
+  // about 340 px, 2.7 % a pixel; their largest energy errors are within 1 % of each other.
+  const double motus_error = engine(r, "motus")["max_energy_error"].get<double>();
+  for (const char* peer : {"box2d", "bullet"})
+    ASSERT_NEAR(engine(r, peer)["max_energy_error"].get<double>(), motus_error, 0.01 * motus_error) << peer;
+  const motus::render::Image png = motus::render::read_png((r.folder / "energy.png").string());
+  // The pixels of each engine's colour above the legend (the bottom 60 rows: the x axis's label and
+  // the legend, whose sample lines are in every colour whatever the plot shows), within 24 of it in
+  // each channel (a line's edges are blended with what is under them; the three colours are over
+  // 70 apart in some channel, so no pixel counts for two).
+  auto pixels_of = [&](int red, int green, int blue) {
+    long n = 0;
+    for (int y = 0; y < png.height - 60; ++y)
+      for (int x = 0; x < png.width; ++x) {
+        const std::uint8_t* p = &png.rgba[4 * (static_cast<size_t>(y) * static_cast<size_t>(png.width) + static_cast<size_t>(x))];
+        n += std::abs(p[0] - red) <= 24 && std::abs(p[1] - green) <= 24 && std::abs(p[2] - blue) <= 24;
+      }
+    return n;
+  };
+  // The palette's first three (plot/motus/plot/figure.cpp): #4285d6, #e67832, #46aa64. The curve is
+  // about 900 px long; the last line drawn (Bullet's) shows a fifth of it (12 units of every 60),
+  // and each line drawn before it shows where the lines over it leave gaps: over 100 px each.
+  const long motus = pixels_of(0x42, 0x85, 0xd6), box2d = pixels_of(0xe6, 0x78, 0x32), bullet = pixels_of(0x46, 0xaa, 0x64);
+  EXPECT_GT(motus, 100) << "motus (box2d " << box2d << ", bullet " << bullet << ")";
+  EXPECT_GT(box2d, 100) << "box2d (motus " << motus << ", bullet " << bullet << ")";
+  EXPECT_GT(bullet, 100) << "bullet (motus " << motus << ", box2d " << box2d << ")";
+}
 
 // Found by an audit of what the report's pictures show.
 // A run that blew up was drawn as "exactly 0 throughout" (its NaN left out like a log axis's 0), the

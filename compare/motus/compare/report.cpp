@@ -53,11 +53,24 @@ int colour_of(const std::vector<EngineRun>& runs, const EngineRun& r) {
   return 3 + others;
 }
 
+// An engine's line: its colour, and a dash by its place among the runs: the first (motus) solid,
+// then long dashes, short ones, and pairs of short ones, all repeating every 60 units. Engines
+// that agree draw the same curve (free_fall's energy error is the same in all three): all solid,
+// the last one drawn hid the others; now each shows through the gaps of those drawn over it.
+plot::Series engine_series(const std::vector<EngineRun>& runs, const EngineRun& r) {
+  static const char* const kDashes[] = {"(40,20)", "(12,48)", "(6,27,6,21)"};
+  plot::Series s{r.engine, {}, {}};
+  s.colour = colour_of(runs, r);
+  const long place = &r - runs.data();
+  s.dash = place == 0 ? "solid" : kDashes[(place - 1) % 3];
+  s.line_width = 2.0;
+  return s;
+}
+
 // An engine that could not run the scene is in the legend all the same, saying why (its column
 // of the table says so too; a figure looked at alone must not drop it).
 plot::Series not_run(const std::vector<EngineRun>& runs, const EngineRun& r) {
-  plot::Series s{r.engine, {}, {}};
-  s.colour = colour_of(runs, r);
+  plot::Series s = engine_series(runs, r);
   s.none_because = "not supported";
   if (!r.unsupported.empty()) {
     const std::string& why = r.unsupported.front();
@@ -82,8 +95,7 @@ std::vector<plot::Figure> figures(const ReportContext& c, const std::vector<Engi
   for (const auto& r : runs) {
     if (!r.supported) energy.series.push_back(not_run(runs, r));
     if (!r.supported || r.rows.empty()) continue;
-    plot::Series s{r.engine, {}, {}};
-    s.colour = colour_of(runs, r);
+    plot::Series s = engine_series(runs, r);
     const double e0 = r.rows.front().total, divisor = energy_divisor(runs, r);
     // (From the first sample after the start: at t = 0 the change is 0 by definition, not an
     // exact 0 a log axis would have to leave out.)
@@ -152,8 +164,7 @@ std::vector<plot::Figure> figures(const ReportContext& c, const std::vector<Engi
     for (const auto& r : runs) {
       if (!r.supported) f.series.push_back(not_run(runs, r));
       if (!r.supported || r.rows.empty()) continue;
-      plot::Series s{r.engine, {}, {}};
-      s.colour = colour_of(runs, r);
+      plot::Series s = engine_series(runs, r);
       const auto& first = angular ? r.rows.front().angular_momentum : r.rows.front().momentum;
       for (const auto& row : r.rows) {
         if (&row == &r.rows.front()) continue;  // (0 by definition at the start, as the energy's)

@@ -39,8 +39,9 @@ const char* kColours[] = {"#4285d6", "#e67832", "#46aa64", "#cd465a", "#9164c8",
 // Line k's colour; lines 17 to 32 take the colours again, dotted (gnuplot's dash type 3) or,
 // when the series is dashed on purpose (a peer beside motus's own), dash-dotted (4). So no
 // two of a figure's first 32 lines look the same (no figure motus draws has more).
-std::string line_style(size_t k, bool dashed) {
+std::string line_style(size_t k, bool dashed, const std::string& dash) {
   const std::string colour = std::string(" lc rgb '") + kColours[k % std::size(kColours)] + "'";
+  if (!dash.empty()) return colour + " dt " + dash;
   if ((k / std::size(kColours)) % 2 == 1) return colour + (dashed ? " dt 4" : " dt 3");
   return colour + (dashed ? " dt 2" : "");
 }
@@ -171,9 +172,10 @@ std::string draw(const std::vector<Figure>& figures, const std::string& folder) 
     std::string plot_line;
     for (size_t k = 0; k < f.series.size(); ++k) {
       const auto& s = f.series[k];
-      const std::string colour = line_style(s.colour >= 0 ? static_cast<size_t>(s.colour) : k, s.dashed);
+      const std::string colour = line_style(s.colour >= 0 ? static_cast<size_t>(s.colour) : k, s.dashed, s.dash);
       if (blocks[k] < 0) {
-        plot_line += (k ? ", " : "plot ") + std::string("1/0 with lines lw 1.8") + colour + " title " +
+        plot_line += k ? ", " : "plot ";
+        plot_line += std::string("1/0 with lines lw ") + number(s.line_width) + colour + " title " +
                      quoted(s.name + legend_tail(f, s));
         continue;
       }
@@ -181,7 +183,7 @@ std::string draw(const std::vector<Figure>& figures, const std::string& folder) 
       plot_line += (k ? ", " : "plot ") + quoted("figures.dat") + " index " + std::to_string(blocks[k]) + " using 1:2 with " +
                    (s.style == "points"        ? "points pt " + pt + " ps 0.8"
                     : s.style == "linespoints" ? "linespoints pt " + pt + " ps 0.6 lw 1.5"
-                                               : std::string("lines lw 1.8")) +
+                                               : "lines lw " + number(s.line_width)) +
                    colour + " title " + quoted(s.name + legend_tail(f, s));
     }
     // The legend below the plot, in as many columns as its longest entry lets fit across the

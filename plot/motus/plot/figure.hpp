@@ -19,6 +19,12 @@ struct Series {
   std::vector<double> x, y;     // points that are not finite (or ≤ 0 on a log axis) leave a gap
   std::string style = "lines";  // "lines", "linespoints" or "points"
   bool dashed = false;          // a dashed line (a peer beside motus's own, say)
+  // gnuplot's dash pattern ("(40,20)": 40 units drawn, 20 left out), or "" for what `dashed` and
+  // the colour's place give (line_style in figure.cpp). Lines that may lie on each other (engines
+  // that agree) each get their own, so that those drawn first show through the gaps of those drawn
+  // over them.
+  std::string dash = "";
+  double line_width = 1.8;
   int point_type = 7;           // gnuplot's point type for "linespoints" and "points" (7: a disc)
   // Its colour: the palette's entry (figure.cpp), so that one engine keeps its colour in every
   // figure whoever else ran; −1: by its place among the series.
