@@ -231,7 +231,7 @@ int bench_precision_command(const BenchPrecisionOptions& o) {
   context.targets = targets;
   context.versions = versions;
   const std::string warning = precision::write_precision_report(partial.path(), context, curves);
-  if (!warning.empty()) fmt::print(stderr, "motus: {}\n", warning);
+  if (!warning.empty()) tell("motus: {}\n", warning);
   stop_if_interrupted();
   partial.complete();
   fmt::print("report: {}/index.html\n", folder);

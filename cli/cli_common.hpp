@@ -2,12 +2,14 @@
 // What the `motus` subcommands share: finding scenes, the exit codes, and the one-line
 // error for input that cannot be used.
 #include <algorithm>
+#include <cstdio>
 #include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include <CLI/CLI.hpp>
+#include <fmt/format.h>
 
 #include "motus/method.hpp"
 #include "motus/plugin/plugin_set.hpp"
@@ -18,6 +20,19 @@ namespace motus::cli {
 // Exit codes: 0 done; 1 the run itself failed; 2 bad input (scene, option or file).
 constexpr int kExitFailure = 1;
 constexpr int kExitBadInput = 2;
+
+// A message for the user on standard error, as fmt::print(stderr, …) prints it, but never
+// throwing. With standard error closed or full (2>&-, 2>/dev/full) fmt::print throws, and the
+// handler that then prints the error threw again: motus aborted (exit 134) instead of exiting 1
+// or 2. What cannot be written is lost; the exit status still says what happened.
+template <typename... Args>
+void tell(fmt::format_string<Args...> format, Args&&... args) noexcept {
+  try {
+    const std::string text = fmt::format(format, std::forward<Args>(args)...);
+    if (std::fwrite(text.data(), 1, text.size(), stderr) != text.size()) std::clearerr(stderr);
+  } catch (...) {
+  }
+}
 
 // Bad input that is not inside a scene file (an option, an output path): exit 2.
 class InputError : public std::runtime_error {

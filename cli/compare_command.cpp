@@ -299,8 +299,8 @@ int compare_command(const CompareOptions& o) {
     fmt::print("\nreport: {} (what each column means, the plots{})\n", summary["report"].get<std::string>(),
                summary.contains("exact") ? ", the exact answer" : "");
   }
-  if (!warning.empty()) fmt::print(stderr, "motus: {}\n", warning);
-  if (!picture_warning.empty()) fmt::print(stderr, "motus: {}\n", picture_warning);
+  if (!warning.empty()) tell("motus: {}\n", warning);
+  if (!picture_warning.empty()) tell("motus: {}\n", picture_warning);
   return 0;
 }
 

@@ -152,7 +152,7 @@ int grade_one(const GradeCommandOptions& o, const std::string& folder) {
   if (!o.results.empty()) write_whole_file(o.results, json, o.overwrite);
   if (plugin_out && result.compiled) plugin_out->complete(o.overwrite);
   if (!o.plugin_out.empty() && !result.compiled)
-    fmt::print(stderr, "motus: note: --plugin-out: {} was not written: the submission does not compile\n", o.plugin_out);
+    tell("motus: note: --plugin-out: {} was not written: the submission does not compile\n", o.plugin_out);
   if (o.format.value_or("text") == "gradescope")
     fmt::print("{}", json);
   else
@@ -245,12 +245,12 @@ int grade_batch(const GradeCommandOptions& o, const std::string& folder) {
   write_whole_file((fs::path(written) / "scores.csv").string(), csv, false);
   folder_of_results.complete();
   fmt::print("{}", csv);
-  fmt::print(stderr, "motus: graded {} submissions of {} in {:.1f} s with {} job{}; results in {}/\n", submissions.size(),
+  tell("motus: graded {} submissions of {} in {:.1f} s with {} job{}; results in {}/\n", submissions.size(),
              assignment.name, wall, jobs, jobs == 1 ? "" : "s", out);
   for (const auto& f : failures) {
     std::string line = grade::terminal_safe(f);  // (a student's folder name and an error: one line)
     std::replace(line.begin(), line.end(), '\n', ' ');
-    fmt::print(stderr, "motus: the grader failed on {}\n", line);
+    tell("motus: the grader failed on {}\n", line);
   }
   return failures.empty() ? 0 : kExitFailure;
 }
@@ -309,7 +309,7 @@ int grade_command(const GradeCommandOptions& o) {
     const int status = write_gradescope_package(folder, assignment.name, o.hidden, o.out, o.no_sandbox, o.time_limit,
                                                 o.memory_limit, o.overwrite);
     if (!o.hidden && assignment.hidden_not_given > 0)
-      fmt::print(stderr,
+      tell(
                  "motus: note: no --hidden: the autograder grades the public tests only; the rubric's {} hidden test{} "
                  "{} left out, and scores are out of {} points\n",
                  assignment.hidden_not_given, assignment.hidden_not_given == 1 ? "" : "s",

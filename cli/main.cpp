@@ -61,7 +61,7 @@ int main(int argc, char** argv) {
   auto printed = [](int status) {
     std::cout.flush();
     if (!std::cout || std::fflush(stdout) != 0 || std::ferror(stdout)) {
-      fmt::print(stderr, "motus: the run failed: standard output could not be written ({})\n", std::strerror(errno));
+      tell("motus: the run failed: standard output could not be written ({})\n", std::strerror(errno));
       return kExitFailure;
     }
     return status;
@@ -75,7 +75,7 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForVersion& e) {
     return printed(app.exit(e));
   } catch (const CLI::ParseError& e) {
-    fmt::print(stderr, "motus: error: {} (run `motus --help` or `motus SUBCOMMAND --help`)\n", one_line(e.what()));
+    tell("motus: error: {} (run `motus --help` or `motus SUBCOMMAND --help`)\n", one_line(e.what()));
     return kExitBadInput;
   }
 
@@ -92,16 +92,16 @@ int main(int argc, char** argv) {
     else if (*stress) status = stress_command(stress_options);
     // Whatever went to standard output must have got there (a full disk is a failure, not 0).
     if (std::fflush(stdout) != 0 || std::ferror(stdout)) {
-      fmt::print(stderr, "motus: the run failed: standard output could not be written ({})\n", std::strerror(errno));
+      tell("motus: the run failed: standard output could not be written ({})\n", std::strerror(errno));
       return kExitFailure;
     }
     stop_if_interrupted();
     return status;
   } catch (const Interrupted&) {
-    fmt::print(stderr, "motus: interrupted; nothing half-written was left behind\n");
+    tell("motus: interrupted; nothing half-written was left behind\n");
     return kExitInterrupted;
   } catch (const motus::SceneFileError& e) {
-    fmt::print(stderr, "motus: error: {}\n", e.what());
+    tell("motus: error: {}\n", e.what());
     return kExitBadInput;
   } catch (const motus::SceneError& e) {
     // Raised while building the run (e.g. a symplectic integrator on a first-order system).
@@ -109,30 +109,30 @@ int main(int argc, char** argv) {
                                                  : compare->parsed() ? compare_options.scene
                                                  : stress->parsed()  ? stress_options.scene
                                                                      : precision_options.scene);
-    fmt::print(stderr, "motus: error: {}\n", one_line(scene + ": " + (e.field().empty() ? "" : e.field() + ": ") + e.what()));
+    tell("motus: error: {}\n", one_line(scene + ": " + (e.field().empty() ? "" : e.field() + ": ") + e.what()));
     return kExitBadInput;
   } catch (const InputError& e) {
-    fmt::print(stderr, "motus: error: {}\n", one_line(e.what()));
+    tell("motus: error: {}\n", one_line(e.what()));
     return kExitBadInput;
   } catch (const motus::ExternalError& e) {
     // A plug-in's function failed (it threw): the plug-in is bad input, not motus.
     std::string files;
     for (const auto& p : plugins().plugins()) files += (files.empty() ? "" : ", ") + p.file;
-    fmt::print(stderr, "motus: error: {}\n", one_line((files.empty() ? "plug-in" : files) + ": " + e.what()));
+    tell("motus: error: {}\n", one_line((files.empty() ? "plug-in" : files) + ": " + e.what()));
     return kExitBadInput;
   } catch (const std::exception& e) {
     if (interrupted()) {  // a program motus waited for died of the same Ctrl-C
-      fmt::print(stderr, "motus: interrupted; nothing half-written was left behind\n");
+      tell("motus: interrupted; nothing half-written was left behind\n");
       return kExitInterrupted;
     }
     const std::string what = e.what();
     if (std::ferror(stdout) && what.rfind("standard output", 0) != 0) {  // fmt's "cannot write to file" is standard output's: named as such
       const auto* system = dynamic_cast<const std::system_error*>(&e);
-      fmt::print(stderr, "motus: the run failed: standard output could not be written ({})\n",
+      tell("motus: the run failed: standard output could not be written ({})\n",
                  system ? system->code().message() : one_line(e.what()));
       return kExitFailure;
     }
-    fmt::print(stderr, "motus: the run failed: {}\n", one_line(e.what()));
+    tell("motus: the run failed: {}\n", one_line(e.what()));
     return kExitFailure;
   }
 }

@@ -249,7 +249,7 @@ int render_command(const RenderOptions& o) {
   // An unstable run is drawn as it went (the frames show it), but it is not a run that went well.
   for (size_t k = 0; k < recording.states.size(); ++k)
     if (!std::all_of(recording.states[k].begin(), recording.states[k].end(), [](double y) { return std::isfinite(y); })) {
-      fmt::print(stderr, "motus: the run failed: the state was no longer finite by t = {:g} ({})\n", recording.times[k],
+      tell("motus: the run failed: the state was no longer finite by t = {:g} ({})\n", recording.times[k],
                  non_finite_suspect(method, "a smaller step (--set dt=...)"));
       return 1;
     }

@@ -130,7 +130,7 @@ private:
 
 // A state that overflowed is a result to show, but not a run that went well.
 int report_non_finite(double by, const Method& method) {
-  fmt::print(stderr, "motus: the run failed: the state was no longer finite by t = {:g} ({})\n", by, non_finite_suspect(method));
+  tell("motus: the run failed: the state was no longer finite by t = {:g} ({})\n", by, non_finite_suspect(method));
   return kExitFailure;
 }
 
@@ -249,7 +249,7 @@ int run_command(const RunOptions& o) {
       const double rows = 1 + (scene.output_interval > 0 ? std::min(steps, duration / scene.output_interval) : steps);
       const double gigabytes = rows * static_cast<double>(sim.state().size() + 4) * 20 / 1e9;
       if (gigabytes > 2)
-        fmt::print(stderr,
+        tell(
                    "motus: note: the trajectory will be about {:.0f} GB ({:.3g} rows); --set output_interval=S writes "
                    "a row every S s only\n",
                    gigabytes, rows);

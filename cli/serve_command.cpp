@@ -196,7 +196,7 @@ int serve_command(const ServeOptions& o) {
   ::dup2(STDERR_FILENO, STDOUT_FILENO);
   std::FILE* out = ::fdopen(protocol, "w");
   auto failed_write = [] {
-    fmt::print(stderr, "motus: the run failed: standard output could not be written ({})\n", std::strerror(errno));
+    tell("motus: the run failed: standard output could not be written ({})\n", std::strerror(errno));
     return kExitFailure;
   };
   if (!out) return failed_write();
@@ -206,7 +206,7 @@ int serve_command(const ServeOptions& o) {
   try {
     grade::install_server_filter();
   } catch (const std::exception& e) {
-    fmt::print(stderr, "motus serve: {} (this machine's, not the submission's)\n", e.what());
+    tell("motus serve: {} (this machine's, not the submission's)\n", e.what());
     return kExitFailure;
   }
   load_plugins(o.plugins);

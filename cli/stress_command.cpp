@@ -270,7 +270,7 @@ int stress_command(const StressOptions& o) {
   partial.complete();
   print_tables(report);
   fmt::print("\npage: {}/index.html\n", folder);
-  if (!warning.empty()) fmt::print(stderr, "motus: {}\n", warning);
+  if (!warning.empty()) tell("motus: {}\n", warning);
   return 0;
 }
 

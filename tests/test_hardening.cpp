@@ -387,6 +387,26 @@ TEST(Hardening, AFullDiskIsAFailureNamingTheFile) {
   EXPECT_NE(read_file(dir / "err.txt").find("standard output"), std::string::npos);
 }
 
+// 15b. Standard error that cannot be written (2>/dev/full, as a full disk or a closed pipe would): the
+// handler that prints an error printed it with fmt::print, which throws, and motus aborted (exit 134)
+// instead of exiting 2 for bad input or 1 for a failure. Found by an audit of failed writes.
+TEST(Hardening, AStandardErrorThatCannotBeWrittenKeepsTheExitStatus) {
+  TempDir dir;
+  MotusFiles files;
+  files.err = "/dev/full";
+  auto status = [&](const std::vector<std::string>& args) {
+    const int raw = run_motus_with(args, files);
+    return WIFEXITED(raw) ? WEXITSTATUS(raw) : 128 + WTERMSIG(raw);
+  };
+  EXPECT_EQ(status({"run", (dir / "no-such-scene.json").string()}), 2);  // bad input, said where it cannot be read
+  // With --trajectory - the summary is standard error's: it is lost, and the run says so by its status.
+  EXPECT_EQ(status({"run", "spring", "--trajectory", "-"}), 1);
+  // A run that writes nothing there is done: its summary is on standard output, whole.
+  files.out = (dir / "summary.txt").string();
+  EXPECT_EQ(status({"run", "spring"}), 0);
+  EXPECT_NE(read_file(dir / "summary.txt").find("total energy"), std::string::npos);
+}
+
 // Starts `motus ARGS...` and returns at once (its pid, or -1): standard output to /dev/null,
 // standard error to dir/err.txt. For the tests that interrupt it while it runs.
 pid_t start_motus(const TempDir& dir, const std::vector<std::string>& args) {
