@@ -317,7 +317,7 @@ void write_whole_file(const std::string& path, const std::string& text, bool ove
   if (!written_in_place(path)) partial.emplace(path);
   {
     std::ofstream out(partial ? partial->path() : path, std::ios::binary | std::ios::trunc);
-    if (!out) throw std::runtime_error(path + ": cannot be written");
+    if (!out) throw std::runtime_error(path + ": cannot be written (" + std::strerror(errno) + ")");
     errno = 0;
     out << text;
     out.flush();
@@ -347,7 +347,7 @@ void check_can_write(const std::string& path, bool overwrite) {
   if (fs::is_directory(status)) throw InputError(path + ": is a folder, not a file");
   const fs::path parent = fs::path(path).parent_path();
   if (!parent.empty() && !fs::is_directory(parent, error))
-    throw InputError(path + ": folder " + parent.string() + " does not exist");
+    throw InputError(path + ": folder " + parent.string() + (fs::exists(parent, error) ? " is a file" : " does not exist"));
   // A file beside it, made and removed at once: a folder that takes no new file (/proc, a
   // read-only disk) or a name too long is bad input now, not a failure after the work. (A FIFO
   // or a device is written as it is, and needs no new file.)

@@ -235,6 +235,12 @@ int compare_command(const CompareOptions& o) {
     } catch (const InputError& e) {  // no drawing module: the report is still worth having
       error = e.what();
     }
+    // A picture that could not be written (a full disk) is a failed run: the report would link a
+    // truncated PNG. Named where the report was to be (the partial folder goes with the failure).
+    if (!error.empty() && pictures.write_failed) {
+      if (error.rfind(work, 0) == 0) error = folder + error.substr(work.size());
+      throw std::runtime_error(error);
+    }
     if (error.empty()) {
       context.first_and_last = pictures.first_and_last;
       context.video = pictures.video;

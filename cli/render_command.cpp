@@ -11,6 +11,10 @@
 #include <fstream>
 #include <regex>
 
+#include <stdlib.h>  // mkdtemp
+#include <cerrno>
+#include <cstring>
+
 #include "cli_common.hpp"
 #include "draw_module.hpp"
 #include "interrupt.hpp"
@@ -34,78 +38,125 @@ std::pair<int, int> parse_size(const std::string& text) {
   return {w, h};
 }
 
-// What a render wrote into its folder, one file name a line: all that --overwrite removes
+// What a render wrote into its folder, one file name a line: all that --overwrite replaces
 // (never a file of the user's that happens to be there).
 constexpr const char* kManifest = ".motus-render";
 
-// The output folder: created, or (with --overwrite) cleared of what an earlier render wrote.
-// A file this render will write (its frames, its video) that is there already as a link or
-// anything but a regular file is refused first: writing it would write where the link leads,
-// outside the folder.
-void prepare_folder(const std::string& out, bool overwrite, long frames, const std::string& video_name) {
-  if (fs::exists(out)) {
-    if (!fs::is_directory(out)) throw InputError(out + ": exists and is not a folder; choose another --out");
-    if (!overwrite) throw InputError(out + ": already exists; choose another --out or pass --overwrite");
-    auto refuse_unless_regular = [&](const std::string& name) {
-      std::error_code ignored;
-      const auto status = fs::symlink_status(fs::path(out) / name, ignored);
-      if (fs::exists(status) && !fs::is_regular_file(status))
-        throw InputError((fs::path(out) / name).string() + ": is " + (fs::is_symlink(status) ? "a link" : "not a regular file") +
-                         "; a render writes no file through it (remove it or choose another --out)");
-    };
-    for (long k = 0; k < frames; ++k) refuse_unless_regular(fmt::format("frame_{:05d}.png", k));
-    if (!video_name.empty()) refuse_unless_regular(video_name);
-    std::ifstream manifest(fs::path(out) / kManifest);
-    std::string name;
-    while (std::getline(manifest, name)) {
-      if (name.empty() || name.find('/') != std::string::npos || name[0] == '.') continue;  // only our own plain names
-      const fs::path file = fs::path(out) / name;
-      std::error_code ignored;
-      if (fs::is_regular_file(fs::symlink_status(file, ignored))) fs::remove(file, ignored);
-    }
+// The names an earlier render listed in FOLDER/.motus-render (only plain names: no folder, no
+// hidden file).
+std::vector<std::string> listed_names(const fs::path& folder) {
+  std::vector<std::string> names;
+  std::ifstream manifest(folder / kManifest);
+  for (std::string name; std::getline(manifest, name);)
+    if (!name.empty() && name.find('/') == std::string::npos && name[0] != '.') names.push_back(name);
+  return names;
+}
+
+// The files a render writes into its folder: its frames, then its video.
+std::vector<std::string> render_names(long frames, const std::string& video_name) {
+  std::vector<std::string> names;
+  for (long k = 0; k < frames; ++k) names.push_back(fmt::format("frame_{:05d}.png", k));
+  if (!video_name.empty()) names.push_back(video_name);
+  return names;
+}
+
+// The output folder, checked before anything is drawn: it must not exist, or (--overwrite) every
+// file this render will write must be one an earlier render wrote there — a frame_00003.png or a
+// video of the user's that happens to have the name is refused (it was replaced, then removed when
+// the render failed), as is a link or anything but a regular file (writing it would write where
+// the link leads, outside the folder). Nothing is removed here: see RenderInProgress.
+void check_folder(const std::string& out, bool overwrite, const std::vector<std::string>& names) {
+  if (!fs::exists(out)) return;
+  if (!fs::is_directory(out)) throw InputError(out + ": exists and is not a folder; choose another --out");
+  if (!overwrite) throw InputError(out + ": already exists; choose another --out or pass --overwrite");
+  const std::vector<std::string> ours = listed_names(out);
+  for (const auto& name : names) {
     std::error_code ignored;
-    fs::remove(fs::path(out) / kManifest, ignored);
-    return;
+    const fs::path file = fs::path(out) / name;
+    const auto status = fs::symlink_status(file, ignored);
+    if (!fs::exists(status)) continue;
+    if (!fs::is_regular_file(status))
+      throw InputError(file.string() + ": is " + (fs::is_symlink(status) ? "a link" : "not a regular file") +
+                       "; a render writes no file through it (remove it or choose another --out)");
+    if (std::find(ours.begin(), ours.end(), name) == ours.end())
+      throw InputError(file.string() + ": is not a file an earlier render wrote here (" + kManifest +
+                       " does not list it); --overwrite replaces only those (remove it or choose another --out)");
   }
-  std::error_code error;
-  fs::create_directories(out, error);
-  if (error) throw InputError(out + ": cannot be created (" + error.message() + ")");
 }
 
-void write_manifest(const std::string& out, long frames, const std::string& video) {
-  std::ofstream manifest(fs::path(out) / kManifest);
-  for (long k = 0; k < frames; ++k) manifest << fmt::format("frame_{:05d}.png\n", k);
-  if (!video.empty()) manifest << video << '\n';
-  manifest.flush();
-  if (!manifest) throw std::runtime_error((fs::path(out) / kManifest).string() + ": cannot be written");
-}
-
-// A render that does not get through (Ctrl-C, a failed drawing or video) takes back what it
-// wrote: the files its manifest lists, the manifest, and the folder if it made it — no folder
-// of some frames that looks like a render.
-class UnfinishedRender {
+// A render is drawn into a folder of its own inside --out (.motus-render-partial-XXXXXX) and moved
+// into place only when it is whole: a render that fails or is stopped (a full disk, a video ffmpeg
+// cannot make, Ctrl-C) leaves --out as it found it — an earlier render in it included — and removes
+// --out itself if it made it.
+class RenderInProgress {
 public:
-  UnfinishedRender(std::string out, bool made_folder) : out_(std::move(out)), made_folder_(made_folder) {}
-  UnfinishedRender(const UnfinishedRender&) = delete;
-  UnfinishedRender& operator=(const UnfinishedRender&) = delete;
-  ~UnfinishedRender() {
-    if (done_) return;
-    std::error_code ignored;
-    std::ifstream manifest(fs::path(out_) / kManifest);
-    for (std::string name; std::getline(manifest, name);) {
-      if (name.empty() || name.find('/') != std::string::npos || name[0] == '.') continue;
-      const fs::path file = fs::path(out_) / name;
-      if (fs::is_regular_file(fs::symlink_status(file, ignored))) fs::remove(file, ignored);
+  RenderInProgress(std::string out, bool made_folder) : out_(std::move(out)), made_folder_(made_folder) {
+    std::error_code error;
+    fs::create_directories(out_, error);
+    if (error) throw InputError(out_ + ": cannot be created (" + error.message() + ")");
+    std::string name = (fs::path(out_) / ".motus-render-partial-XXXXXX").string();
+    if (::mkdtemp(name.data()) == nullptr) {
+      const int e = errno;
+      if (made_folder_) fs::remove(out_, error);
+      throw InputError(out_ + ": cannot be written in (" + std::strerror(e) + ")");
     }
-    fs::remove(fs::path(out_) / kManifest, ignored);
+    partial_ = name;
+  }
+  RenderInProgress(const RenderInProgress&) = delete;
+  RenderInProgress& operator=(const RenderInProgress&) = delete;
+  ~RenderInProgress() {
+    if (moved_) return;
+    std::error_code ignored;
+    fs::remove_all(partial_, ignored);              // (a folder of motus's own making)
     if (made_folder_) fs::remove(out_, ignored);  // (only if empty: nothing else is ever removed)
   }
-  void done() { done_ = true; }
+  const std::string& folder() const { return partial_; }
+
+  // Into place: NAMES over the earlier render's files of the same names (a rename replaces each at
+  // once), then the earlier render's other files removed, and the list of what is there now. The
+  // list names both renders' files until the last step, so that nothing motus wrote is ever unlisted.
+  void move_into_place(const std::vector<std::string>& names) {
+    const fs::path out = out_;
+    std::vector<std::string> earlier = listed_names(out), both = earlier;
+    for (const auto& n : names)
+      if (std::find(both.begin(), both.end(), n) == both.end()) both.push_back(n);
+    write_list(both);
+    for (const auto& n : names) {
+      std::error_code error;
+      fs::rename(fs::path(partial_) / n, out / n, error);
+      if (error) throw std::runtime_error((out / n).string() + ": could not be written (" + error.message() + ")");
+    }
+    for (const auto& n : earlier)
+      if (std::find(names.begin(), names.end(), n) == names.end()) {
+        std::error_code ignored;
+        if (fs::is_regular_file(fs::symlink_status(out / n, ignored))) fs::remove(out / n, ignored);
+      }
+    write_list(names);
+    moved_ = true;
+    std::error_code ignored;
+    fs::remove_all(partial_, ignored);
+  }
 
 private:
-  std::string out_;
+  // FOLDER/.motus-render, written whole beside the frames and moved over the old one.
+  void write_list(const std::vector<std::string>& names) const {
+    const fs::path list = fs::path(partial_) / kManifest;
+    {
+      std::ofstream file(list, std::ios::trunc);
+      for (const auto& n : names) file << n << '\n';
+      file.flush();
+      if (!file) throw std::runtime_error((fs::path(out_) / kManifest).string() + ": could not be written (" +
+                                          std::strerror(errno) + ")");
+    }
+    std::error_code error;
+    fs::rename(list, fs::path(out_) / kManifest, error);
+    if (error)
+      throw std::runtime_error((fs::path(out_) / kManifest).string() + ": could not be written (" + error.message() + ")");
+  }
+
+  std::string out_, partial_;
   bool made_folder_;
-  bool done_ = false;
+  bool moved_ = false;
 };
 
 }  // namespace
@@ -171,8 +222,9 @@ int render_command(const RenderOptions& o) {
   Simulation& sim = *built;
   const std::string video_name = o.video.empty() ? "" : safe_file_name(scene.name) + "." + o.video;  // a name is not a path
   const bool made_folder = !output_exists(o.out) && !fs::exists(o.out);  // (a path not to be looked at: bad input)
-  prepare_folder(o.out, o.overwrite, frames, video_name);
-  UnfinishedRender unfinished(o.out, made_folder);
+  const std::vector<std::string> names = render_names(frames, video_name);
+  check_folder(o.out, o.overwrite, names);
+  RenderInProgress rendering(o.out, made_folder);
 
   // Simulate: mechanical scenes keep one state per frame; first-order ones every step
   // too (an attractor's curve is drawn through all of them).
@@ -222,30 +274,30 @@ int render_command(const RenderOptions& o) {
   if (!plugin_parts.empty()) job.note += "  " + plugin_parts;
   for (const auto& set : o.sets)
     if (set.rfind("integrator=", 0) != 0) job.note += fmt::format("  {}", set);
-  job.folder = o.out;
+  job.folder = rendering.folder();
   progress.phase("drawing", 0, static_cast<double>(frames));
   job.frame_done = [&](long k) { progress.update(static_cast<double>(k)); };
-  write_manifest(o.out, frames, video_name);  // first: what is written is listed even if the run stops
   if (const std::string error = drawing.render_frames(job); !error.empty()) {
     stop_if_interrupted();  // (a Ctrl-C that stopped the drawing is exit 130, not a failure)
     throw std::runtime_error(error);  // everything the user could get wrong was refused before the run
   }
   progress.finish();
+  if (!o.video.empty()) {
+    progress.note("encoding the video (ffmpeg)");
+    const std::string error = drawing.encode_video((fs::path(rendering.folder()) / "frame_%05d.png").string(), o.fps,
+                                                   (fs::path(rendering.folder()) / video_name).string(), o.video);
+    progress.finish();
+    stop_if_interrupted();
+    if (!error.empty()) throw std::runtime_error(error);
+  }
+  stop_if_interrupted();
+  rendering.move_into_place(names);
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count();
   fmt::print("{} frames of {}x{} at {:g} per simulated {} ({:g} {} of {}) in {}/ ({:.1f} s)\n", frames, width, height,
              o.fps, time_unit_of(scene) == "years" ? "year" : "second", duration, time_unit_of(scene), scene.name, o.out,
              wall);
   if (!plugin_parts.empty()) fmt::print("passes       {}\n", plugin_parts);
-  if (!o.video.empty()) {
-    const std::string file = (fs::path(o.out) / video_name).string();
-    progress.note("encoding the video (ffmpeg)");
-    const std::string error = drawing.encode_video((fs::path(o.out) / "frame_%05d.png").string(), o.fps, file, o.video);
-    progress.finish();
-    stop_if_interrupted();
-    if (!error.empty()) throw std::runtime_error(error);
-    fmt::print("video        {}\n", file);
-  }
-  unfinished.done();
+  if (!o.video.empty()) fmt::print("video        {}\n", (fs::path(o.out) / video_name).string());
   // An unstable run is drawn as it went (the frames show it), but it is not a run that went well.
   for (size_t k = 0; k < recording.states.size(); ++k)
     if (!std::all_of(recording.states[k].begin(), recording.states[k].end(), [](double y) { return std::isfinite(y); })) {

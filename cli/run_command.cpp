@@ -5,6 +5,7 @@
 
 #include <chrono>
 #include <cerrno>
+#include <cstring>
 #include <cmath>
 #include <limits>
 #include <cstdio>
@@ -49,7 +50,7 @@ public:
       file_.open(partial_ ? partial_->path() : path, std::ios::binary | std::ios::trunc);
       out_ = &file_;
     }
-    if (!*out_) throw InputError(path + ": cannot be written");
+    if (!*out_) throw InputError(path + ": cannot be written (" + std::strerror(errno) + ")");
     *out_ << "t";
     for (const auto& n : sim.state_names()) *out_ << ',' << n;
     if (sim.is_mechanical()) *out_ << ",kinetic,potential,total";

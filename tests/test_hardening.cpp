@@ -9,6 +9,8 @@
 #include <sys/resource.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
+#include <fcntl.h>
+#include <csignal>
 #include <unistd.h>
 
 #include <cmath>
@@ -117,6 +119,17 @@ TEST(Hardening, OverwriteRemovesOnlyWhatMotusWrote) {
                         "--overwrite", "--video", "gif"});
     expect_one_line_exit_2(r, std::string(name) + ": is a link");
     EXPECT_EQ(read_file(dir / "outside.txt"), "mine") << name;
+    fs::remove(out / name);
+  }
+  // A file of the user's with the name of a frame or the video this render writes, which no earlier
+  // render listed: refused, and left as it was (it was replaced, and then deleted when that render
+  // failed). Found by an audit of failed writes.
+  for (const char* name : {"frame_00003.png", "head_on.gif"}) {
+    write_file(out / name, "mine");
+    r = run_motus(dir, {"render", "head_on", "--out", out.string(), "--size", "64x48", "--fps", "4", "--duration", "1",
+                        "--overwrite", "--video", "gif"});
+    expect_one_line_exit_2(r, std::string(name) + ": is not a file an earlier render wrote here");
+    EXPECT_EQ(read_file(out / name), "mine") << name;
     fs::remove(out / name);
   }
   // A frame count past what a long holds: refused, not wrapped round.
@@ -407,6 +420,57 @@ TEST(Hardening, AStandardErrorThatCannotBeWrittenKeepsTheExitStatus) {
   EXPECT_NE(read_file(dir / "summary.txt").find("total energy"), std::string::npos);
 }
 
+// Runs `motus ARGS...` in `dir` with files of at most `bytes` (RLIMIT_FSIZE, with SIGXFSZ ignored: a
+// write past it fails with EFBIG, as one on a full disk fails with ENOSPC), standard error to
+// dir/err.txt. Its exit status.
+int run_motus_with_file_limit(const TempDir& dir, std::vector<std::string> args, rlim_t bytes) {
+  args.insert(args.begin(), kMotus);
+  std::vector<char*> argv;
+  for (auto& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  const std::string err = (dir / "err.txt").string(), folder = dir.path().string();
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    const int to = ::open(err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644), null = ::open("/dev/null", O_RDWR);
+    if (to < 0 || null < 0 || ::dup2(to, 2) < 0 || ::dup2(null, 1) < 0 || ::dup2(null, 0) < 0 || ::chdir(folder.c_str()) != 0)
+      ::_exit(126);
+    std::signal(SIGXFSZ, SIG_IGN);
+    const rlimit limit{bytes, bytes};
+    if (::setrlimit(RLIMIT_FSIZE, &limit) != 0) ::_exit(126);
+    ::execv(argv[0], argv.data());
+    ::_exit(127);
+  }
+  int raw = 0;
+  while (::waitpid(pid, &raw, 0) < 0 && errno == EINTR) {
+  }
+  return WIFEXITED(raw) ? WEXITSTATUS(raw) : 128 + WTERMSIG(raw);
+}
+
+// A picture that cannot be written (a full disk; here a file-size limit under the 70 kB of
+// head_on's first_and_last.png) was a warning, "pictures skipped: …/.ulc.partial-…/first_and_last.png:
+// libpng: Write Error", exit 0, and the report linked the truncated PNG. Now the run fails, naming
+// the file where the report was to be and the system's reason, and leaves no folder. gnuplot cuts
+// its pictures short the same way and exits 0: a picture that does not end as a PNG does fails the
+// run too. Found by an audit of failed writes.
+TEST(Hardening, APictureThatCannotBeWrittenIsAFailureNotAHalfPicture) {
+  TempDir dir;
+  const fs::path out = dir / "report";
+  EXPECT_EQ(run_motus_with_file_limit(dir, {"compare", "head_on", "--duration", "1", "--out", out.string()}, 60 * 1024), 1);
+  const std::string err = read_file(dir / "err.txt");
+  EXPECT_EQ(count_lines(err), 1) << err;
+  EXPECT_NE(err.find(out.string() + "/first_and_last.png: could not be written (File too large)"), std::string::npos) << err;
+  EXPECT_FALSE(fs::exists(out));
+  for (const auto& e : fs::directory_iterator(dir.path())) EXPECT_EQ(e.path().filename().string().find("partial"), std::string::npos) << e.path();
+  // gnuplot's: spring's stress page has a 71.5 kB drift.png (its other pictures under 62 kB), cut
+  // short at 64 kB: the run fails, and leaves no page.
+  const fs::path page = dir / "stress";
+  EXPECT_EQ(run_motus_with_file_limit(dir, {"stress", "spring", "--out", page.string()}, 64 * 1024), 1);
+  const std::string said = read_file(dir / "err.txt");
+  EXPECT_EQ(count_lines(said), 1) << said;
+  EXPECT_NE(said.find("drift.png could not be written whole"), std::string::npos) << said;
+  EXPECT_FALSE(fs::exists(page));
+}
+
 // Starts `motus ARGS...` and returns at once (its pid, or -1): standard output to /dev/null,
 // standard error to dir/err.txt. For the tests that interrupt it while it runs.
 pid_t start_motus(const TempDir& dir, const std::vector<std::string>& args) {
@@ -421,8 +485,11 @@ pid_t start_motus(const TempDir& dir, const std::vector<std::string>& args) {
 // own beside it; "" while there is none.
 fs::path partial_of(const fs::path& file) {
   std::error_code ignored;
+  std::string prefix = ".";  // (built by +=: GCC 12 warns, wrongly, of overlapping copies in "." + name + …)
+  prefix += file.filename().string();
+  prefix += ".partial-";
   for (const auto& e : fs::directory_iterator(file.parent_path(), ignored))
-    if (e.path().filename().string().rfind("." + file.filename().string() + ".partial-", 0) == 0)
+    if (e.path().filename().string().rfind(prefix, 0) == 0)
       return e.path() / file.filename();
   return {};
 }
@@ -453,6 +520,52 @@ TEST(Hardening, AnInterruptedTrajectoryLeavesTheOldFileAndNoPartOfTheNew) {
   EXPECT_EQ(WEXITSTATUS(raw), 130) << read_file(dir / "err.txt");
   EXPECT_EQ(read_file(dir / "mine.csv"), "mine");
   EXPECT_TRUE(partial_of(dir / "mine.csv").empty()) << "left behind: " << partial_of(dir / "mine.csv");
+}
+
+// A render --overwrite that does not get through leaves the earlier render as it was: it removed
+// the earlier frames before drawing, so a full disk or a Ctrl-C lost both renders. Now it draws
+// into a folder of its own inside --out and moves the frames into place when they are all there.
+TEST(Hardening, ARenderThatDoesNotGetThroughKeepsTheEarlierOne) {
+  TempDir dir;
+  const fs::path out = dir / "frames";
+  auto r = run_motus(dir, {"render", "head_on", "--out", out.string(), "--size", "64x48", "--fps", "4", "--duration", "1"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const std::string manifest = read_file(out / ".motus-render"), frame = read_file(out / "frame_00004.png");
+  ASSERT_NE(manifest.find("frame_00004.png"), std::string::npos);
+  // A long render over it (601 frames of 640 × 480), stopped while it draws.
+  const pid_t pid = start_motus(dir, {"render", "head_on", "--out", out.string(), "--fps", "60", "--duration", "10",
+                                     "--overwrite"});
+  ASSERT_GT(pid, 0);
+  auto drawing = [&] {
+    if (fs::exists(out / "frame_00010.png")) return true;  // (drawn in place, as it was)
+    for (const auto& e : fs::directory_iterator(out))
+      if (e.path().filename().string().rfind(".motus-render-partial-", 0) == 0 && fs::exists(e.path() / "frame_00001.png"))
+        return true;
+    return false;
+  };
+  int raw = 0;
+  bool seen = false;
+  for (int k = 0; k < 2000 && !seen; ++k) {
+    seen = drawing();
+    if (!seen) ::usleep(10000);
+  }
+  if (!seen) {
+    ::kill(pid, SIGKILL);
+    waitpid(pid, &raw, 0);
+    FAIL() << "the render drew no frame in 20 s: " << read_file(dir / "err.txt");
+  }
+  ::kill(pid, SIGINT);
+  if (!ended_within(pid, 60, raw)) FAIL() << "Ctrl-C did not end the render within 60 s";
+  EXPECT_EQ(WEXITSTATUS(raw), 130) << read_file(dir / "err.txt");
+  // The earlier render, whole: its list, its frames, nothing of the new one.
+  EXPECT_EQ(read_file(out / ".motus-render"), manifest);
+  EXPECT_EQ(read_file(out / "frame_00004.png"), frame);
+  long files = 0;
+  for (const auto& e : fs::directory_iterator(out)) {
+    ++files;
+    EXPECT_EQ(e.path().filename().string().rfind(".motus-render-partial-", 0), std::string::npos) << "left behind: " << e.path();
+  }
+  EXPECT_EQ(files, 5 + 1);  // frame_00000 … frame_00004 and the list
 }
 
 // Slow steps (a 500 × 500 cloth's take tenths of a second) stop at the next one: Ctrl-C was

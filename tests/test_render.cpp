@@ -23,6 +23,7 @@
 #include "motus/render/draw_primitives.hpp"
 #include "motus/render/image.hpp"
 #include "motus/render/text.hpp"
+#include "motus/render/video.hpp"
 #include "motus/scene_file/scene_file.hpp"
 
 namespace fs = std::filesystem;
@@ -470,3 +471,19 @@ TEST(RenderCommand, MotusItselfLoadsNoOpenGL) {
   EXPECT_EQ(r.out.find("OSMesa"), std::string::npos) << r.out;
   EXPECT_EQ(r.out.find("LLVM"), std::string::npos) << r.out;
 }
+
+namespace {
+// ffmpeg reads a % in its input as its pattern's: the folder's are doubled. In a folder "q%%" one
+// was lost (the escaping moved the name on as it went, and stopped short of the second), and
+// `motus render --video` failed after every frame was drawn. Found by an audit of failed writes.
+TEST(RenderVideo, AFolderWithPercentSignsGetsItsVideo) {
+  TempDir dir;
+  const fs::path folder = dir / "q%%";
+  fs::create_directories(folder);
+  for (int k = 0; k < 2; ++k)
+    motus::render::write_png((folder / ("frame_0000" + std::to_string(k) + ".png")).string(), motus::render::Image(32, 32));
+  motus::render::encode_video((folder / "frame_%05d.png").string(), 2, (folder / "v.gif").string(),
+                              motus::render::VideoFormat::gif);
+  EXPECT_EQ(read_file(folder / "v.gif").rfind("GIF89a", 0), 0u);
+}
+}  // namespace

@@ -18,7 +18,7 @@
 
 namespace motus::draw {
 
-constexpr int kApiVersion = 3;
+constexpr int kApiVersion = 4;
 // The function the module exports (extern "C", so dlsym finds it by this name).
 constexpr const char* kEntryPoint = "motus_draw_api";
 
@@ -67,6 +67,9 @@ struct ComparisonPictures {
   std::string first_and_last;  // file name in the folder: the first and the last instant (always drawn)
   std::string contact_sheet;   // file name in the folder: three instants (not when first_and_last_only), or ""
   std::string warning;        // one line for the user, or ""
+  // Set when the error returned is a picture that could not be written (a full disk): the report
+  // is not whole, and the run fails — not a "pictures skipped" warning over a truncated PNG.
+  bool write_failed = false;
 };
 
 struct Api {

@@ -80,8 +80,17 @@ std::string encode_video(const std::string& pattern, double fps, const std::stri
 // The same instants of every engine as labelled panels side by side, each with the time and
 // its own energy drift, as PNG frames, a video (ffmpeg) and a contact sheet.
 std::string draw_comparison(const ComparisonJob& job, ComparisonPictures& pictures) {
+  pictures = {};
+  // (render::write_png throws RenderError only when the file cannot be written)
+  const auto write_png = [&](const std::string& path, const render::Image& image) {
+    try {
+      render::write_png(path, image);
+    } catch (const render::RenderError&) {
+      pictures.write_failed = true;
+      throw;
+    }
+  };
   return guarded([&] {
-    pictures = {};
     render::Canvas canvas(job.width, job.height);
     const render::Viewport view = canvas.full();
     std::vector<render::Recording> recordings;
@@ -124,7 +133,7 @@ std::string draw_comparison(const ComparisonJob& job, ComparisonPictures& pictur
         panels.push_back(panel_image);
       }
       const render::Image row = render::compose_side_by_side(panels, labels);
-      if (!job.first_and_last_only) render::write_png(fmt::format("{}/frame_{:05d}.png", frames_folder, k), row);
+      if (!job.first_and_last_only) write_png(fmt::format("{}/frame_{:05d}.png", frames_folder, k), row);
       if (k == 0 || k + 1 == frames) ends.push_back(row);
       if (!job.first_and_last_only && std::find(sheet_frames.begin(), sheet_frames.end(), k) != sheet_frames.end()) {
         sheet.push_back(row);
@@ -136,10 +145,10 @@ std::string draw_comparison(const ComparisonJob& job, ComparisonPictures& pictur
     pictures.first_and_last = "first_and_last.png";
     std::vector<std::string> end_labels{fmt::format("t = {:.3g} s", reference->times[0])};
     if (frames > 1) end_labels.push_back(fmt::format("t = {:.3g} s", reference->times[frames - 1]));
-    render::write_png(job.folder + "/" + pictures.first_and_last, render::contact_sheet(ends, 1, end_labels));
+    write_png(job.folder + "/" + pictures.first_and_last, render::contact_sheet(ends, 1, end_labels));
     if (job.first_and_last_only) return;
     pictures.contact_sheet = "contact_sheet.png";
-    render::write_png(job.folder + "/" + pictures.contact_sheet, render::contact_sheet(sheet, 1, sheet_labels));
+    write_png(job.folder + "/" + pictures.contact_sheet, render::contact_sheet(sheet, 1, sheet_labels));
     if (process::find_program("ffmpeg").empty()) {
       pictures.warning = "video skipped: ffmpeg not found on PATH (install the Debian package ffmpeg)";
     } else {

@@ -4,7 +4,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cctype>
 #include <fstream>
+#include <iterator>
+#include <utility>
 #include <sstream>
 #include <stdexcept>
 
@@ -261,7 +264,26 @@ std::string draw(const std::vector<Figure>& figures, const std::string& folder) 
   if (gnuplot.empty()) return "plots skipped: gnuplot not found on PATH (apt-get install gnuplot-nox)";
   const process::Outcome run = process::run_program({gnuplot, "figures.gp"}, folder, folder + "/figures.log");
   // (Named within the report: `folder` is often a partial one, renamed once the report is whole.)
-  if (!run.ok()) return "plots failed: gnuplot's messages are in the report's figures.log";
+  if (!run.ok()) {
+    // What gnuplot had drawn when it failed is no picture to show: every figure's files go, and
+    // the page and the terminal say the plots failed.
+    for (const auto& f : figures)
+      for (const char* format : {".png", ".svg"}) std::remove((folder + "/" + f.stem + format).c_str());
+    return "plots failed: gnuplot's messages are in the report's figures.log";
+  }
+  // gnuplot says nothing when a picture's write fails (a full disk, a file-size limit): it exits 0
+  // and leaves it cut short. A picture that does not end as its format does is a failed write.
+  for (const auto& f : figures)
+    for (const auto& [format, ending] : {std::pair{".png", std::string("IEND\xae\x42\x60\x82", 8)},
+                                         std::pair{".svg", std::string("</svg>")}}) {
+      const std::string name = f.stem + format;
+      std::ifstream picture(folder + "/" + name, std::ios::binary);
+      std::string bytes((std::istreambuf_iterator<char>(picture)), std::istreambuf_iterator<char>());
+      while (!bytes.empty() && std::isspace(static_cast<unsigned char>(bytes.back()))) bytes.pop_back();
+      if (bytes.size() < ending.size() || bytes.compare(bytes.size() - ending.size(), ending.size(), ending) != 0)
+        throw std::runtime_error("the plot " + name + " could not be written whole (gnuplot's picture ends short: a full "
+                                 "disk or a file-size limit)");
+    }
   return "";
 }
 

@@ -5,7 +5,9 @@
 #include <algorithm>
 #include <cmath>
 #include <csetjmp>
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <memory>
 
 namespace motus::render {
@@ -109,15 +111,21 @@ bool png_read_rows(png_structp png, Image* image) {
 }  // namespace
 
 void write_png(const std::string& path, const Image& image, int compression_level) {
+  // Every failure names the system's reason (a full disk: "No space left on device"), as the
+  // command line's other writes do; libpng's own says only "Write Error".
+  auto failed = [&](int error) { return RenderError(path + ": could not be written (" + std::strerror(error) + ")"); };
   std::unique_ptr<std::FILE, FileCloser> file(std::fopen(path.c_str(), "wb"));
-  if (!file) throw RenderError(path + ": cannot be written");
+  if (!file) throw failed(errno);
   char message[256] = "out of memory";
   png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, message, png_failure, nullptr);
   png_infop info = png ? png_create_info_struct(png) : nullptr;
   const bool ok = info && png_write_all(png, info, file.get(), &image, std::clamp(compression_level, 0, 9));
+  const int write_error = errno;
   png_destroy_write_struct(&png, &info);
+  if (!ok && std::ferror(file.get())) throw failed(write_error);
   if (!ok) throw RenderError(path + ": libpng: " + message);
-  if (std::fflush(file.get()) != 0) throw RenderError(path + ": write failed");
+  if (std::fflush(file.get()) != 0) throw failed(errno);
+  if (std::fclose(file.release()) != 0) throw failed(errno);
 }
 
 Image read_png(const std::string& path) {

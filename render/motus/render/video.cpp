@@ -27,12 +27,14 @@ void encode_video(const std::string& frame_pattern, double fps, const std::strin
     throw RenderError("ffmpeg not found on PATH: --video needs it (install the Debian package ffmpeg)");
   char rate[32];
   std::snprintf(rate, sizeof rate, "%.6g", fps);
-  // ffmpeg reads every % of the input as the pattern's: the folder's are written %%.
-  std::string pattern = frame_pattern;
-  const size_t name = pattern.rfind('/');
-  for (size_t at = pattern.find('%'); at != std::string::npos && name != std::string::npos && at < name;
-       at = pattern.find('%', at + 2))
-    pattern.insert(at, 1, '%');
+  // ffmpeg reads every % of the input as the pattern's: the folder's are written %%. (The folder
+  // is copied as it is escaped: escaping in place moved the name on, and a folder "q%%" lost one.)
+  const size_t name = frame_pattern.rfind('/');
+  std::string pattern;
+  for (size_t at = 0; at < frame_pattern.size(); ++at) {
+    pattern += frame_pattern[at];
+    if (frame_pattern[at] == '%' && name != std::string::npos && at < name) pattern += '%';
+  }
   std::vector<std::string> args{ffmpeg, "-nostdin", "-y", "-loglevel", "error", "-framerate", rate, "-i", pattern};
   if (format == VideoFormat::mp4) {
     args.insert(args.end(), {"-c:v", "libx264", "-pix_fmt", "yuv420p", "-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2",
