@@ -29,17 +29,6 @@ namespace {
 
 const std::vector<std::string> kPeers = {"odeint", "box2d", "bullet"};
 
-// A new folder under runs/, never one that exists.
-std::string new_run_folder(const std::string& scene_name) {
-  const std::time_t now = std::time(nullptr);
-  char stamp[32];
-  std::strftime(stamp, sizeof stamp, "%Y%m%d-%H%M%S", std::localtime(&now));
-  const std::string name = safe_file_name(scene_name);  // a name is not a path
-  std::string path = fmt::format("runs/precision-{}-{}", name, stamp);
-  for (int i = 2; fs::exists(path); ++i) path = fmt::format("runs/precision-{}-{}-{}", name, stamp, i);
-  return path;
-}
-
 std::string microseconds(const std::optional<precision::Fastest>& f) {
   if (!f) return "-";
   return fmt::format("{}{:.3g} ({:.3g})", f->at.upper_bound ? "<=" : "", 1e6 * f->at.seconds, 1e6 * f->at.median_seconds);
@@ -119,7 +108,8 @@ int bench_precision_command(const BenchPrecisionOptions& o) {
   auto wants = [&](const std::string& peer) { return std::find(o.peers.begin(), o.peers.end(), peer) != o.peers.end(); };
 
   // Everything that can be refused is refused before anything runs.
-  const std::string folder = o.out.empty() ? new_run_folder(scene.name) : o.out;
+  const bool default_folder = o.out.empty();
+  const std::string folder = default_folder ? default_run_folder("precision", scene.name) : o.out;
   if (!o.csv.empty()) {
     // The copy goes beside the run, not into it (the run's folder must not exist until it is whole).
     const fs::path csv = fs::absolute(o.csv).lexically_normal();
@@ -129,8 +119,8 @@ int bench_precision_command(const BenchPrecisionOptions& o) {
     if (end == run.end()) throw InputError("--csv: " + o.csv + " is in the run's folder " + folder + "; put the copy elsewhere");
     check_can_write(o.csv, o.overwrite);
   }
-  if (output_exists(folder)) throw InputError(folder + ": already exists; bench precision never overwrites a run (choose another --out)");
-  PartialFolder partial(folder);
+  if (!default_folder && output_exists(folder)) throw InputError(folder + ": already exists; bench precision never overwrites a run (choose another --out)");
+  PartialFolder partial(folder, default_folder);
 
   precision::Sweep sweep;
   sweep.end = end;
@@ -233,8 +223,8 @@ int bench_precision_command(const BenchPrecisionOptions& o) {
   const std::string warning = precision::write_precision_report(partial.path(), context, curves);
   if (!warning.empty()) tell("motus: {}\n", warning);
   stop_if_interrupted();
-  partial.complete();
-  fmt::print("report: {}/index.html\n", folder);
+  const std::string written = partial.complete();  // (a default folder's name may have taken a number)
+  fmt::print("report: {}/index.html\n", written);
   // The copy, after the report (which is whole by now): whole or not at all, and over a file that
   // appeared during the sweep only with --overwrite.
   if (!o.csv.empty()) {

@@ -19,6 +19,8 @@
 
 #include <fmt/format.h>
 
+#include <ctime>
+
 #include "motus/plot/write_failure.hpp"
 #include "motus/simulation.hpp"
 
@@ -232,8 +234,15 @@ std::vector<std::string> module_candidates(const char* env_var, const std::strin
   return {(here / name).string(), (here / installed).lexically_normal().string()};
 }
 
-PartialFolder::PartialFolder(const std::string& final_path)
-    : final_(without_trailing_separators(final_path).string()) {
+std::string default_run_folder(const std::string& kind, const std::string& scene_name) {
+  const std::time_t now = std::time(nullptr);
+  char stamp[32];
+  std::strftime(stamp, sizeof stamp, "%Y%m%d-%H%M%S", std::localtime(&now));
+  return fmt::format("runs/{}-{}-{}", kind, safe_file_name(scene_name), stamp);  // (a scene's name is not a path)
+}
+
+PartialFolder::PartialFolder(const std::string& final_path, bool numbered)
+    : final_(without_trailing_separators(final_path).string()), numbered_(numbered) {
   const fs::path target(final_);
   const fs::path parent = target.parent_path().empty() ? fs::path(".") : target.parent_path();
   std::error_code error;
@@ -270,12 +279,17 @@ bool rename_without_replacing(const std::string& from, const std::string& to) {
 }
 }  // namespace
 
-void PartialFolder::complete() {
-  if (!rename_without_replacing(partial_, final_)) {
-    done_ = true;  // (kept where the message says it is)
-    throw std::runtime_error(final_ + ": appeared while the report was written; it is in " + partial_);
+const std::string& PartialFolder::complete() {
+  const std::string name = final_;
+  for (int n = 2; !rename_without_replacing(partial_, final_); ++n) {
+    if (!numbered_ || n > 100000) {
+      done_ = true;  // (kept where the message says it is)
+      throw std::runtime_error(final_ + ": appeared while the report was written; it is in " + partial_);
+    }
+    final_ = name + "-" + std::to_string(n);
   }
   done_ = true;
+  return final_;
 }
 
 PartialFile::PartialFile(const std::string& final_path) : final_(final_path) {

@@ -142,20 +142,31 @@ void check_time_resolution(double start_time, double duration, double dt, const 
 // at `installed`, relative to the executable (where `cmake --install` puts it).
 std::vector<std::string> module_candidates(const char* env_var, const std::string& name, const std::string& installed);
 
+// The folder of a run the user gave no --out for: runs/KIND-SCENE-YYYYmmdd-HHMMSS (KIND: compare,
+// precision, stress). Not made here: a PartialFolder made with `numbered` takes it, or the first of
+// NAME-2, NAME-3, … free when the run is whole (two runs of a scene started in the same second
+// both get a folder).
+std::string default_run_folder(const std::string& kind, const std::string& scene_name);
+
 // A folder written under a temporary name and renamed to `final_path` only when complete()
 // is called; otherwise the destructor removes it and everything in it. Throws InputError
 // when it cannot be made.
 class PartialFolder {
 public:
-  explicit PartialFolder(const std::string& final_path);
+  // numbered: final_path is a default name (default_run_folder), and when it is taken the folder
+  // goes to final_path-2, -3, … instead of failing.
+  explicit PartialFolder(const std::string& final_path, bool numbered = false);
   ~PartialFolder();
   PartialFolder(const PartialFolder&) = delete;
   PartialFolder& operator=(const PartialFolder&) = delete;
   const std::string& path() const { return partial_; }
-  void complete();  // throws std::runtime_error when the rename fails (e.g. the name was taken meanwhile)
+  // Where the folder is now. Throws std::runtime_error when the rename fails (e.g. a name the user
+  // gave was taken meanwhile: the work is kept where the message says).
+  const std::string& complete();
 
 private:
   std::string final_, partial_;
+  bool numbered_;
   bool done_ = false;
 };
 

@@ -23,17 +23,6 @@ namespace fs = std::filesystem;
 namespace motus::cli {
 namespace {
 
-// A new folder under runs/, never one that exists.
-std::string new_run_folder(const std::string& scene_name) {
-  const std::time_t now = std::time(nullptr);
-  char stamp[32];
-  std::strftime(stamp, sizeof stamp, "%Y%m%d-%H%M%S", std::localtime(&now));
-  const std::string name = safe_file_name(scene_name);  // a name is not a path
-  std::string path = fmt::format("runs/compare-{}-{}", name, stamp);
-  for (int i = 2; fs::exists(path); ++i) path = fmt::format("runs/compare-{}-{}-{}", name, stamp, i);
-  return path;
-}
-
 // Without --render, the report still shows the scene (its first and last frames) and replays it:
 // frames at up to 60 per second of simulated time, but no more than about two million
 // coordinates over all engines (the ball gas gets a few dozen frames, a collision hundreds).
@@ -171,12 +160,13 @@ int compare_command(const CompareOptions& o) {
   if (options.plugin && std::find(options.engines.begin(), options.engines.end(), plugin) != options.engines.end())
     Simulation check(scene, options.plugin->method.value_or(options.method), options.plugin->parts);
 
-  const std::string folder = o.out.empty() ? new_run_folder(scene.name) : o.out;
-  if (output_exists(folder)) throw InputError(folder + ": already exists; compare never overwrites a report (choose another --out)");
+  const bool default_folder = o.out.empty();
+  const std::string folder = default_folder ? default_run_folder("compare", scene.name) : o.out;
+  if (!default_folder && output_exists(folder)) throw InputError(folder + ": already exists; compare never overwrites a report (choose another --out)");
   // The report is written into a folder beside the final one and renamed when it is whole:
   // a run that fails or is interrupted leaves no folder that looks complete. Made now, so a
   // folder that cannot be made is refused before any engine runs.
-  PartialFolder partial(folder);
+  PartialFolder partial(folder, default_folder);
   const std::string work = partial.path();
 
   ProgressBar progress(0, 1, "compare " + scene.name, 1);
@@ -255,9 +245,9 @@ int compare_command(const CompareOptions& o) {
   const std::string warning = compare::write_report(work, context, runs);
   progress.finish();
   stop_if_interrupted();  // (a plot that died of the same Ctrl-C is no reason to finish the report)
-  partial.complete();
+  const std::string written = partial.complete();  // (a default folder's name may have taken a number)
   nlohmann::json summary = compare::summary_json(context, runs);
-  summary["report"] = folder + "/index.html";
+  summary["report"] = written + "/index.html";
 
   if (o.json) {
     fmt::print("{}\n", summary.dump(2, ' ', false, nlohmann::json::error_handler_t::replace));  // (a path not in UTF-8)

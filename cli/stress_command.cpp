@@ -19,16 +19,6 @@ namespace fs = std::filesystem;
 namespace motus::cli {
 namespace {
 
-std::string new_stress_folder(const std::string& scene_name) {
-  const std::time_t now = std::time(nullptr);
-  char stamp[32];
-  std::strftime(stamp, sizeof stamp, "%Y%m%d-%H%M%S", std::localtime(&now));
-  const std::string name = safe_file_name(scene_name);
-  std::string path = fmt::format("runs/stress-{}-{}", name, stamp);
-  for (int i = 2; fs::exists(path); ++i) path = fmt::format("runs/stress-{}-{}-{}", name, stamp, i);
-  return path;
-}
-
 std::string number(double x) {
   if (std::isinf(x)) return "inf";
   return fmt::format("{:.3g}", x);
@@ -230,9 +220,10 @@ int stress_command(const StressOptions& o) {
     throw InputError(path + ": none of the integrators asked for can run the measurements that apply to this scene" +
                      (report.cannot_run.empty() ? "" : " (" + report.cannot_run.front().first + ": " + report.cannot_run.front().second + ")"));
 
-  const std::string folder = o.out.empty() ? new_stress_folder(scene.name) : o.out;
-  if (output_exists(folder)) throw InputError(folder + ": already exists; stress never overwrites a page (choose another --out)");
-  PartialFolder partial(folder);
+  const bool default_folder = o.out.empty();
+  const std::string folder = default_folder ? default_run_folder("stress", scene.name) : o.out;
+  if (!default_folder && output_exists(folder)) throw InputError(folder + ": already exists; stress never overwrites a page (choose another --out)");
+  PartialFolder partial(folder, default_folder);
 
   // The work, counted in units for the progress bar: one unit per integrator and section, or per row.
   double units = 0;
@@ -267,9 +258,9 @@ int stress_command(const StressOptions& o) {
 
   const std::string warning = stress::write_page(partial.path(), report);
   stop_if_interrupted();
-  partial.complete();
+  const std::string written = partial.complete();  // (a default folder's name may have taken a number)
   print_tables(report);
-  fmt::print("\npage: {}/index.html\n", folder);
+  fmt::print("\npage: {}/index.html\n", written);
   if (!warning.empty()) tell("motus: {}\n", warning);
   return 0;
 }
