@@ -110,6 +110,10 @@ int bench_precision_command(const BenchPrecisionOptions& o) {
   // Everything that can be refused is refused before anything runs.
   const bool default_folder = o.out.empty();
   const std::string folder = default_folder ? default_run_folder("precision", scene.name) : o.out;
+  // (`motus run --trajectory -` writes to standard output; here a file called "-" would be made.)
+  if (o.csv == "-")
+    throw InputError("--csv -: standard output is the table's; give the copy a file name (or use the run folder's "
+                     "precision.csv)");
   if (!o.csv.empty()) {
     // The copy goes beside the run, not into it (the run's folder must not exist until it is whole).
     const fs::path csv = fs::absolute(o.csv).lexically_normal();

@@ -282,6 +282,8 @@ TEST(BenchPrecisionCommand, BadPeersAndFlagsAreOneLineExitTwo) {
         std::vector<std::string>{"--out", (dir / "exists").string()},
         // (a copy inside the run's folder: refused before the run, not found there after it)
         std::vector<std::string>{"--out", (dir / "run").string(), "--csv", (dir / "run" / "copy.csv").string()},
+        // ("-" is standard output to `motus run --trajectory`: here it made a file called "-")
+        std::vector<std::string>{"--csv", "-"},
         std::vector<std::string>{"--set", "start_time=1e17"},  // (times 16 apart: the runs never got there)
         std::vector<std::string>{"--duration", "1e300"}}) {
     std::vector<std::string> args = {"bench", "precision", "kepler", "--levels", "1", "--repeats", "1"};
@@ -293,6 +295,7 @@ TEST(BenchPrecisionCommand, BadPeersAndFlagsAreOneLineExitTwo) {
   }
   EXPECT_TRUE(fs::is_empty(dir / "exists")) << "an existing --out is left alone";
   EXPECT_FALSE(fs::exists(dir / "run"));
+  EXPECT_FALSE(fs::exists(dir / "-"));
 }
 
 TEST(BenchPrecisionCommand, FixedStepsLandOnASceneKnownOnlyAtItsReferenceTime) {
