@@ -66,6 +66,17 @@ TEST(Grade, EveryStarterScoresOnlyTheTestsItCannotFail) {
         EXPECT_TRUE(output.find("Measured:") != std::string::npos || output.find("Your code") != std::string::npos) << output;
       }
     }
+    // A right answer that doing nothing gives (no contact, a stick left alone) scored the starter
+    // 3 of 30 and 2 of 21 points: it counts only with one of the tests it names passed too.
+    for (const auto& [name, definition] : definitions(a)) {
+      if (!definition.contains("counts_with_one_of")) continue;
+      const json* t = test_named(result, name);
+      ASSERT_NE(t, nullptr) << a << ": " << name;
+      EXPECT_EQ((*t)["status"], "failed") << a << ": " << name;
+      EXPECT_NE((*t)["output"].get<std::string>().find("Right, but code that does nothing gives this answer too"),
+                std::string::npos)
+          << a << ": " << name << ": " << (*t)["output"];
+    }
   }
 }
 
@@ -144,7 +155,17 @@ TEST_P(SeededBugs, EachLosesExactlyTheTestsThatNameIt) {
         lost += p.at(name);
       }
     EXPECT_FALSE(naming.empty()) << mistake << ": no test names it";
-    EXPECT_EQ(failed(result), naming) << assignment << ": " << mistake;
+    // And a test whose right answer is what code that does nothing gives (counts_with_one_of) when
+    // the mistake fails every test it counts with.
+    std::set<std::string> losing = naming;
+    for (const auto& [name, t] : defs)
+      if (t.contains("counts_with_one_of") && !naming.count(name) &&
+          std::all_of(t["counts_with_one_of"].begin(), t["counts_with_one_of"].end(),
+                      [&](const json& gate) { return naming.count(gate.get<std::string>()) > 0; })) {
+        losing.insert(name);
+        lost += p.at(name);
+      }
+    EXPECT_EQ(failed(result), losing) << assignment << ": " << mistake;
     // Each failure that names the mistake teaches with its hint: the numbers came out wrong, or
     // they stopped the run (an inverted step-size control chose a step of 0: that failure said so
     // and no more). (Not a crash: its hint would be about something else.)
@@ -604,6 +625,32 @@ TEST(Grade, APinsCheckFailsPositionsThatAreNotNumbers) {
   ASSERT_NE(t, nullptr);
   EXPECT_EQ((*t)["status"], "failed") << (*t)["output"];
   EXPECT_NE((*t)["output"].get<std::string>().find("off their pins by up to ∞"), std::string::npos) << (*t)["output"];
+}
+
+// A test that counts only with another passed (counts_with_one_of) names a public test of the rubric:
+// a hidden one is not run in a student's own grading, and the test could never count there.
+TEST(Grade, ATestCountsOnlyWithPublicTestsOfItsRubric) {
+  TempDir dir;
+  const fs::path assignment = dir / "gated";
+  fs::copy(fs::path(kAssignments) / "collisions", assignment, fs::copy_options::recursive);
+  const std::string solution = (fs::path(kAssignments) / "collisions/solution").string();
+  const std::string tests = read_file(assignment / "tests/public.json");
+  const std::string gate = "\"counts_with_one_of\": [\"impact.head-on\", \"impact.chase\"]";
+  ASSERT_NE(tests.find(gate), std::string::npos);
+  for (const auto& [gates, says] : std::vector<std::pair<std::string, std::string>>{
+           {"[\"impulse.3d\"]", "impact.miss: counts_with_one_of: \"impulse.3d\" is not a public test of the rubric"},
+           {"[\"impact.miss\"]", "impact.miss: counts_with_one_of: \"impact.miss\" is the test itself"},
+           {"[\"no-such-test\"]", "\"no-such-test\" is not a public test of the rubric"},
+           {"[]", "counts_with_one_of: names no test"}}) {
+    std::string changed = tests;
+    changed.replace(changed.find(gate), gate.size(), "\"counts_with_one_of\": " + gates);
+    write_file(assignment / "tests/public.json", changed);
+    fs::remove(dir / "r.json");  // (a grading that cannot start still writes a results file saying why)
+    const auto r = run_motus(dir, {"grade", assignment.string(), solution, "--results", (dir / "r.json").string()});
+    EXPECT_EQ(r.status, 2) << gates << ": " << r.err;
+    EXPECT_EQ(count_lines(r.err), 1) << r.err;
+    EXPECT_NE(r.err.find(says), std::string::npos) << r.err;
+  }
 }
 
 // scores.csv is CSV whatever the students named their folders: a comma or a quote is quoted,

@@ -163,6 +163,12 @@ Assignment load_assignment(const std::string& folder, const std::optional<std::s
         f.use("catches");
         t.catches = strings(d.test, "catches", d.file + ": " + d.path);
       }
+      if (d.test.contains("counts_with_one_of")) {
+        f.use("counts_with_one_of");
+        t.counts_with_one_of = strings(d.test, "counts_with_one_of", d.file + ": " + d.path);
+        if (t.counts_with_one_of.empty())
+          throw AssignmentError(d.file + ": " + d.path + ".counts_with_one_of: names no test (leave it out instead)");
+      }
       t.check = make_check(f, scenes, t.hint);
       f.reject_unknown();
     } catch (const SceneFileError& e) {
@@ -177,6 +183,15 @@ Assignment load_assignment(const std::string& folder, const std::optional<std::s
   for (const auto& [name, d] : definitions)
     if (!in_rubric.count(name))
       throw AssignmentError(d.file + ": " + d.path + ".name: \"" + name + "\" is not in the rubric (" + rubric_file + ")");
+  // A test's gates are public tests of the rubric (run wherever it is: a student's own grading has
+  // no hidden tests), never itself.
+  for (const auto& t : a.tests)
+    for (const auto& gate : t.counts_with_one_of) {
+      const auto it = definitions.find(gate);
+      if (gate == t.name || it == definitions.end() || it->second.hidden)
+        throw AssignmentError(t.file + ": " + t.name + ": counts_with_one_of: \"" + gate + "\" is " +
+                              (gate == t.name ? "the test itself" : "not a public test of the rubric"));
+    }
   for (const auto& name : a.starter_passes)
     if (!in_rubric.count(name) && name != "files" && name != "build")
       throw AssignmentError(manifest_file + ": starter_passes: \"" + name + "\" is not in the rubric");

@@ -7,7 +7,8 @@
 //   rubric.json      every test's name, points and visibility (Gradescope's: visible,
 //                    after_due_date, after_published, hidden)
 //   tests/*.json     the public tests; hidden/*.json (or --hidden DIR) the instructor's others
-// Each test: {"name", "title", "kind", "hint", "catches": [mistakes], ...its kind's fields}.
+// Each test: {"name", "title", "kind", "hint", "catches": [mistakes], "counts_with_one_of": [public
+// tests], ...its kind's fields}.
 #include <memory>
 #include <optional>
 #include <stdexcept>
@@ -27,6 +28,10 @@ public:
 struct TestCase {
   std::string name, title, hint;
   std::vector<std::string> catches;  // the mistakes it is there to catch (seeded-bug tests check them)
+  // A test whose right answer is also what code that does nothing gives (no contact: infinity; a
+  // stick left alone) counts only when the same code passes one of these public tests too: an
+  // untouched starter scored points for doing nothing.
+  std::vector<std::string> counts_with_one_of;
   std::string file;                  // the definitions file it came from
   bool hidden = false;               // from the hidden tests
   double points = 0;

@@ -1,6 +1,7 @@
 #include "motus/grade/grader.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -250,6 +251,25 @@ GradeResult grade_submission(const Assignment& a, const std::string& submission,
     result.tests.push_back(r);
   }
   probe.stop();
+  // A right answer that is also what code that does nothing gives counts only with one of the
+  // tests it names passed too (by the same code, before this rule).
+  std::vector<bool> passed_alone;
+  for (size_t k = 0; k < a.tests.size(); ++k) passed_alone.push_back(result.tests[2 + k].passed);  // (after files and build)
+  for (size_t k = 0; k < a.tests.size(); ++k) {
+    const TestCase& t = a.tests[k];
+    TestResult& r = result.tests[2 + k];
+    if (!r.passed || t.counts_with_one_of.empty()) continue;
+    bool shown_to_work = false;
+    for (size_t j = 0; j < a.tests.size(); ++j)
+      for (const auto& gate : t.counts_with_one_of) shown_to_work = shown_to_work || (a.tests[j].name == gate && passed_alone[j]);
+    if (shown_to_work) continue;
+    r.passed = false;
+    result.score -= r.score;
+    r.score = 0;
+    r.output += fmt::format("\nRight, but code that does nothing gives this answer too: it counts once one of these "
+                            "passes as well: {}.",
+                            fmt::join(t.counts_with_one_of, ", "));
+  }
   if (built.ok && !o.plugin_out.empty()) {
     // The student's code ran as the user that owns the build's folder (and, without a sandbox,
     // could reach it): the plug-in there must still be a file, not a link to one of the grader's.
