@@ -1,13 +1,16 @@
 #include "draw_module.hpp"
 
+#include "interrupt.hpp"
 #include "module_loader.hpp"
 
 namespace motus::cli {
 namespace {
 
 const draw::Api& load() {
-  return load_module<draw::Api>("MOTUS_DRAW_MODULE", MOTUS_DRAW_MODULE_NAME, MOTUS_DRAW_MODULE_INSTALLED,
-                                draw::kEntryPoint, draw::kApiVersion, "drawing module", "motus-draw");
+  const draw::Api& api = load_module<draw::Api>("MOTUS_DRAW_MODULE", MOTUS_DRAW_MODULE_NAME, MOTUS_DRAW_MODULE_INSTALLED,
+                                                draw::kEntryPoint, draw::kApiVersion, "drawing module", "motus-draw");
+  on_stop_at_once(api.kill_running_programs);  // (its ffmpeg goes with motus)
+  return api;
 }
 
 }  // namespace

@@ -6,6 +6,8 @@
 #include <atomic>
 #include <cerrno>
 
+#include "motus/process/run_program.hpp"
+
 namespace motus::cli {
 namespace {
 
@@ -21,9 +23,14 @@ constexpr unsigned kGraceSeconds = 30;
 // student's plug-in in an endless loop has none: the first Ctrl-C seemed to do nothing).
 constexpr unsigned kNoticeSeconds = 2;
 volatile sig_atomic_t g_noticed = 0;
+// What else stop_now calls (on_stop_at_once).
+std::atomic<void (*)() noexcept> g_also[4] = {};
 
-// Only async-signal-safe calls here: write and _exit.
+// Only async-signal-safe calls here: write, kill and _exit.
 [[noreturn]] void stop_now(const char* why) {
+  process::kill_running_programs();  // (an ffmpeg motus started went on writing after it)
+  for (auto& also : g_also)
+    if (const auto f = also.load()) f();
   const char* line = "motus: interrupted; ";
   for (const char* text : {line, why, " (what was being written may be left under its temporary .NAME.partial-XXXXXX name)\n"}) {
     size_t length = 0;
@@ -63,11 +70,19 @@ void catch_interrupts() {
   action.sa_flags = 0;  // no SA_RESTART: a wait for a child returns at once
   sigaction(SIGINT, &action, nullptr);
   sigaction(SIGTERM, &action, nullptr);
+  sigaction(SIGHUP, &action, nullptr);  // (a terminal closed, an ssh dropped: motus died leaving its partial files)
   action.sa_handler = on_alarm;
   sigaction(SIGALRM, &action, nullptr);
   // A reader that went away (motus ... | head) makes a write fail with EPIPE, which the writes'
   // checks report (exit 1, one line), instead of a signal that ends motus without a word.
   ::signal(SIGPIPE, SIG_IGN);
+}
+
+void on_stop_at_once(void (*also)() noexcept) {
+  for (auto& slot : g_also) {
+    void (*empty)() noexcept = nullptr;
+    if (!also || slot.load() == also || slot.compare_exchange_strong(empty, also)) return;
+  }
 }
 
 bool interrupted() { return g_interrupted != 0; }

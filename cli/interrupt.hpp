@@ -1,5 +1,5 @@
 #pragma once
-// Ctrl-C (SIGINT) and SIGTERM: motus stops at the next safe point, removes what it was
+// Ctrl-C (SIGINT), SIGTERM and SIGHUP: motus stops at the next safe point, removes what it was
 // writing, and exits with status 130 — never a report folder that looks complete but is not.
 #include <stdexcept>
 
@@ -13,11 +13,14 @@ public:
   Interrupted() : std::runtime_error("interrupted") {}
 };
 
-// From now on SIGINT and SIGTERM only set a flag (a program motus waits for still gets them).
+// From now on SIGINT, SIGTERM and SIGHUP only set a flag (a program motus waits for still gets them).
 // A second one, or 30 s with no safe point after the first, ends motus at once (exit 130).
 void catch_interrupts();
 bool interrupted();
 // Throws Interrupted once an interrupt has come.
 void stop_if_interrupted();
+// Also called when motus stops at once (a second interrupt), before it exits: an async-signal-safe
+// function that ends what a loaded module started (its ffmpeg). Up to four.
+void on_stop_at_once(void (*also)() noexcept);
 
 }  // namespace motus::cli

@@ -11,7 +11,10 @@
 #include <fstream>
 #include <regex>
 
+#include <fcntl.h>
 #include <stdlib.h>  // mkdtemp
+#include <sys/file.h>
+#include <unistd.h>
 #include <cerrno>
 #include <cstring>
 
@@ -92,11 +95,27 @@ class RenderInProgress {
 public:
   RenderInProgress(std::string out, bool made_folder) : out_(std::move(out)), made_folder_(made_folder) {
     std::error_code error;
-    fs::create_directories(out_, error);
+    if (made_folder_) {
+      // Made here or refused: another render started beside this one may have made it since it was
+      // looked at (both went on, and the second replaced the first's frames without --overwrite).
+      const fs::path parent = fs::path(out_).parent_path();
+      if (!parent.empty()) fs::create_directories(parent, error);
+      if (!error && !fs::create_directory(out_, error) && !error)
+        throw InputError(out_ + ": already exists (made meanwhile, by another run?); choose another --out or pass --overwrite");
+    }
     if (error) throw InputError(out_ + ": cannot be created (" + error.message() + ")");
+    // One render at a time in a folder: two at once moved their frames in turn into it, a mix of both.
+    lock_ = ::open(out_.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    if (lock_ < 0 || ::flock(lock_, LOCK_EX | LOCK_NB) != 0) {
+      const int e = errno;
+      if (lock_ >= 0) ::close(lock_);
+      throw InputError(out_ + (e == EWOULDBLOCK ? ": another motus render is writing into it; wait for it or choose another --out"
+                                                : ": cannot be opened (" + std::string(std::strerror(e)) + ")"));
+    }
     std::string name = (fs::path(out_) / ".motus-render-partial-XXXXXX").string();
     if (::mkdtemp(name.data()) == nullptr) {
       const int e = errno;
+      ::close(lock_);
       if (made_folder_) fs::remove(out_, error);
       throw InputError(out_ + ": cannot be written in (" + std::strerror(e) + ")");
     }
@@ -105,10 +124,12 @@ public:
   RenderInProgress(const RenderInProgress&) = delete;
   RenderInProgress& operator=(const RenderInProgress&) = delete;
   ~RenderInProgress() {
-    if (moved_) return;
-    std::error_code ignored;
-    fs::remove_all(partial_, ignored);              // (a folder of motus's own making)
-    if (made_folder_) fs::remove(out_, ignored);  // (only if empty: nothing else is ever removed)
+    if (!moved_) {
+      std::error_code ignored;
+      fs::remove_all(partial_, ignored);            // (a folder of motus's own making)
+      if (made_folder_) fs::remove(out_, ignored);  // (only if empty: nothing else is ever removed)
+    }
+    ::close(lock_);  // (and the lock with it)
   }
   const std::string& folder() const { return partial_; }
 
@@ -156,6 +177,7 @@ private:
 
   std::string out_, partial_;
   bool made_folder_;
+  int lock_ = -1;  // the folder, open: flock'ed while this render writes into it
   bool moved_ = false;
 };
 

@@ -13,6 +13,7 @@
 #include <csignal>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <string>
@@ -562,7 +563,7 @@ TEST(Hardening, AnInterruptedTrajectoryLeavesTheOldFileAndNoPartOfTheNew) {
 }
 
 // A render --overwrite that does not get through leaves the earlier render as it was: it removed
-// the earlier frames before drawing, so a full disk or a Ctrl-C lost both renders. Now it draws
+// the earlier frames before drawing, so a full disk or an interrupt lost both renders. Now it draws
 // into a folder of its own inside --out and moves the frames into place when they are all there.
 TEST(Hardening, ARenderThatDoesNotGetThroughKeepsTheEarlierOne) {
   TempDir dir;
@@ -593,9 +594,16 @@ TEST(Hardening, ARenderThatDoesNotGetThroughKeepsTheEarlierOne) {
     waitpid(pid, &raw, 0);
     FAIL() << "the render drew no frame in 20 s: " << read_file(dir / "err.txt");
   }
-  ::kill(pid, SIGINT);
-  if (!ended_within(pid, 60, raw)) FAIL() << "Ctrl-C did not end the render within 60 s";
-  EXPECT_EQ(WEXITSTATUS(raw), 130) << read_file(dir / "err.txt");
+  // A second render into the folder meanwhile: refused (two at once moved their frames into it in
+  // turn, a mix of both; found by an audit of concurrent runs).
+  const auto second = run_motus(dir, {"render", "head_on", "--out", out.string(), "--size", "64x48", "--fps", "4",
+                                      "--duration", "1", "--overwrite"});
+  expect_one_line_exit_2(second, "another motus render is writing into it");
+  // Its terminal closed (SIGHUP): stopped as Ctrl-C stops it (it died of the signal, its partial
+  // folder left behind).
+  ::kill(pid, SIGHUP);
+  if (!ended_within(pid, 60, raw)) FAIL() << "SIGHUP did not end the render within 60 s";
+  EXPECT_TRUE(WIFEXITED(raw) && WEXITSTATUS(raw) == 130) << raw << ": " << read_file(dir / "err.txt");
   // The earlier render, whole: its list, its frames, nothing of the new one.
   EXPECT_EQ(read_file(out / ".motus-render"), manifest);
   EXPECT_EQ(read_file(out / "frame_00004.png"), frame);
@@ -605,6 +613,57 @@ TEST(Hardening, ARenderThatDoesNotGetThroughKeepsTheEarlierOne) {
     EXPECT_EQ(e.path().filename().string().rfind(".motus-render-partial-", 0), std::string::npos) << "left behind: " << e.path();
   }
   EXPECT_EQ(files, 5 + 1);  // frame_00000 … frame_00004 and the list
+}
+
+// The processes whose command line mentions `text` (a test's own folder): what a run left running.
+std::vector<std::string> processes_mentioning(const std::string& text) {
+  std::vector<std::string> found;
+  std::error_code ignored;
+  for (const auto& e : fs::directory_iterator("/proc", ignored)) {
+    std::string line = read_file(e.path() / "cmdline");
+    std::replace(line.begin(), line.end(), '\0', ' ');
+    if (line.find(text) != std::string::npos) found.push_back(e.path().filename().string() + ": " + line);
+  }
+  return found;
+}
+
+// A second interrupt stops motus at once (_exit): the ffmpeg encoding its video went on writing into
+// the folder after it, and ffmpeg's messages file was left in /tmp. Found by an audit of concurrent runs.
+TEST(Hardening, StoppedAtOnceWhileEncodingLeavesNoFfmpegRunning) {
+  TempDir dir;
+  const fs::path out = dir / "video";
+  // (601 frames: ffmpeg takes about a second over them, so that it would still be running)
+  const pid_t pid = start_motus(dir, {"render", "head_on", "--out", out.string(), "--size", "320x240", "--fps", "60",
+                                     "--duration", "10", "--video", "mp4"});
+  ASSERT_GT(pid, 0);
+  bool encoding = false;
+  for (int k = 0; k < 12000 && !encoding; ++k) {  // (60 s)
+    for (const auto& p : processes_mentioning(out.string())) encoding = encoding || p.find("ffmpeg") != std::string::npos;
+    if (!encoding) ::usleep(5000);
+  }
+  int raw = 0;
+  if (!encoding) {
+    ::kill(pid, SIGKILL);
+    waitpid(pid, &raw, 0);
+    FAIL() << "ffmpeg was not seen in 60 s: " << read_file(dir / "err.txt");
+  }
+  ::kill(pid, SIGINT);
+  ::kill(pid, SIGINT);
+  // (its end looked for every millisecond: ffmpeg, left running, would finish its second's work)
+  bool ended = false;
+  for (int k = 0; k < 60000 && !ended; ++k) {
+    ended = ::waitpid(pid, &raw, WNOHANG) == pid;
+    if (!ended) ::usleep(1000);
+  }
+  ASSERT_TRUE(ended);
+  EXPECT_TRUE(WIFEXITED(raw) && WEXITSTATUS(raw) == 130) << raw;
+  std::vector<std::string> left;
+  for (int k = 0; k < 10; ++k) {  // (a killed process takes a moment to go: 0.1 s at most here)
+    left = processes_mentioning(out.string());
+    if (left.empty()) break;
+    ::usleep(10000);
+  }
+  EXPECT_TRUE(left.empty()) << "still running: " << left.front();
 }
 
 // Slow steps (a 500 × 500 cloth's take tenths of a second) stop at the next one: Ctrl-C was

@@ -18,7 +18,7 @@
 
 namespace motus::draw {
 
-constexpr int kApiVersion = 4;
+constexpr int kApiVersion = 5;
 // The function the module exports (extern "C", so dlsym finds it by this name).
 constexpr const char* kEntryPoint = "motus_draw_api";
 
@@ -81,6 +81,9 @@ struct Api {
   std::string (*encode_video)(const std::string& frame_pattern, double fps, const std::string& out,
                               const std::string& format);
   std::string (*draw_comparison)(const ComparisonJob& job, ComparisonPictures& pictures);
+  // SIGKILL to the programs the module is waiting for (ffmpeg): async-signal-safe, for motus
+  // stopping at once (the module has its own copy of motus::process, and so its own list of them).
+  void (*kill_running_programs)() noexcept;
 };
 
 }  // namespace motus::draw

@@ -168,7 +168,8 @@ std::string draw_comparison(const ComparisonJob& job, ComparisonPictures& pictur
 }  // namespace motus::draw
 
 extern "C" __attribute__((visibility("default"))) const motus::draw::Api* motus_draw_api() {
-  static const motus::draw::Api api{motus::draw::kApiVersion, motus::draw::check, motus::draw::render_frames,
-                                    motus::draw::encode_video, motus::draw::draw_comparison};
+  static const motus::draw::Api api{motus::draw::kApiVersion,       motus::draw::check,
+                                    motus::draw::render_frames,       motus::draw::encode_video,
+                                    motus::draw::draw_comparison,     motus::process::kill_running_programs};
   return &api;
 }

@@ -21,4 +21,9 @@ struct Outcome {
 // `log` ("" : inherit) receives its standard output and error.
 Outcome run_program(const std::vector<std::string>& argv, const std::string& folder = "", const std::string& log = "");
 
+// Sends SIGKILL to every program run_program is waiting for. Async-signal-safe: for a process that
+// stops at once from a signal handler (a second Ctrl-C), so that an ffmpeg it started does not go
+// on writing after it.
+void kill_running_programs() noexcept;
+
 }  // namespace motus::process

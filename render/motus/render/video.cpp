@@ -4,6 +4,7 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
@@ -47,8 +48,9 @@ void encode_video(const std::string& frame_pattern, double fps, const std::strin
   // What ffmpeg says (at -loglevel error, only errors) goes to a file of its own and is read back:
   // it can report an error and still exit 0 (a full disk while it writes the trailer leaves a
   // video that does not play), and its lines are not motus's one-line message.
-  const char* tmp = std::getenv("TMPDIR");
-  std::string log = std::string(tmp && *tmp ? tmp : "/tmp") + "/motus-ffmpeg-XXXXXX";
+  // (Beside the video, not in /tmp: what a process stopped at once leaves stays in its own folder.)
+  const std::string beside = std::filesystem::path(out_path).parent_path().string();
+  std::string log = (beside.empty() ? std::string(".") : beside) + "/.ffmpeg-messages-XXXXXX";
   const int log_fd = ::mkstemp(log.data());
   if (log_fd < 0) log.clear();  // (then its messages go where motus's do)
   else ::close(log_fd);
