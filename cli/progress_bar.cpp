@@ -32,7 +32,7 @@ std::string seconds_text(double s) {
 }  // namespace
 
 ProgressBar::ProgressBar(double start, double end, std::string label, unsigned check_every)
-    : start_(start), end_(end), label_(std::move(label)), check_mask_(check_every - 1), most_mask_(check_every - 1),
+    : start_(start), end_(end), label_(std::move(label)), check_mask_(0), most_mask_(check_every - 1),
       began_(std::chrono::steady_clock::now()), last_draw_(began_), last_check_(began_), phase_began_(began_) {
   const char* mode = std::getenv("MOTUS_PROGRESS");
   always_ = mode && std::string(mode) == "always";
@@ -73,7 +73,9 @@ void ProgressBar::update(double now) {
   if ((++calls_ & check_mask_) != 0) return;
   const auto clock = std::chrono::steady_clock::now();
   // The clock is read about every 10 ms: more often between slow steps (a 500 × 500 cloth's
-  // take 0.4 s: a bar every 256 of them came after minutes), less often between fast ones.
+  // take 0.4 s: a bar every 256 of them came after minutes), less often between fast ones. It
+  // starts at every call and backs off (starting at every 256th, the first bar between slow steps
+  // came after 77 s).
   const double since = std::chrono::duration<double>(clock - last_check_).count();
   last_check_ = clock;
   if (since > 0.02 && check_mask_ > 0) {
