@@ -217,7 +217,8 @@ int render_command(const RenderOptions& o) {
   if (!(duration >= 0) || !std::isfinite(duration)) throw InputError("--duration: must be a finite number >= 0");
   const double frame_count = std::floor(duration * o.fps + 1e-9) + 1;  // (a double first: 1e18 s is no long)
   if (frame_count > 100000)
-    throw InputError(fmt::format("--duration/--fps: {:.3g} frames is too many (at most 100,000)", frame_count));
+    throw InputError(fmt::format("--duration/--fps: {} frames is too many (at most 100,000)",
+                                 frame_count < 1e15 ? fmt::format("{:.0f}", frame_count) : fmt::format("{:.3g}", frame_count)));
   const long frames = static_cast<long>(frame_count);
   // A video plays the frames at --fps; checked before anything is drawn (ffmpeg would refuse it
   // only after every frame had been, and the failed run's folder goes with them).
@@ -242,6 +243,22 @@ int render_command(const RenderOptions& o) {
     throw InputError(path + ": " + (e.field().empty() ? "" : e.field() + ": ") + e.what());
   }
   Simulation& sim = *built;
+  // Every state drawn from is kept until the drawing (a frame's for bodies; a first-order scene's
+  // every step, its curve drawn through them): refused up front past 4 GB. A million balls at 60
+  // frames a second, or lorenz for 9e5 s, grew to std::bad_alloc after a minute.
+  {
+    double states = frame_count;
+    if (!scene.is_mechanical() && !method.adaptive()) {
+      const double steps = static_cast<double>(fixed_step_count(duration, scene.dt));
+      states += scene.output_interval > 0 ? std::min(steps, duration / scene.output_interval) : steps;
+    }
+    const double gigabytes = states * (static_cast<double>(sim.state().size()) * 8 + 32) / 1e9;
+    if (gigabytes > 4)
+      throw InputError(fmt::format("--duration/--fps: drawing this run keeps about {:.0f} GB of states ({:.0f} states of "
+                                   "{} numbers; at most 4 GB): fewer frames (--fps), a shorter --duration{}",
+                                   gigabytes, states, sim.state().size(),
+                                   scene.is_mechanical() ? "" : ", or --set output_interval=S (a state every S s)"));
+  }
   const std::string video_name = o.video.empty() ? "" : safe_file_name(scene.name) + "." + o.video;  // a name is not a path
   const bool made_folder = !output_exists(o.out) && !fs::exists(o.out);  // (a path not to be looked at: bad input)
   const std::vector<std::string> names = render_names(frames, video_name);

@@ -136,6 +136,12 @@ TEST(Hardening, OverwriteRemovesOnlyWhatMotusWrote) {
   // A frame count past what a long holds: refused, not wrapped round.
   expect_one_line_exit_2(run_motus(dir, {"render", "head_on", "--out", (dir / "long").string(), "--duration", "1e18"}),
                          "frames is too many");
+  // States to draw from past 4 GB: refused up front (lorenz's every step for 9e5 s, 90 million states of 3
+  // numbers, grew to std::bad_alloc after a minute; found by an audit of big inputs).
+  expect_one_line_exit_2(run_motus(dir, {"render", "lorenz", "--out", (dir / "huge").string(), "--fps", "0.1", "--duration",
+                                         "9e5"}),
+                         "drawing this run keeps about 5 GB of states (90090001 states of 3 numbers; at most 4 GB)");
+  EXPECT_FALSE(fs::exists(dir / "huge"));
 }
 
 // ---- Wrong answers and hangs ----------------------------------------------------------------------
