@@ -154,6 +154,23 @@ int compare_command(const CompareOptions& o) {
   } else {
     options.frame_every = replay_frame_every(scene, options);
   }
+  // The frames (each engine's) and motus's samples (the others' reference) are kept until the report:
+  // refused up front past 4 GB (a million balls with 100,000 samples grew by 30 MB a second, and
+  // --render at 60 fps over 10⁵ s to std::bad_alloc).
+  {
+    const double numbers = 2.0 * scene.mechanical->dimensions * static_cast<double>(scene.mechanical->bodies.size());
+    const double frames = static_cast<double>(fixed_step_count(options.duration, options.dt)) /
+                              static_cast<double>(options.frame_every) + 1;
+    const double engines = static_cast<double>(std::max<size_t>(options.engines.size(), 1));
+    const double kept = engines * frames * (o.render ? 2 : 1) + static_cast<double>(options.samples) + 1;
+    const double gigabytes = kept * (numbers * 8 + 48) / 1e9;
+    if (gigabytes > 4)
+      throw InputError(fmt::format("{}: keeps about {:.0f} GB of states for the report ({:.0f} frames of {} engine{} and "
+                                   "{} samples, {:.0f} numbers each; at most 4 GB): fewer --samples, {}a shorter --duration",
+                                   o.render ? "--fps/--samples/--duration" : "--samples/--duration", gigabytes, frames,
+                                   options.engines.size(), options.engines.size() == 1 ? "" : "s", options.samples,
+                                   numbers, o.render ? "a lower --fps, " : ""));
+  }
   // Fail before any engine runs if motus cannot run this scene with this integrator.
   if (std::find(options.engines.begin(), options.engines.end(), "motus") != options.engines.end())
     Simulation check(scene, options.method);

@@ -179,6 +179,11 @@ TEST(Hardening, AnEmptyOutputPathOrAnInfiniteToleranceIsBadInput) {
   expect_one_line_exit_2(run_motus(dir, {"compare", "head_on", "--size", "480x360x2"}), "--size");
   expect_one_line_exit_2(run_motus(dir, {"compare", "head_on", "--render", "--fps", "1e-9", "--out", (dir / "c").string()}),
                          "a video needs two");
+  // States kept for the report past 4 GB: refused before any engine runs (a million balls' 100,000 samples of
+  // 4·10⁶ numbers grew by 30 MB a second; found by an audit of big inputs).
+  expect_one_line_exit_2(run_motus(dir, {"compare", "ball_gas", "--engines", "motus", "--set", "lattice.count=1000000",
+                                         "--samples", "100000", "--duration", "1000", "--out", (dir / "c").string()}),
+                         "keeps about 3200 GB of states for the report");
   // An expression past the documented 10,000 characters (docs/scene-format.md, "Limits").
   std::string rhs = "v";
   while (rhs.size() <= 10000) rhs += " + 0";
