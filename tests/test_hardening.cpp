@@ -184,6 +184,10 @@ TEST(Hardening, AnEmptyOutputPathOrAnInfiniteToleranceIsBadInput) {
   expect_one_line_exit_2(run_motus(dir, {"compare", "ball_gas", "--engines", "motus", "--set", "lattice.count=1000000",
                                          "--samples", "100000", "--duration", "1000", "--out", (dir / "c").string()}),
                          "keeps about 3200 GB of states for the report");
+  // A name past the documented 1,000 bytes (one of 60 MB took minutes a frame to draw; found by an audit of big inputs).
+  write_file(dir / "named.json", R"({"name": ")" + std::string(1001, 'n') +
+                                     R"(", "integrator": "rk4", "dt": 0.1, "duration": 1, "dimensions": 1, "bodies": [{"mass": 1, "position": [0]}]})");
+  expect_one_line_exit_2(run_motus(dir, {"run", (dir / "named.json").string()}), "name: is 1001 bytes long (at most 1,000");
   // An expression past the documented 10,000 characters (docs/scene-format.md, "Limits").
   std::string rhs = "v";
   while (rhs.size() <= 10000) rhs += " + 0";

@@ -337,6 +337,9 @@ SceneDescription read_scene(const nlohmann::json& document, const std::string& s
   f.string("$schema", "");  // editors may point at scene/scene.schema.json
   scene.name = f.string("name", stem);
   scene.description = f.string("description", "");
+  // A name is a title, drawn on every frame and every figure and printed on every row of a CSV: one
+  // of 60 MB loaded, then took minutes a frame to lay out.
+  if (scene.name.size() > 1000) f.fail("name", "is " + std::to_string(scene.name.size()) + " bytes long (at most 1,000: a title; the description may be longer)");
   // Both are printed on the terminal and in every report: a control character (an escape
   // sequence, C0's or C1's, a carriage return) there would rewrite the user's screen, not name a
   // scene. Line breaks and tabs may be in them: the name is made one line here (every command
