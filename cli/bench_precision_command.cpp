@@ -144,6 +144,7 @@ int bench_precision_command(const BenchPrecisionOptions& o) {
     progress.update(++done);
     stop_if_interrupted();
   };
+  sweep.now_and_then = [] { stop_if_interrupted(); };
 
   std::vector<precision::Curve> curves;
   for (const Method& method : chosen) curves.push_back(precision::sweep_motus(scene, method, sweep));

@@ -681,6 +681,26 @@ TEST(Hardening, StoppedAtOnceWhileEncodingLeavesNoFfmpegRunning) {
   EXPECT_TRUE(left.empty()) << "still running: " << left.front();
 }
 
+// bench precision stopped only between points: Ctrl-C during a point of 10⁹ Euler steps waited its 30 s of
+// grace, then stopped at once with the run's partial folder left behind. Its untimed runs now stop at
+// the next 65,536th step. Found by an audit of big inputs.
+TEST(Hardening, CtrlCInALongPrecisionPointStopsAtOnceAndLeavesNothing) {
+  TempDir dir;
+  const fs::path out = dir / "sweep";
+  const pid_t pid = start_motus(dir, {"bench", "precision", "kepler", "--duration", "1e7", "--levels", "1", "--integrators",
+                                     "euler", "--repeats", "1", "--out", out.string()});
+  ASSERT_GT(pid, 0);
+  ASSERT_TRUE(wait_until_catching(pid, SIGINT)) << read_file(dir / "err.txt");
+  ::usleep(1500000);  // (into the one point: 10⁷ s of Kepler, 10⁹ Euler steps)
+  ::kill(pid, SIGINT);
+  int raw = 0;
+  ASSERT_TRUE(ended_within(pid, 10, raw)) << "Ctrl-C did not end the sweep within 10 s";
+  EXPECT_TRUE(WIFEXITED(raw) && WEXITSTATUS(raw) == 130) << raw << ": " << read_file(dir / "err.txt");
+  EXPECT_NE(read_file(dir / "err.txt").find("nothing half-written was left behind"), std::string::npos) << read_file(dir / "err.txt");
+  for (const auto& e : fs::directory_iterator(dir.path()))
+    EXPECT_EQ(e.path().filename().string().find("partial"), std::string::npos) << "left behind: " << e.path();
+}
+
 // Slow steps (a 500 × 500 cloth's take tenths of a second) stop at the next one: Ctrl-C was
 // looked at every 256 steps, so motus waited its 30 s of grace, then stopped with the CSV's
 // partial folder left behind.

@@ -45,7 +45,8 @@ double state_error(const SceneDescription& scene, const Vector& y, double t) {
 
 namespace {
 
-Point measure(const SceneDescription& scene, const Method& method, double h, double tol, double end, int repeats) {
+Point measure(const SceneDescription& scene, const Method& method, double h, double tol, double end, int repeats,
+              const std::function<void()>& now_and_then) {
   Point p;
   p.h = h;
   p.tolerance = method.adaptive() ? tol : 0;
@@ -55,7 +56,14 @@ Point measure(const SceneDescription& scene, const Method& method, double h, dou
     Simulation sim(scene, method);
     const auto began = std::chrono::steady_clock::now();
     try {
-      sim.advance(end, h, Tolerance{tol, tol});
+      if (r == 0 && repeats > 0 && now_and_then) {  // (the untimed run: a call per step costs it nothing that counts)
+        long count = 0;
+        sim.advance(end, h, Tolerance{tol, tol}, [&](const Simulation&) {
+          if ((++count & 0xFFFF) == 0) now_and_then();
+        });
+      } else {
+        sim.advance(end, h, Tolerance{tol, tol});
+      }
     } catch (const StepSizeUnderflow& e) {  // the tolerance cannot be met: no point here
       p.failed = e.what();
       return p;
@@ -96,12 +104,12 @@ Curve sweep_motus(const SceneDescription& scene, const Method& method, const Swe
   }
   if (c.adaptive) {
     for (double tol : tolerances(sweep)) {
-      c.points.push_back(measure(scene, method, sweep.dt, tol, sweep.end, sweep.repeats));
+      c.points.push_back(measure(scene, method, sweep.dt, tol, sweep.end, sweep.repeats, sweep.now_and_then));
       if (sweep.point_done) sweep.point_done();
     }
   } else {
     for (const double h : fixed_steps(scene, sweep)) {
-      c.points.push_back(measure(scene, method, h, 0, sweep.end, sweep.repeats));
+      c.points.push_back(measure(scene, method, h, 0, sweep.end, sweep.repeats, sweep.now_and_then));
       if (sweep.point_done) sweep.point_done();
     }
   }

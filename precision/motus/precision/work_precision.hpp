@@ -40,6 +40,9 @@ struct Sweep {
   int per_decade = 3;  // adaptive methods: rtol = atol = 10^(−3 − j/per_decade) down to 1e-13
   int repeats = 9;     // timed runs per point (after one untimed run); the fastest counts
   std::function<void()> point_done;  // called after every point (a progress bar), may be empty
+  // Called every 65,536 steps of a point's untimed run (a safe point to stop at: Ctrl-C waited for a
+  // point of 10¹³ steps to end), may be empty. Never in a timed run.
+  std::function<void()> now_and_then;
 };
 
 // The fixed steps dt/2^k; where only reference states are known (no formula for every t), each
