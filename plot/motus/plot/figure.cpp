@@ -39,9 +39,10 @@ std::string number(double x) {
 const char* kColours[] = {"#4285d6", "#e67832", "#46aa64", "#cd465a", "#9164c8", "#28aab4", "#dcb428", "#966e50",
                           "#1f3f7a", "#a04010", "#2a6e3c", "#8b1e2e", "#5a3a8a", "#1a6e75", "#8a7010", "#4a3428"};
 
-// Line k's colour; lines 17 to 32 take the colours again, dotted (gnuplot's dash type 3) or,
-// when the series is dashed on purpose (a peer beside motus's own), dash-dotted (4). So no
-// two of a figure's first 32 lines look the same (no figure motus draws has more).
+// Line k's colour and dash: the series' own dash when it has one (compare's engines); else lines
+// 17 to 32 take the colours again, dotted (gnuplot's dash type 3) or, when the series is dashed on
+// purpose (a peer beside motus's own), dash-dotted (4). So no two of a figure's first 32 lines
+// look the same (no figure motus draws has more).
 std::string line_style(size_t k, bool dashed, const std::string& dash) {
   const std::string colour = std::string(" lc rgb '") + kColours[k % std::size(kColours)] + "'";
   if (!dash.empty()) return colour + " dt " + dash;
