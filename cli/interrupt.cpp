@@ -25,6 +25,7 @@ constexpr unsigned kNoticeSeconds = 2;
 volatile sig_atomic_t g_noticed = 0;
 // What else stop_now calls (on_stop_at_once).
 std::atomic<void (*)() noexcept> g_also[4] = {};
+static_assert(std::atomic<void (*)() noexcept>::is_always_lock_free);  // (read in stop_now, from a handler)
 
 // Only async-signal-safe calls here: write, kill and _exit.
 [[noreturn]] void stop_now(const char* why) {
