@@ -93,6 +93,47 @@ TEST(NeighbourLists, BallsFasterThanARadiusPerStepLeaveTheListsAndMissNothing) {
   }
 }
 
+TEST(NeighbourLists, AGasOfFastBallsFindsEachOtherInTheGridOfTheirPathsAndMissesNothing) {
+  for (int d : {2, 3}) {
+    // Every ball's velocity twelve times the quick gas's, up to 48 m/s a component: about two
+    // thirds of them (every ball in 3-D but a few) move farther than their radius in a step,
+    // more than enough for the grid of their paths (path_grid.hpp), where each looks for the
+    // others instead of testing them all; and those their contacts speed up join them.
+    SceneDescription scene = gas_in_a_box(d, 64, 4);
+    for (auto& b : scene.mechanical->bodies)
+      for (double& u : b.velocity) u *= 12;
+    // (Eight steps: in a gas this quick the rounding's differences from the event-by-event answer
+    // grow past kSameAnswer in ten — 6e-8 m — with or without the grid, whose pairs' events are
+    // the same.)
+    Simulation sim(scene, Integrator::SymplecticEuler);
+    sim.advance(8 * scene.dt, scene.dt, {});
+    const std::optional<motus::Vector> exact = motus::free_flight_state(scene, sim.time());
+    ASSERT_TRUE(exact.has_value());
+    EXPECT_LT((sim.state() - *exact).cwiseAbs().maxCoeff(), kSameAnswer) << d << "-D";
+    const auto counters = sim.world()->collision_counters();
+    EXPECT_GT(counters.ball_collisions, 100) << d << "-D";
+    EXPECT_EQ(counters.path_grids, sim.steps()) << d << "-D: every step has its fast balls find each other in the grid";
+  }
+}
+
+TEST(NeighbourLists, ThousandsOfFastBallsTestFarFewerPairsThanAllOfThem) {
+  // 4,096 balls of radius 0.05 on the lattice of spacing 2, velocities up to 24 m/s a component
+  // (0.05 m is 3 m/s at 60 Hz): nearly all are fast every step. Testing each against every
+  // other fast ball is F(F − 1) tests a step; in the grid of their paths a ball meets only the
+  // few whose paths pass near its own.
+  for (int d : {2, 3}) {
+    SceneDescription scene = gas_in_a_box(d, 4096, 24);
+    for (auto& b : scene.mechanical->bodies) b.radius = 0.05;
+    Simulation sim(scene, Integrator::SymplecticEuler);
+    const long steps = 3;
+    sim.advance(steps * scene.dt, scene.dt, {});
+    const auto counters = sim.world()->collision_counters();
+    EXPECT_EQ(counters.path_grids, steps) << d << "-D";
+    const double fast = 4096 * 0.9;  // (at least: a speed of 3 m/s is 1/8 of the range, fewer than 1 ball in 10 is slower in 2-D)
+    EXPECT_LT(static_cast<double>(counters.pair_tests), steps * fast * (fast - 1) / 100) << d << "-D";
+  }
+}
+
 TEST(NeighbourLists, BallsOfDifferentSizesAndMassesFollowTheEventByEventAnswer) {
   for (int d : {2, 3}) {
     // Radii from 0.2 to 0.9 (the lists' reach is r_a + r_b + skin, the grid's cells 2·r_max +

@@ -61,6 +61,10 @@ constexpr int kGapClasses = 4;
 // count against the lists' half skin, as the distance the ball moved.
 constexpr double kNudge = 1e-9;
 
+// With this many fast balls or more at a step's start, they find each other in a grid of their
+// paths (path_grid.hpp) rather than each testing all the others.
+constexpr size_t kPathGridFrom = 32;
+
 }  // namespace
 
 template <int D>
@@ -205,6 +209,7 @@ void BallCollisions<D>::drift(VectorRef x, VectorRef v, double h, bool kicked) {
   moved_.clear();
   for (int i : fast_) state_[i].fast = false;
   fast_.clear();
+  fast_paths_on_ = false;
   // What the balls still on the lists may have moved: at most sweep_ each this step (faster
   // ones turned fast, and left them), and the small corrections.
   moved_since_build_ += sweep_ + nudged_;
@@ -892,8 +897,9 @@ void BallCollisions<D>::find_initial_events() {
   }
   advance_to(n_);
   counters_.pair_tests += tested;
-  // Fast balls look along their whole path (and at each other). (By index: a ball moved apart
-  // above turned fast and joined them.)
+  // Fast balls look along their whole path (and at each other). (A ball moved apart above
+  // turned fast and joined them.)
+  start_fast_paths();
   for (size_t a = 0; a < fast_.size(); ++a) find_events(fast_[a], 0, -1);
 }
 
@@ -934,8 +940,55 @@ void BallCollisions<D>::find_events(int i, double t, int exclude) {
       if (k != i && k != exclude && !state_[k].fast) test_pair(i, k, t);
     });
   }
-  for (int k : fast_)
+  for_fast_near(i, t, [&](int k) {
     if (k != i && k != exclude) test_pair(i, k, t);
+  });
+}
+
+template <int D>
+template <class Visit>
+void BallCollisions<D>::for_fast_near(int i, double t, Visit&& visit) {
+  // The fast balls ball i may meet from t to the step's end: every one, or those whose paths
+  // pass near its own in their grid.
+  if (fast_paths_on_) {
+    const Point p = position_at(i, t), q = p + velocity(i) * (h_ - t);
+    const double margin = radius_of(i) + kNudge * (path_cell_ + p.cwiseAbs().maxCoeff());
+    const long cells = fast_paths_.for_near(p.cwiseMin(q).array() - margin, p.cwiseMax(q).array() + margin, visit);
+    if (cells >= 0) {
+      counters_.cell_queries += cells;
+      return;
+    }
+  }
+  for (int k : fast_) visit(k);
+}
+
+template <int D>
+void BallCollisions<D>::start_fast_paths() {
+  // Cells about as wide as a typical fast ball's path box (the median path and a diameter),
+  // so that most paths are in one to 2^D cells.
+  fast_paths_on_ = false;
+  if (fast_.size() < kPathGridFrom) return;
+  path_lengths_.clear();
+  for (int i : fast_) path_lengths_.push_back(velocity(i).norm() * h_);
+  const auto middle = path_lengths_.begin() + static_cast<std::ptrdiff_t>(path_lengths_.size() / 2);
+  std::nth_element(path_lengths_.begin(), middle, path_lengths_.end(), [](double a, double b) {
+    return a < b || (b != b && a == a);  // (NaN last)
+  });
+  path_cell_ = 2 * max_radius_ + *middle;
+  if (!(path_cell_ > 0 && path_cell_ < INFINITY)) return;
+  fast_paths_.start(path_cell_, fast_.size(), n_);
+  fast_paths_on_ = true;
+  ++counters_.path_grids;
+  for (int i : fast_) enter_fast_path(i, 0);
+}
+
+template <int D>
+void BallCollisions<D>::enter_fast_path(int i, double t) {
+  // Its line from t to the step's end, widened by its radius (and a rounding's worth, as
+  // for_fast_near widens a query: two balls that touch have boxes that overlap).
+  const Point p = position_at(i, t), q = p + velocity(i) * (h_ - t);
+  const double margin = radius_of(i) + kNudge * (path_cell_ + p.cwiseAbs().maxCoeff());
+  fast_paths_.enter(i, p.cwiseMin(q).array() - margin, p.cwiseMax(q).array() + margin);
 }
 
 template <int D>
@@ -1076,6 +1129,10 @@ void BallCollisions<D>::resolve(const Event& e) {
     ++counters_.ball_collisions;
     mark_fast_if_needed(i, e.t);
     mark_fast_if_needed(k, e.t);
+    if (fast_paths_on_) {  // (their new paths)
+      if (state_[i].fast) enter_fast_path(i, e.t);
+      if (state_[k].fast) enter_fast_path(k, e.t);
+    }
     find_events(i, e.t, k);
     find_events(k, e.t, i);
   } else {
@@ -1089,6 +1146,7 @@ void BallCollisions<D>::resolve(const Event& e) {
     ++state_[i].collisions_this_step;
     ++counters_.wall_collisions;
     mark_fast_if_needed(i, e.t);
+    if (fast_paths_on_ && state_[i].fast) enter_fast_path(i, e.t);
     find_events(i, e.t, -1);
   }
 }

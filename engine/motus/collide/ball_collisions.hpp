@@ -15,8 +15,10 @@
 //      balls within reach in neighbouring cells (the broad phase: O(N), not O(N²)). Balls
 //      that may have left their list's reach — fast ones, moving farther than a radius in one
 //      step, and balls pushed apart — are "fast": they query the grid's cells along their path
-//      until the next build. As soon as no listed pair left to test has a body, it is moved
-//      to the end of the step (a body no contact touches needs nothing more: BallState::lag);
+//      until the next build, and find each other in a grid of their paths (path_grid.hpp),
+//      not pair by pair (a gas of small quick balls is nearly all fast). As soon as no listed
+//      pair left to test has a body, it is moved to the end of the step (a body no contact
+//      touches needs nothing more: BallState::lag);
 //   2. take the earliest contact, move its two bodies to that time, apply the impulse
 //      (impulse.hpp), and look again for the contacts of just those two (their lists);
 //   3. repeat until no contact is left within h; move the bodies that collided on to the end.
@@ -28,6 +30,7 @@
 #include <vector>
 
 #include "motus/collide/colliders.hpp"
+#include "motus/collide/path_grid.hpp"
 #include "motus/external/external_parts.hpp"
 #include "motus/huge_pages.hpp"
 #include "motus/vector.hpp"
@@ -41,6 +44,7 @@ struct CollisionCounters {
   long ball_collisions = 0;
   long wall_collisions = 0;
   long position_corrections = 0;  // overlaps removed by moving positions
+  long path_grids = 0;            // steps whose fast balls looked for each other in a grid of their paths
 
   long broad_phase_queries() const { return grid_builds + cell_queries; }
 };
@@ -152,6 +156,10 @@ private:
   void bounce(int i, const Point& n, double e);
   void resolve(const Event& e);
   void mark_fast_if_needed(int i, double t);
+  void start_fast_paths();
+  void enter_fast_path(int i, double t);
+  template <class Visit>
+  void for_fast_near(int i, double t, Visit&& visit);
 
   int n_;
   const ExternalCollisionRules* rules_;
@@ -247,6 +255,13 @@ private:
   std::vector<NearFace> near_faces_;  // box faces within a ball's reach
   std::vector<int> outside_window_;   // (a build's: pairs of balls, one of them near a face perhaps)
   std::vector<int> escaped_;
+
+  // With many fast balls, the grid of their paths this step (path_grid.hpp), in which each
+  // looks for the others (with a few, it tests every one).
+  PathGrid<D> fast_paths_;
+  bool fast_paths_on_ = false;
+  double path_cell_ = 1;  // its cells' size
+  std::vector<double> path_lengths_;  // (start_fast_paths's)
 };
 
 extern template class BallCollisions<1>;
