@@ -23,6 +23,9 @@ constexpr unsigned kCollapseLimit = 64;
 
 // Overlap smaller than this fraction of the contact distance is rounding, not overlap.
 constexpr double kOverlapSlack = 1e-12;
+// Bodies whose gap is at most this fraction of their contact distance touch, for a plug-in's
+// time of impact (its rounding and the engine's differ by a few units in the last place).
+constexpr double kTouching = 1e-9;
 
 // Up to this many grid cells (half a megabyte of starts: in L2) the grid is counting-sorted
 // in one level; beyond it, in two (see build_grid).
@@ -169,11 +172,18 @@ void BallCollisions<D>::drift(VectorRef x, VectorRef v, double h, bool kicked) {
     }
     if (state_[e.i].collisions_this_step != e.count_i) continue;  // stale: i has collided since
     if (e.other >= 0 && state_[e.other].collisions_this_step != e.count_other) continue;
-    if (++events_this_step_ > limit)
-      throw std::runtime_error("more than " + std::to_string(limit) + " collisions in one step: " +
-                               (rules_ ? "with the plug-in's times of impact and impulses, the contacts never end (does "
-                                         "it find a contact between balls that are moving apart?)"
-                                       : "the scene cannot settle (overlapping bodies?)"));
+    if (++events_this_step_ > limit) {
+      // (With a plug-in, the contact that passed the limit says which of its times of impact to
+      // look at: the contacts that never end are nearly all of one kind.)
+      std::string why = "the scene cannot settle (overlapping bodies?)";
+      if (rules_ && e.other >= 0)
+        why = "with the plug-in's times of impact and impulses, the contacts between balls never end (does its time "
+              "of impact of two balls find a contact between balls that are moving apart?)";
+      else if (rules_)
+        why = "with the plug-in's times of impact and impulses, the contacts between a ball and a wall never end (does "
+              "its time of impact with a plane find a contact for a ball moving away from the plane?)";
+      throw std::runtime_error("more than " + std::to_string(limit) + " collisions in one step: " + why);
+    }
     resolve(e);
   }
 
@@ -1151,6 +1161,15 @@ void BallCollisions<D>::resolve(const Event& e) {
   }
 }
 
+namespace {
+// A number in a message to a plug-in's author: six significant figures.
+std::string figure(double x) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.6g", x);
+  return text;
+}
+}  // namespace
+
 template <int D>
 double BallCollisions<D>::outside_balls_impact(const Point& p_a, const Point& v_a, double r_a, const Point& p_b,
                                                const Point& v_b, double r_b, double horizon) {
@@ -1158,6 +1177,24 @@ double BallCollisions<D>::outside_balls_impact(const Point& p_a, const Point& v_
   check_external(rules_->balls_impact(rules_->self, D, p_a.data(), v_a.data(), r_a, p_b.data(), v_b.data(), r_b, &t),
                  "time of impact of two balls", rules_->error, rules_->self);
   if (std::isnan(t)) throw ExternalError("returned NaN as the time of impact of two balls (a time ≥ 0, or +infinity for none)");
+  // A time before now is taken as "none" (as −1 for none is, a common way to write it). But
+  // for balls that already touch and approach it loses a contact that is happening now, and they
+  // pass into each other: that showed only much later, as an overlap. (Touching to within
+  // rounding: a contact leaves its balls exactly touching, and their neighbours in a chain too.)
+  const Point dp = p_b - p_a;
+  const double gap = dp.norm() - (r_a + r_b);
+  if (t < 0 && gap <= kTouching * (r_a + r_b) && dp.dot(v_b - v_a) < 0)
+    throw ExternalError("returned " + figure(t) + " as the time of impact of two balls whose surfaces are " +
+                        figure(gap) + " m apart and approaching, where they already touch" +
+                        (gap < 0 ? " (overlap)" : "") + ": that is a contact now, t = 0");
+  // And a contact within the step for balls clearly moving apart (beyond rounding) is none: it
+  // would have the impulse pull them together. (The impulse's own check looks only at balls that
+  // approach; without this the contacts went on until the step's limit.)
+  const Point dv = v_b - v_a;
+  if (t >= 0 && t <= horizon && dp.dot(dv) > kTouching * dp.norm() * dv.norm())
+    throw ExternalError("returned " + figure(t) + " as the time of impact of two balls moving apart (the gap between "
+                        "their surfaces grows at " + figure(dp.dot(dv) / dp.norm()) +
+                        " m/s): balls moving apart never touch, +infinity");
   return t >= 0 && t <= horizon ? t : kNoImpact;  // (negative: none, as +infinity)
 }
 
@@ -1169,17 +1206,18 @@ double BallCollisions<D>::outside_plane_impact(const Point& p, const Point& v, d
                  "time of impact of a ball and a plane", rules_->error, rules_->self);
   if (std::isnan(t))
     throw ExternalError("returned NaN as the time of impact of a ball and a plane (a time ≥ 0, or +infinity for none)");
+  // (As for two balls: a ball that already touches the plane and moves into it has a contact now.)
+  const double gap = plane.normal.dot(p) - plane.offset - r;
+  if (t < 0 && gap <= kTouching * std::max(r, 1e-300) && plane.normal.dot(v) < 0)
+    throw ExternalError("returned " + figure(t) + " as the time of impact of a ball " + figure(gap) +
+                        " m from a plane and moving into it, where it already touches" +
+                        (gap < 0 ? " (it is into the plane)" : "") + ": that is a contact now, t = 0");
+  const double away = plane.normal.dot(v);
+  if (t >= 0 && t <= horizon && away > kTouching * v.norm())
+    throw ExternalError("returned " + figure(t) + " as the time of impact of a ball moving away from a plane (at " +
+                        figure(away) + " m/s along its normal): it never reaches it, +infinity");
   return t >= 0 && t <= horizon ? t : kNoImpact;
 }
-
-namespace {
-// A number in a message to a plug-in's author: six significant figures.
-std::string figure(double x) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.6g", x);
-  return text;
-}
-}  // namespace
 
 template <int D>
 void BallCollisions<D>::collide(int i, int k, const Point& n, double e) {
