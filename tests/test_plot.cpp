@@ -65,7 +65,7 @@ TEST(Figures, EveryLineColourHasAContrastOfThreeOnWhite) {
   }
   (void)motus::plot::draw({f}, folder.path().string());
   const std::string script = read_file(folder / "figures.gp");
-  const std::regex colour(R"(lc rgb '(#[0-9a-f]{6})'[^\n]* title 'line \d+')");
+  const std::regex colour(R"(lc rgb '(#[0-9a-f]{6})'(?: dt \S+)? title 'line \d+')");
   std::set<std::string> colours;
   for (auto it = std::sregex_iterator(script.begin(), script.end(), colour); it != std::sregex_iterator(); ++it)
     colours.insert((*it)[1].str());

@@ -95,7 +95,7 @@ TEST(Report, NewtonsCradleShowsTheExactAnswerAndEachEnginesDistance) {
   EXPECT_LT(engine(r, "motus")["max_distance_from_exact"].get<double>(), 1e-12);
   // Each engine has a distance from the exact answer in the table, and the sentence names them all.
   EXPECT_NE(r.html.find("<th scope=\"col\">max distance from exact [m]</th>"), std::string::npos);
-  EXPECT_NE(r.html.find("<h2>The exact answer</h2>"), std::string::npos);
+  EXPECT_NE(r.html.find("<h2 id=\"exact-answer\">The exact answer</h2>"), std::string::npos);
   const std::string notice = r.summary["notice"];
   EXPECT_NE(notice.find("ball 4 leaves at (1, 0) m/s and the others rest"), std::string::npos) << notice;
   for (const auto& e : r.summary["engines"])
@@ -167,7 +167,9 @@ TEST(Report, EveryEngineKeepsItsColourAndOneThatCouldNotRunIsInTheLegend) {
   std::set<std::string> colours;
   for (const std::string title : {"title 'motus'", "title 'box2d: not supported (1-D scenes)'", "title 'bullet'"}) {
     EXPECT_GT(count(title), 0) << title << " in:\n" << gp;
-    const std::regex entry("lc rgb '(#[0-9a-f]{6})' dt \\S+ " + title);
+    // (the title as a regular expression: "(1-D scenes)" has parentheses)
+    const std::string literal = std::regex_replace(title, std::regex(R"([()\[\]{}.*+?^$|\\])"), R"(\$&)");
+    const std::regex entry("lc rgb '(#[0-9a-f]{6})' dt \\S+ " + literal);
     std::set<std::string> mine;
     long entries = 0;
     for (auto it = std::sregex_iterator(gp.begin(), gp.end(), entry); it != std::sregex_iterator(); ++it, ++entries)
