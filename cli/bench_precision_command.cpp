@@ -222,6 +222,7 @@ int bench_precision_command(const BenchPrecisionOptions& o) {
   context.description = scene.description;
   context.start = scene.start_time;
   context.end = end;
+  context.time_unit = time_unit_of(scene);
   context.sweep = sweep;
   context.targets = targets;
   context.versions = versions;

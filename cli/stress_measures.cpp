@@ -196,7 +196,7 @@ DriftResult measure_drift(const SceneDescription& scene, Integrator integrator, 
                 while (next_sample <= step) next_sample = std::max(next_sample + 1, std::lround(std::pow(10.0, ++sample_index / 20.0)));
               }
               if (!why.empty()) {
-                r.blown = why + " at t = " + format_g(s.time());
+                r.blown = why + " at t = " + format_g(s.time()) + " s";  // (stress runs mechanical scenes: seconds)
                 return false;
               }
               return true;

@@ -137,7 +137,7 @@ std::vector<plot::Figure> figures(const Report& r) {
   if (has(r, "drift")) {
     plot::Figure f;
     f.stem = "drift";
-    f.title = who + fmt::format("energy error over {} steps of dt = {:g}", r.settings.drift_steps, r.dt);
+    f.title = who + fmt::format("energy error over {} steps of dt = {:g} s", r.settings.drift_steps, r.dt);
     f.x_label = "t [s]";
     f.y_label = "largest |E - E0| / |E0| since the previous point";
     f.x_scale = f.y_scale = plot::Scale::log;
@@ -154,7 +154,7 @@ std::vector<plot::Figure> figures(const Report& r) {
   if (has(r, "stiffness")) {
     plot::Figure f;
     f.stem = "stiffness";
-    f.title = who + fmt::format("{} raised by decades at dt = {:g}", r.stiffness_knob.substr(0, r.stiffness_knob.find(',')), r.dt);
+    f.title = who + fmt::format("{} raised by decades at dt = {:g} s", r.stiffness_knob.substr(0, r.stiffness_knob.find(',')), r.dt);
     f.x_label = "factor";
     f.y_label = "largest |E - E0| / |E0| over the run";
     f.x_scale = f.y_scale = plot::Scale::log;
@@ -346,16 +346,16 @@ std::string write_page(const std::string& folder, const Report& r) {
   const std::string warning = plot::draw(figures(r), folder);
 
   File h(folder + "/index.html");
-  h << "<!doctype html>\n<html><head><meta charset=\"utf-8\"><title>motus stress: " << html_escape(r.scene_name)
+  h << plot::kPageStart << "motus stress: " << html_escape(r.scene_name)
     << "</title>\n<style>body{font-family:sans-serif;max-width:62em;margin:2em auto;padding:0 1em;color:#222}"
        "table{border-collapse:collapse;margin:.5em 0}td,th{border:1px solid #ccc;padding:.25em .55em;text-align:right}"
-       "th{background:#f3f3f3}td:first-child,th:first-child{text-align:left}.no{color:#a00}.ok{color:#070}"
+       "th{background:#f3f3f3}th[scope=row]{background:none;font-weight:normal}td:first-child,th:first-child{text-align:left}.no{color:#a00}.ok{color:#070}"
        "img{max-width:100%}code{background:#f3f3f3;padding:0 .2em}</style></head><body>\n";
   h << "<h1>Stress test: " << html_escape(r.scene_name) << "</h1>\n<p>" << html_escape(r.description) << "</p>\n";
-  h << fmt::format("<p>{} {} in {} dimensions, the scene's dt = {:g} s. Every number below was measured by running "
+  h << fmt::format("<p>{} {} in {} dimension{}, the scene's dt = {:g} s. Every number below was measured by running "
                    "<code>motus::Simulation</code> on the scene or on a variant of it; the CSV files hold every run. "
                    "Sections: {}.</p>\n",
-                   r.bodies, r.bodies == 1 ? "body" : "bodies", r.dimensions, r.dt,
+                   r.bodies, r.bodies == 1 ? "body" : "bodies", r.dimensions, r.dimensions == 1 ? "" : "s", r.dt,
                    html_escape(fmt::format("{}", fmt::join(r.sections, ", "))));
   if (!r.not_applied.empty()) {
     h << "<p>Not measured on this scene:</p><ul>\n";
@@ -376,22 +376,22 @@ std::string write_page(const std::string& folder, const Report& r) {
                                              r.settings.energy_factor);
 
   if (has(r, "stability")) {
-    h << "<h2>The largest stable step</h2>\n<p>For each integrator, runs of " << r.settings.steps
+    h << "<h2 id=\"stability-heading\">The largest stable step</h2>\n<p>For each integrator, runs of " << r.settings.steps
       << " steps from the scene's start, with h doubled from dt/1024 until a run blows up, then bisected 24 times between "
          "the last stable step and the first that blew up. Blown up: "
       << blown_rule << ". Theory: <code>tests/reference/integrators.md</code>, stability on x'' = −ω²x"
       << (r.omega ? fmt::format(" (here ω = {:g})", *r.omega) : std::string(" (not applicable: this scene is not an undamped oscillator)"))
       << ". Explicit Euler and midpoint have no stable step there: their energy grows by a factor every step, so a run of N steps "
          "stays under the factor only for h below a bound that shrinks as N grows.</p>\n";
-    h << "<table><tr><th>integrator</th><th>largest stable h</th>" << (r.omega ? "<th>ω h</th>" : "")
-      << "<th>theory</th><th>measured / theory</th></tr>\n";
+    h << "<table aria-labelledby=\"stability-heading\"><tr><th scope=\"col\">integrator</th><th scope=\"col\">largest stable h [s]</th>" << (r.omega ? "<th scope=\"col\">ω h</th>" : "")
+      << "<th scope=\"col\">theory</th><th scope=\"col\">measured / theory</th></tr>\n";
     for (const auto& s : r.stability) {
       if (!s.skipped.empty()) {
-        h << "<tr><td>" << name(s.integrator) << "</td><td colspan=\"" << (r.omega ? 4 : 3) << "\">" << html_escape(s.skipped) << "</td></tr>\n";
+        h << "<tr><th scope=\"row\">" << name(s.integrator) << "</th><td colspan=\"" << (r.omega ? 4 : 3) << "\">" << html_escape(s.skipped) << "</td></tr>\n";
         continue;
       }
       const double z = r.omega ? *r.omega * s.limit : NAN;
-      h << "<tr><td>" << name(s.integrator) << "</td><td>"
+      h << "<tr><th scope=\"row\">" << name(s.integrator) << "</th><td>"
         << (s.limit > 0 ? fmt::format("{:.6g}", s.limit) : "none (blows up at every h tried)")
         << (s.first_blowup == 0 ? " (no blow-up found)" : "") << "</td>";
       if (r.omega) h << "<td>" << (s.limit > 0 ? fmt::format("{:.6f}", z) : "–") << "</td>";
@@ -404,16 +404,16 @@ std::string write_page(const std::string& folder, const Report& r) {
          "(every trial).</p>\n";
   }
   if (has(r, "drift")) {
-    h << "<h2>Long-run drift</h2>\n<p>" << r.settings.drift_steps << " steps of the scene's dt = " << fmt::format("{:g}", r.dt)
-      << "; the energy error is recorded about 20 times a decade of steps, each point the largest since the one before. "
+    h << "<h2 id=\"drift-heading\">Long-run drift</h2>\n<p>" << r.settings.drift_steps << " steps of the scene's dt = " << fmt::format("{:g}", r.dt)
+      << " s; the energy error is recorded about 20 times a decade of steps, each point the largest since the one before. "
          "Bounded: the largest error over the last tenth of the run is at most 1.5 times that over its first hundredth.</p>\n";
-    h << "<table><tr><th>integrator</th><th>max, first hundredth</th><th>max, last tenth</th><th>verdict</th></tr>\n";
+    h << "<table aria-labelledby=\"drift-heading\"><tr><th scope=\"col\">integrator</th><th scope=\"col\">max, first hundredth</th><th scope=\"col\">max, last tenth</th><th scope=\"col\">verdict</th></tr>\n";
     for (const auto& d : r.drift) {
       if (!d.skipped.empty()) {
-        h << "<tr><td>" << name(d.integrator) << "</td><td colspan=\"3\">" << html_escape(d.skipped) << "</td></tr>\n";
+        h << "<tr><th scope=\"row\">" << name(d.integrator) << "</th><td colspan=\"3\">" << html_escape(d.skipped) << "</td></tr>\n";
         continue;
       }
-      h << "<tr><td>" << name(d.integrator) << "</td><td>" << short_number(d.first_hundredth_max) << "</td><td>"
+      h << "<tr><th scope=\"row\">" << name(d.integrator) << "</th><td>" << short_number(d.first_hundredth_max) << "</td><td>"
         << (d.blown.empty() ? short_number(d.last_tenth_max) : "–") << "</td><td class=\"" << (d.verdict == "bounded" ? "ok" : "no")
         << "\">" << html_escape(d.verdict) << "</td></tr>\n";
     }
@@ -422,18 +422,18 @@ std::string write_page(const std::string& folder, const Report& r) {
     h << "<p>Data: <a href=\"drift.csv\">drift.csv</a>.</p>\n";
   }
   if (has(r, "stiffness")) {
-    h << "<h2>Stiffness</h2>\n<p>Raised by decades, 1× to 10⁸×, at the scene's dt: " << html_escape(r.stiffness_knob) << ". Each run is "
+    h << "<h2 id=\"stiffness-heading\">Stiffness</h2>\n<p>Raised by decades, 1× to 10⁸×, at the scene's dt: " << html_escape(r.stiffness_knob) << ". Each run is "
       << r.settings.steps << " steps; blown up as above.";
     if (r.omega)
       h << " On an oscillator ω grows as √k, so theory says a method fails once ω√(factor)·dt passes its limit.";
-    h << "</p>\n<table><tr><th>integrator</th><th>first factor that fails</th>" << (r.omega ? "<th>theory</th>" : "") << "</tr>\n";
+    h << "</p>\n<table aria-labelledby=\"stiffness-heading\"><tr><th scope=\"col\">integrator</th><th scope=\"col\">first factor that fails</th>" << (r.omega ? "<th scope=\"col\">theory</th>" : "") << "</tr>\n";
     for (const auto& s : r.stiffness) {
       if (!s.skipped.empty()) {
-        h << "<tr><td>" << name(s.integrator) << "</td><td colspan=\"" << (r.omega ? 2 : 1) << "\">" << html_escape(s.skipped)
+        h << "<tr><th scope=\"row\">" << name(s.integrator) << "</th><td colspan=\"" << (r.omega ? 2 : 1) << "\">" << html_escape(s.skipped)
           << "</td></tr>\n";
         continue;
       }
-      h << "<tr><td>" << name(s.integrator) << "</td><td>" << (s.first_failure > 0 ? fmt::format("{:g}", s.first_failure) : "none up to 1e8")
+      h << "<tr><th scope=\"row\">" << name(s.integrator) << "</th><td>" << (s.first_failure > 0 ? fmt::format("{:g}", s.first_failure) : "none up to 1e8")
         << "</td>";
       if (r.omega) {
         const double t = theory_first_failure(r, s.integrator);
@@ -446,16 +446,16 @@ std::string write_page(const std::string& folder, const Report& r) {
     h << "<p>Data: <a href=\"stiffness.csv\">stiffness.csv</a>.</p>\n";
   }
   if (has(r, "mass_ratio")) {
-    h << "<h2>Mass ratio</h2>\n<p>Two ways, for masses 1 and R from 1:1 to 1:10⁶. <b>The pair</b>: two balls of the scene's radius "
+    h << "<h2 id=\"mass_ratio-heading\">Mass ratio</h2>\n<p>Two ways, for masses 1 and R from 1:1 to 1:10⁶. <b>The pair</b>: two balls of the scene's radius "
          "meeting head-on at ±1 m/s, against the course's one-dimensional collision formula (<code>docs/course.md</code>, "
          "section 9) with the scene's restitution for <code>symplectic-euler</code>'s impulses, and with e = 0 for "
          "<code>verlet</code>, whose projected contacts are perfectly inelastic. <b>The scene</b>: every second body R times "
          "heavier, run for "
       << fmt::format("{:g}", r.settings.duration) << " s (at most the scene's duration); with e = 1 its energy is kept by the impulses.</p>\n";
-    h << "<table><tr><th>integrator</th><th>R</th><th>pair |v − v_formula|/u</th><th>pair energy</th><th>pair momentum</th>"
-         "<th>scene max |ΔE|/E₀</th></tr>\n";
+    h << "<table aria-labelledby=\"mass_ratio-heading\"><tr><th scope=\"col\">integrator</th><th scope=\"col\">R</th><th scope=\"col\">pair |v − v_formula|/u</th><th scope=\"col\">pair energy</th><th scope=\"col\">pair momentum</th>"
+         "<th scope=\"col\">scene max |ΔE|/E₀</th></tr>\n";
     for (const auto& m : r.mass_ratio)
-      h << "<tr><td>" << name(m.integrator) << "</td><td>" << fmt::format("{:g}", m.ratio) << "</td><td>"
+      h << "<tr><th scope=\"row\">" << name(m.integrator) << "</th><td>" << fmt::format("{:g}", m.ratio) << "</td><td>"
         << (m.pair.failed.empty() ? short_number(m.pair.velocity_error) : html_escape(m.pair.failed)) << "</td><td>"
         << short_number(m.pair.energy_error) << "</td><td>" << short_number(m.pair.momentum_error) << "</td><td>"
         << (m.gas_failed.empty() ? short_number(m.gas_energy_error) : html_escape(m.gas_failed)) << "</td></tr>\n";
@@ -464,15 +464,15 @@ std::string write_page(const std::string& folder, const Report& r) {
     h << "<p>Data: <a href=\"mass_ratio.csv\">mass_ratio.csv</a>.</p>\n";
   }
   if (has(r, "speed")) {
-    h << "<h2>Speed</h2>\n<p>From 1 to 10⁴ radii per step. <b>Tunnelling</b>: in a box of 40 radii, a ball shot along the box's "
+    h << "<h2 id=\"speed-heading\">Speed</h2>\n<p>From 1 to 10⁴ radii per step. <b>Tunnelling</b>: in a box of 40 radii, a ball shot along the box's "
          "middle line at a resting ball; both move on that line only, so if the moving ball is ever found beyond the other it "
          "went through it. <b>The scene</b>: its balls with every velocity scaled so that the fastest moves that many radii a "
          "step, for about three crossings of the container (3 to 300 steps): balls found outside the container, the deepest "
          "overlap of two balls after a step, and the energy.</p>\n";
-    h << "<table><tr><th>integrator</th><th>radii/step</th><th>pair: order kept</th><th>pair: in the box</th>"
-         "<th>pair: collisions</th><th>scene: outside</th><th>scene: deepest overlap</th><th>scene: max |ΔE|/E₀</th></tr>\n";
+    h << "<table aria-labelledby=\"speed-heading\"><tr><th scope=\"col\">integrator</th><th scope=\"col\">radii/step</th><th scope=\"col\">pair: order kept</th><th scope=\"col\">pair: in the box</th>"
+         "<th scope=\"col\">pair: collisions</th><th scope=\"col\">scene: outside</th><th scope=\"col\">scene: deepest overlap</th><th scope=\"col\">scene: max |ΔE|/E₀</th></tr>\n";
     for (const auto& s : r.speed) {
-      h << "<tr><td>" << name(s.integrator) << "</td><td>" << fmt::format("{:g}", s.radii_per_step) << "</td>";
+      h << "<tr><th scope=\"row\">" << name(s.integrator) << "</th><td>" << fmt::format("{:g}", s.radii_per_step) << "</td>";
       if (!s.pair_failed.empty())
         h << "<td colspan=\"3\" class=\"no\">" << html_escape(s.pair_failed) << "</td>";
       else
@@ -490,14 +490,14 @@ std::string write_page(const std::string& folder, const Report& r) {
     h << "<p>Data: <a href=\"speed.csv\">speed.csv</a>.</p>\n";
   }
   if (has(r, "sticks")) {
-    h << "<h2>Sticks between very different masses</h2>\n<p>The scene with "
+    h << "<h2 id=\"sticks-heading\">Sticks between very different masses</h2>\n<p>The scene with "
          "<b>every second body</b> R times heavier (its sticks join a light and a heavy end), and with <b>the last body</b> R times "
          "heavier (one heavy weight on light sticks), for "
       << fmt::format("{:g}", r.settings.duration) << " s (at most the scene's duration), with <code>verlet</code> and the scene's "
          "projection sweeps. The stick error is the largest |length − rest length| / rest length over the sticks and the run.</p>\n";
-    h << "<table><tr><th>variant</th><th>R</th><th>max stick error</th><th>at the end</th></tr>\n";
+    h << "<table aria-labelledby=\"sticks-heading\"><tr><th scope=\"col\">variant</th><th scope=\"col\">R</th><th scope=\"col\">max stick error</th><th scope=\"col\">at the end</th></tr>\n";
     for (const auto& s : r.sticks)
-      h << "<tr><td>" << html_escape(s.variant) << "</td><td>" << fmt::format("{:g}", s.ratio) << "</td><td>"
+      h << "<tr><th scope=\"row\">" << html_escape(s.variant) << "</th><td>" << fmt::format("{:g}", s.ratio) << "</td><td>"
         << (s.failed.empty() ? short_number(s.max_error) : html_escape(s.failed)) << "</td><td>" << short_number(s.final_error) << "</td></tr>\n";
     h << "</table>\n";
     figure("sticks", "the stick error against the mass ratio");

@@ -215,7 +215,7 @@ TEST(Compare, AScenesStartingWithNoEnergyHasItsEnergyColumnsInJoules) {
   const auto rows = csv_data_rows(read_file(dir / "p" / "metrics.csv"));
   EXPECT_DOUBLE_EQ(engine(j, "motus")->at("energy_drift").get<double>(), std::stod(rows.back().at(4)));
   EXPECT_NE(j.at("definitions").dump().find("energy drift [J]"), std::string::npos);
-  EXPECT_NE(read_file(dir / "p" / "index.html").find("<th>energy drift [J]</th>"), std::string::npos);
+  EXPECT_NE(read_file(dir / "p" / "index.html").find("<th scope=\"col\">energy drift [J]</th>"), std::string::npos);
   EXPECT_NE(read_file(dir / "p" / "figures.gp").find("E0| [J]"), std::string::npos);
   const Result table = run_motus(dir, {"compare", scene("stick_pendulum"), "--engines", "motus", "--out",
                                        (dir / "t").string(), "--duration", "1"});
@@ -228,7 +228,7 @@ TEST(Compare, AScenesStartingWithNoEnergyHasItsEnergyColumnsInJoules) {
   // change itself, in kg·m/s, and says so; head_on's is a fraction of the momentum in play.
   EXPECT_EQ(j.at("momentum_unit"), "kg·m/s");
   EXPECT_NE(table.out.find("p [kg m/s]"), std::string::npos) << table.out;
-  EXPECT_NE(read_file(dir / "p" / "index.html").find("<th>momentum drift [kg·m/s]"), std::string::npos);
+  EXPECT_NE(read_file(dir / "p" / "index.html").find("<th scope=\"col\">momentum drift [kg·m/s]"), std::string::npos);
   EXPECT_EQ(nlohmann::json::parse(head_on.out).at("momentum_unit"), "scale");
 }
 

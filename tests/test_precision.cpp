@@ -11,9 +11,11 @@
 
 #include <cmath>
 #include <map>
+#include <regex>
 #include <set>
 #include <sstream>
 
+#include "accessibility.hpp"
 #include "cli_harness.hpp"
 #include "motus/precision/engine_peers.hpp"
 #include "motus/precision/motus_sweep.hpp"
@@ -399,6 +401,29 @@ TEST(Targets, ARiseAtTheExpensiveEndKeepsWhatWasReachedAndALonePointBelowIsLuck)
   ASSERT_TRUE(after);
   EXPECT_TRUE(after->upper_bound);
   EXPECT_DOUBLE_EQ(after->seconds, 2e-6);
+}
+
+// Found by an accessibility audit: no <html lang> or viewport, tables without named headers, two
+// columns both headed "µs" (whose?), "–" for a target not reached, and times without units.
+TEST(BenchPrecisionCommand, ThePageIsNamedItsTablesHaveHeadersAndItsTimesUnits) {
+  TempDir dir;
+  const fs::path out = dir / "kepler-run";
+  const auto r = run_motus(dir, {"bench", "precision", "kepler", "--peers", "odeint", "--integrators", "euler,rk4",
+                                 "--levels", "2", "--per-decade", "1", "--repeats", "1", "--out", out.string()});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const std::string html = read_file(out / "index.html");
+  EXPECT_TRUE(starts_as_a_page(html));
+  EXPECT_TRUE(tables_have_headers(html));
+  for (const char* engine : {"motus", "odeint"})
+    EXPECT_NE(html.find("<th scope=\"col\">" + std::string(engine) + " µs</th>"), std::string::npos) << engine;
+  EXPECT_TRUE(std::regex_search(html, std::regex(R"(From t = [0-9.e+-]+ s to t = [0-9.e+-]+ s;)")));
+  EXPECT_TRUE(std::regex_search(html, std::regex(R"(\(dt = [0-9.e+-]+ s, k = 0)")));
+  // Euler at two levels reaches none of the finer targets: said in words, in every method's table.
+  const size_t every = html.find("Every method at every target");
+  ASSERT_NE(every, std::string::npos);
+  const std::string table = html.substr(every, html.find("</table>", every) - every);
+  EXPECT_NE(table.find("<td>not reached</td>"), std::string::npos) << table;
+  EXPECT_EQ(table.find("–"), std::string::npos) << table;
 }
 
 }  // namespace

@@ -162,11 +162,11 @@ size_t nearest_frame(const nlohmann::json& times, double t) {
 // The page at URL in headless Chromium: a screenshot into `png`, or, without one, the DOM after the
 // scripts have run (on standard output).
 Result open_page(const TempDir& dir, const std::string& chromium, const std::string& url, const fs::path& png = {},
-                 int device_pixel_ratio = 1) {
+                 int device_pixel_ratio = 1, int window_height = kWindowHeight) {
   std::vector<std::string> args = {"--headless", "--no-sandbox", "--disable-gpu", "--hide-scrollbars",
                                    "--disable-dev-shm-usage", "--no-first-run", "--mute-audio",
                                    "--user-data-dir=" + (dir / "chromium-profile").string(),
-                                   "--window-size=" + std::to_string(kWindowWidth) + "," + std::to_string(kWindowHeight),
+                                   "--window-size=" + std::to_string(kWindowWidth) + "," + std::to_string(window_height),
                                    "--force-device-scale-factor=" + std::to_string(device_pixel_ratio),
                                    "--enable-logging=stderr", "--v=0", "--virtual-time-budget=3000"};
   args.push_back(png.empty() ? std::string("--dump-dom") : "--screenshot=" + png.string());
@@ -306,7 +306,7 @@ TEST_F(ReplayBrowser, BeforeTheCollisionEveryBallIsWhereTheDataPutsIt) {
   }
   // The section comes right after the summary table (the first table; closing tags of its wrapper aside).
   const std::string html = read_file(report.folder / "index.html");
-  const size_t table = html.find("</table>"), section = html.find("<section id=\"replay\">");
+  const size_t table = html.find("</table>"), section = html.find("<section id=\"replay\"");
   ASSERT_NE(table, std::string::npos);
   ASSERT_NE(section, std::string::npos);
   ASSERT_LT(table, section);
@@ -420,6 +420,123 @@ TEST_F(ReplayBrowser, AnEngineThatCannotRunTheSceneKeepsItsPanelSayingWhy) {
     EXPECT_TRUE(has_colour(image, layout.pixel(k, p[0], p[1]), 1, kPalette[nearest % 8]))
         << report.engine(k).at("name") << ", body " << nearest;
   }
+}
+
+// Found by an accessibility audit. With JavaScript off the replay showed blank canvases, dead controls
+// and an engine's "not run" box. Now all of it is hidden until the script runs: the whole page (a
+// window tall enough for it) has no pixel of that box when the replay's scripts do not run (a copy of
+// the page without its <script> tags: headless Chromium takes no picture with JavaScript off), and
+// has it when they do.
+TEST_F(ReplayBrowser, WithoutJavaScriptThePanelsAreNotShown) {
+  TempDir dir;
+  const Report report = make_report(dir, "bouncing_balls_3d", {"--duration", "0.2"});
+  ASSERT_FALSE(report.engine(1).at("supported").get<bool>());
+  auto reason_pixels = [&](bool javascript) {
+    const fs::path png = dir / (javascript ? "with.png" : "without.png");
+    // (Both copies without the pictures of the first and last frames, whose Box2D panel, drawn by
+    // render/, may be near the colour looked for.)
+    std::string html = read_file(report.folder / "index.html");
+    std::vector<std::string> tags = {"<img src=\"first_and_last.png\" alt=\"every engine at the first and the last instant\">"};
+    if (!javascript) tags.insert(tags.end(), {"<script src=\"replay-data.js\"></script>", "<script src=\"replay.js\"></script>"});
+    for (const std::string& tag : tags) {
+      const size_t at = html.find(tag);
+      EXPECT_NE(at, std::string::npos) << tag;
+      if (at != std::string::npos) html.erase(at, tag.size());
+    }
+    const fs::path copy = report.folder / (javascript ? "with-script.html" : "no-script.html");
+    std::ofstream(copy, std::ios::binary) << html;
+    const Result r = open_page(dir, chromium, "file://" + fs::absolute(copy).string(), png, 1, 4000);
+    EXPECT_EQ(r.status, 0) << r.err;
+    const Image image = read_png(png);
+    long n = 0;
+    for (size_t at = 0; at + 2 < image.rgb.size(); at += 3) {
+      bool close = true;
+      // (within 2: a flat fill; the tables' headers, #f3f3f3, are within 8 of it)
+      for (int c = 0; c < 3; ++c) close = close && std::abs(image.rgb[at + c] - kReasonBackground[c]) <= 2;
+      n += close;
+    }
+    return n;
+  };
+  EXPECT_GT(reason_pixels(true), 200 * 200) << "with JavaScript, Box2D's panel says why it did not run";
+  // (Not one row of the 288 px box: a few pixels of antialiased text elsewhere can be of that colour.)
+  EXPECT_LT(reason_pixels(false), 288) << "without the replay's scripts";
+}
+
+// Found by an accessibility audit: the canvases had no name and the slider said only its frame
+// number. After the script, each canvas (role="img") is named by its engine, the time and the energy
+// error shown, and the slider's aria-valuetext is the time.
+TEST_F(ReplayBrowser, TheSliderAndEveryPictureSayWhatTheyShow) {
+  TempDir dir;
+  const Report report = make_report(dir, "head_on");
+  const Result r = open_page(dir, chromium, page_url(report, "#t=1.0"));
+  ASSERT_EQ(r.status, 0) << r.err;
+  expect_no_script_errors(r);
+  const auto& times = report.engine(0).at("t");
+  const size_t f = nearest_frame(times, 1.0);
+  const double spacing = (times.back().get<double>() - times.front().get<double>()) / static_cast<double>(times.size() - 1);
+  const int decimals = std::clamp(static_cast<int>(std::ceil(-std::log10(spacing) - 1e-9)), 2, 6);
+  char time[64];
+  std::snprintf(time, sizeof time, "t = %.*f s", decimals, times[f].get<double>());
+  EXPECT_NE(r.out.find("aria-valuetext=\"" + std::string(time) + "\""), std::string::npos) << time << "\n" << r.out;
+  for (size_t k = 0; k < report.engines(); ++k) {
+    const std::string label = "aria-label=\"" + report.engine(k).at("name").get<std::string>() + " at " + time + ", \u0394E/E\u2080 = ";
+    EXPECT_EQ(occurrences(r.out, label), 1u) << label << "\n" << r.out;
+  }
+  // The script has shown what it drives.
+  for (const char* shown : {"<div class=\"replay-panels\">", "<div class=\"replay-controls\">", "<p class=\"replay-notes\">"})
+    EXPECT_NE(r.out.find(shown), std::string::npos) << shown << "\n" << r.out;
+}
+
+// Found by an accessibility audit: space and the arrows were the replay's wherever the focus was,
+// whenever the replay was on screen (space no longer scrolled the page). Now only with the focus in
+// the replay. A copy of the page dispatches the keys from a script of its own, once the replay's has
+// run, and writes down the replay's clock and whether the key's default (scrolling) was prevented.
+TEST_F(ReplayBrowser, KeysActOnlyWithTheFocusInTheReplay) {
+  TempDir dir;
+  const Report report = make_report(dir, "head_on");
+  std::string html = read_file(report.folder / "index.html");
+  const size_t end = html.rfind("</body>");
+  ASSERT_NE(end, std::string::npos);
+  html.insert(end, R"(<script>
+window.addEventListener("load", () => {
+  const section = document.getElementById("replay"), clock = section.querySelector(".replay-clock");
+  const key = (target, name) => {
+    const event = new KeyboardEvent("keydown", {key: name, bubbles: true, cancelable: true});
+    target.dispatchEvent(event);
+    return (event.defaultPrevented ? "prevented " : "") + clock.textContent;
+  };
+  document.body.focus();
+  const outside = [key(document.body, "ArrowRight"), key(document.body, " ")];
+  section.focus();
+  const inside = [document.activeElement === section ? "focused" : "not focused", key(section, "ArrowRight")];
+  document.body.setAttribute("data-keys", JSON.stringify({outside, inside}));
+});
+</script>
+)");
+  {
+    std::ofstream out(report.folder / "keys.html", std::ios::binary);
+    out << html;
+  }
+  const Result r = open_page(dir, chromium, "file://" + fs::absolute(report.folder / "keys.html").string() + "?t=0");
+  ASSERT_EQ(r.status, 0) << r.err;
+  expect_no_script_errors(r);
+  const size_t at = r.out.find("data-keys=\"");
+  ASSERT_NE(at, std::string::npos) << r.out;
+  const std::string escaped = r.out.substr(at + 11, r.out.find('"', at + 11) - at - 11);
+  std::string text;  // (the attribute's &quot; back to ")
+  for (size_t i = 0; i < escaped.size(); ++i) {
+    const bool quote = escaped.compare(i, 6, "&quot;") == 0;
+    text += quote ? '"' : escaped[i];
+    if (quote) i += 5;
+  }
+  const auto keys = nlohmann::json::parse(text);
+  const std::string frames = " of " + std::to_string(report.engine(0).at("t").size());
+  EXPECT_NE(keys["outside"][0].get<std::string>().find("frame 1" + frames), std::string::npos) << keys;
+  EXPECT_EQ(keys["outside"][0].get<std::string>().rfind("prevented", 0), std::string::npos) << keys;
+  EXPECT_EQ(keys["outside"][1].get<std::string>().rfind("prevented", 0), std::string::npos) << "space scrolls: " << keys;
+  EXPECT_EQ(keys["inside"][0], "focused") << keys;
+  EXPECT_NE(keys["inside"][1].get<std::string>().find("prevented "), std::string::npos) << keys;
+  EXPECT_NE(keys["inside"][1].get<std::string>().find("frame 2" + frames), std::string::npos) << keys;
 }
 
 }  // namespace

@@ -6,11 +6,15 @@
 
 #include <nlohmann/json.hpp>
 
+#include "accessibility.hpp"
 #include "cli_harness.hpp"
 #include "motus/render/image.hpp"
 
 #include <cmath>
 #include <cstdio>
+#include <array>
+#include <regex>
+#include <set>
 #include <sstream>
 
 namespace {
@@ -90,8 +94,8 @@ TEST(Report, NewtonsCradleShowsTheExactAnswerAndEachEnginesDistance) {
   EXPECT_LT(x["engines"][0]["max_speed_error"].get<double>(), 1e-12);
   EXPECT_LT(engine(r, "motus")["max_distance_from_exact"].get<double>(), 1e-12);
   // Each engine has a distance from the exact answer in the table, and the sentence names them all.
-  EXPECT_NE(r.html.find("<th>max distance from exact [m]</th>"), std::string::npos);
-  EXPECT_NE(r.html.find("<h2>The exact answer</h2>"), std::string::npos);
+  EXPECT_NE(r.html.find("<th scope=\"col\">max distance from exact [m]</th>"), std::string::npos);
+  EXPECT_NE(r.html.find("<h2 id=\"exact-answer\">The exact answer</h2>"), std::string::npos);
   const std::string notice = r.summary["notice"];
   EXPECT_NE(notice.find("ball 4 leaves at (1, 0) m/s and the others rest"), std::string::npos) << notice;
   for (const auto& e : r.summary["engines"])
@@ -158,15 +162,23 @@ TEST(Report, EveryEngineKeepsItsColourAndOneThatCouldNotRunIsInTheLegend) {
     for (size_t at = gp.find(text); at != std::string::npos; at = gp.find(text, at + 1)) ++n;
     return n;
   };
-  for (const auto& [title, colour] : std::vector<std::pair<std::string, std::string>>{
-           {"title 'motus'", "#4285d6"}, {"title 'box2d: not supported (1-D scenes)'", "#e67832"}, {"title 'bullet'", "#46aa64"}}) {
+  // (Each entry is "lc rgb '#4285d6' dt solid title 'motus'": the colour, the dash, the title. The
+  // colours are the palette's, plot/motus/plot/figure.cpp, read here from the script.)
+  std::set<std::string> colours;
+  for (const std::string title : {"title 'motus'", "title 'box2d: not supported (1-D scenes)'", "title 'bullet'"}) {
     EXPECT_GT(count(title), 0) << title << " in:\n" << gp;
-    // (its dash between the two: "lc rgb '#4285d6' dt solid title 'motus'")
-    long with_colour = 0;
-    for (const char* dash : {"dt solid ", "dt (40,20) ", "dt (12,48) "})
-      with_colour += count("lc rgb '" + colour + "' " + dash + title);
-    EXPECT_EQ(with_colour, count(title)) << title << " in:\n" << gp;
+    // (the title as a regular expression: "(1-D scenes)" has parentheses)
+    const std::string literal = std::regex_replace(title, std::regex(R"([()\[\]{}.*+?^$|\\])"), R"(\$&)");
+    const std::regex entry("lc rgb '(#[0-9a-f]{6})' dt \\S+ " + literal);
+    std::set<std::string> mine;
+    long entries = 0;
+    for (auto it = std::sregex_iterator(gp.begin(), gp.end(), entry); it != std::sregex_iterator(); ++it, ++entries)
+      mine.insert((*it)[1].str());
+    EXPECT_EQ(entries, count(title)) << title << " in:\n" << gp;
+    EXPECT_EQ(mine.size(), 1u) << title << " in:\n" << gp;
+    colours.insert(mine.begin(), mine.end());
   }
+  EXPECT_EQ(colours.size(), 3u) << gp;
 }
 
 
@@ -195,10 +207,22 @@ TEST(Report, EnginesThatAgreeAreAllSeenInThePicture) {
       }
     return n;
   };
-  // The palette's first three (plot/motus/plot/figure.cpp): #4285d6, #e67832, #46aa64. The curve is
-  // about 900 px long; the last line drawn (Bullet's) shows a fifth of it (12 units of every 60),
+  // Each engine's colour as the figures' script gives it (the palette of plot/motus/plot/figure.cpp).
+  // The curve is about 900 px long; the last line drawn (Bullet's) shows part of it (its dashes),
   // and each line drawn before it shows where the lines over it leave gaps: over 100 px each.
-  const long motus = pixels_of(0x42, 0x85, 0xd6), box2d = pixels_of(0xe6, 0x78, 0x32), bullet = pixels_of(0x46, 0xaa, 0x64);
+  const std::string gp = read_file(r.folder / "figures.gp");
+  auto colour_of = [&](const std::string& engine) {
+    std::smatch m;
+    if (!std::regex_search(gp, m, std::regex("lc rgb '#([0-9a-f]{6})' dt \\S+ title '" + engine + "'"))) {
+      ADD_FAILURE() << engine << " in\n" << gp;
+      return std::array<int, 3>{-100, -100, -100};
+    }
+    const std::string hex = m[1].str();
+    return std::array<int, 3>{std::stoi(hex.substr(0, 2), nullptr, 16), std::stoi(hex.substr(2, 2), nullptr, 16),
+                              std::stoi(hex.substr(4, 2), nullptr, 16)};
+  };
+  auto pixels_in = [&](const std::array<int, 3>& c) { return pixels_of(c[0], c[1], c[2]); };
+  const long motus = pixels_in(colour_of("motus")), box2d = pixels_in(colour_of("box2d")), bullet = pixels_in(colour_of("bullet"));
   EXPECT_GT(motus, 100) << "motus (box2d " << box2d << ", bullet " << bullet << ")";
   EXPECT_GT(box2d, 100) << "box2d (motus " << motus << ", bullet " << bullet << ")";
   EXPECT_GT(bullet, 100) << "bullet (motus " << motus << ", box2d " << box2d << ")";
@@ -297,6 +321,98 @@ TEST(Report, TheStickErrorIsOverEveryStepAsRunMeasuresIt) {
   ASSERT_EQ(run.status, 0) << run.err;
   const auto j = nlohmann::json::parse(run.out);
   EXPECT_EQ(engine(r, "motus")["constraint_error"].get<double>(), j["constraint_error"]["max"].get<double>());
+}
+
+// Found by an accessibility audit of the pages. With JavaScript off, the replay showed blank canvases
+// and controls that did nothing, its "needs JavaScript" message last; the canvases had no name, the
+// step buttons were named by glyphs, and a <style> sat inside the section (not allowed there). Now
+// what needs the script is hidden until it runs, the message comes first, and everything is named.
+TEST(Report, TheReplayIsHiddenUntilItsScriptRunsAndEveryPartIsNamed) {
+  TempDir dir;
+  const auto r = compare(dir, "bouncing_balls_3d", {"--duration", "0.2", "--repeats", "1"});
+  const size_t start = r.html.find("<section id=\"replay\""), end = r.html.find("</section>", start);
+  ASSERT_NE(start, std::string::npos);
+  ASSERT_NE(end, std::string::npos);
+  const std::string section = r.html.substr(start, end - start);
+  // The message first, then the panels, the controls and the notes, each hidden.
+  const size_t message = section.find("<noscript><p class=\"no\">The replay needs JavaScript.</p></noscript>");
+  ASSERT_NE(message, std::string::npos) << section;
+  for (const char* part : {"<div class=\"replay-panels\" hidden>", "<div class=\"replay-controls\" hidden>",
+                           "<p class=\"replay-notes\" hidden>"}) {
+    const size_t at = section.find(part);
+    EXPECT_NE(at, std::string::npos) << part << " in\n" << section;
+    EXPECT_LT(message, at) << part;
+  }
+  // ... and `hidden` wins over the section's display:flex rules.
+  EXPECT_NE(r.html.find("#replay [hidden]{display:none!important}"), std::string::npos);
+  // No <style> in the body: the replay's CSS is in the head's.
+  const size_t body = r.html.find("<body>");
+  ASSERT_NE(body, std::string::npos);
+  EXPECT_EQ(r.html.find("<style", body), std::string::npos);
+  EXPECT_LT(r.html.find("#replay .replay-panels{"), body);
+  // A canvas for each engine that ran (Box2D cannot: a 3-D scene), a picture named after its engine.
+  for (const auto& e : r.summary["engines"]) {
+    const std::string canvas = "role=\"img\" aria-label=\"" + e["engine"].get<std::string>() + " at the frame shown\"";
+    EXPECT_EQ(section.find(canvas) != std::string::npos, e["supported"].get<bool>()) << canvas << " in\n" << section;
+  }
+  EXPECT_NE(section.find("class=\"replay-back\" title=\"one frame back (&larr;)\" aria-label=\"one frame back\""),
+            std::string::npos) << section;
+  EXPECT_NE(section.find("class=\"replay-forward\" title=\"one frame forward (&rarr;)\" aria-label=\"one frame forward\""),
+            std::string::npos) << section;
+}
+
+// Found by an accessibility audit: no <html lang> or viewport; tables whose cells a screen reader
+// could not read by their headers (no caption, no scope, the engine in a <td>), the momentum note a
+// row of the table, "median" without its unit; grey text (.dim, #777) at 4.48:1 on white, under
+// AA's 4.5; and an engine that did not run had an empty list under Settings.
+TEST(Report, ThePageIsNamedItsTablesHaveHeadersAndItsTextHasContrast) {
+  TempDir dir;
+  const auto r = compare(dir, "oscillator", {"--repeats", "1"});  // (Box2D cannot run it: a 1-D scene)
+  EXPECT_TRUE(starts_as_a_page(r.html));
+  EXPECT_TRUE(tables_have_headers(r.html));
+  EXPECT_NE(r.html.find("<th scope=\"col\">median [µs]</th>"), std::string::npos);
+  // The oscillator's spring is anchored: the note on the momentum column, after the table.
+  const size_t note = r.html.find("<p class=\"dim\">* This scene does not keep its momentum");
+  ASSERT_NE(note, std::string::npos) << r.html;
+  EXPECT_LT(r.html.find("</table>"), note);
+  // Every text colour of the page's CSS, against the white page: 4.5:1 at least.
+  const std::string style = r.html.substr(0, r.html.find("</style>"));
+  const std::regex colour("[{;]color:(#[0-9a-f]{3}(?:[0-9a-f]{3})?)[;}]");
+  int colours = 0;
+  for (auto it = std::sregex_iterator(style.begin(), style.end(), colour); it != std::sregex_iterator(); ++it, ++colours)
+    EXPECT_GE(contrast_ratio((*it)[1].str(), "#ffffff"), 4.5) << (*it)[0];
+  EXPECT_GE(colours, 4) << style;
+  // Box2D's settings say it did not run, and why; no list is empty.
+  const size_t settings = r.html.find("<h2>Settings</h2>");
+  ASSERT_NE(settings, std::string::npos);
+  const size_t box2d = r.html.find("<h3>box2d ", settings);
+  ASSERT_NE(box2d, std::string::npos);
+  std::string why;
+  for (const auto& u : engine(r, "box2d")["unsupported"]) why += (why.empty() ? "" : "; ") + u.get<std::string>();
+  EXPECT_EQ(r.html.find("<p>not run: " + why + "</p>", box2d), r.html.find("</h3>", box2d) + 6) << r.html.substr(box2d, 400);
+  EXPECT_EQ(r.html.find("<ul>\n</ul>"), std::string::npos);
+}
+
+// Found by an accessibility audit: Box2D's dash, (40,20), was longer than the legend's sample line
+// (about 35 px), so the sample looked solid, like motus's. In the SVG written, every dashed sample
+// (a horizontal stretch, the first of its path) now holds a whole period of its pattern, and the
+// engines' patterns differ.
+TEST(Report, EachEnginesDashShowsInItsLegendSample) {
+  TempDir dir;
+  const auto r = compare(dir, "free_fall", {"--repeats", "1"});
+  const std::string svg = read_file(r.folder / "energy.svg");
+  const std::regex sample(R"(stroke-dasharray='([0-9.,]+)'\s+d='M([0-9.]+),([0-9.]+) L([0-9.]+),([0-9.]+) )");
+  std::set<std::string> patterns;
+  for (auto it = std::sregex_iterator(svg.begin(), svg.end(), sample); it != std::sregex_iterator(); ++it) {
+    const std::smatch& m = *it;
+    if (m[3].str() != m[5].str()) continue;  // not horizontal: not a legend sample
+    double period = 0;
+    std::stringstream lengths(m[1].str());
+    for (std::string length; std::getline(lengths, length, ',');) period += std::stod(length);
+    EXPECT_LE(period, std::stod(m[4].str()) - std::stod(m[2].str())) << m[0];
+    patterns.insert(m[1].str());
+  }
+  EXPECT_EQ(patterns.size(), 2u) << "Box2D's and Bullet's (motus's is solid):\n" << svg.substr(0, 4000);
 }
 
 }  // namespace

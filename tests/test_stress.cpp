@@ -19,9 +19,11 @@
 #include <map>
 #include <nlohmann/json.hpp>
 #include <numbers>
+#include <regex>
 #include <set>
 #include <sstream>
 
+#include "accessibility.hpp"
 #include "cli_harness.hpp"
 
 namespace {
@@ -360,6 +362,36 @@ TEST(StressErrors, AnInterruptedStressExits130AndLeavesNoFolder) {
     EXPECT_TRUE(e.path().filename() == "bin" || e.path().filename() == "stdout.txt" ||
                 e.path().filename() == "stderr.txt")
         << "left behind: " << e.path();
+}
+
+// Found by an accessibility audit: no <html lang> or viewport, tables without named headers, and
+// numbers without units ("largest stable h", "dt = 0.1;", "not finite at t = 7134"), and "1 body in
+// 1 dimensions".
+TEST(Stress, ThePageIsNamedItsTablesHaveHeadersAndItsNumbersUnits) {
+  TempDir dir;
+  Page p;  // (explicit Euler at dt = 0.5 blows up within its long run)
+  p.folder = dir / "oscillator";
+  p.result = run_motus(dir, {"stress", "oscillator", "--set", "dt=0.5", "--steps", "1000", "--drift-steps", "5000",
+                             "--integrators", "euler", "--out", p.folder.string()});
+  ASSERT_EQ(p.result.status, 0) << p.result.err;
+  p.summary = nlohmann::json::parse(read_file(p.folder / "summary.json"));
+  const std::string html = read_file(p.folder / "index.html");
+  EXPECT_TRUE(starts_as_a_page(html));
+  EXPECT_TRUE(tables_have_headers(html));
+  EXPECT_NE(html.find("<th scope=\"col\">largest stable h [s]</th>"), std::string::npos);
+  const double dt = p.summary.at("dt").get<double>();
+  std::ostringstream steps;
+  steps << "steps of the scene's dt = " << dt << " s;";
+  EXPECT_NE(html.find(steps.str()), std::string::npos) << steps.str();
+  EXPECT_NE(html.find("<p>1 body in 1 dimension, "), std::string::npos);
+  // Explicit Euler's long run blows up: when, in seconds.
+  bool blown = false;
+  for (const auto& d : p.summary.at("drift"))
+    if (!d.at("blown").get<std::string>().empty()) {
+      blown = true;
+      EXPECT_TRUE(std::regex_search(d.at("blown").get<std::string>(), std::regex(R"( at t = [0-9.e+]+ s$)"))) << d;
+    }
+  EXPECT_TRUE(blown) << p.summary.at("drift");
 }
 
 }  // namespace

@@ -48,7 +48,12 @@
 
   const section = document.getElementById("replay");
   if (!section) return;
+  // What needs this script is `hidden` in the page (replay.cpp): without JavaScript the section shows
+  // only its <noscript> message. The notes first; the panels once there is data, the controls once
+  // some engine has frames to play.
+  const show = (element) => { if (element) element.hidden = false; };
   const notes = section.querySelector(".replay-notes");
+  show(notes);
   const data = window.MOTUS_REPLAY;
   if (!data || !Array.isArray(data.engines)) {
     if (notes) notes.textContent = "The replay's data (replay-data.js) is missing or could not be read.";
@@ -82,6 +87,7 @@
   const far = 4 * size / scale + Math.hypot(cx, cy);  // a length that reaches past the canvas, in metres
 
   // ---- The panels, matched in order to the engines.
+  show(section.querySelector(".replay-panels"));
   const panels = [];
   section.querySelectorAll(".replay-panel").forEach((element, k) => {
     element.style.width = size + "px";
@@ -98,7 +104,8 @@
       time: element.querySelector(".replay-time"), energy: element.querySelector(".replay-energy"),
     });
   });
-  if (!panels.length) return;  // nothing ran: the panels say why
+  if (!panels.length) return;  // nothing ran: the panels say why, and there is nothing to play
+  show(section.querySelector(".replay-controls"));
 
   // The timeline is the engine with the most frames; every panel shows its own frame nearest in time.
   const master = panels.reduce((a, b) => (b.engine.t.length > a.engine.t.length ? b : a)).engine;
@@ -267,10 +274,13 @@
     ctx.strokeStyle = FRAME;
     ctx.lineWidth = 1;
     ctx.strokeRect(0.5, 0.5, size - 1, size - 1);
-    if (p.time) p.time.textContent = "t = " + e.t[f].toFixed(decimals) + " s";
-    if (p.energy)
-      p.energy.textContent = (e.energy_relative ? "\u0394E/E\u2080 = " : "\u0394E = ") + signed(e.energy_error[f]) +
-                             (e.energy_relative ? "" : " J (E\u2080 = 0)");
+    const time = "t = " + e.t[f].toFixed(decimals) + " s";
+    const energy = (e.energy_relative ? "\u0394E/E\u2080 = " : "\u0394E = ") + signed(e.energy_error[f]) +
+                   (e.energy_relative ? "" : " J (E\u2080 = 0)");
+    if (p.time) p.time.textContent = time;
+    if (p.energy) p.energy.textContent = energy;
+    // (The canvas is role="img": its name is what a screen reader says of the picture.)
+    p.canvas.setAttribute("aria-label", e.name + " at " + time + ", " + energy);
   }
 
   // ---- Playing.
@@ -283,7 +293,10 @@
   function render() {
     const t = times[index];
     for (const p of panels) drawPanel(p, t);
-    if (slider) slider.value = String(index);
+    if (slider) {
+      slider.value = String(index);
+      slider.setAttribute("aria-valuetext", "t = " + t.toFixed(decimals) + " s");  // (not "frame 12")
+    }
     if (clock)
       clock.textContent = "t = " + t.toFixed(decimals) + " s of " + times[last].toFixed(decimals) +
                           " s \u00b7 frame " + (index + 1) + " of " + times.length;
@@ -340,16 +353,16 @@
     speedSelect.addEventListener("change", () => { speed = Number(speedSelect.value) || 1; });
   }
 
-  // Keys: space plays or pauses, ← and → step a frame — while the replay is on screen, and not when a
-  // control has the focus and does its own thing with the key (a button's space, the slider's arrows).
-  document.addEventListener("keydown", (event) => {
+  // Keys: space plays or pauses, ← and → step a frame — only while the focus is in the replay (the
+  // section itself, which a click in it focuses, or one of its controls), so that elsewhere space
+  // scrolls the page as always; and not when a control has the focus and does its own thing with the
+  // key (a button's space, the slider's arrows).
+  section.addEventListener("keydown", (event) => {
     if (event.defaultPrevented || event.altKey || event.ctrlKey || event.metaKey) return;
     const target = event.target, tag = target && target.tagName;
     if (tag === "INPUT" || tag === "SELECT" || tag === "TEXTAREA" || tag === "VIDEO" || (target && target.isContentEditable))
       return;
     if (tag === "BUTTON" && (event.key === " " || event.key === "Enter")) return;
-    const box = section.getBoundingClientRect();
-    if (box.bottom <= 0 || box.top >= window.innerHeight) return;
     if (event.key === " ") toggle();
     else if (event.key === "ArrowLeft") step(-1);
     else if (event.key === "ArrowRight") step(1);

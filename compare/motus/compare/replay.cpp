@@ -213,36 +213,47 @@ void write_replay(const std::string& folder, const SceneDescription& scene, cons
   check_written(out, path);
 }
 
+std::string replay_style() {
+  // The layout is fixed in pixels so that a picture of the page can be read back (the rule is in
+  // compare/replay/replay.js and docs/cli.md); everything is scoped to #replay. The last rule keeps
+  // what the script has not shown yet hidden: the `hidden` attribute alone loses to the display:flex
+  // rules above it (author CSS wins over the browser's own).
+  return "#replay{box-sizing:border-box;margin:0;padding:0 16px;min-width:0}#replay *{box-sizing:border-box}"
+         "#replay .replay-title{display:flex;align-items:center;justify-content:space-between;height:40px;margin:0}"
+         "#replay h2{margin:0;height:40px;line-height:40px;overflow:hidden}"
+         "#replay .replay-panels{display:flex;flex-wrap:wrap;gap:16px;align-items:flex-start;margin:0;padding:0}"
+         "#replay .replay-panel{flex:0 0 auto;width:288px;margin:0;padding:0}"
+         "#replay .replay-caption{height:40px;line-height:20px;font-size:13px;white-space:nowrap;overflow:hidden;"
+         "text-overflow:ellipsis}"
+         "#replay canvas,#replay .replay-reason{display:block;width:288px;height:288px;margin:0;border:0}"
+         "#replay .replay-reason{background:#fbeeee;color:#a00;padding:1em;overflow:auto;white-space:normal}"
+         "#replay .replay-controls{display:flex;flex-wrap:wrap;align-items:center;gap:.5em;margin:.8em 0}"
+         "#replay .replay-slider{flex:1 1 12em}#replay .replay-clock{font-variant-numeric:tabular-nums}"
+         "#replay .replay-notes{font-size:90%;color:#444}"
+         "#replay.replay-theatre{position:fixed;top:0;left:0;right:0;bottom:0;z-index:1000;max-width:none;"
+         "background:#fff;overflow:auto}"
+         "#replay [hidden]{display:none!important}";
+}
+
 std::string replay_section(const SceneDescription& scene, const std::vector<EngineRun>& runs) {
   const auto& m = *scene.mechanical;
   const size_t n = m.bodies.size();
   const long stride = body_stride(n);
+  // Without JavaScript there is nothing to play: the panels (blank canvases), the controls and the
+  // notes on them are `hidden` until replay.js shows them, and the one thing shown is the message,
+  // first. (tabindex -1: a click in the replay gives it the focus, and with it the keys.)
   std::string html =
-      "<section id=\"replay\">\n"
-      // The layout is fixed in pixels so that a picture of the page can be read back (the rule is
-      // in compare/replay/replay.js and docs/cli.md); everything is scoped to #replay.
-      "<style>#replay{box-sizing:border-box;margin:0;padding:0 16px;min-width:0}#replay *{box-sizing:border-box}"
-      "#replay .replay-title{display:flex;align-items:center;justify-content:space-between;height:40px;margin:0}"
-      "#replay h2{margin:0;height:40px;line-height:40px;overflow:hidden}"
-      "#replay .replay-panels{display:flex;flex-wrap:wrap;gap:16px;align-items:flex-start;margin:0;padding:0}"
-      "#replay .replay-panel{flex:0 0 auto;width:288px;margin:0;padding:0}"
-      "#replay .replay-caption{height:40px;line-height:20px;font-size:13px;white-space:nowrap;overflow:hidden;"
-      "text-overflow:ellipsis}"
-      "#replay canvas,#replay .replay-reason{display:block;width:288px;height:288px;margin:0;border:0}"
-      "#replay .replay-reason{background:#fbeeee;color:#a00;padding:1em;overflow:auto;white-space:normal}"
-      "#replay .replay-controls{display:flex;flex-wrap:wrap;align-items:center;gap:.5em;margin:.8em 0}"
-      "#replay .replay-slider{flex:1 1 12em}#replay .replay-clock{font-variant-numeric:tabular-nums}"
-      "#replay .replay-notes{font-size:90%;color:#444}"
-      "#replay.replay-theatre{position:fixed;top:0;left:0;right:0;bottom:0;z-index:1000;max-width:none;"
-      "background:#fff;overflow:auto}</style>\n"
+      "<section id=\"replay\" tabindex=\"-1\">\n"
       "<div class=\"replay-title\"><h2>Replay</h2><button type=\"button\" class=\"replay-close\" hidden>"
-      "show the whole report</button></div>\n<div class=\"replay-panels\">\n";
+      "show the whole report</button></div>\n"
+      "<noscript><p class=\"no\">The replay needs JavaScript.</p></noscript>\n<div class=\"replay-panels\" hidden>\n";
   for (const auto& r : runs) {
     html += "<div class=\"replay-panel\"><div class=\"replay-caption\"><b>" + html_escape(r.engine) + "</b> <small>" +
             html_escape(r.version) + "</small><br>";
     if (r.supported && !r.frames.empty()) {
       html += "<span class=\"replay-time\"></span> &nbsp; <span class=\"replay-energy\"></span></div>"
-              "<canvas class=\"replay-canvas\" width=\"288\" height=\"288\"></canvas></div>\n";
+              "<canvas class=\"replay-canvas\" width=\"288\" height=\"288\" role=\"img\" aria-label=\"" +
+              html_escape(r.engine) + " at the frame shown\"></canvas></div>\n";
     } else {
       html += "not run</div><div class=\"replay-reason\">";
       if (!r.supported)
@@ -252,15 +263,21 @@ std::string replay_section(const SceneDescription& scene, const std::vector<Engi
       html += "</div></div>\n";
     }
   }
-  html += "</div>\n<div class=\"replay-controls\">"
-          "<button type=\"button\" class=\"replay-back\" title=\"one frame back (&larr;)\">&#9664;&#9646;</button>"
-          "<button type=\"button\" class=\"replay-play\" title=\"play or pause (space)\">play</button>"
-          "<button type=\"button\" class=\"replay-forward\" title=\"one frame forward (&rarr;)\">&#9646;&#9654;</button>"
+  // The step buttons show glyphs, named for a screen reader by aria-label; the play button's name
+  // is its text, which the script turns into "pause" while playing. The slider's aria-valuetext
+  // (the time and the frame) is kept by the script.
+  html += "</div>\n<div class=\"replay-controls\" hidden>"
+          "<button type=\"button\" class=\"replay-back\" title=\"one frame back (&larr;)\" aria-label=\"one frame back\" "
+          "aria-keyshortcuts=\"ArrowLeft\">&#9664;&#9646;</button>"
+          "<button type=\"button\" class=\"replay-play\" title=\"play or pause (space)\" aria-keyshortcuts=\"Space\">"
+          "play</button>"
+          "<button type=\"button\" class=\"replay-forward\" title=\"one frame forward (&rarr;)\" "
+          "aria-label=\"one frame forward\" aria-keyshortcuts=\"ArrowRight\">&#9646;&#9654;</button>"
           "<input type=\"range\" class=\"replay-slider\" min=\"0\" max=\"0\" value=\"0\" step=\"1\" aria-label=\"frame\">"
           "<select class=\"replay-speed\" aria-label=\"speed\"><option value=\"0.25\">0.25&times;</option>"
           "<option value=\"0.5\">0.5&times;</option><option value=\"1\" selected>1&times;</option>"
           "<option value=\"2\">2&times;</option><option value=\"4\">4&times;</option></select>"
-          "<span class=\"replay-clock\"></span></div>\n<p class=\"replay-notes\">";
+          "<span class=\"replay-clock\"></span></div>\n<p class=\"replay-notes\" hidden>";
   std::string notes;
   if (const EngineRun* r = longest_run(runs); r && r->frames.size() >= 2)
     notes += fmt::format("{} frames, {:g} s apart (the first and the last state included); ",
@@ -279,9 +296,10 @@ std::string replay_section(const SceneDescription& scene, const std::vector<Engi
   if (stride > 1)
     notes += fmt::format("Showing {} of the {} bodies (one in every {}), to keep the page fast. ",
                          (static_cast<long>(n) + stride - 1) / stride, n, stride);
-  notes += "Keys: space plays or pauses, ← and → step one frame. <code>index.html?t=1.5</code> (or <code>#t=1.5</code>) "
+  notes += "Keys, once the replay has the focus (click it, or tab to its controls): space plays or pauses, ← and → "
+           "step one frame. <code>index.html?t=1.5</code> (or <code>#t=1.5</code>) "
            "opens the replay paused at the frame nearest t = 1.5 s; <code>?size=N</code> draws each panel N pixels wide.";
-  html += notes + "</p>\n<noscript><p class=\"no\">The replay needs JavaScript.</p></noscript>\n</section>\n"
+  html += notes + "</p>\n</section>\n"
                   "<script src=\"replay-data.js\"></script>\n<script src=\"replay.js\"></script>\n";
   return html;
 }

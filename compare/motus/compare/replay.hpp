@@ -28,6 +28,10 @@ ReplayView replay_view(const SceneDescription& scene, const std::vector<EngineRu
 // written whole throws std::runtime_error naming it. `scene` must be mechanical.
 void write_replay(const std::string& folder, const SceneDescription& scene, const std::vector<EngineRun>& runs);
 
+// The replay's CSS (its fixed layout, scoped to #replay), for the page's <style> in <head>: a
+// <style> element is not allowed inside a <section>.
+std::string replay_style();
+
 // The <section id="replay"> for index.html — a panel per engine in engine order (a canvas, or the
 // reasons an engine could not run the scene), the controls, notes on what is drawn — followed by
 // the two <script src> tags.

@@ -1,6 +1,7 @@
 #include "motus/compare/report.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <cmath>
 #include <cstdlib>
@@ -54,11 +55,12 @@ int colour_of(const std::vector<EngineRun>& runs, const EngineRun& r) {
 }
 
 // An engine's line: its colour, and a dash by its place among the runs: the first (motus) solid,
-// then long dashes, short ones, and pairs of short ones, all repeating every 60 units. Engines
-// that agree draw the same curve (free_fall's energy error is the same in all three): all solid,
-// the last one drawn hid the others; now each shows through the gaps of those drawn over it.
+// then dashes, dots, and dash-dots. Engines that agree draw the same curve (free_fall's energy error
+// is the same in all three): all solid, the last one drawn hid the others; now each shows through
+// the gaps of those drawn over it. Each pattern repeats within 24 px, well inside the legend's
+// sample line (about 35 px in the SVG): a longer one (40,20) showed there as a solid line, like motus's.
 plot::Series engine_series(const std::vector<EngineRun>& runs, const EngineRun& r) {
-  static const char* const kDashes[] = {"(40,20)", "(12,48)", "(6,27,6,21)"};
+  static const char* const kDashes[] = {"(12,6)", "(3,5)", "(12,4,3,4)"};
   plot::Series s{r.engine, {}, {}};
   s.colour = colour_of(runs, r);
   const long place = &r - runs.data();
@@ -329,13 +331,15 @@ std::string write_report(const std::string& folder, const ReportContext& c, cons
 
   // index.html
   std::ofstream html(folder + "/index.html");
-  html << "<!doctype html>\n<html><head><meta charset=\"utf-8\"><title>motus compare: " << html_escape(c.scene_name)
+  html << plot::kPageStart << "motus compare: " << html_escape(c.scene_name)
        << "</title>\n<style>body{font-family:sans-serif;max-width:75em;margin:2em auto;padding:0 1em;color:#222}"
-          "table{border-collapse:collapse;margin:.5em 0}td,th{border:1px solid #ccc;padding:.3em .6em;text-align:right;"
-          "white-space:nowrap}th{background:#f3f3f3}td:first-child,th:first-child{text-align:left}.no{color:#a00}"
+          "table{border-collapse:collapse;margin:.5em 0}caption{text-align:left;font-weight:bold;padding:.3em 0}"
+          "td,th{border:1px solid #ccc;padding:.3em .6em;text-align:right}td{white-space:nowrap}th{background:#f3f3f3}"
+          "th[scope=row]{background:none}td:first-child,th:first-child{text-align:left}.no{color:#a00}"
           ".wide{overflow-x:auto}.notice{background:#eef4fb;border-left:4px solid #4285d6;padding:.6em .9em}"
-          "dt{font-weight:bold;margin-top:.5em}dd{margin-left:1.5em}.dim{color:#777}"
-          "img{max-width:100%}code{background:#f3f3f3;padding:0 .2em}</style></head><body>\n";
+          "dt{font-weight:bold;margin-top:.5em}dd{margin-left:1.5em}.dim{color:#666}"
+          "img{max-width:100%}code{background:#f3f3f3;padding:0 .2em}"
+       << (c.scene ? replay_style() : std::string()) << "</style></head><body>\n";
   html << "<h1>" << html_escape(c.scene_name) << "</h1>\n<p>" << html_escape(c.description) << "</p>\n";
   const std::string timing =
       c.repeats == 0   ? "No engine ran, so nothing was timed."
@@ -353,18 +357,24 @@ std::string write_report(const std::string& folder, const ReportContext& c, cons
   if (summary.contains("notice"))
     html << "<p class=\"notice\"><b>What to notice.</b> " << html_escape(summary["notice"].get<std::string>()) << "</p>\n";
   const int columns = exact_known ? 11 : 10;
-  html << "<div class=\"wide\"><table><tr><th>engine</th>"
-       << (energy_in_joules(runs) ? "<th>energy drift [J]</th><th>max |ΔE| [J]</th>" : "<th>energy drift</th><th>max |ΔE|/E₀</th>")
-       << "<th>momentum drift" << (momentum_in_kg_m_s(runs) ? " [kg·m/s]" : "")
-       << (c.momentum_conserved ? "" : "*") << "</th><th>max penetration [m]</th><th>constraint error</th>"
-       << "<th>max distance from motus [" << unit << "]</th>"
-       << (exact_known ? "<th>max distance from exact [" + unit + "]</th>" : "")
-       << "<th>µs per step (min)</th><th>median</th><th>spread</th><th>time / motus</th></tr>\n";
+  // (Headers are column headers and each row's engine its row's header, for a screen reader's
+  // "column, row" reading of a cell; headers may wrap, numbers not, so that the table fits the page.)
+  auto header = [](const std::string& text) { return "<th scope=\"col\">" + text + "</th>"; };
+  auto row_header = [](const std::string& text) { return "<th scope=\"row\">" + text + "</th>"; };
+  html << "<div class=\"wide\"><table><caption>Each engine's run: its errors and its time per step</caption><tr>"
+       << header("engine")
+       << (energy_in_joules(runs) ? header("energy drift [J]") + header("max |ΔE| [J]")
+                                  : header("energy drift") + header("max |ΔE|/E₀"))
+       << header(std::string("momentum drift") + (momentum_in_kg_m_s(runs) ? " [kg·m/s]" : "") +
+                 (c.momentum_conserved ? "" : "*"))
+       << header("max penetration [m]") << header("constraint error") << header("max distance from motus [" + unit + "]")
+       << (exact_known ? header("max distance from exact [" + unit + "]") : "") << header("µs per step (min)")
+       << header("median [µs]") << header("spread") << header("time / motus") << "</tr>\n";
   for (const auto& e : summary["engines"]) {
     if (!e["supported"].get<bool>()) {
       std::string why;
       for (const auto& u : e["unsupported"]) why += html_escape(u.get<std::string>()) + "<br>";
-      html << "<tr><td>" << html_escape(e["engine"].get<std::string>()) << "</td><td class=\"no\" colspan=\"" << columns
+      html << "<tr>" << row_header(html_escape(e["engine"].get<std::string>())) << "<td class=\"no\" colspan=\"" << columns
            << "\" style=\"white-space:normal;text-align:left\">" << why << "</td></tr>\n";
       continue;
     }
@@ -372,7 +382,7 @@ std::string write_report(const std::string& folder, const ReportContext& c, cons
       return v.is_null() ? std::string("–") : fmt::format(fmt::runtime(format), v.get<double>());
     };
     auto micros = [](const nlohmann::json& v) { return v.is_null() ? std::string("–") : microseconds_text(v.get<double>()); };
-    html << "<tr><td>" << html_escape(e["engine"].get<std::string>()) << "</td><td>" << cell(e["energy_drift"], "{:+.2e}")
+    html << "<tr>" << row_header(html_escape(e["engine"].get<std::string>())) << "<td>" << cell(e["energy_drift"], "{:+.2e}")
          << "</td><td>" << cell(e["max_energy_error"], "{:.2e}") << "</td><td>" << cell(e["momentum_drift"], "{:.2e}")
          << "</td><td>" << cell(e["max_penetration"], "{:.2e}") << "</td><td>" << cell(e["constraint_error"], "{:.2e}")
          << "</td><td>" << cell(e["max_distance_from_motus"], "{:.2e}")
@@ -383,11 +393,10 @@ std::string write_report(const std::string& folder, const ReportContext& c, cons
                                                : fmt::format("{:.0f}%", 100 * e["us_per_step_spread"].get<double>()))
          << "</td><td>" << cell(e["time_relative_to_motus"], "{:.2f}×") << "</td></tr>\n";
   }
-  if (!c.momentum_conserved)  // (inside the table: the replay follows it directly)
-    html << "<tr><td class=\"dim\" colspan=\"" << columns + 1
-         << "\" style=\"white-space:normal\">* This scene does not keep its momentum (walls or outside forces act on it): "
-            "that column shows their push, not an engine's error.</td></tr>\n";
   html << "</table></div>\n";
+  if (!c.momentum_conserved)  // (a note on the table, not a row of it)
+    html << "<p class=\"dim\">* This scene does not keep its momentum (walls or outside forces act on it): "
+            "that column shows their push, not an engine's error.</p>\n";
   for (const auto& e : summary["engines"])
     if (e.contains("not_finite_from") && !e["not_finite_from"].is_null())
       html << fmt::format("<p class=\"no\">{} blew up: its state is not finite from t = {:g} s on (its figures after "
@@ -399,16 +408,17 @@ std::string write_report(const std::string& folder, const ReportContext& c, cons
   }
   if (summary.contains("exact")) {
     const auto& x = summary["exact"];
-    html << "<h2>The exact answer</h2>\n<p>" << html_escape(x["source"].get<std::string>()) << fmt::format(", at t = {:g} s", x["t"].get<double>())
-         << ": each body's velocity [" << unit << "/s], then each engine's at the same time.</p>\n<div class=\"wide\"><table><tr><th>body</th><th>exact</th>";
-    for (const auto& e : x["engines"]) html << "<th>" << html_escape(e["engine"].get<std::string>()) << "</th>";
+    html << "<h2 id=\"exact-answer\">The exact answer</h2>\n<p>" << html_escape(x["source"].get<std::string>()) << fmt::format(", at t = {:g} s", x["t"].get<double>())
+         << ": each body's velocity [" << unit << "/s], then each engine's at the same time.</p>\n<div class=\"wide\">"
+         << "<table aria-labelledby=\"exact-answer\"><tr>" << header("body") << header("exact");
+    for (const auto& e : x["engines"]) html << header(html_escape(e["engine"].get<std::string>()));
     html << "</tr>\n";
     for (size_t i = 0; i < x["bodies"].size(); ++i) {
-      html << "<tr><td>" << i << "</td><td>" << format_vector(x["bodies"][i]["velocity"].get<std::vector<double>>()) << "</td>";
+      html << "<tr>" << row_header(std::to_string(i)) << "<td>" << format_vector(x["bodies"][i]["velocity"].get<std::vector<double>>()) << "</td>";
       for (const auto& e : x["engines"]) html << "<td>" << format_vector(e["final_velocities"][i].get<std::vector<double>>()) << "</td>";
       html << "</tr>\n";
     }
-    html << "<tr><td>largest |v − v_exact|</td><td></td>";
+    html << "<tr>" << row_header("largest |v − v_exact|") << "<td></td>";
     // (A run that blew up: "not a number", as the velocities say, not fmt's "-nan".)
     auto figure = [](const nlohmann::json& v) {
       return v.is_number() && std::isfinite(v.get<double>()) ? fmt::format("{:.2e}", v.get<double>())
@@ -416,7 +426,7 @@ std::string write_report(const std::string& folder, const ReportContext& c, cons
                                                              : std::string("not a number");
     };
     for (const auto& e : x["engines"]) html << "<td>" << figure(e["max_speed_error"]) << " " << unit << "/s</td>";
-    html << "</tr>\n<tr><td>largest |x − x_exact| at the end</td><td></td>";
+    html << "</tr>\n<tr>" << row_header("largest |x − x_exact| at the end") << "<td></td>";
     for (const auto& e : x["engines"]) html << "<td>" << figure(e["final_distance"]) << " " << unit << "</td>";
     html << "</tr>\n</table></div>\n";
     if (c.scene && static_cast<long>(x["bodies"].size()) < static_cast<long>(c.scene->mechanical->bodies.size()))
@@ -436,7 +446,9 @@ std::string write_report(const std::string& folder, const ReportContext& c, cons
     html << "<h2>Side by side</h2>\n";
     if (!c.pictures_note.empty()) html << "<p class=\"no\">" << html_escape(c.pictures_note) << "</p>\n";
     if (!c.video.empty())
-      html << "<video src=\"" << html_escape(c.video) << "\" controls loop muted style=\"max-width:100%\"></video>\n";
+      html << "<video src=\"" << html_escape(c.video) << "\" controls loop muted style=\"max-width:100%\">"
+           << "<p>This browser does not play the video here: <a href=\"" << html_escape(c.video) << "\">"
+           << html_escape(c.video) << "</a>.</p></video>\n";
     if (!c.contact_sheet.empty())
       html << "<p><img src=\"" << html_escape(c.contact_sheet) << "\" alt=\"the engines side by side at three instants\"></p>\n";
   }
@@ -456,9 +468,17 @@ std::string write_report(const std::string& folder, const ReportContext& c, cons
   html << "<h2>Settings</h2>\n";
   for (const auto& e : summary["engines"]) {
     html << "<h3>" << html_escape(e["engine"].get<std::string>()) << " <small>(" << html_escape(e["version"].get<std::string>())
-         << ")</small></h3><ul>\n";
-    for (const auto& s : e["settings"]) html << "<li>" << html_escape(s.get<std::string>()) << "</li>\n";
-    html << "</ul>\n";
+         << ")</small></h3>\n";
+    if (!e["supported"].get<bool>()) {  // (no settings: it never ran)
+      std::vector<std::string> why;
+      for (const auto& u : e["unsupported"]) why.push_back(html_escape(u.get<std::string>()));
+      html << "<p>not run: " << fmt::format("{}", fmt::join(why, "; ")) << "</p>\n";
+    }
+    if (!e["settings"].empty()) {
+      html << "<ul>\n";
+      for (const auto& s : e["settings"]) html << "<li>" << html_escape(s.get<std::string>()) << "</li>\n";
+      html << "</ul>\n";
+    }
     if (!e["notes"].empty()) {
       html << "<p>Where its own limits bite:</p><ul>\n";
       for (const auto& n : e["notes"]) html << "<li>" << html_escape(n.get<std::string>()) << "</li>\n";

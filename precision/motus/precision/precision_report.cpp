@@ -33,9 +33,9 @@ void write_file(const std::string& path, const std::string& text) {
   if (!out) throw std::runtime_error(plot::write_failure(path));
 }
 
-// Microseconds, or "–".
+// Microseconds, or "not reached" (the method's curve never gets down to the target).
 std::string micro(const std::optional<AtTarget>& at) {
-  if (!at) return "–";
+  if (!at) return "not reached";
   return fmt::format("{}{:.3g} ({:.3g})", at->upper_bound ? "≤ " : "", 1e6 * at->seconds, 1e6 * at->median_seconds);
 }
 
@@ -131,31 +131,35 @@ std::string write_precision_report(const std::string& folder, const ReportContex
     if (std::find(engines.begin(), engines.end(), curve.engine) == engines.end()) engines.push_back(curve.engine);
 
   std::string html;
-  html += "<!doctype html>\n<html><head><meta charset=\"utf-8\"><title>motus bench precision: " + html_escape(c.scene) +
+  html += std::string(plot::kPageStart) + "motus bench precision: " + html_escape(c.scene) +
           "</title>\n<style>body{font-family:sans-serif;max-width:72em;margin:2em auto;padding:0 1em;color:#222}"
           "table{border-collapse:collapse;margin:1em 0}td,th{border:1px solid #ccc;padding:.3em .6em;text-align:right}"
-          "th{background:#f3f3f3}td:first-child,th:first-child{text-align:left}.no{color:#a00}.best{font-weight:bold}"
+          "th{background:#f3f3f3}th[scope=row]{background:none;font-weight:normal}td:first-child,th:first-child{text-align:left}.no{color:#a00}.best{font-weight:bold}"
           "img{max-width:100%}code{background:#f3f3f3;padding:0 .2em}</style></head><body>\n";
   html += "<h1>" + html_escape(c.scene) + ": run time against error</h1>\n<p>" + html_escape(c.description) + "</p>\n";
   html += fmt::format(
-      "<p>From t = {:g} to t = {:g}; error = the largest |y − y<sub>exact</sub>| over the state (positions and "
+      "<p>From t = {:g} {} to t = {:g} {}; error = the largest |y − y<sub>exact</sub>| over the state (positions and "
       "velocities, or y) where the run ended, against the scene's exact solution or reference states. Fixed-step "
-      "methods take h = dt/2<sup>k</sup> (dt = {:g}, k = 0 … {}), adaptive ones rtol = atol = 10<sup>−3</sup> … "
+      "methods take h = dt/2<sup>k</sup> (dt = {:g} {}, k = 0 … {}), adaptive ones rtol = atol = 10<sup>−3</sup> … "
       "10<sup>−13</sup>, {} per decade, first step dt; Box2D and Bullet run at dt = 1/30 … 1/960 s. Each point is one "
       "untimed run and then the fastest of {} timed runs, all in one process; only ratios within this run mean "
       "anything on another machine.</p>\n",
-      c.start, c.end, c.sweep.dt, c.sweep.levels - 1, c.sweep.per_decade, c.sweep.repeats);
+      c.start, html_escape(c.time_unit), c.end, html_escape(c.time_unit), c.sweep.dt, html_escape(c.time_unit),
+      c.sweep.levels - 1, c.sweep.per_decade, c.sweep.repeats);
 
   // The fastest of each engine at each target.
-  html += "<h2>Targets: the fastest method at each target error</h2>\n<p>Each method's curve read at the target, "
-          "interpolated on log–log axes between the two points that bracket it (≤: the method's cheapest point is "
-          "already below the target). µs: from the fastest runs of each point, the median runs' in brackets; the "
-          "ratios likewise.</p>\n<table><tr><th>target error</th>";
-  for (const auto& e : engines) html += "<th>" + html_escape(e) + " fastest</th><th>µs</th>";
-  for (size_t k = 1; k < engines.size(); ++k) html += "<th>motus ÷ " + html_escape(engines[k]) + "</th>";
+  // (Each µs column names its engine: read alone, by a screen reader, "µs" would not say whose.)
+  auto header = [](const std::string& text) { return "<th scope=\"col\">" + text + "</th>"; };
+  html += "<h2 id=\"targets\">Targets: the fastest method at each target error</h2>\n<p>Each method's curve read at "
+          "the target, interpolated on log–log axes between the two points that bracket it (≤: the method's cheapest "
+          "point is already below the target; not reached: no point of it is). µs: from the fastest runs of each "
+          "point, the median runs' in brackets; the ratios likewise. –: no number, as there is no method to time.</p>\n"
+          "<table aria-labelledby=\"targets\"><tr>" + header("target error");
+  for (const auto& e : engines) html += header(html_escape(e) + " fastest") + header(html_escape(e) + " µs");
+  for (size_t k = 1; k < engines.size(); ++k) html += header("motus ÷ " + html_escape(engines[k]));
   html += "</tr>\n";
   for (double target : c.targets) {
-    html += fmt::format("<tr><td>{:g}</td>", target);
+    html += fmt::format("<tr><th scope=\"row\">{:g}</th>", target);
     std::vector<std::optional<Fastest>> best;
     for (const auto& e : engines) {
       best.push_back(fastest(curves, e, target));
@@ -179,11 +183,12 @@ std::string write_precision_report(const std::string& folder, const ReportContex
     html += "<p class=\"no\">" + html_escape(warning) + "</p>\n";
   }
 
-  html += "<h2>Every method at every target</h2>\n<table><tr><th>method</th>";
-  for (double target : c.targets) html += fmt::format("<th>{:g}: µs (median)</th>", target);
+  html += "<h2 id=\"every-method\">Every method at every target</h2>\n<table aria-labelledby=\"every-method\"><tr>" +
+          header("method");
+  for (double target : c.targets) html += header(fmt::format("{:g}: µs (median)", target));
   html += "</tr>\n";
   for (const Curve& curve : curves) {
-    html += "<tr><td>" + html_escape(curve.method) + "</td>";
+    html += "<tr><th scope=\"row\">" + html_escape(curve.method) + "</th>";
     if (!curve.unsupported.empty()) {
       html += fmt::format("<td class=\"no\" colspan=\"{}\">cannot run this scene: {}</td></tr>\n", c.targets.size(),
                           html_escape(curve.unsupported));

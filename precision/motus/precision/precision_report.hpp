@@ -13,6 +13,7 @@ namespace motus::precision {
 struct ReportContext {
   std::string scene, file, description;
   double start = 0, end = 0;
+  std::string time_unit = "s";  // the scene's simulated time ("years" for World2), for start, end and dt
   Sweep sweep;
   std::vector<double> targets;
   std::vector<std::string> versions;  // one line per engine taking part ("Boost.Odeint, Boost 1.74.0")
