@@ -119,6 +119,60 @@ json plane_impact(const json& r) {
   return {{"t", wire::number(t)}};
 }
 
+// c0 + c1 t + c2 t² + …: the `step` op's acceleration or derivative, whatever the state.
+struct OfTime {
+  std::vector<double> c;
+  double at(double t) const {
+    double value = 0;
+    for (auto k = c.rbegin(); k != c.rend(); ++k) value = value * t + *k;
+    return value;
+  }
+};
+
+// One step of the student's integrator "student:NAME", called directly (the `step` check), on one
+// coordinate whose acceleration (point masses) or derivative (first order) is a polynomial of the
+// time alone: its right one-step answers are known exactly, and they show whether each stage is
+// taken at its own time (no scene's force depends on the time).
+json step(const json& r) {
+  const std::string name = r.at("integrator").get<std::string>();
+  const auto method = plugins().integrator(name);
+  if (!method || !method->is_external()) throw std::invalid_argument("step: the plug-in brings no integrator \"" + name + "\"");
+  const ExternalIntegrator& in = method->outside();
+  OfTime polynomial{wire::numbers(r.at("of_time"))};
+  const double t = wire::number(r.at("t"));
+  double h = wire::number(r.at("h"));
+  const std::string what = r.value("function", name);
+  auto check = [&](int status) { check_external(status, what.c_str(), in.error, in.self); };
+  if (in.kind == kExternalAdaptive || in.kind == kExternalFirstOrder) {
+    std::vector<double> y = wire::numbers(r.at("y"));
+    if (y.size() != 1) throw std::invalid_argument("step: y must be one number");
+    const ExternalFirstOrder f{1, &polynomial, [](void* self, double time, const double*, double* dydt) {
+                                 dydt[0] = static_cast<const OfTime*>(self)->at(time);
+                               }};
+    if (in.kind == kExternalFirstOrder) {
+      check(in.step(in.self, &f, t, h, y.data()));
+      return {{"y", wire::numbers(y)}};
+    }
+    int accepted = 0;
+    check(in.try_step(in.self, &f, t, &h, y.data(), wire::number(r.at("atol")), wire::number(r.at("rtol")), &accepted));
+    return {{"y", wire::numbers(y)}, {"accepted", accepted}, {"h", wire::number(h)}};
+  }
+  std::vector<double> x = wire::numbers(r.at("x")), v = wire::numbers(r.at("v"));
+  if (x.size() != 1 || v.size() != 1) throw std::invalid_argument("step: x and v must be one number each");
+  const ExternalMechanical s{1, &polynomial, [](void* self, double time, const double*, const double*, double* a) {
+                               a[0] = static_cast<const OfTime*>(self)->at(time);
+                             }};
+  if (in.kind == kExternalMechanical) {
+    check(in.step_mechanical(in.self, &s, t, h, x.data(), v.data()));
+    return {{"x", wire::numbers(x)}, {"v", wire::numbers(v)}};
+  }
+  std::vector<double> previous(1, 0.0);
+  check(in.verlet_start(in.self, &s, t, h, x.data(), v.data(), previous.data()));
+  const std::vector<double> start = previous;
+  check(in.verlet_step(in.self, &s, t, h, x.data(), previous.data(), v.data()));
+  return {{"x_start", wire::numbers(start)}, {"x", wire::numbers(x)}, {"x_previous", wire::numbers(previous)}};
+}
+
 json project(const json& r) {
   const ExternalConstraintRules* rules = plugins().parts().constraints;
   if (!rules) throw std::invalid_argument("the plug-in brings no constraint projection");
@@ -173,6 +227,7 @@ json handle(const json& request) {
   if (op == "balls_impact") return balls_impact(request);
   if (op == "plane_impact") return plane_impact(request);
   if (op == "project") return project(request);
+  if (op == "step") return step(request);
   throw std::invalid_argument("unknown op \"" + op + "\"");
 }
 

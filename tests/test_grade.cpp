@@ -118,6 +118,7 @@ TEST_P(SeededBugs, EachLosesExactlyTheTestsThatNameIt) {
   TempDir dir;
   const fs::path batch = dir / "submissions";
   std::map<std::string, std::string> mistakes;  // submission folder → mistake
+  std::map<std::string, json> says;             // mistake → {test: words its failure's output contains}
   const json seeded = read_json(MOTUS_SEEDED_BUGS);
   for (const auto& bug : seeded["bugs"]) {
     if (bug["assignment"] != assignment) continue;
@@ -134,6 +135,7 @@ TEST_P(SeededBugs, EachLosesExactlyTheTestsThatNameIt) {
     }
     write_file(file, source);
     mistakes[mistake] = mistake;
+    if (bug.contains("says")) says[mistake] = bug["says"];
   }
   ASSERT_GE(mistakes.size(), 2u) << assignment;
   const auto r = run_motus(dir, {"grade", assignment, "--batch", batch.string(), "--jobs", "2", "--hidden",
@@ -172,12 +174,20 @@ TEST_P(SeededBugs, EachLosesExactlyTheTestsThatNameIt) {
     long checked = 0;
     for (const auto& name : naming) {
       const json* t = test_named(result, name);
-      if (t == nullptr || !defs.at(name).contains("hint")) continue;
+      if (t == nullptr || (!defs.at(name).contains("hint") && !defs.at(name).contains("hints"))) continue;
       const std::string output = (*t)["output"].get<std::string>();
       if (output.find("was killed by") != std::string::npos || output.find("ran out of its") != std::string::npos) continue;
       ++checked;
       EXPECT_NE(output.find("This usually means: "), std::string::npos) << mistake << ": " << name << ": " << output;
     }
+    // The failure names the student's function and the quantity that is wrong, as measured.
+    if (says.count(mistake))
+      for (const auto& [name, words] : says.at(mistake).items()) {
+        const json* t = test_named(result, name);
+        ASSERT_NE(t, nullptr) << mistake << ": " << name;
+        EXPECT_NE((*t)["output"].get<std::string>().find(words.get<std::string>()), std::string::npos)
+            << mistake << ": " << name << " should say \"" << words.get<std::string>() << "\": " << (*t)["output"];
+      }
     // (The step-size controls' mistakes stop the run: their failures must be among those checked.)
     if (mistake.rfind("controller-", 0) == 0) {
       EXPECT_GT(checked, 0) << mistake;

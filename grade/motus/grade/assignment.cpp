@@ -103,6 +103,9 @@ Assignment load_assignment(const std::string& folder, const std::optional<std::s
   a.provided = strings(manifest, "provided", manifest_file);
   a.flags = strings(manifest, "flags", manifest_file);
   a.starter_passes = strings(manifest, "starter_passes", manifest_file);
+  if (manifest.contains("timeout_hint") && !manifest.at("timeout_hint").is_string())
+    throw AssignmentError(manifest_file + ": timeout_hint: must be a string");
+  a.timeout_hint = manifest.value("timeout_hint", std::string());
   if (a.files.empty()) throw AssignmentError(manifest_file + ": files: name at least one file the student hands in");
   for (const auto& f : a.files) check_file_name(f, manifest_file + ": files");
   for (const auto& f : a.provided) {

@@ -45,6 +45,7 @@ struct Assignment {
   std::vector<std::string> provided;  // the assignment's own, compiled with them
   std::vector<std::string> flags;     // extra compiler flags
   std::vector<std::string> starter_passes;  // tests an untouched starter passes (by design)
+  std::string timeout_hint;           // what a test that runs out of time usually means (its own hint else)
   std::vector<TestCase> tests;        // in rubric order; only those whose definitions were given
   long hidden_not_given = 0;          // rubric entries skipped because no hidden tests were given
   long hidden_shown_later = 0;        // of those, the ones students see after the due date (or publishing)

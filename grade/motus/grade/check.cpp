@@ -258,6 +258,9 @@ public:
     which_ = read_part(f, scene_.description);
     expected_ = f.positive("expect");
     tolerance_ = f.positive("tolerance", 0.2);
+    // What it usually means when the error does not shrink with h at all (an order below 0.5):
+    // then the step itself is wrong, and the hint about what lowers the order would mislead.
+    hint_no_order_ = f.string("hint_no_order", "");
   }
 
   CheckResult run(Probe& probe, Clock::time_point deadline) const override {
@@ -293,7 +296,10 @@ public:
     for (size_t k = 0; k < hs.size(); ++k) table.push_back(fmt::format("h = {}: error {}", num(hs[k]), num(errors[k])));
     const std::string measured = fmt::format("{} from the errors at the end ({})", what, fmt::join(table, "; "));
     const std::string expected = fmt::format("order {} ± {}", num(expected_), num(tolerance_));
-    return std::abs(order - expected_) <= tolerance_ ? pass(measured) : fail(measured, expected, hint_);
+    if (std::abs(order - expected_) <= tolerance_) return pass(measured);
+    const bool no_order = std::isfinite(order) && std::abs(order) < 0.5 && !hint_no_order_.empty();
+    return fail(measured, expected,
+                no_order ? "the error does not shrink as h does (order " + num(order) + "): " + hint_no_order_ : hint_);
   }
 
 private:
@@ -301,7 +307,7 @@ private:
   std::string integrator_, which_;
   double dt_, duration_, expected_, tolerance_;
   int halvings_;
-  std::string hint_;
+  std::string hint_, hint_no_order_;
 };
 
 // ---- stability ----------------------------------------------------------------------------------
@@ -430,8 +436,9 @@ private:
 
 class AdaptiveCheck final : public Check {
 public:
-  AdaptiveCheck(JsonFields& f, const json& test, const SceneSource& source, std::string hint)
-      : scene_(load_check_scene(f, test, source)), hint_(std::move(hint)) {
+  // (Its failures say what each failed condition usually means; the test's hint is for a run that
+  // stops or runs out of time, which the grader shows.)
+  AdaptiveCheck(JsonFields& f, const json& test, const SceneSource& source) : scene_(load_check_scene(f, test, source)) {
     if (!has_exact_solution(scene_.description))
       throw SceneError(f.path_of("scene"), "an adaptive check needs a scene with an exact solution");
     integrator_ = integrator_field(f, scene_.description);
@@ -500,18 +507,45 @@ public:
         peer + (out.evaluations == 0 ? " (your step never called f.derivative: it cannot have moved the state)" : "");
     const bool lands = std::abs(out.t.back() - r.until) <= 1e-9 * std::max(1.0, std::abs(r.until));
     const bool fewer = rk4_needs_more || (rk4_evaluations > 0 && out.evaluations < rk4_evaluations);
+    const bool accurate = error <= max_error_;
     const bool as_good = !compare_with_ || error <= factor_ * peer_error;
-    const bool ok = lands && error <= max_error_ && fewer && as_good && adapts;
-    return ok ? pass(measured)
-              : fail(measured,
-                     fmt::format("the run lands on t = {}, its error is at most {}{}, it needs fewer evaluations "
-                                 "than fixed-step RK4 at the same error, and its step size changes with the error (the "
-                                 "largest step at least twice the smallest)",
-                                 num(r.until), num(max_error_),
-                                 compare_with_ ? fmt::format(" and at most {} × motus's {}", num(factor_),
-                                                             info(*compare_with_).name)
-                                               : ""),
-                     hint_);
+    const bool ok = lands && accurate && fewer && as_good && adapts;
+    if (ok) return pass(measured);
+    // Each condition that failed, and what it usually means: the test's own hint would name every
+    // cause at once. Steps 5 times the one before, with none rejected, are the mark of an error
+    // estimate that is exactly 0 (next_step_size(h, 0) is 5 h).
+    bool grew_fivefold = out.rejected == 0 && out.t.size() > 3;
+    for (size_t i = 2; grew_fivefold && i + 1 < out.t.size(); ++i)
+      grew_fivefold = std::abs((out.t[i] - out.t[i - 1]) / (out.t[i - 1] - out.t[i - 2]) - 5) < 1e-6;
+    std::vector<std::string> causes;
+    if (!lands)
+      causes.push_back(fmt::format("The run stopped at t = {}, not at its end, t = {}.", num(out.t.back()), num(r.until)));
+    if (!adapts)
+      causes.push_back(fmt::format("The step size never changed (h from {} to {}): next_step_size keeps h; it must be "
+                                   "h · 0.9 · ratio^(-1/5), between h/5 and 5 h.",
+                                   num(smallest), num(largest)));
+    if (grew_fivefold)
+      causes.push_back("Every step was 5 times the one before and none was rejected: the error was exactly 0 at every "
+                       "step, so rk4_doubling_step never sets error (it must be (y_half - y_full)/15).");
+    else if (!accurate || !as_good)
+      causes.push_back(fmt::format("The error at the end is larger than {}: steps whose error is above the tolerance were "
+                                   "accepted, or the step is less accurate than it should be. rk4_doubling_step's error "
+                                   "must be (y_half - y_full)/15, and it returns y_half + error (fifth order; y_half alone "
+                                   "is fourth).",
+                                   !accurate ? num(max_error_) : "allowed"));
+    if (!fewer && !grew_fivefold)
+      causes.push_back("It needed more evaluations than fixed-step RK4 at the same error: steps smaller than they need "
+                       "be. The controller's exponent is -1/5 (a larger error, a smaller step: written -1.0 / 5, since "
+                       "-1 / 5 is 0 in integer arithmetic), and the factor 0.9.");
+    causes.push_back("Step doubling calls your rk4_step: a wrong rk4_step fails this test too (see the rk4 tests).");
+    return fail(measured,
+                fmt::format("the run lands on t = {}, its error is at most {}{}, it needs fewer evaluations "
+                            "than fixed-step RK4 at the same error, and its step size changes with the error (the "
+                            "largest step at least twice the smallest)",
+                            num(r.until), num(max_error_),
+                            compare_with_ ? fmt::format(" and at most {} × motus's {}", num(factor_), info(*compare_with_).name)
+                                          : ""),
+                fmt::format("{}", fmt::join(causes, " ")));
   }
 
 private:
@@ -526,7 +560,6 @@ private:
   double tolerance_, first_step_, duration_, max_error_;
   std::optional<Integrator> compare_with_;
   double factor_ = 2;
-  std::string hint_;
 };
 
 // ---- call ------------------------------------------------------------------------------------------
@@ -569,6 +602,90 @@ private:
   std::string op_;
   json args_, expect_;
   double tolerance_;
+  std::string hint_;
+};
+
+// ---- step ------------------------------------------------------------------------------------------
+
+// One step of the student's integrator called directly on one coordinate whose acceleration (or
+// derivative) is a polynomial of the time alone, c0 + c1 t + …: no scene's force depends on the
+// time, so this is where a stage taken at the wrong time shows. `hints` may give, output by output,
+// what it being wrong usually means: a failure shows the first of them whose output is wrong.
+class StepCheck final : public Check {
+public:
+  StepCheck(JsonFields& f, const json& test, std::string hint) : hint_(std::move(hint)) {
+    integrator_ = f.string("integrator");
+    of_time_ = f.numbers("of_time", -1);
+    if (of_time_.empty() || of_time_.size() > 8) f.fail("of_time", "needs 1 to 8 coefficients c0, c1, … of c0 + c1 t + …");
+    request_ = {{"op", "step"}, {"integrator", integrator_}, {"of_time", of_time_}, {"t", f.number("t")},
+                {"h", f.positive("h")}};
+    for (const char* key : {"x", "v", "y"})
+      if (f.has(key)) request_[key] = f.numbers(key, 1);
+    if (f.has("y") == (f.has("x") || f.has("v")) || f.has("x") != f.has("v"))
+      f.fail("y", "needs y (a first-order or adaptive integrator) or x and v (point masses), one number each");
+    if (f.has("y")) {
+      request_["atol"] = f.positive("atol", 1);
+      request_["rtol"] = f.positive("rtol", 1);
+    }
+    f.use("expect");
+    f.use("hints");
+    if (!test.contains("expect") || !test.at("expect").is_object() || test.at("expect").empty())
+      f.fail("expect", "must be an object of the outputs expected (x, v, y, x_start, x_previous, accepted, h)");
+    expect_ = test.at("expect");
+    if (test.contains("hints")) {
+      const json& hints = test.at("hints");
+      if (!hints.is_array()) f.fail("hints", "must be an array of [OUTPUT, HINT] pairs, the most telling first");
+      for (const auto& pair : hints) {
+        if (!pair.is_array() || pair.size() != 2 || !pair[0].is_string() || !pair[1].is_string() ||
+            !expect_.contains(pair[0].get<std::string>()))
+          f.fail("hints", "each must be [OUTPUT, HINT]: an output in expect, and what it being wrong usually means");
+        hints_.push_back({pair[0].get<std::string>(), pair[1].get<std::string>()});
+      }
+    }
+    tolerance_ = f.positive("tolerance", 1e-9);
+  }
+
+  CheckResult run(Probe& probe, Clock::time_point deadline) const override {
+    const json reply = probe.ask(request_, deadline);
+    std::string measured, expected;
+    std::vector<std::string> wrong;
+    for (const auto& [key, want] : expect_.items()) {
+      if (!reply.contains(key)) throw ProbeFailure("the step returned no " + key);
+      const auto got = wire::numbers(reply.at(key).is_array() ? reply.at(key) : json::array({reply.at(key)}));
+      const auto wanted = wire::numbers(want.is_array() ? want : json::array({want}));
+      if (!all_close(got, wanted, tolerance_)) wrong.push_back(key);
+      measured += fmt::format("{}{} = {}", measured.empty() ? "" : ", ", key, nums(got));
+      expected += fmt::format("{}{} = {}", expected.empty() ? "" : ", ", key, nums(wanted));
+    }
+    const bool mechanical = request_.contains("x");
+    std::vector<std::string> terms;
+    for (size_t k = 0; k < of_time_.size(); ++k)
+      if (of_time_[k] != 0 || of_time_.size() == 1)
+        terms.push_back(k == 0 ? num(of_time_[k]) : fmt::format("{}{}", of_time_[k] == 1 ? "" : num(of_time_[k]) + " ", k == 1 ? std::string("t") : "t^" + std::to_string(k)));
+    const std::string from =
+        mechanical ? fmt::format("x = {}, v = {}", num(request_["x"][0].get<double>()), num(request_["v"][0].get<double>()))
+                   : fmt::format("y = {}", num(request_["y"][0].get<double>()));
+    measured += fmt::format(" after one step of h = {} from t = {}, {}, on {} = {}", num(request_["h"].get<double>()),
+                            num(request_["t"].get<double>()), from, mechanical ? "x'' = a(t)" : "y' = f(t)",
+                            fmt::join(terms, " + "));
+    if (wrong.empty()) return pass(measured);
+    // The hint of the first wrong output in the order of `hints` (the others usually follow from it:
+    // a wrong start makes the step's result wrong too), else the test's own.
+    std::string hint = hint_;
+    for (const auto& [key, text] : hints_)
+      if (std::find(wrong.begin(), wrong.end(), key) != wrong.end()) {
+        hint = text;
+        break;
+      }
+    return fail(measured, expected + fmt::format(" (to {})", num(tolerance_)), hint);
+  }
+
+private:
+  std::string integrator_;
+  std::vector<double> of_time_;
+  json request_, expect_;
+  std::vector<std::pair<std::string, std::string>> hints_;
+  double tolerance_ = 1e-9;
   std::string hint_;
 };
 
@@ -893,11 +1010,12 @@ std::unique_ptr<Check> make_check(JsonFields& test, const SceneSource& scenes, c
   if (kind == "order") return std::make_unique<OrderCheck>(test, raw, scenes, hint);
   if (kind == "stability") return std::make_unique<StabilityCheck>(test, raw, scenes, hint);
   if (kind == "energy") return std::make_unique<EnergyCheck>(test, raw, scenes, hint);
-  if (kind == "adaptive") return std::make_unique<AdaptiveCheck>(test, raw, scenes, hint);
+  if (kind == "adaptive") return std::make_unique<AdaptiveCheck>(test, raw, scenes);
   if (kind == "call") return std::make_unique<CallCheck>(test, raw, hint);
   if (kind == "scene") return std::make_unique<SceneCheck>(test, raw, scenes, hint);
   if (kind == "project") return std::make_unique<ProjectCheck>(test, raw, hint);
-  test.fail("kind", "must be trajectory, order, stability, energy, adaptive, call, scene or project");
+  if (kind == "step") return std::make_unique<StepCheck>(test, raw, hint);
+  test.fail("kind", "must be trajectory, order, stability, energy, adaptive, call, scene, project or step");
 }
 
 }  // namespace motus::grade

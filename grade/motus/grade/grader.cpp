@@ -243,7 +243,10 @@ GradeResult grade_submission(const Assignment& a, const std::string& submission,
         // The test's hint is about wrong numbers: it helps a run too slow to finish (a step size
         // that shrinks without end) and one that its numbers stopped (a step of 0, a control that
         // keeps a rejected step), not one that crashed or ran out of memory.
-        if (!t.hint.empty() && (e.out_of_time() || e.stopped_the_run())) r.output += "\nThis usually means: " + t.hint;
+        // An assignment may say what running out of time usually means there (a cloth's sweeps that
+        // run until the sticks are exact, rather than constraints.iterations times).
+        const std::string& hint = e.out_of_time() && !a.timeout_hint.empty() ? a.timeout_hint : t.hint;
+        if (!hint.empty() && (e.out_of_time() || e.stopped_the_run())) r.output += "\nThis usually means: " + hint;
       }
     }
     r.score = r.passed ? r.max_score : 0;

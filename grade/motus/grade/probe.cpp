@@ -65,7 +65,17 @@ void Probe::died(const std::string& while_doing) {
 nlohmann::json Probe::ask(nlohmann::json request, std::chrono::steady_clock::time_point deadline) {
   if (!server_) start();
   const std::string op = request.value("op", std::string("?"));
-  const std::string doing = op == "run" ? "a run of the scene" : op == "project" ? "satisfy_constraints" : op;
+  // What the student's code was doing, by the names the student wrote: the wire's operations are
+  // the plug-in's (balls_impact is the student's time_of_impact).
+  const std::string integrator = request.value("integrator", std::string());
+  const bool theirs = integrator.rfind("student:", 0) == 0;
+  const std::string doing = op == "run"            ? (theirs ? "a run of the scene with your integrator " + integrator
+                                                             : std::string("a run of the scene"))
+                            : op == "step"         ? "a step of your integrator " + integrator
+                            : op == "project"      ? "satisfy_constraints"
+                            : op == "balls_impact" ? "time_of_impact"
+                            : op == "plane_impact" ? "time_of_impact_with_plane"
+                                                   : op;
   const bool written =
       server_->write_line(request.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace), deadline);
   const auto line = written ? server_->read_line(deadline) : std::nullopt;
