@@ -165,7 +165,7 @@ TEST(Grade, HostileSubmissionsEndWithinTheirLimitsAndHarmNothing) {
   for (const auto& [name, pts] : p)
     if (defs.count(name) && read_file(fs::path(kAssignments) / "integrators/tests/public.json").find("\"" + name + "\"") != std::string::npos)
       public_max += pts;
-  const std::set<std::string> euler_tests = {"euler.table", "euler.order"};
+  const std::set<std::string> euler_tests = {"euler.table", "euler.order", "euler.step-time"};
   for (const auto& c : cases) {
     if (!fs::exists(dir / "results" / (c.name + ".json")) && c.name == "memory") continue;  // (skipped above)
     const json result = read_json(dir / "results" / (c.name + ".json"));
@@ -181,7 +181,9 @@ TEST(Grade, HostileSubmissionsEndWithinTheirLimitsAndHarmNothing) {
         EXPECT_NE((*t)["output"].get<std::string>().find(c.message), std::string::npos) << c.name << ": " << (*t)["output"];
       }
     }
-    EXPECT_GE(result["score"].get<double>(), public_max - p.at("euler.table") - p.at("euler.order")) << c.name;
+    double euler_points = 0;
+    for (const auto& name : euler_tests) euler_points += p.at(name);
+    EXPECT_GE(result["score"].get<double>(), public_max - euler_points) << c.name;
     // Output is kept up to its cap.
     for (const auto& t : result["tests"]) EXPECT_LT(t["output"].get<std::string>().size(), 8000u) << c.name;
   }
@@ -227,15 +229,16 @@ TEST(Grade, NoExpectedValueReachesTheStudentsCode) {
   // A submission that reads everything the grader sends its process (a pipe put in front of
   // standard input when the plug-in is loaded, before the server reads a line). The Lorenz
   // scene of the hidden tests has reference states, which rk4.lorenz-order judges the run
-  // against: they must not be among what it saw. (And it must have seen the requests: else it
-  // proves nothing.)
+  // against: they must not be among what it saw. (And it must have seen the requests, the runs'
+  // scenes among them: else it proves nothing. A `step` test calls rk4_step with no scene.)
   NEEDS_SANDBOX();
   TempDir dir;
   const std::string anchor = "void rk4_step(const FirstOrderSystem& f, double t, double h, VectorInOut y) {\n";
   // (The scene travels as a JSON string in the request: its keys' quotes escaped.)
   const std::string checks = R"(  std::lock_guard<std::mutex> lock(seen_lock);
   if (seen.find(R"-("op")-") == std::string::npos) throw std::runtime_error("SAW NOTHING");
-  if (seen.find(R"-(\"dt\")-") == std::string::npos) throw std::runtime_error("SAW NO SCENE");
+  if (seen.find(R"-("run")-") != std::string::npos && seen.find(R"-(\"dt\")-") == std::string::npos)
+    throw std::runtime_error("SAW NO SCENE");
   if (seen.find(R"-(\"reference\")-") != std::string::npos) throw std::runtime_error("SAW THE REFERENCE");
 )";
   const std::string spy = R"(#include <unistd.h>
