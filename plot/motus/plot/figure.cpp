@@ -44,12 +44,17 @@ const char* const kColours[] = {"#4285d6", "#df7430", "#43a360", "#cd465a", "#91
 // Line k's colour and dash: the series' own dash when it has one (compare's engines); else lines
 // 17 to 32 take the colours again, dotted (gnuplot's dash type 3) or, when the series is dashed on
 // purpose (a peer beside motus's own), dash-dotted (4). So no two of a figure's first 32 lines
-// look the same (no figure motus draws has more).
+// look the same (no figure motus draws has more). Of the first 16, the first is solid and the
+// others not dashed on purpose take one of four patterns in turn: a line drawn over another
+// that follows the same curve (symplectic Euler's two forms on a stress page) leaves it showing
+// through its gaps, where two solid lines showed only the last one drawn.
+const char* const kLineDashes[] = {"(12,6)", "(3,5)", "(12,4,3,4)", "(24,6,3,6)"};
 std::string line_style(size_t k, bool dashed, const std::string& dash) {
   const std::string colour = std::string(" lc rgb '") + kColours[k % std::size(kColours)] + "'";
   if (!dash.empty()) return colour + " dt " + dash;
   if ((k / std::size(kColours)) % 2 == 1) return colour + (dashed ? " dt 4" : " dt 3");
-  return colour + (dashed ? " dt 2" : "");
+  if (dashed) return colour + " dt 2";
+  return k == 0 ? colour : colour + " dt " + kLineDashes[(k - 1) % std::size(kLineDashes)];
 }
 
 void axis(std::ostream& gp, const char* name, Scale scale, double threshold) {
