@@ -622,6 +622,50 @@ TEST(Grade, AStepSizeThatShrinksWithoutEndIsTheStudentsErrorWithItsHint) {
       << output;
 }
 
+// Found by a grading audit: a time of impact that loops for ever "timed out ... during
+// balls_impact", a name the student never wrote (the plug-in's wire), and a cloth whose sweeps run
+// until every stick is exact timed out with no word of constraints.iterations. The student's own
+// function is named, and the cloth assignment's timeout_hint follows.
+TEST(Grade, ATimeoutNamesTheStudentsFunctionAndTheAssignmentsHint) {
+  NEEDS_SANDBOX();
+  TempDir dir;
+  auto with = [&](const std::string& assignment, const std::string& file, const std::string& find,
+                  const std::string& replacement) {
+    const fs::path submission = copy_solution(dir, assignment, assignment + "-loops");
+    std::string source = read_file(submission / file);
+    const size_t at = source.find(find);
+    EXPECT_NE(at, std::string::npos) << find;
+    if (at != std::string::npos) source.replace(at, find.size(), replacement);
+    write_file(submission / file, source);
+    return submission;
+  };
+  const fs::path collisions = with("collisions", "collisions.cpp", "const double R = r_a + r_b;",
+                                   "const double R = r_a + r_b;\n  for (volatile int spin = 0;; spin = spin + 1) {}");
+  auto r = run_motus(dir, {"grade", "collisions", collisions.string(), "--time-limit", "1", "--results",
+                           (dir / "collisions.json").string()});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const json balls = read_json(dir / "collisions.json");
+  const json* t = test_named(balls, "impact.head-on");
+  ASSERT_NE(t, nullptr);
+  std::string output = (*t)["output"].get<std::string>();
+  EXPECT_NE(output.find("timed out after 1 s during time_of_impact"), std::string::npos) << output;
+  EXPECT_EQ(output.find("balls_impact"), std::string::npos) << output;
+
+  const fs::path cloth = with("cloth", "cloth.cpp", "for (int sweep = 0; sweep < c.iterations; ++sweep) {", "for (;;) {");
+  r = run_motus(dir, {"grade", "cloth", cloth.string(), "--time-limit", "1", "--results", (dir / "cloth.json").string()});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const json sheet = read_json(dir / "cloth.json");
+  const std::string hint = read_json(fs::path(kAssignments) / "cloth/assignment.json").at("timeout_hint").get<std::string>();
+  int with_hint = 0;
+  for (const auto& test : sheet.at("tests")) {
+    const std::string text = test.at("output").get<std::string>();
+    if (text.find("timed out after 1 s") == std::string::npos) continue;
+    EXPECT_NE(text.find("This usually means: " + hint), std::string::npos) << text;
+    with_hint += text.find("This usually means: " + hint) != std::string::npos;
+  }
+  EXPECT_GT(with_hint, 0) << sheet.dump(2);
+}
+
 // An order check whose finer runs blow up measures no order: it says which step size's error was
 // not finite, rather than an order of −∞ (or one from the coarser runs alone, which would pass).
 TEST(Grade, AnOrderCheckWhoseRunBlowsUpSaysWhereAndFails) {
