@@ -159,6 +159,16 @@ size_t nearest_frame(const nlohmann::json& times, double t) {
   return best;
 }
 
+// The time the script shows at the frame nearest t: "t = 1.00 s", with decimals enough for the
+// frames' spacing, two at least (replay.js).
+std::string shown_time(const nlohmann::json& times, double t) {
+  const double spacing = (times.back().get<double>() - times.front().get<double>()) / static_cast<double>(times.size() - 1);
+  const int decimals = std::clamp(static_cast<int>(std::ceil(-std::log10(spacing) - 1e-9)), 2, 6);
+  char text[64];
+  std::snprintf(text, sizeof text, "t = %.*f s", decimals, times[nearest_frame(times, t)].get<double>());
+  return text;
+}
+
 // The page at URL in headless Chromium: a screenshot into `png`, or, without one, the DOM after the
 // scripts have run (on standard output).
 Result open_page(const TempDir& dir, const std::string& chromium, const std::string& url, const fs::path& png = {},
@@ -376,11 +386,7 @@ TEST_F(ReplayBrowser, EveryPanelSaysItsTimeAndEnergyError) {
   expect_no_script_errors(r);
   const auto& times = report.engine(0).at("t");
   const size_t f = nearest_frame(times, 1.0);
-  // Decimals enough for the frames' spacing, two at least (replay.js).
-  const double spacing = (times.back().get<double>() - times.front().get<double>()) / static_cast<double>(times.size() - 1);
-  const int decimals = std::clamp(static_cast<int>(std::ceil(-std::log10(spacing) - 1e-9)), 2, 6);
-  char label[96];
-  std::snprintf(label, sizeof label, "<span class=\"replay-time\">t = %.*f s</span>", decimals, times[f].get<double>());
+  const std::string label = "<span class=\"replay-time\">" + shown_time(times, 1.0) + "</span>";
   EXPECT_EQ(occurrences(r.out, label), supported_engines(report)) << label << "\n" << r.out;
   EXPECT_EQ(occurrences(r.out, "<span class=\"replay-energy\">\u0394E/E\u2080 = "), supported_engines(report)) << r.out;
   const std::string clock = "frame " + std::to_string(f + 1) + " of " + std::to_string(times.size());
@@ -471,12 +477,7 @@ TEST_F(ReplayBrowser, TheSliderAndEveryPictureSayWhatTheyShow) {
   const Result r = open_page(dir, chromium, page_url(report, "#t=1.0"));
   ASSERT_EQ(r.status, 0) << r.err;
   expect_no_script_errors(r);
-  const auto& times = report.engine(0).at("t");
-  const size_t f = nearest_frame(times, 1.0);
-  const double spacing = (times.back().get<double>() - times.front().get<double>()) / static_cast<double>(times.size() - 1);
-  const int decimals = std::clamp(static_cast<int>(std::ceil(-std::log10(spacing) - 1e-9)), 2, 6);
-  char time[64];
-  std::snprintf(time, sizeof time, "t = %.*f s", decimals, times[f].get<double>());
+  const std::string time = shown_time(report.engine(0).at("t"), 1.0);
   EXPECT_NE(r.out.find("aria-valuetext=\"" + std::string(time) + "\""), std::string::npos) << time << "\n" << r.out;
   for (size_t k = 0; k < report.engines(); ++k) {
     const std::string label = "aria-label=\"" + report.engine(k).at("name").get<std::string>() + " at " + time + ", \u0394E/E\u2080 = ";

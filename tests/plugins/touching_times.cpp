@@ -6,20 +6,11 @@
 #include <cmath>
 #include <limits>
 
-#include "motus/student/plugin.hpp"
+#include "right_collisions.hpp"
 
 namespace {
 
 using student::VectorIn;
-using student::VectorInOut;
-
-void collide(double m_a, VectorInOut v_a, double m_b, VectorInOut v_b, VectorIn n, double e) {
-  const double J = -(1 + e) * (v_b - v_a).dot(n) / (1 / m_a + 1 / m_b);
-  v_a -= (J / m_a) * n;
-  v_b += (J / m_b) * n;
-}
-
-void bounce(VectorInOut v, VectorIn n, double e) { v -= (1 + e) * v.dot(n) * n; }
 
 double time_of_impact(VectorIn p_a, VectorIn v_a, double r_a, VectorIn p_b, VectorIn v_b, double r_b) {
   const student::Vector dp = p_b - p_a, dv = v_b - v_a;
@@ -39,5 +30,5 @@ double time_of_impact_with_plane(VectorIn p, VectorIn v, double r, VectorIn n, d
 }  // namespace
 
 MOTUS_PLUGIN("touching", "times of impact without the already-touching case (test_grade)") {
-  plugin.collisions({collide, bounce, time_of_impact, time_of_impact_with_plane});
+  plugin.collisions({right::collide_balls, right::bounce_off_wall, time_of_impact, time_of_impact_with_plane});
 }
