@@ -1181,19 +1181,18 @@ double BallCollisions<D>::outside_balls_impact(const Point& p_a, const Point& v_
   // for balls that already touch and approach it loses a contact that is happening now, and they
   // pass into each other: that showed only much later, as an overlap. (Touching to within
   // rounding: a contact leaves its balls exactly touching, and their neighbours in a chain too.)
-  const Point dp = p_b - p_a;
-  const double gap = dp.norm() - (r_a + r_b);
-  if (t < 0 && gap <= kTouching * (r_a + r_b) && dp.dot(v_b - v_a) < 0)
+  const Point dp = p_b - p_a, dv = v_b - v_a;
+  const double distance = dp.norm(), gap = distance - (r_a + r_b), opening = dp.dot(dv);  // opening < 0: approaching
+  if (t < 0 && gap <= kTouching * (r_a + r_b) && opening < 0)
     throw ExternalError("returned " + figure(t) + " as the time of impact of two balls whose surfaces are " +
                         figure(gap) + " m apart and approaching, where they already touch" +
                         (gap < 0 ? " (overlap)" : "") + ": that is a contact now, t = 0");
   // And a contact within the step for balls clearly moving apart (beyond rounding) is none: it
   // would have the impulse pull them together. (The impulse's own check looks only at balls that
   // approach; without this the contacts went on until the step's limit.)
-  const Point dv = v_b - v_a;
-  if (t >= 0 && t <= horizon && dp.dot(dv) > kTouching * dp.norm() * dv.norm())
+  if (t >= 0 && t <= horizon && opening > kTouching * distance * dv.norm())
     throw ExternalError("returned " + figure(t) + " as the time of impact of two balls moving apart (the gap between "
-                        "their surfaces grows at " + figure(dp.dot(dv) / dp.norm()) +
+                        "their surfaces grows at " + figure(opening / distance) +
                         " m/s): balls moving apart never touch, +infinity");
   return t >= 0 && t <= horizon ? t : kNoImpact;  // (negative: none, as +infinity)
 }
@@ -1207,12 +1206,11 @@ double BallCollisions<D>::outside_plane_impact(const Point& p, const Point& v, d
   if (std::isnan(t))
     throw ExternalError("returned NaN as the time of impact of a ball and a plane (a time ≥ 0, or +infinity for none)");
   // (As for two balls: a ball that already touches the plane and moves into it has a contact now.)
-  const double gap = plane.normal.dot(p) - plane.offset - r;
-  if (t < 0 && gap <= kTouching * std::max(r, 1e-300) && plane.normal.dot(v) < 0)
+  const double gap = plane.normal.dot(p) - plane.offset - r, away = plane.normal.dot(v);  // away < 0: into it
+  if (t < 0 && gap <= kTouching * std::max(r, 1e-300) && away < 0)
     throw ExternalError("returned " + figure(t) + " as the time of impact of a ball " + figure(gap) +
                         " m from a plane and moving into it, where it already touches" +
                         (gap < 0 ? " (it is into the plane)" : "") + ": that is a contact now, t = 0");
-  const double away = plane.normal.dot(v);
   if (t >= 0 && t <= horizon && away > kTouching * v.norm())
     throw ExternalError("returned " + figure(t) + " as the time of impact of a ball moving away from a plane (at " +
                         figure(away) + " m/s along its normal): it never reaches it, +infinity");
