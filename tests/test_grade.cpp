@@ -599,6 +599,139 @@ TEST(Grade, AStudentsEscapeSequencesNeverReachTheTerminal) {
   EXPECT_NE(read_file(dir / "results.json").find("\\u001b[2J"), std::string::npos);  // (the JSON keeps it, escaped)
 }
 
+// The integrators solution with the seeded mistakes `mistakes` (tests/grading/seeded_bugs.json)
+// and, first in each function of `first_lines`, its line.
+std::string solution_with(const std::vector<std::string>& mistakes, const std::map<std::string, std::string>& first_lines) {
+  std::string source = read_file(fs::path(kAssignments) / "integrators/solution/integrators.cpp");
+  const json seeded = read_json(MOTUS_SEEDED_BUGS);
+  for (const std::string& mistake : mistakes) {
+    bool found = false;
+    for (const auto& bug : seeded["bugs"])
+      if (bug["assignment"] == "integrators" && bug["mistake"] == mistake) {
+        found = true;
+        for (const auto& pair : bug["replace"]) {
+          const size_t at = source.find(pair[0].get<std::string>());
+          EXPECT_NE(at, std::string::npos) << mistake;
+          if (at != std::string::npos) source.replace(at, pair[0].get<std::string>().size(), pair[1].get<std::string>());
+        }
+      }
+    EXPECT_TRUE(found) << "no seeded mistake " << mistake;
+  }
+  for (const auto& [function, line] : first_lines) {
+    const size_t at = source.find("void " + function + "(");
+    const size_t body = at == std::string::npos ? at : source.find("{\n", at);
+    EXPECT_NE(body, std::string::npos) << "the integrators solution has no " << function;
+    if (body != std::string::npos) source.insert(body + 2, "  " + line + "\n");
+  }
+  return source;
+}
+
+// What a test's output shows below the line in which `heading` is last said (to the output's end), or "".
+std::string below(const std::string& output, const std::string& heading) {
+  const size_t at = output.rfind(heading);
+  const size_t end = at == std::string::npos ? at : output.find('\n', at);
+  return end == std::string::npos ? "" : output.substr(end + 1);
+}
+
+// A student debugging a wrong answer sees their own prints: a test that fails without a crash shows
+// what the student's code printed while it ran (std::cout, unflushed till the server ends, and
+// std::cerr) — that test's alone, each test having a server of its own — under the test's own
+// visibility; a test that passes shows none. The wrong answers are the seeded mistakes the two tests
+// catch; an escape sequence in a print reaches the terminal as '?', as a crash's output does.
+TEST(Grade, AFailedTestShowsWhatTheStudentsCodePrintedDuringIt) {
+  NEEDS_SANDBOX();
+  TempDir dir;
+  const auto defs = definitions("integrators");
+  const fs::path assignment =
+      integrators_with_tests(dir, "prints", json::array({defs.at("euler.table"), defs.at("rk4.order"), defs.at("velocity-verlet.order")}));
+  json rubric = read_json(assignment / "rubric.json");
+  ASSERT_EQ(rubric["tests"][1]["name"], "rk4.order");
+  rubric["tests"][1]["visibility"] = "after_due_date";  // (shown with its prints after the due date, not before)
+  write_file(assignment / "rubric.json", rubric.dump(2));
+  ASSERT_EQ(defs.at("euler.table")["catches"], json::array({"euler-new-velocity"}));
+  ASSERT_EQ(defs.at("rk4.order")["catches"], json::array({"rk4-equal-weights"}));
+  const std::string euler_says = "euler_step says \x1b[2Jhello", rk4_says = "rk4_step says hello",
+                    verlet_says = "velocity_verlet_step says hello";
+  const fs::path submission = dir / "debugging";
+  fs::create_directories(submission);
+  write_file(submission / "integrators.cpp",
+             "#include <iostream>\n" + solution_with({"euler-new-velocity", "rk4-equal-weights"},
+                                                     {{"euler_step", R"(std::cout << "euler_step says \x1b[2Jhello\n";)"},
+                                                      {"rk4_step", R"(std::cerr << "rk4_step says hello" << std::endl;)"},
+                                                      {"velocity_verlet_step", R"(std::cout << "velocity_verlet_step says hello\n";)"}}));
+  const auto r = run_motus(dir, {"grade", assignment.string(), submission.string(), "--results", (dir / "results.json").string()});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const json result = read_json(dir / "results.json");
+  expect_valid_gradescope(result);
+  EXPECT_EQ(failed(result), (std::set<std::string>{"euler.table", "rk4.order"})) << result.dump(2);
+  const json* euler = test_named(result, "euler.table");
+  const json* rk4 = test_named(result, "rk4.order");
+  const json* verlet = test_named(result, "velocity-verlet.order");
+  ASSERT_TRUE(euler && rk4 && verlet);
+  const std::string euler_output = (*euler)["output"].get<std::string>(), rk4_output = (*rk4)["output"].get<std::string>();
+  EXPECT_NE(euler_output.find("\n" + euler_says + "\n"), std::string::npos) << euler_output;
+  EXPECT_NE(rk4_output.find("\n" + rk4_says + "\n"), std::string::npos) << rk4_output;
+  for (const std::string& other : {rk4_says, verlet_says}) EXPECT_EQ(euler_output.find(other), std::string::npos) << euler_output;
+  for (const std::string& other : {euler_says, verlet_says}) EXPECT_EQ(rk4_output.find(other), std::string::npos) << rk4_output;
+  EXPECT_EQ((*rk4)["visibility"], "after_due_date");
+  EXPECT_EQ((*verlet)["output"].get<std::string>().find("says hello"), std::string::npos) << (*verlet)["output"];
+  EXPECT_EQ(result["output"].get<std::string>().find("says hello"), std::string::npos) << result["output"];
+  // The summary on the terminal: the prints of the failed tests, control characters as '?'.
+  EXPECT_NE(r.out.find("euler_step says ?[2Jhello"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find(rk4_says), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find('\x1b'), std::string::npos);
+}
+
+// A student who prints a megabyte gets, in a failed test's output, what a crash's output shows of
+// it, whatever the kind of failure: the end of what the sandbox kept of it (its first KBs, read and
+// dropped past them), cut to the same length and marked as cut. Here one submission fails
+// euler.table with wrong numbers and aborts in euler.order (h < 0.5 there), after the same flood.
+TEST(Grade, AFloodOfPrintsInAFailedTestIsCutAsACrashsOutputIs) {
+  NEEDS_SANDBOX();
+  TempDir dir;
+  const auto defs = definitions("integrators");
+  ASSERT_GE(defs.at("euler.table")["expect"][0]["step"].get<int>(), 1);
+  ASSERT_LT(defs.at("euler.order")["dt"].get<double>(), 0.5);
+  const fs::path assignment = integrators_with_tests(dir, "flood", json::array({defs.at("euler.table"), defs.at("euler.order")}));
+  std::string printed;  // what each test's server prints at its first call: numbered lines, 1 MB and more
+  for (int line = 0; printed.size() < (1u << 20); ++line) printed += "flood line " + std::to_string(line) + "\n";
+  const fs::path submission = dir / "flooding";
+  fs::create_directories(submission);
+  write_file(submission / "integrators.cpp",
+             "#include <cstdlib>\n#include <iostream>\n#include <string>\n" +
+                 solution_with({"euler-new-velocity"},
+                               {{"euler_step", "static bool flooded = false; if (!flooded) { flooded = true; for (int line = 0, size = 0; "
+                                               "size < (1 << 20); ++line) { const std::string text = \"flood line \" + "
+                                               "std::to_string(line) + \"\\n\"; std::cout << text; size += int(text.size()); } } "
+                                               "if (h < 0.5) std::abort();"}}));
+  const auto r = run_motus(dir, {"grade", assignment.string(), submission.string(), "--results", (dir / "results.json").string()});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const json result = read_json(dir / "results.json");
+  expect_valid_gradescope(result);
+  const json* table = test_named(result, "euler.table");
+  const json* order = test_named(result, "euler.order");
+  ASSERT_TRUE(table && order);
+  EXPECT_EQ((*table)["status"], "failed");
+  EXPECT_EQ((*order)["status"], "failed");
+  const std::string wrong = (*table)["output"].get<std::string>(), crash = (*order)["output"].get<std::string>();
+  EXPECT_NE(crash.find("killed by SIGABRT"), std::string::npos) << crash;
+  const std::string heading = "The end of the first ";  // (… N KB of …: the sandbox kept only those)
+  const std::string crash_shows = below(crash, heading), wrong_shows = below(wrong, heading);
+  ASSERT_FALSE(crash_shows.empty()) << crash;
+  ASSERT_EQ(wrong_shows, crash_shows) << wrong;
+  // The end of what was kept: the first KBs its heading names, of what the code printed.
+  const size_t kb_at = wrong.rfind(heading) + heading.size();
+  const size_t kept = std::stoul(wrong.substr(kb_at)) * 1024;
+  ASSERT_LT(kept, printed.size());
+  const std::string cut = "…";
+  ASSERT_TRUE(wrong_shows.starts_with(cut) && wrong_shows.ends_with(cut)) << wrong_shows;  // cut at both ends
+  const std::string shown = wrong_shows.substr(cut.size(), wrong_shows.size() - 2 * cut.size());
+  EXPECT_FALSE(shown.empty());
+  EXPECT_TRUE(printed.substr(0, kept).ends_with(shown)) << shown;
+  // Bounded as it was read: the whole results.json is smaller than what was kept of one test's prints.
+  EXPECT_LT(fs::file_size(dir / "results.json"), kept);
+}
+
 // A step-size control turned upside down shrinks the step without end: the run records states
 // until memory runs out. It used to end as "killed by SIGABRT" (a JSON array that big cannot be
 // destroyed without memory); now the run stops at the most it may record, and the test's hint

@@ -248,6 +248,10 @@ GradeResult grade_submission(const Assignment& a, const std::string& submission,
         const std::string& hint = e.out_of_time() && !a.timeout_hint.empty() ? a.timeout_hint : t.hint;
         if (!hint.empty() && (e.out_of_time() || e.stopped_the_run())) r.output += "\nThis usually means: " + hint;
       }
+      // What the student's code printed during this test, its server stopped so that all of it
+      // has been read (an unflushed std::cout too); a crash's message has shown it already.
+      probe.stop();
+      r.printed = probe.printed();
     }
     r.score = r.passed ? r.max_score : 0;
     result.score += r.score;
@@ -273,6 +277,12 @@ GradeResult grade_submission(const Assignment& a, const std::string& submission,
                             "passes as well: {}.",
                             fmt::join(t.counts_with_one_of, ", "));
   }
+  // A failed test shows what the student's code printed during it, below what was measured: their
+  // own debugging of a wrong answer. A passing test does not (results.json stays small). In the
+  // test's own output it is shown when the test is (its visibility), and the terminal's summary
+  // shows it made safe (terminal_safe), as it does a crash's output.
+  for (TestResult& r : result.tests)
+    if (!r.passed && !r.printed.empty()) r.output += (r.output.ends_with('\n') ? "" : "\n") + r.printed;
   if (built.ok && !o.plugin_out.empty()) {
     // The student's code ran as the user that owns the build's folder (and, without a sandbox,
     // could reach it): the plug-in there must still be a file, not a link to one of the grader's.

@@ -35,6 +35,9 @@ struct TestResult {
   double score = 0, max_score = 0;
   bool passed = false;
   std::string output, visibility = "visible";
+  // What the student's code printed during the test (Probe::printed), put below its output if it
+  // fails; not in results.json otherwise.
+  std::string printed;
 };
 
 struct GradeResult {

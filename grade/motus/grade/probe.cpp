@@ -1,11 +1,33 @@
 #include "motus/grade/probe.hpp"
 
+#include <cctype>
 #include <filesystem>
 
 namespace motus::grade {
 namespace {
-// The most of a student's error message a test's output keeps (their output's end is cut to 1200).
+// The most of a student's error message a test's output keeps (of what their code printed: kShownBytes).
 constexpr size_t kMessageBytes = 2000;
+// The most of what the student's code printed a test's output shows: its last bytes.
+constexpr size_t kShownBytes = 1200;
+
+// What the student's code printed — its standard output and error as the sandbox kept them: the
+// first `kept` bytes, and "…" after them when it wrote more — for a test's output: "" when it
+// printed nothing but white space, else a heading and the text ("Its output:", say, with `what`
+// "its output"), or the text's last kShownBytes after "The end of its output:". A crash's message
+// and a failed test's prints are both shown so.
+std::string shown_output(std::string text, size_t kept, const std::string& what) {
+  // Only its first `kept` bytes were kept (the rest was read and dropped): past that, "the end"
+  // is the end of what was kept, not what it wrote last.
+  const bool capped = text.size() >= kept, cut = text.size() > kShownBytes;
+  if (cut) text = "…" + text.substr(text.size() - kShownBytes);
+  while (!text.empty() && (text.back() == '\n' || text.back() == ' ')) text.pop_back();
+  if (text.empty()) return "";
+  std::string heading = capped ? "the end of the first " + std::to_string(kept / 1024) + " KB of " + what
+                        : cut  ? "the end of " + what
+                               : what;
+  heading[0] = static_cast<char>(std::toupper(static_cast<unsigned char>(heading[0])));
+  return heading + ":\n" + text;
+}
 }  // namespace
 
 Probe::Probe(ProbeSetup setup) : setup_(std::move(setup)) {}
@@ -32,9 +54,20 @@ void Probe::start() {
 
 void Probe::stop() {
   // Its input closed, the server ends by itself (and bubblewrap with it); only one that does
-  // not is killed.
-  if (server_) server_->finish(std::chrono::steady_clock::now() + std::chrono::seconds(1));
+  // not is killed. Either way its output has been read to its end (what std::cout held unflushed
+  // included, when it ended by itself).
+  if (server_) {
+    server_->finish(std::chrono::steady_clock::now() + std::chrono::seconds(1));
+    printed_ = server_->errors();
+  }
   server_.reset();
+}
+
+std::string Probe::printed() {
+  const std::string shown =
+      shown_output(printed_, setup_.limits.output_bytes, "what your code printed during this test");
+  printed_.clear();
+  return shown;
 }
 
 void Probe::died(const std::string& while_doing) {
@@ -45,19 +78,10 @@ void Probe::died(const std::string& while_doing) {
   const bool out_of_time = ending.out_of_time(setup_.limits, seconds);
   std::string what = "your code " + ending.describe(setup_.limits, seconds);
   if (!while_doing.empty()) what += " during " + while_doing;
-  // The last lines it wrote on standard error (and standard output, which goes there too).
-  std::string errors = server_->errors();
-  if (!errors.empty()) {
-    // Only its first 64 KB are kept (the rest was read and dropped): past that, "the end" is
-    // the end of what was kept, not what it wrote last.
-    const bool capped = errors.size() >= setup_.limits.output_bytes, cut = errors.size() > 1200;
-    if (cut) errors = "…" + errors.substr(errors.size() - 1200);
-    while (!errors.empty() && (errors.back() == '\n' || errors.back() == ' ')) errors.pop_back();
-    what += capped ? ". The end of the first " + std::to_string(setup_.limits.output_bytes / 1024) + " KB of its output:\n"
-            : cut  ? ". The end of its output:\n"
-                   : ". Its output:\n";
-    what += errors;
-  }
+  // The last lines it wrote on standard error (and standard output, which goes there too): shown
+  // here, so not again below the test's output (printed_ does not get them).
+  const std::string shown = shown_output(server_->errors(), setup_.limits.output_bytes, "its output");
+  if (!shown.empty()) what += ". " + shown;
   server_.reset();  // the next request starts a new one
   throw ProbeFailure(what, out_of_time);
 }

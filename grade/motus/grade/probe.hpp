@@ -50,8 +50,14 @@ public:
   nlohmann::json ask(nlohmann::json request, std::chrono::steady_clock::time_point deadline);
   // How long the current check may take.
   double seconds_per_check() const { return setup_.limits.cpu_seconds; }
-  // Stops the server (and everything it started).
+  // Stops the server (and everything it started), its output read to the end: what the student's
+  // code printed in it is kept for printed().
   void stop();
+  // What the student's code printed (its standard output and error) in the server stopped last, as
+  // a paragraph of a test's output — "What your code printed during this test:" and it, or the end
+  // of it, cut as a crash's output is — and forgets it. "" when it printed nothing, or when a
+  // failure's message has shown it already (a crash, a timeout).
+  std::string printed();
 
 private:
   void start();
@@ -59,6 +65,7 @@ private:
 
   ProbeSetup setup_;
   std::unique_ptr<SandboxProcess> server_;
+  std::string printed_;  // (as SandboxProcess::errors keeps it: at most Limits::output_bytes, and the cut's mark)
   std::chrono::steady_clock::time_point started_;
 };
 
