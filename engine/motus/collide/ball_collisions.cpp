@@ -64,12 +64,6 @@ constexpr int kGapClasses = 4;
 // count against the lists' half skin, as the distance the ball moved.
 constexpr double kNudge = 1e-9;
 
-// A ball off the lists (looking along its path in the grid every step, and looked for by every
-// contact's search) costs a step about what this many balls' share of a build does: in
-// bench_collisions' settled 2-D gas of 10^3 balls, two balls left off for their speed cost
-// 0.5 ns per ball-step (5.05 → 5.55, the fastest of 12 runs each), where a build is ~16 ns a ball.
-constexpr double kOffTheListsCost = 20;
-
 // With this many fast balls or more at a step's start, they find each other in a grid of their
 // paths (path_grid.hpp) rather than each testing all the others.
 constexpr size_t kPathGridFrom = 32;
@@ -155,7 +149,7 @@ void BallCollisions<D>::drift(VectorRef x, VectorRef v, double h, bool kicked) {
     for (int i : escaped_)
       if (!state_[i].fast) state_[i].fast = true, fast_.push_back(i);
   } else {
-    build_lists(leave_the_fastest_off(h));
+    build_lists();
   }
   initial_search_ = true;
   find_initial_events();
@@ -198,8 +192,6 @@ void BallCollisions<D>::drift(VectorRef x, VectorRef v, double h, bool kicked) {
   const bool fetch = n_ >= kPrefetchFrom;
   const double limit2 = max_radius_ * max_radius_ / (h * h);
   double fastest2 = slow_speed_bound_ * slow_speed_bound_;
-  const double bound2 = fastest2;
-  const size_t room = sped_up_limit();
   for (size_t m = 0; m < moved_.size(); ++m) {
     if (const size_t ahead = m + 8; fetch && ahead < moved_.size()) {
       const int k = moved_[ahead];
@@ -216,7 +208,7 @@ void BallCollisions<D>::drift(VectorRef x, VectorRef v, double h, bool kicked) {
     // (Points, radius 0, are not on the lists and do not count, as in fastest_slow_speed.)
     if (radius_of(i) <= 0) continue;
     const double speed2 = velocity(i).squaredNorm();
-    if (speed2 <= bound2 || (speed2 <= limit2 && escaped_.size() >= room)) {
+    if (speed2 <= limit2) {
       fastest2 = std::max(fastest2, speed2);
     } else if (!state_[i].escaped) {  // (a NaN speed too)
       state_[i].escaped = true;
@@ -264,63 +256,19 @@ double BallCollisions<D>::fastest_slow_speed(double h) {
 }
 
 template <int D>
-size_t BallCollisions<D>::leave_the_fastest_off(double h) {
-  // The lists last until the fastest ball on them may have used up half the skin, and the skin
-  // is at most the largest radius: once a ball covers more than r / (2 kSkinSteps) a step, a
-  // faster one shortens their life. In a gas whose speeds have spread (Maxwell's distribution
-  // has no end) the fastest of a million balls is ~1.4 times the fastest of a thousand, and
-  // builds that much more often. So a build leaves the few fastest off the lists (at most
-  // left_off_limit()), to look along their paths every step until the next build, as balls a
-  // contact speeds up do; the next fastest sets the lists' life.
-  const double enough = max_radius_ / (2 * kSkinSteps * h);  // (a speed that sets no shorter life)
-  const size_t limit = left_off_limit();
-  if (!(slow_speed_bound_ > enough) || limit == 0 || rules_ != nullptr) return 0;
-  quick_.clear();
-  const double enough2 = enough * enough;
-  for_slow([&](int i) {
-    const double speed2 = velocity(i).squaredNorm();
-    if (speed2 > enough2) [[unlikely]]
-      quick_.push_back({speed2, i});
-  });
-  double bound2 = enough2;  // the fastest of those left on
-  if (quick_.size() > limit) {
-    // The limit's fastest go; those as fast as the fastest left on stay (ties never split).
-    std::nth_element(quick_.begin(), quick_.begin() + static_cast<std::ptrdiff_t>(limit), quick_.end(),
-                     [](const auto& a, const auto& b) { return a.first > b.first; });
-    bound2 = quick_[limit].first;
-  }
-  size_t left_off = 0;
-  for (const auto& [speed2, i] : quick_) left_off += speed2 > bound2;
-  // Only when the builds it saves cost more than the balls' searches: a build's share of a step
-  // is N/life balls' worth, and a ball off the lists costs each step about what
-  // kOffTheListsCost balls' share of a build does.
-  const double bound = std::sqrt(bound2);
-  auto life = [&](double speed) { return std::min(kSkinSteps, max_radius_ / (2 * speed * h)); };
-  const double saved = static_cast<double>(balls_.size()) * (1 / life(slow_speed_bound_) - 1 / life(bound));
-  if (!(saved > kOffTheListsCost * static_cast<double>(left_off))) return 0;
-  for (const auto& [speed2, i] : quick_)
-    if (speed2 > bound2) make_fast(i);
-  slow_speed_bound_ = std::min(slow_speed_bound_, bound);
-  sweep_ = slow_speed_bound_ * h;
-  return left_off;
-}
-
-template <int D>
 bool BallCollisions<D>::lists_hold() const {
   // Built, on these positions; no ball still on them may have come within reach of one that is
   // not on its list by the end of this step; and few enough balls have left them that their
   // searches along their paths cost less than a new build.
   return lists_built_ && lists_x_ == x_ && moved_since_build_ + sweep_ <= 0.5 * skin_ &&
-         escaped_.size() <= escaped_limit();
+         escaped_.size() <= 8 + balls_.size() / 4096;
 }
 
 template <int D>
-void BallCollisions<D>::build_lists(size_t left_off) {
+void BallCollisions<D>::build_lists() {
   for (int i : escaped_) state_[i].escaped = false;
   escaped_.clear();
   for (int i : fast_) state_[i].escaped = true, escaped_.push_back(i);  // not in the grid, nor on the lists
-  fast_in_order_.assign(fast_.begin(), fast_.end());
-  std::sort(fast_in_order_.begin(), fast_in_order_.end());
   skin_ = std::max(std::min(2 * kSkinSteps * sweep_, max_radius_), 2 * sweep_);
   moved_since_build_ = 0;
   lists_built_ = true;
@@ -362,10 +310,8 @@ void BallCollisions<D>::build_lists(size_t left_off) {
       if (planes[w].sign * x[D * i + planes[w].axis] - planes[w].offset < reach) near_faces_.push_back({i, w});
   };
   int from = 0;  // (the balls before it are done)
-  if (fast_.size() == left_off && points_.empty()) {
-    // Every body is a slow ball, or one left off the lists for its speed (leave_the_fastest_off:
-    // among the others, so its position widens the extent by little, and the faces it is near
-    // are not looked at while it is off): the positions in order, two balls at a time, as one array of
+  if (fast_.empty() && points_.empty()) {
+    // Every body is a slow ball: the positions in order, two balls at a time, as one array of
     // 2·D numbers — whole SIMD registers in 2-D and in 3-D, where one ball's three are not. The
     // pairs with a ball outside the window (or a NaN) are noted, and looked at one ball at a
     // time after the pass: with no call in it, the extent stays in registers. (min and max keep

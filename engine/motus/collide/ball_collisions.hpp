@@ -117,29 +117,19 @@ private:
   void for_cells_in_box(const Point& low, const Point& high, Visit&& visit);
 
   // Calls f(i) for every slow ball, in balls_'s order. (Most steps have no fast ball: then
-  // every ball is slow, without reading its flag. When every body is a ball, the runs of
-  // numbers between the fast ones, from fast_in_order_: no flag read either, where a million
-  // flags would be 24 MB to stream.)
+  // every ball is slow, without reading its flag.)
   template <class F>
   void for_slow(F&& f) const {
     if (fast_.empty()) {
       for (int i : balls_) f(i);
-    } else if (points_.empty() && fast_in_order_.size() == fast_.size()) {
-      int from = 0;
-      for (const int j : fast_in_order_) {
-        for (int i = from; i < j; ++i) f(i);
-        from = j + 1;
-      }
-      for (int i = from; i < n_; ++i) f(i);
     } else {
       for (int i : balls_)
         if (!state_[i].fast) f(i);
     }
   }
   double fastest_slow_speed(double h);
-  size_t leave_the_fastest_off(double h);  // (how many it left off)
   bool lists_hold() const;
-  void build_lists(size_t left_off);
+  void build_lists();
   void list_pairs(int until);
   void sort_by_gap(bool last);
   void find_initial_events();
@@ -204,8 +194,6 @@ private:
   BigArray<BallState> state_;
   BigArray<int> balls_;
   std::vector<int> fast_, points_, moved_;
-  std::vector<int> fast_in_order_;  // (a build's: fast_ by number, for for_slow)
-  std::vector<std::pair<double, int>> quick_;  // (a build's: the balls leave_the_fastest_off looks at)
   // The contacts found at the start of a step (nearly all of a step's) are sorted once
   // (sort_by_time.hpp) and taken in order; those found after a contact go into a heap, and
   // the two are merged.
@@ -267,13 +255,6 @@ private:
   std::vector<NearFace> near_faces_;  // box faces within a ball's reach
   std::vector<int> outside_window_;   // (a build's: pairs of balls, one of them near a face perhaps)
   std::vector<int> escaped_;
-  // How many balls may be off the lists before they are built again (their searches along their
-  // paths cost less than a build); of those, how many a build may leave off for being the
-  // fastest (leave_the_fastest_off), and how many more a contact may send off for speeding them
-  // up past the others.
-  size_t escaped_limit() const { return 8 + balls_.size() / 4096; }
-  size_t left_off_limit() const { return escaped_limit() / 4; }
-  size_t sped_up_limit() const { return escaped_limit() * 3 / 4; }
 
   // With many fast balls, the grid of their paths this step (path_grid.hpp), in which each
   // looks for the others (with a few, it tests every one).
