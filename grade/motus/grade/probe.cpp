@@ -10,21 +10,17 @@ constexpr size_t kMessageBytes = 2000;
 // The most of what the student's code printed a test's output shows: its last bytes.
 constexpr size_t kShownBytes = 1200;
 
-// What the student's code printed — its standard output and error as the sandbox kept them: the
-// first `kept` bytes, and "…" after them when it wrote more — for a test's output: "" when it
-// printed nothing but white space, else a heading and the text ("Its output:", say, with `what`
-// "its output"), or the text's last kShownBytes after "The end of its output:". A crash's message
-// and a failed test's prints are both shown so.
-std::string shown_output(std::string text, size_t kept, const std::string& what) {
-  // Only its first `kept` bytes were kept (the rest was read and dropped): past that, "the end"
-  // is the end of what was kept, not what it wrote last.
-  const bool capped = text.size() >= kept, cut = text.size() > kShownBytes;
-  if (cut) text = "…" + text.substr(text.size() - kShownBytes);
+// What the student's code printed — its standard output and error as the sandbox kept them (past
+// its cap, the first half and the last, "…" between) — for a test's output: "" when it printed
+// nothing but white space, else a heading and the text ("Its output:", say, with `what` "its
+// output"), or the text's last kShownBytes after "The end of its output:" — the prints just before
+// the test went wrong. A crash's message and a failed test's prints are both shown so.
+std::string shown_output(std::string text, const std::string& what) {
   while (!text.empty() && (text.back() == '\n' || text.back() == ' ')) text.pop_back();
   if (text.empty()) return "";
-  std::string heading = capped ? "the end of the first " + std::to_string(kept / 1024) + " KB of " + what
-                        : cut  ? "the end of " + what
-                               : what;
+  const bool cut = text.size() > kShownBytes;
+  if (cut) text = "…" + text.substr(text.size() - kShownBytes);
+  std::string heading = cut ? "the end of " + what : what;
   heading[0] = static_cast<char>(std::toupper(static_cast<unsigned char>(heading[0])));
   return heading + ":\n" + text;
 }
@@ -65,7 +61,7 @@ void Probe::stop() {
 
 std::string Probe::printed() {
   const std::string shown =
-      shown_output(printed_, setup_.limits.output_bytes, "what your code printed during this test");
+      shown_output(printed_, "what your code printed during this test");
   printed_.clear();
   return shown;
 }
@@ -80,7 +76,7 @@ void Probe::died(const std::string& while_doing) {
   if (!while_doing.empty()) what += " during " + while_doing;
   // The last lines it wrote on standard error (and standard output, which goes there too): shown
   // here, so not again below the test's output (printed_ does not get them).
-  const std::string shown = shown_output(server_->errors(), setup_.limits.output_bytes, "its output");
+  const std::string shown = shown_output(server_->errors(), "its output");
   if (!shown.empty()) what += ". " + shown;
   server_.reset();  // the next request starts a new one
   throw ProbeFailure(what, out_of_time);

@@ -65,7 +65,7 @@ private:
 
   ProbeSetup setup_;
   std::unique_ptr<SandboxProcess> server_;
-  std::string printed_;  // (as SandboxProcess::errors keeps it: at most Limits::output_bytes, and the cut's mark)
+  std::string printed_;  // (as SandboxProcess::errors keeps it: at most Limits::output_bytes, its first and last halves)
   std::chrono::steady_clock::time_point started_;
 };
 

@@ -325,11 +325,8 @@ void SandboxProcess::pump(std::chrono::steady_clock::time_point deadline, Until 
       if (n <= 0) {
         ::close(err_);
         err_ = -1;
-      } else if (errors_.size() < error_cap_) {
-        errors_.append(buffer, std::min(static_cast<size_t>(n), error_cap_ - errors_.size()));
-        if (errors_.size() >= error_cap_) errors_cut_ = true;
       } else {
-        errors_cut_ = true;  // read and dropped: a flood must not block the sandbox or fill memory
+        keep_errors(buffer, static_cast<size_t>(n));
       }
     }
     if (fds[0].fd >= 0 && (fds[0].revents & (POLLIN | POLLHUP | POLLERR))) {
@@ -383,10 +380,33 @@ Ending SandboxProcess::reap(bool killed) {
   }
   if (killed && e.signal == SIGKILL && timed_out_) e.timed_out = true;
   clear_user(uid_);
-  if (errors_cut_) errors_ += "…";
+  // What it wrote first, and what it wrote last (the end of a flood is what its author looks for:
+  // the prints just before it went wrong), "…" between them where the middle was dropped.
+  if (errors_cut_) errors_ += "\n…\n";
+  const size_t tail_room = error_cap_ - error_cap_ / 2;
+  errors_.append(errors_tail_, errors_tail_.size() > tail_room ? errors_tail_.size() - tail_room : 0);
+  errors_tail_.clear();
   errors_cut_ = false;
   ending_ = e;
   return e;
+}
+
+void SandboxProcess::keep_errors(const char* data, size_t n) {
+  // The cap's first half as it comes, then its last half: the newest bytes, the oldest read and
+  // dropped (a flood must not block the sandbox or fill memory). The tail is trimmed once it is
+  // twice its room, so that each byte is moved a bounded number of times.
+  const size_t head_room = error_cap_ / 2, tail_room = error_cap_ - head_room;
+  const size_t head = std::min(n, head_room - std::min(head_room, errors_.size()));
+  errors_.append(data, head);
+  data += head, n -= head;
+  if (n == 0) return;
+  errors_tail_.append(data, n);
+  if (errors_tail_.size() > 2 * tail_room) {
+    errors_tail_.erase(0, errors_tail_.size() - tail_room);
+    errors_cut_ = true;
+  } else if (errors_tail_.size() > tail_room) {
+    errors_cut_ = true;  // (the bytes before the last tail_room go when it ends)
+  }
 }
 
 Ending SandboxProcess::finish(std::chrono::steady_clock::time_point deadline) {

@@ -32,7 +32,7 @@ struct Limits {
   long locked_mb = 8;
   long queue_kb = 800;
   long tmpfs_mb = 64;        // the writable /tmp
-  size_t output_bytes = 64 * 1024;  // standard error kept (the rest is read and dropped)
+  size_t output_bytes = 64 * 1024;  // standard error kept: its first and last halves (the middle is read and dropped)
 };
 
 struct Mount {
@@ -113,7 +113,8 @@ public:
   Ending finish(std::chrono::steady_clock::time_point deadline);
   // Kills it now.
   Ending kill();
-  // What it wrote on standard error, up to the cap ("…" marks a cut).
+  // What it wrote on standard error, once it has ended: all of it, or past the cap its first
+  // half and its last half, "…" on a line of its own between them.
   const std::string& errors() const { return errors_; }
 
 private:
@@ -122,11 +123,13 @@ private:
   enum class Until { line, written, end };
   void pump(std::chrono::steady_clock::time_point deadline, Until until);
   Ending reap(bool killed);
+  void keep_errors(const char* data, size_t n);
 
   pid_t pid_ = -1;
   uid_t uid_ = 0;
   int in_ = -1, out_ = -1, err_ = -1;
   std::string out_buffer_, errors_;
+  std::string errors_tail_;  // (past the cap's first half: the newest, see keep_errors)
   std::string pending_;     // what write_line has still to write, from pending_at_
   size_t pending_at_ = 0;
   bool write_failed_ = false;
