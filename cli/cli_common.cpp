@@ -101,6 +101,12 @@ std::string non_finite_suspect(const Method& method, const std::string& smaller_
   return "the integrator is unstable at this step; try " + smaller_step + " or another --integrator";
 }
 
+std::string non_finite_cause(const Simulation& sim, const Method& method, const std::string& smaller_step) {
+  if (const FirstOrderSystem* system = sim.first_order_system())
+    if (std::string why = system->why_not_finite(); !why.empty()) return why;
+  return non_finite_suspect(method, smaller_step);
+}
+
 std::vector<std::string> shipped_scenes() {
   std::vector<std::string> files;
   std::error_code error;

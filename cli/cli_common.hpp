@@ -15,6 +15,10 @@
 #include "motus/plugin/plugin_set.hpp"
 #include "motus/scene.hpp"
 
+namespace motus {
+class Simulation;
+}
+
 namespace motus::cli {
 
 // Exit codes: 0 done; 1 the run itself failed; 2 bad input (scene, option or file).
@@ -100,6 +104,9 @@ PluginSet& plugins();
 // step, too large for the integrator. One clause, for "the state was no longer finite by t = …".
 // (`smaller_step`: how this command takes a smaller step; render has no --dt.)
 std::string non_finite_suspect(const Method& method, const std::string& smaller_step = "a smaller --dt");
+// The same, unless the scene's system can say what made it so (an equation that gave a NaN:
+// FirstOrderSystem::why_not_finite), which it says instead.
+std::string non_finite_cause(const Simulation& sim, const Method& method, const std::string& smaller_step = "a smaller --dt");
 // Adds --plugin to a subcommand.
 void add_plugin_option(CLI::App* command, std::vector<std::string>& files);
 // Loads them, in order, and from then on reports a crash in their code; a file that is not

@@ -130,8 +130,8 @@ private:
 };
 
 // A state that overflowed is a result to show, but not a run that went well.
-int report_non_finite(double by, const Method& method) {
-  tell("motus: the run failed: the state was no longer finite by t = {:g} ({})\n", by, non_finite_suspect(method));
+int report_non_finite(double by, const Simulation& sim, const Method& method) {
+  tell("motus: the run failed: the state was no longer finite by t = {:g} ({})\n", by, non_finite_cause(sim, method));
   return kExitFailure;
 }
 
@@ -391,7 +391,7 @@ int run_command(const RunOptions& o) {
     j["finite"] = finite;
     if (!o.trajectory.empty()) j["trajectory"] = o.trajectory;
     fmt::print("{}\n", j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace));  // (a path not in UTF-8)
-    return finite ? 0 : report_non_finite(std::isnan(non_finite_by) ? sim.time() : non_finite_by, method);
+    return finite ? 0 : report_non_finite(std::isnan(non_finite_by) ? sim.time() : non_finite_by, sim, method);
   }
 
   // With --trajectory - the CSV is standard output, and the summary goes to standard error.
@@ -456,7 +456,7 @@ int run_command(const RunOptions& o) {
     fmt::print(out, "constraints  largest stick-length error {:.3e} over the run, {:.3e} at the end\n", worst_constraint_error,
                sim.constraint_error());
   if (!o.trajectory.empty()) fmt::print(out, "trajectory   {}\n", o.trajectory == "-" ? "standard output" : o.trajectory);
-  return finite ? 0 : report_non_finite(std::isnan(non_finite_by) ? sim.time() : non_finite_by, method);
+  return finite ? 0 : report_non_finite(std::isnan(non_finite_by) ? sim.time() : non_finite_by, sim, method);
 }
 
 }  // namespace motus::cli

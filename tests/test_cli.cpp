@@ -176,6 +176,23 @@ TEST(CliErrors, ExtremeButFiniteNumbersEndInAMessageThatSaysWhat) {
   EXPECT_EQ(stress.status, 0) << stress.err;
 }
 
+// A run whose equation leaves its functions' domain stops with exit 1 naming the equation, where
+// it went and from what state (it blamed the step: "the integrator is unstable at this step"); a
+// run that blows up at too large a step still blames the step.
+TEST(CliErrors, AnEquationThatGivesNaNIsNamedWhenTheStateIsNoLongerFinite) {
+  TempDir dir;
+  write_file(dir / "domain.json", R"j({"system": {"type": "equations", "variables": ["x", "v"],
+      "equations": {"x": "v", "v": "sqrt(x - 2)"}, "initial": [1, 0.5]}, "dt": 0.1, "duration": 1})j");
+  const Result domain = run_motus(dir, {"run", (dir / "domain.json").string()});
+  EXPECT_EQ(domain.status, 1) << domain.err;
+  EXPECT_EQ(count_lines(domain.err), 1) << domain.err;
+  EXPECT_NE(domain.err.find("the equation v' = sqrt(x - 2) gave nan at t = 0 where x = 1, v = 0.5"), std::string::npos)
+      << domain.err;
+  const Result unstable = run_motus(dir, {"run", scene("lorenz_equations"), "--dt", "0.5", "--steps", "20"});
+  EXPECT_EQ(unstable.status, 1) << unstable.err;
+  EXPECT_NE(unstable.err.find("the integrator is unstable at this step"), std::string::npos) << unstable.err;
+}
+
 TEST(CliErrors, MissingFileIsOneLineExitTwo) {
   TempDir dir;
   const std::string file = (dir / "no_such_scene.json").string();

@@ -302,6 +302,31 @@ TEST(EquationsLoader, AnAdaptiveStepIntoNaNIsRejected) {
   }
 }
 
+// A run whose state stops being finite names the equation that made it so, when one gave a NaN
+// (or an infinity) from a moderate state: x' = sqrt(x - 2) from x = 1 is outside the square
+// root's domain at once. A run that blows up through ever larger numbers (x' = x², whose exact
+// solution 1/(1 − t) is infinite at t = 1) names none: its step is to blame, not its equation.
+TEST(EquationsLoader, AnEquationThatGivesNaNFromAModerateStateIsNamedAndABlowUpIsNot) {
+  const auto domain = motus::parse_scene(
+      R"j({"system": {"type": "equations", "variables": ["x", "v"], "equations": {"x": "v", "v": "sqrt(x - 2)"},
+          "initial": [1, 0.5]}, "dt": 0.1, "duration": 1})j",
+      "domain.json");
+  motus::Simulation sim(domain, Integrator::Rk4);
+  sim.advance(1, 0.1, {});
+  EXPECT_FALSE(sim.state().allFinite());
+  EXPECT_EQ(sim.first_order_system()->why_not_finite(),
+            "the equation v' = sqrt(x - 2) gave nan at t = 0 where x = 1, v = 0.5 (outside a function's domain? a "
+            "division by zero?)");
+  const auto blow_up = motus::parse_scene(
+      R"j({"system": {"type": "equations", "variables": ["x"], "equations": {"x": "x * x"}, "initial": [1]},
+          "dt": 0.1, "duration": 3})j",
+      "blow_up.json");
+  motus::Simulation runaway(blow_up, Integrator::Rk4);
+  runaway.advance(3, 0.1, {});
+  EXPECT_FALSE(runaway.state().allFinite());
+  EXPECT_EQ(runaway.first_order_system()->why_not_finite(), "");
+}
+
 // t is the time: a forced system sees it.
 TEST(EquationsLoader, TheTimeIsT) {
   const auto scene = motus::parse_scene(

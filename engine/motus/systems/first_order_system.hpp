@@ -23,6 +23,10 @@ public:
   // life, say). Empty by default.
   virtual std::vector<std::string> auxiliary_names() const { return {}; }
   virtual void auxiliaries(double /*t*/, ConstVectorRef /*y*/, VectorRef /*out*/) const {}
+  // When a run's state stops being finite: what in the system made it so, if the system can tell
+  // (a scene's equations name the first one that gave a NaN or an infinity from a finite state);
+  // "" otherwise (then the step is suspect).
+  virtual std::string why_not_finite() const { return {}; }
 
   long evaluations = 0;  // derivative calls so far; every derivative() adds one
 };

@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
+#include <cstdio>
 #include <set>
 
 namespace motus::expressions {
@@ -106,7 +108,8 @@ struct ExpressionSystem::Parsed {
   std::vector<mu::Parser> parsers;  // one per equation
 };
 
-ExpressionSystem::ExpressionSystem(const Equations& e) : names_(e.variables), parsed_(std::make_unique<Parsed>()) {
+ExpressionSystem::ExpressionSystem(const Equations& e)
+    : names_(e.variables), texts_(e.right_hand_sides), parsed_(std::make_unique<Parsed>()) {
   const size_t n = e.variables.size();
   if (n == 0) throw std::invalid_argument("a system needs at least one variable");
   if (e.right_hand_sides.size() != n)
@@ -199,6 +202,30 @@ void ExpressionSystem::derivative(double t, ConstVectorRef y, VectorRef dydt) {
   const size_t n = p.values.size();
   for (size_t i = 0; i < n; ++i) p.values[i] = y[static_cast<Eigen::Index>(i)];
   for (size_t i = 0; i < n; ++i) dydt[static_cast<Eigen::Index>(i)] = p.parsers[i].Eval();
+  if (not_finite_.empty() && !dydt.allFinite()) [[unlikely]]
+    note_not_finite(t, y, dydt);
+}
+
+void ExpressionSystem::note_not_finite(double t, ConstVectorRef y, ConstVectorRef dydt) {
+  // Only from a moderate state: one that is already infinite, or so large that a product of a
+  // few of its numbers overflows (past 1e100, where three of them make more than 1e300: an
+  // unstable step on its way to infinity), makes the equations' values so, and the step is to
+  // blame. (Once only: the first is the cause.)
+  const double moderate = 1e100;
+  if (!(std::abs(t) < moderate) || !(y.cwiseAbs().maxCoeff() < moderate)) return;
+  auto number = [](double x) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.9g", std::isnan(x) ? std::fabs(x) : x);  // (no "-nan")
+    return std::string(text);
+  };
+  Eigen::Index i = 0;
+  while (std::isfinite(dydt[i])) ++i;
+  std::string where;
+  for (size_t k = 0; k < names_.size(); ++k)
+    where += (k ? ", " : "") + names_[k] + " = " + number(y[static_cast<Eigen::Index>(k)]);
+  not_finite_ = "the equation " + names_[static_cast<size_t>(i)] + "' = " + texts_[static_cast<size_t>(i)] + " gave " +
+                number(dydt[i]) + " at t = " + number(t) + " where " + where +
+                " (outside a function's domain? a division by zero?)";
 }
 
 }  // namespace motus::expressions

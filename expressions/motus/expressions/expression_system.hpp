@@ -49,10 +49,14 @@ public:
   int size() const override { return static_cast<int>(names_.size()); }
   void derivative(double t, ConstVectorRef y, VectorRef dydt) override;
   std::vector<std::string> variable_names() const override { return names_; }
+  std::string why_not_finite() const override { return not_finite_; }
 
 private:
+  void note_not_finite(double t, ConstVectorRef y, ConstVectorRef dydt);
   struct Parsed;
   std::vector<std::string> names_;
+  std::vector<std::string> texts_;  // the right-hand sides as written, for messages
+  std::string not_finite_;          // the first equation that gave a NaN or an infinity from a finite state
   std::unique_ptr<Parsed> parsed_;
 };
 
