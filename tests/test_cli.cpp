@@ -188,6 +188,14 @@ TEST(CliErrors, AnEquationThatGivesNaNIsNamedWhenTheStateIsNoLongerFinite) {
   EXPECT_EQ(count_lines(domain.err), 1) << domain.err;
   EXPECT_NE(domain.err.find("the equation v' = sqrt(x - 2) gave nan at t = 0 where x = 1, v = 0.5"), std::string::npos)
       << domain.err;
+  // An adaptive integrator rejects the step and stops there, saying the same (it said "an error
+  // estimate that is not finite?", at "t = 0.000000").
+  const Result adaptive = run_motus(dir, {"run", (dir / "domain.json").string(), "--integrator", "rk45"});
+  EXPECT_EQ(adaptive.status, 1) << adaptive.err;
+  EXPECT_EQ(count_lines(adaptive.err), 1) << adaptive.err;
+  EXPECT_NE(adaptive.err.find("rejected step at t = 0 (the equation v' = sqrt(x - 2) gave nan at t = 0 where x = 1, v = 0.5"),
+            std::string::npos)
+      << adaptive.err;
   const Result unstable = run_motus(dir, {"run", scene("lorenz_equations"), "--dt", "0.5", "--steps", "20"});
   EXPECT_EQ(unstable.status, 1) << unstable.err;
   EXPECT_NE(unstable.err.find("the integrator is unstable at this step"), std::string::npos) << unstable.err;
