@@ -696,6 +696,10 @@ TEST(Grade, AFloodOfPrintsInAFailedTestIsCutAsACrashsOutputIs) {
   const fs::path assignment = integrators_with_tests(dir, "flood", json::array({defs.at("euler.table"), defs.at("euler.order")}));
   std::string printed;  // what each test's server prints at its first call: numbered lines, 1 MB and more
   for (int line = 0; printed.size() < (1u << 20); ++line) printed += "flood line " + std::to_string(line) + "\n";
+  // and last a line of 1,000 em dashes (3 bytes each) and "!": the last 1,200 bytes start inside a dash.
+  std::string dashes;
+  for (int k = 0; k < 1000; ++k) dashes += "—";
+  printed += dashes + "!\n";
   const fs::path submission = dir / "flooding";
   fs::create_directories(submission);
   write_file(submission / "integrators.cpp",
@@ -703,7 +707,8 @@ TEST(Grade, AFloodOfPrintsInAFailedTestIsCutAsACrashsOutputIs) {
                  solution_with({"euler-new-velocity"},
                                {{"euler_step", "static bool flooded = false; if (!flooded) { flooded = true; for (int line = 0, size = 0; "
                                                "size < (1 << 20); ++line) { const std::string text = \"flood line \" + "
-                                               "std::to_string(line) + \"\\n\"; std::cout << text; size += int(text.size()); } } "
+                                               "std::to_string(line) + \"\\n\"; std::cout << text; size += int(text.size()); } "
+                                               "for (int k = 0; k < 1000; ++k) std::cout << \"—\"; std::cout << \"!\\n\"; } "
                                                "if (h < 0.5) std::abort();"}}));
   const auto r = run_motus(dir, {"grade", assignment.string(), submission.string(), "--results", (dir / "results.json").string()});
   ASSERT_EQ(r.status, 0) << r.err;
@@ -726,10 +731,15 @@ TEST(Grade, AFloodOfPrintsInAFailedTestIsCutAsACrashsOutputIs) {
   const std::string shown = wrong_shows.substr(cut.size());
   EXPECT_GT(shown.size(), 1000u);
   EXPECT_TRUE(printed.substr(0, printed.size() - 1).ends_with(shown)) << shown;  // (its last newline trimmed)
-  // The crash's the same way, to the same length: the end of the flood (what std::cout had
+  // From a whole character: the 1,200 bytes' first one falls inside a dash, which is not shown in part.
+  EXPECT_TRUE(shown.starts_with("—")) << shown;
+  EXPECT_EQ(shown.size(), 1200u - 2) << shown;
+  // The crash's the same way, to about the same length: the end of the flood (what std::cout had
   // flushed of it), and after it the server's own last words on the signal.
   ASSERT_TRUE(crash_shows.starts_with(cut)) << crash;
-  EXPECT_EQ(crash_shows.size(), wrong_shows.size()) << crash;
+  EXPECT_LE(crash_shows.size(), cut.size() + 1200) << crash;
+  EXPECT_GE(crash_shows.size(), cut.size() + 1200 - 3) << crash;  // (at most a character's continuation bytes less)
+  EXPECT_NE(static_cast<unsigned char>(crash_shows[cut.size()]) & 0xC0, 0x80) << crash;
   EXPECT_NE(crash_shows.find("\nflood line "), std::string::npos) << crash;
   EXPECT_NE(crash_shows.find("SIGABRT"), std::string::npos) << crash;
   // Bounded as it was read: the whole results.json is smaller than the 64 KB the sandbox keeps of

@@ -19,7 +19,13 @@ std::string shown_output(std::string text, const std::string& what) {
   while (!text.empty() && (text.back() == '\n' || text.back() == ' ')) text.pop_back();
   if (text.empty()) return "";
   const bool cut = text.size() > kShownBytes;
-  if (cut) text = "…" + text.substr(text.size() - kShownBytes);
+  if (cut) {
+    // From a character's first byte: UTF-8's continuation bytes are 10xxxxxx (cut at one, a
+    // character would show as "ï¿½").
+    size_t from = text.size() - kShownBytes;
+    while (from < text.size() && (static_cast<unsigned char>(text[from]) & 0xC0) == 0x80) ++from;
+    text = "…" + text.substr(from);
+  }
   std::string heading = cut ? "the end of " + what : what;
   heading[0] = static_cast<char>(std::toupper(static_cast<unsigned char>(heading[0])));
   return heading + ":\n" + text;
