@@ -56,7 +56,7 @@ private:
   struct Parsed;
   std::vector<std::string> names_;
   std::vector<std::string> texts_;  // the right-hand sides as written, for messages
-  std::string not_finite_;          // the first equation that gave a NaN or an infinity from a finite state
+  std::string not_finite_;          // the first equation that gave a NaN or an infinity from a moderate state
   std::unique_ptr<Parsed> parsed_;
 };
 

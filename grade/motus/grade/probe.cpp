@@ -21,7 +21,7 @@ std::string shown_output(std::string text, const std::string& what) {
   const bool cut = text.size() > kShownBytes;
   if (cut) {
     // From a character's first byte: UTF-8's continuation bytes are 10xxxxxx (cut at one, a
-    // character would show as "ï¿½").
+    // character would show as U+FFFD, the replacement character).
     size_t from = text.size() - kShownBytes;
     while (from < text.size() && (static_cast<unsigned char>(text[from]) & 0xC0) == 0x80) ++from;
     text = "…" + text.substr(from);
