@@ -88,7 +88,9 @@ std::string resolve_scene_path(const std::string& argument) {
   return argument;  // the loader says "no such file"
 }
 
-std::string non_finite_suspect(const Method& method, const std::string& smaller_step) {
+std::string non_finite_suspect(const Simulation& sim, const Method& method, const std::string& smaller_step) {
+  if (const FirstOrderSystem* system = sim.first_order_system())
+    if (std::string why = system->why_not_finite(); !why.empty()) return why;
   for (const auto& p : plugins().plugins()) {
     const auto& names = p.integrator_names;
     if (method.is_external() && std::find(names.begin(), names.end(), method.name()) != names.end())
@@ -99,12 +101,6 @@ std::string non_finite_suspect(const Method& method, const std::string& smaller_
       return "check the plug-in's " + std::string(p.entry->collisions ? "collision response" : "constraint projection") +
              " (" + p.file + "); else the integrator is unstable at this step";
   return "the integrator is unstable at this step; try " + smaller_step + " or another --integrator";
-}
-
-std::string non_finite_cause(const Simulation& sim, const Method& method, const std::string& smaller_step) {
-  if (const FirstOrderSystem* system = sim.first_order_system())
-    if (std::string why = system->why_not_finite(); !why.empty()) return why;
-  return non_finite_suspect(method, smaller_step);
 }
 
 std::vector<std::string> shipped_scenes() {

@@ -99,14 +99,12 @@ CLI::Option* add_list_option(CLI::App* command, const std::string& name, std::ve
 // The plug-ins of this process (--plugin FILE.so, repeatable on run, render, compare,
 // bench precision and list), loaded by load_plugins.
 PluginSet& plugins();
-// What to suspect when a run's state stops being finite: a plug-in's integrator (`method`) or its
-// collision response or constraint projection when one ran, named with its file; otherwise the
-// step, too large for the integrator. One clause, for "the state was no longer finite by t = …".
-// (`smaller_step`: how this command takes a smaller step; render has no --dt.)
-std::string non_finite_suspect(const Method& method, const std::string& smaller_step = "a smaller --dt");
-// The same, unless the scene's system can say what made it so (an equation that gave a NaN:
-// FirstOrderSystem::why_not_finite), which it says instead.
-std::string non_finite_cause(const Simulation& sim, const Method& method, const std::string& smaller_step = "a smaller --dt");
+// What to suspect when a run's state stops being finite: what the scene's system says made it so
+// (an equation that gave a NaN: FirstOrderSystem::why_not_finite); else a plug-in's integrator
+// (`method`) or its collision response or constraint projection when one ran, named with its file;
+// otherwise the step, too large for the integrator. One clause, for "the state was no longer
+// finite by t = …". (`smaller_step`: how this command takes a smaller step; render has no --dt.)
+std::string non_finite_suspect(const Simulation& sim, const Method& method, const std::string& smaller_step = "a smaller --dt");
 // Adds --plugin to a subcommand.
 void add_plugin_option(CLI::App* command, std::vector<std::string>& files);
 // Loads them, in order, and from then on reports a crash in their code; a file that is not

@@ -341,7 +341,7 @@ int render_command(const RenderOptions& o) {
   for (size_t k = 0; k < recording.states.size(); ++k)
     if (!std::all_of(recording.states[k].begin(), recording.states[k].end(), [](double y) { return std::isfinite(y); })) {
       tell("motus: the run failed: the state was no longer finite by t = {:g} ({})\n", recording.times[k],
-                 non_finite_cause(sim, method, "a smaller step (--set dt=...)"));
+                 non_finite_suspect(sim, method, "a smaller step (--set dt=...)"));
       return 1;
     }
   return 0;

@@ -131,7 +131,7 @@ private:
 
 // A state that overflowed is a result to show, but not a run that went well.
 int report_non_finite(double by, const Simulation& sim, const Method& method) {
-  tell("motus: the run failed: the state was no longer finite by t = {:g} ({})\n", by, non_finite_cause(sim, method));
+  tell("motus: the run failed: the state was no longer finite by t = {:g} ({})\n", by, non_finite_suspect(sim, method));
   return kExitFailure;
 }
 
