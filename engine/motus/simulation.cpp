@@ -1,7 +1,6 @@
 #include "motus/simulation.hpp"
 
 #include <cmath>
-#include <cstdio>
 #include <stdexcept>
 #include <string>
 #include <variant>
@@ -19,6 +18,7 @@
 #include "motus/integrate/velocity_verlet.hpp"
 #include "motus/integrate/verlet.hpp"
 #include "motus/integrate/yoshida4.hpp"
+#include "motus/message_number.hpp"
 #include "motus/scene_error.hpp"
 #include "motus/systems/concrete_system.hpp"
 #include "motus/systems/system_catalog.hpp"
@@ -32,13 +32,6 @@ struct Simulation::Steppers {
 };
 
 namespace {
-
-// A time or a step size in a message: "1e-07", not std::to_string's "0.000000".
-std::string number(double x) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.9g", x);
-  return text;
-}
 
 // The three calling shapes: step(f, t, h, y); try_step(f, t, h, y); step(s, t, h, x, v).
 template <class T>
@@ -215,15 +208,15 @@ void Simulation::advance(double end_time, double dt, Tolerance tolerance,
           if (std::isnan(adaptive_h_)) {
             // (A scene's equation that gave a NaN says so: FirstOrderSystem::why_not_finite.)
             const std::string why = first_order_ ? first_order_->why_not_finite() : std::string();
-            throw StepSizeUnderflow("the step-size control proposed no number after a rejected step at t = " + number(t_) +
+            throw StepSizeUnderflow("the step-size control proposed no number after a rejected step at t = " + message_number(t_) +
                                      " (" + (why.empty() ? "an error estimate that is not finite?" : why) + ")");
           }
           if (!(adaptive_h_ < tried))
-            throw StepSizeUnderflow("the step-size control did not shrink a rejected step at t = " + number(t_) +
-                                     " (h = " + number(tried) + " was rejected, and " + number(adaptive_h_) +
+            throw StepSizeUnderflow("the step-size control did not shrink a rejected step at t = " + message_number(t_) +
+                                     " (h = " + message_number(tried) + " was rejected, and " + message_number(adaptive_h_) +
                                      " came next): it would be tried for ever");
           if (adaptive_h_ < 1e-14 * std::max(1.0, std::abs(t_)))
-            throw StepSizeUnderflow("step size underflow at t = " + number(t_) +
+            throw StepSizeUnderflow("step size underflow at t = " + message_number(t_) +
                                      ": the tolerance cannot be met in double precision");
           continue;
         }

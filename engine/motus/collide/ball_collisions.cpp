@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <cstring>
 #include <functional>
 #include <stdexcept>
@@ -11,6 +10,7 @@
 #include "motus/collide/impulse.hpp"
 #include "motus/collide/sort_by_time.hpp"
 #include "motus/collide/time_of_impact.hpp"
+#include "motus/message_number.hpp"
 
 namespace motus {
 namespace {
@@ -1163,11 +1163,7 @@ void BallCollisions<D>::resolve(const Event& e) {
 
 namespace {
 // A number in a message to a plug-in's author: six significant figures.
-std::string figure(double x) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.6g", x);
-  return text;
-}
+std::string figure(double x) { return message_number(x, 6); }
 }  // namespace
 
 template <int D>

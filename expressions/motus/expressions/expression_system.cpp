@@ -5,8 +5,9 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
-#include <cstdio>
 #include <set>
+
+#include "motus/message_number.hpp"
 
 namespace motus::expressions {
 namespace {
@@ -213,18 +214,13 @@ void ExpressionSystem::note_not_finite(double t, ConstVectorRef y, ConstVectorRe
   // blame. (Once only: the first is the cause.)
   const double moderate = 1e100;
   if (!(std::abs(t) < moderate) || !(y.cwiseAbs().maxCoeff() < moderate)) return;
-  auto number = [](double x) {
-    char text[32];
-    std::snprintf(text, sizeof text, "%.9g", std::isnan(x) ? std::fabs(x) : x);  // (no "-nan")
-    return std::string(text);
-  };
   Eigen::Index i = 0;
   while (std::isfinite(dydt[i])) ++i;
   std::string where;
   for (size_t k = 0; k < names_.size(); ++k)
-    where += (k ? ", " : "") + names_[k] + " = " + number(y[static_cast<Eigen::Index>(k)]);
+    where += (k ? ", " : "") + names_[k] + " = " + message_number(y[static_cast<Eigen::Index>(k)]);
   not_finite_ = "the equation " + names_[static_cast<size_t>(i)] + "' = " + texts_[static_cast<size_t>(i)] + " gave " +
-                number(dydt[i]) + " at t = " + number(t) + " where " + where +
+                message_number(dydt[i]) + " at t = " + message_number(t) + " where " + where +
                 " (outside a function's domain? a division by zero?)";
 }
 
