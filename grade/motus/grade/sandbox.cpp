@@ -383,7 +383,7 @@ Ending SandboxProcess::reap(bool killed) {
   // What it wrote first, and what it wrote last (the end of a flood is what its author looks for:
   // the prints just before it went wrong), "…" between them where the middle was dropped.
   if (errors_cut_) errors_ += "\n…\n";
-  const size_t tail_room = error_cap_ - error_cap_ / 2;
+  const size_t tail_room = error_tail_room();
   errors_.append(errors_tail_, errors_tail_.size() > tail_room ? errors_tail_.size() - tail_room : 0);
   errors_tail_.clear();
   errors_cut_ = false;
@@ -395,18 +395,14 @@ void SandboxProcess::keep_errors(const char* data, size_t n) {
   // The cap's first half as it comes, then its last half: the newest bytes, the oldest read and
   // dropped (a flood must not block the sandbox or fill memory). The tail is trimmed once it is
   // twice its room, so that each byte is moved a bounded number of times.
-  const size_t head_room = error_cap_ / 2, tail_room = error_cap_ - head_room;
+  const size_t head_room = error_cap_ - error_tail_room(), tail_room = error_tail_room();
   const size_t head = std::min(n, head_room - std::min(head_room, errors_.size()));
   errors_.append(data, head);
   data += head, n -= head;
   if (n == 0) return;
   errors_tail_.append(data, n);
-  if (errors_tail_.size() > 2 * tail_room) {
-    errors_tail_.erase(0, errors_tail_.size() - tail_room);
-    errors_cut_ = true;
-  } else if (errors_tail_.size() > tail_room) {
-    errors_cut_ = true;  // (the bytes before the last tail_room go when it ends)
-  }
+  if (errors_tail_.size() > tail_room) errors_cut_ = true;  // (its oldest bytes go: here, or when it ends)
+  if (errors_tail_.size() > 2 * tail_room) errors_tail_.erase(0, errors_tail_.size() - tail_room);
 }
 
 Ending SandboxProcess::finish(std::chrono::steady_clock::time_point deadline) {

@@ -124,6 +124,7 @@ private:
   void pump(std::chrono::steady_clock::time_point deadline, Until until);
   Ending reap(bool killed);
   void keep_errors(const char* data, size_t n);
+  size_t error_tail_room() const { return error_cap_ / 2; }  // (the cap's last half; its first is the rest)
 
   pid_t pid_ = -1;
   uid_t uid_ = 0;
