@@ -6,6 +6,8 @@
 //
 // Grading needs user namespaces for bubblewrap; where the machine has none, the tests that
 // grade in the sandbox say so and skip (this machine has them).
+#include <cmath>
+
 #include "grade_harness.hpp"
 
 namespace {
@@ -831,6 +833,58 @@ TEST(Grade, AnOrderCheckWhoseRunBlowsUpSaysWhereAndFails) {
   const std::string output = (*t)["output"].get<std::string>();
   EXPECT_NE(output.find("no order: the error at h = 0.0025 is not finite"), std::string::npos) << output;
   EXPECT_EQ(output.find("global order"), std::string::npos) << output;
+}
+
+// A stability check whose run's limit is far from the expected one still measures it: that number
+// is what tells the student which mistake they made. It said only "at ωh = 1 the run blows up, at
+// ωh = 3 it blows up". Symplectic Euler written as explicit Euler (drift with the old velocity)
+// grows the oscillator's amplitude by √(1 + z²) a step, z = ωh, so N steps stay within 1000× their
+// start only for z ≤ √(1000^(2/N) − 1) (0.118 for the 1,000 steps of these copies of the hidden
+// tests); a step that moves nothing (the position-first form, here) never blows up, and the bracket
+// stops at its last move, 1½ × 2 × 2¹⁰.
+TEST(Grade, AStabilityLimitFarFromTheExpectedOneIsStillMeasured) {
+  NEEDS_SANDBOX();
+  TempDir dir;
+  json tests = json::array();
+  for (const char* name : {"symplectic-euler.stability", "symplectic-euler-x.stability"}) {
+    json test = definitions("integrators").at(name);
+    ASSERT_EQ(test["omega"], 1);
+    ASSERT_EQ(test["expect"], 2);
+    test["steps"] = 1000;  // (a tenth of the hidden tests': the same kind of limits, in a tenth of the time)
+    tests.push_back(test);
+  }
+  const fs::path assignment = integrators_with_tests(dir, "stability", tests);
+  const std::string both = "  v += h * s.acceleration(t, x, v);\n  x += h * v;\n}\n\n"
+                           "void symplectic_euler_x_step(const MechanicalSystem& s, double t, double h, VectorInOut x, VectorInOut v) {\n"
+                           "  x += h * v;\n  v += h * s.acceleration(t + h, x, v);\n}\n";
+  const fs::path submission = integrators_solution_with(
+      dir, "mistaken", both,
+      "  const Vector a = s.acceleration(t, x, v);\n  x += h * v;\n  v += h * a;\n}\n\n"
+      "void symplectic_euler_x_step(const MechanicalSystem& s, double t, double h, VectorInOut x, VectorInOut v) {\n"
+      "  (void)s, (void)t, (void)h, (void)x, (void)v;\n}\n");
+  ASSERT_FALSE(submission.empty());
+  const auto r = run_motus(dir, {"grade", assignment.string(), submission.string(), "--results", (dir / "results.json").string()});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const json result = read_json(dir / "results.json");  // (kept: test_named points into it)
+  expect_valid_gradescope(result);
+  const json* explicit_euler = test_named(result, "symplectic-euler.stability");
+  const json* still = test_named(result, "symplectic-euler-x.stability");
+  ASSERT_NE(explicit_euler, nullptr);
+  ASSERT_NE(still, nullptr);
+  EXPECT_EQ((*explicit_euler)["status"], "failed");
+  EXPECT_EQ((*still)["status"], "failed");
+  const std::string output = (*explicit_euler)["output"].get<std::string>();
+  const std::string mark = "largest stable step ωh = ";
+  const size_t at = output.find(mark);
+  ASSERT_NE(at, std::string::npos) << output;
+  const double measured = std::stod(output.substr(at + mark.size()));
+  // (12 halvings of the bracket [1/16, 1/8] it moved to: within 2⁻¹⁷ of the limit.)
+  EXPECT_NEAR(measured, std::sqrt(std::pow(1000.0, 2.0 / 1000) - 1), 1.0 / (1 << 17)) << output;
+  EXPECT_NE(output.find("largest stable step ωh = 2 within 1%"), std::string::npos) << output;
+  EXPECT_NE((*still)["output"].get<std::string>().find(
+                "the run stays bounded at every step tried, up to ωh = 3072 (1000 steps each)"),
+            std::string::npos)
+      << (*still)["output"];
 }
 
 // A projection check that asks only for the pins fails positions that are not numbers: std::max
