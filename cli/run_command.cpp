@@ -71,7 +71,7 @@ public:
   // (a full disk) is an error naming the file, not a run that went well.
   void finish(const Simulation& sim) {
     if (sim.time() > last_) row(sim);
-    errno = 0;
+    if (*out_) errno = 0;
     out_->flush();
     check_written(*out_);
     if (partial_) {
@@ -92,7 +92,7 @@ private:
     if (!stream) throw std::runtime_error(plot::write_failure(path_));
   }
   void row(const Simulation& sim) {
-    errno = 0;  // (so that a failed write's errno is the write's)
+    if (*out_) errno = 0;  // (so that a failed write's errno is the write's; the header's failure keeps its own)
     *out_ << fmt::format("{:.17g}", sim.time());
     for (double v : sim.state()) *out_ << fmt::format(",{:.17g}", v);
     if (const auto e = sim.energy()) *out_ << fmt::format(",{:.17g},{:.17g},{:.17g}", e->kinetic, e->potential, e->total);

@@ -436,9 +436,10 @@ TEST(Hardening, AStandardErrorThatCannotBeWrittenKeepsTheExitStatus) {
   EXPECT_NE(read_file(dir / "summary.txt").find("total energy"), std::string::npos);
 }
 
-// Runs `motus ARGS...` in `dir` with files of at most `bytes` (RLIMIT_FSIZE, with SIGXFSZ ignored: a
-// write past it fails with EFBIG, as one on a full disk fails with ENOSPC), standard error to
-// dir/err.txt. Its exit status.
+// Runs `motus ARGS...` in `dir` with files of at most `bytes` (RLIMIT_FSIZE, as `ulimit -f` sets it:
+// with SIGXFSZ's default action, which ended motus without a word — exit 153 — and left its partial
+// files, until motus ignored it; a write past the limit then fails with EFBIG, as one on a full disk
+// fails with ENOSPC), standard error to dir/err.txt. Its exit status.
 int run_motus_with_file_limit(const TempDir& dir, std::vector<std::string> args, rlim_t bytes) {
   args.insert(args.begin(), kMotus);
   std::vector<char*> argv;
@@ -450,7 +451,7 @@ int run_motus_with_file_limit(const TempDir& dir, std::vector<std::string> args,
     const int to = ::open(err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644), null = ::open("/dev/null", O_RDWR);
     if (to < 0 || null < 0 || ::dup2(to, 2) < 0 || ::dup2(null, 1) < 0 || ::dup2(null, 0) < 0 || ::chdir(folder.c_str()) != 0)
       ::_exit(126);
-    std::signal(SIGXFSZ, SIG_IGN);
+    std::signal(SIGXFSZ, SIG_DFL);
     const rlimit limit{bytes, bytes};
     if (::setrlimit(RLIMIT_FSIZE, &limit) != 0) ::_exit(126);
     ::execv(argv[0], argv.data());
@@ -485,6 +486,19 @@ TEST(Hardening, APictureThatCannotBeWrittenIsAFailureNotAHalfPicture) {
   EXPECT_EQ(count_lines(said), 1) << said;
   EXPECT_NE(said.find("drift.png could not be written whole"), std::string::npos) << said;
   EXPECT_FALSE(fs::exists(page));
+}
+
+// A trajectory past the file-size limit: a ball gas's header alone (ball_gas's 800 coordinates'
+// names) is past 1 kB. The run fails with the system's reason, not "disk full?" (the header's
+// failure lost its errno to the first row's), and leaves no file, whole or partial.
+TEST(Hardening, ATrajectoryPastTheFileSizeLimitIsAFailureWithItsReason) {
+  TempDir dir;
+  EXPECT_EQ(run_motus_with_file_limit(dir, {"run", "ball_gas", "--steps", "20", "--repeats", "1", "--trajectory", "t.csv"}, 1024), 1);
+  const std::string err = read_file(dir / "err.txt");
+  EXPECT_EQ(count_lines(err), 1) << err;
+  EXPECT_NE(err.find("t.csv: could not be written (File too large)"), std::string::npos) << err;
+  for (const auto& e : fs::directory_iterator(dir.path()))
+    EXPECT_TRUE(e.path().filename() == "err.txt") << e.path();
 }
 
 // Starts `motus ARGS...` and returns at once (its pid, or -1): standard output to /dev/null,

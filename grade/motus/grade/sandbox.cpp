@@ -255,7 +255,10 @@ SandboxProcess::SandboxProcess(const SandboxSpec& spec, const Limits& limits)
     }
     ::setrlimit(RLIMIT_NPROC, &process_limit);
     ::prctl(PR_SET_NO_NEW_PRIVS, 1, 0, 0, 0);
-    ::signal(SIGPIPE, SIG_DFL);  // (the grader ignores it; an ignored signal would stay so across exec)
+    // (The grader ignores these; an ignored signal would stay so across exec, and the student's code
+    // must be ended by its file-size limit, not see its writes fail.)
+    ::signal(SIGPIPE, SIG_DFL);
+    ::signal(SIGXFSZ, SIG_DFL);
     if (::chdir(workdir.c_str()) != 0) ::_exit(126);
     ::execve(argv[0], argv.data(), envp.data());
     ::_exit(127);
