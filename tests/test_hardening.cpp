@@ -290,6 +290,14 @@ TEST(Hardening, CoincidentBodiesUnderMutualGravityAreRefused) {
                  {"mass": 2, "position": [0, 0]}], "forces": [{"type": "mutual_gravity", "G": 1}],
                  "integrator": "rk4", "dt": 0.01, "duration": 1})");
   expect_one_line_exit_2(run_motus(dir, {"run", (dir / "g.json").string()}), "forces[0]: bodies 0 and 2 are at the same point");
+  // The force is named by its place among the scene's forces, not among its mutual gravities
+  // (this one, the third force, was "forces[0]" too).
+  write_file(dir / "third.json",
+             R"({"name": "g", "dimensions": 2, "bodies": [{"mass": 1, "position": [0, 0]}, {"mass": 1, "position": [0, 0]}],
+                 "forces": [{"type": "gravity", "g": [0, -9.81]}, {"type": "mutual_gravity", "G": 1, "softening": 0.1},
+                            {"type": "mutual_gravity", "G": 1}],
+                 "integrator": "rk4", "dt": 0.01, "duration": 1})");
+  expect_one_line_exit_2(run_motus(dir, {"run", (dir / "third.json").string()}), "third.json: forces[2]: bodies 0 and 1 are at the same point");
 }
 
 // ---- Bad input: one line, exit 2 -------------------------------------------------------------------

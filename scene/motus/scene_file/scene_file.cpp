@@ -234,8 +234,9 @@ double distance(const BodyDescription& a, const BodyDescription& b) {
 }
 
 // Unsoftened mutual gravity between two bodies at one point is infinite: refuse the scene
-// (naming both) rather than let the first step fail and blame the step size.
-void check_coincident_under_gravity(const MechanicalDescription& m) {
+// (naming both, and the force by its place in "forces", its path) rather than let the first step
+// fail and blame the step size.
+void check_coincident_under_gravity(const MechanicalDescription& m, const std::vector<std::string>& mutual_gravity_paths) {
   for (size_t g = 0; g < m.forces.mutual_gravity.size(); ++g) {
     if (m.forces.mutual_gravity[g].softening > 0) continue;
     std::vector<size_t> order(m.bodies.size());
@@ -244,7 +245,7 @@ void check_coincident_under_gravity(const MechanicalDescription& m) {
     for (size_t k = 1; k < order.size(); ++k)
       if (m.bodies[order[k]].position == m.bodies[order[k - 1]].position) {
         const size_t a = std::min(order[k], order[k - 1]), b = std::max(order[k], order[k - 1]);
-        throw SceneError("forces[" + std::to_string(g) + "]",
+        throw SceneError(mutual_gravity_paths[g],
                          "bodies " + std::to_string(a) + " and " + std::to_string(b) +
                              " are at the same point, where unsoftened mutual gravity is infinite; move one, or give "
                              "the force a softening");
@@ -276,7 +277,11 @@ MechanicalDescription read_mechanical(JsonFields& scene) {
     scene.fail("bodies", std::to_string(m.bodies.size()) + " bodies is more than " + std::to_string(kMaxBodies) +
                              ", the limit of a scene");
 
-  for (auto& f : scene.objects("forces")) read_force(f, m.dimensions, m.bodies.size(), m.forces);
+  std::vector<std::string> mutual_gravity_paths;  // (for check_coincident_under_gravity)
+  for (auto& f : scene.objects("forces")) {
+    read_force(f, m.dimensions, m.bodies.size(), m.forces);
+    if (mutual_gravity_paths.size() < m.forces.mutual_gravity.size()) mutual_gravity_paths.push_back(f.path());
+  }
   for (auto& c : scene.objects("colliders")) read_collider(c, m.dimensions, m.colliders);
   for (auto& f : scene.objects("sticks")) {
     StickConstraint stick;
@@ -299,7 +304,7 @@ MechanicalDescription read_mechanical(JsonFields& scene) {
   if (static_cast<long>(m.sticks.size()) > kMaxSticks)
     scene.fail("sticks", std::to_string(m.sticks.size()) + " sticks is more than " + std::to_string(kMaxSticks) +
                              ", the limit of a scene");
-  check_coincident_under_gravity(m);
+  check_coincident_under_gravity(m, mutual_gravity_paths);
   const long iterations = scene.integer("constraint_iterations", 10);
   if (iterations < 1 || iterations > 10000) scene.fail("constraint_iterations", "must be from 1 to 10000");
   m.constraint_iterations = static_cast<int>(iterations);
