@@ -214,6 +214,40 @@ TEST(Containment, BallFiredAtAThousandRadiiPerStepNeverTunnels) {
   }
 }
 
+// Two equal balls head-on, however far apart for their size: the first ends at rest where they
+// touched, the second goes on with the whole speed (impulse.hpp, e = 1). The time of impact's
+// c = d² − R² and b² − ac lost R's digits once the balls were 1e8 radii apart: at 1e9 radii a
+// step (a ball of 0.1 m at 1e10 m/s) and for balls of 1e-12 m a metre apart, the collision was
+// counted and the balls passed through each other, velocities unchanged. Found by an audit.
+TEST(Containment, BallsFarApartForTheirSizeStillMeetAtTheirContact) {
+  struct Case {
+    double r, gap, speed;  // radius, distance between centres, speed of the first ball
+  };
+  for (const Case& c : {Case{0.1, 1e10, 1e10}, Case{1e-12, 1, 1}, Case{0.5, 1e6, 1e7}}) {
+    SceneDescription scene;
+    MechanicalDescription m;
+    m.dimensions = 2;
+    m.bodies.resize(2);
+    for (auto& b : m.bodies) b.mass = 1, b.radius = c.r, b.position = {0, 0}, b.velocity = {0, 0};
+    m.bodies[0].velocity[0] = c.speed;
+    m.bodies[1].position[0] = c.gap;
+    scene.mechanical = m;
+    scene.integrator = "symplectic-euler";
+    scene.dt = 0.01;
+    Simulation sim(scene, Integrator::SymplecticEuler);
+    // The contact at t = (gap − 2r)/speed; then half as long again.
+    const double meet = (c.gap - 2 * c.r) / c.speed, end = 1.5 * meet;
+    sim.advance(end, scene.dt, {});
+    EXPECT_EQ(sim.world()->collision_counters().ball_collisions, 1) << c.r;
+    EXPECT_EQ(velocity_of(sim, 0)[0], 0) << c.r;  // (an exchange of equal masses: exact)
+    EXPECT_EQ(velocity_of(sim, 1)[0], c.speed) << c.r;
+    // Where they touched, to a few units of rounding in the positions' size.
+    const double rounding = 8 * std::numeric_limits<double>::epsilon() * c.gap;
+    EXPECT_NEAR(position_of(sim, 0)[0], c.gap - 2 * c.r, rounding) << c.r;
+    EXPECT_NEAR(position_of(sim, 1)[0], c.gap + c.speed * (sim.time() - meet), rounding + 8 * std::numeric_limits<double>::epsilon() * c.speed * sim.time()) << c.r;
+  }
+}
+
 TEST(Containment, BouncingBallsStayInTheirBox) {
   // Gravity, unequal balls, e = 0.95: contacts under load, resting and rolling along the floor.
   const SceneDescription scene = load("bouncing_balls");
