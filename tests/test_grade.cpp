@@ -375,6 +375,14 @@ TEST(Plugins, APluginsBrokenNumbersAreItsOwnFailureNeverAPerfectRun) {
   r = run_motus(dir, {"run", "lorenz", "--plugin", plugin, "--integrator", "bad:keeps-h"});
   EXPECT_EQ(r.status, 1) << r.err;
   EXPECT_NE(r.err.find("did not shrink a rejected step"), std::string::npos) << r.err;
+  // A controller that shrinks every step, accepted ones too, never reaches the end: motus run went
+  // on for ever (the grader stopped it at its step limit). Found by an audit. h halves from
+  // lorenz's dt, 0.001, until it is below 1e-14 × max(1, t): t is then 0.002 less a rounding.
+  r = run_motus(dir, {"run", "lorenz", "--plugin", plugin, "--integrator", "bad:shrinks-h"});
+  EXPECT_EQ(r.status, 1) << r.err;
+  EXPECT_EQ(count_lines(r.err), 1) << r.err;
+  EXPECT_NE(r.err.find("step size underflow at t = 0.002:"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("a step size that shrinks without end?"), std::string::npos) << r.err;
 }
 
 // Found by an assignments audit: an impulse over the sum of the masses, or a bounce written for the

@@ -221,6 +221,11 @@ void Simulation::advance(double end_time, double dt, Tolerance tolerance,
           continue;
         }
         if (landing) t_ = end_time;  // exactly, whatever t + h rounded to
+        // A controller that shrinks accepted steps too (a student's, say) may never reach the end:
+        // its steps' sum can stay below it for ever.
+        if (!(adaptive_h_ >= 1e-14 * std::max(1.0, std::abs(t_))) && t_ < end_time)
+          throw StepSizeUnderflow("step size underflow at t = " + message_number(t_) + ": the step-size control proposed h = " +
+                                   message_number(adaptive_h_) + " after an accepted step (a step size that shrinks without end?)");
         ++steps_;
         if (after_step) after_step(*this);
       }

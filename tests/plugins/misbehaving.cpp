@@ -1,6 +1,7 @@
 // A plug-in whose integrators misbehave on purpose, for test_grade's plug-in errors:
 // "bad:throws" throws, "bad:crashes" dereferences a null pointer, "bad:nan" answers NaN,
-// "bad:keeps-h" is step doubling whose controller keeps a rejected step's size.
+// "bad:keeps-h" is step doubling whose controller keeps a rejected step's size, "bad:shrinks-h"
+// one whose controller halves every step, accepted or not (the sum of the steps never reaches the end).
 #include <limits>
 #include <stdexcept>
 
@@ -27,6 +28,13 @@ student::Vector rejected(const student::FirstOrderSystem&, double, double, stude
 }
 double keeps_h(double h, double) { return h; }
 
+// Every step accepted (an error of 0, and y left as it was), and the next one half as long.
+student::Vector accepted(const student::FirstOrderSystem&, double, double, student::VectorIn y, student::Vector& error) {
+  error = student::Vector::Zero(y.size());
+  return y;
+}
+double halves_h(double h, double) { return h / 2; }
+
 }  // namespace
 
 MOTUS_PLUGIN("bad", "integrators that misbehave (test_grade)") {
@@ -34,4 +42,5 @@ MOTUS_PLUGIN("bad", "integrators that misbehave (test_grade)") {
   plugin.first_order("crashes", 1, "dereferences a null pointer", crashes);
   plugin.first_order("nan", 1, "answers NaN", nan);
   plugin.adaptive("keeps-h", 5, "a controller that keeps a rejected step's size", rejected, keeps_h);
+  plugin.adaptive("shrinks-h", 5, "a controller that halves every step", accepted, halves_h);
 }
