@@ -253,6 +253,24 @@ void check_coincident_under_gravity(const MechanicalDescription& m, const std::v
   }
 }
 
+// A ball wider than a box along an axis can never be inside it: its walls push it back and forth
+// without end, and the run failed with "more than N collisions in one step" (exit 1). The listed
+// balls are checked (the generators size their own boxes to fit).
+// (box_paths: the listed boxes' paths, "colliders[j]", the last of m's boxes.)
+void check_balls_fit_their_boxes(const MechanicalDescription& m, size_t listed, const std::vector<std::string>& box_paths) {
+  const size_t first = m.colliders.boxes.size() - box_paths.size();
+  for (size_t i = 0; i < listed; ++i)
+    for (size_t j = 0; j < box_paths.size(); ++j)
+      for (int k = 0; k < m.dimensions; ++k) {
+        const auto& box = m.colliders.boxes[first + j];
+        const double width = box.max[k] - box.min[k], r = m.bodies[i].radius;
+        if (2 * r > width)
+          throw SceneError("bodies[" + std::to_string(i) + "].radius",
+                           "a ball of radius " + nlohmann::json(r).dump() + " does not fit in the box " + box_paths[j] + " (its width along " + "xyz"[k] + " is " +
+                               nlohmann::json(width).dump() + ")");
+      }
+}
+
 MechanicalDescription read_mechanical(JsonFields& scene) {
   MechanicalDescription m;
   const long d = scene.integer("dimensions");
@@ -265,13 +283,21 @@ MechanicalDescription read_mechanical(JsonFields& scene) {
     body.velocity = b.numbers("velocity", m.dimensions, std::vector<double>(static_cast<size_t>(d), 0.0));
     body.radius = b.non_negative("radius", 0);
     body.restitution = restitution(b, "restitution");
+    // A speed whose kinetic energy is past the largest double makes every energy measure
+    // infinite from the start, and the first steps blamed the integrator.
+    double speed2 = 0;
+    for (double c : body.velocity) speed2 += c * c;
+    if (!std::isfinite(0.5 * body.mass * speed2))
+      b.fail("velocity", "is too large for this mass: the kinetic energy ½ m |v|² is past the largest double (1.8e308)");
     b.reject_unknown();
     m.bodies.push_back(body);
   }
+  const size_t listed = m.bodies.size();
   // Generators append their bodies (and walls, sticks, pins) after the listed ones.
   if (scene.has("lattice")) read_lattice(scene.object("lattice"), m);
   if (scene.has("cloth")) read_cloth(scene.object("cloth"), m);
   if (scene.has("rope")) read_rope(scene.object("rope"), m);
+  const size_t boxes_generated = m.colliders.boxes.size();
   if (m.bodies.empty()) scene.fail("bodies", "needs at least one body (listed, or from a generator such as \"lattice\")");
   if (static_cast<long>(m.bodies.size()) > kMaxBodies)
     scene.fail("bodies", std::to_string(m.bodies.size()) + " bodies is more than " + std::to_string(kMaxBodies) +
@@ -282,7 +308,12 @@ MechanicalDescription read_mechanical(JsonFields& scene) {
     read_force(f, m.dimensions, m.bodies.size(), m.forces);
     if (mutual_gravity_paths.size() < m.forces.mutual_gravity.size()) mutual_gravity_paths.push_back(f.path());
   }
-  for (auto& c : scene.objects("colliders")) read_collider(c, m.dimensions, m.colliders);
+  std::vector<std::string> box_paths;  // (for check_balls_fit_their_boxes)
+  for (auto& c : scene.objects("colliders")) {
+    read_collider(c, m.dimensions, m.colliders);
+    if (box_paths.size() + boxes_generated < m.colliders.boxes.size()) box_paths.push_back(c.path());
+  }
+  check_balls_fit_their_boxes(m, listed, box_paths);
   for (auto& f : scene.objects("sticks")) {
     StickConstraint stick;
     stick.a = body_index(f, "a", m.bodies.size());
