@@ -302,6 +302,17 @@ TEST(Hardening, CoincidentBodiesUnderMutualGravityAreRefused) {
 
 // ---- Bad input: one line, exit 2 -------------------------------------------------------------------
 
+// A NUL byte ended the scene there: a whole scene, then a NUL and anything at all, ran (exit 0).
+// Found by an audit.
+TEST(Hardening, ASceneWithANulByteIsRefused) {
+  TempDir dir;
+  const std::string scene =
+      R"({"name": "n", "dimensions": 1, "bodies": [{"mass": 1, "position": [0]}], "dt": 0.1, "duration": 1})";
+  write_file(dir / "nul.json", scene + "\n" + std::string(1, '\0') + "garbage");
+  expect_one_line_exit_2(run_motus(dir, {"run", (dir / "nul.json").string()}),
+                         "nul.json: malformed JSON at line 2, column 1: a NUL byte (a text file has none)");
+}
+
 // A ball wider than its box, and a speed whose kinetic energy no double holds: each ran and failed
 // with exit 1 ("more than 1300 collisions in one step: the scene cannot settle"; "the state was no
 // longer finite by t = 0.16 (the integrator is unstable at this step; try a smaller --dt)"), though
