@@ -282,6 +282,32 @@ TEST(Plugins, ACompareColumnInWhichNoneOfThePluginsCodeRunsSaysSo) {
   EXPECT_TRUE(seen);
 }
 
+// A projection that does not hold the pins (the cloth starter's, which moves nothing) showed only
+// "largest stick-length error 0.000e+00": the cloth fell away whole and looked perfect. motus run
+// now says how far the pinned bodies got from their pins. With no projection at all, the pinned
+// corners fall freely for cloth's 6 s: ½ g T² = 176.58 m, to the rounding of Verlet's
+// x_{n+1} = 2 x_n − x_{n−1} + h² a, which grows as n^{3/2} (46,080 substeps: ~4e-7 m). The
+// solution's projection places them exactly, and the line is not printed. Found by an audit.
+TEST(Plugins, MotusRunSaysHowFarAProjectionLeftThePinnedBodies) {
+  TempDir dir;
+  auto r = run_motus(dir, {"run", "cloth", "--plugin", kAssignmentPlugins + "/cloth-starter.so", "--repeats", "1", "--json"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const json starter = json::parse(r.out);
+  EXPECT_NEAR(starter["pin_error"]["final"].get<double>(), 0.5 * 9.81 * 6 * 6, 2e-6);
+  EXPECT_EQ(starter["pin_error"]["max"], starter["pin_error"]["final"]);  // (it only falls)
+  r = run_motus(dir, {"run", "cloth", "--plugin", kAssignmentPlugins + "/cloth-starter.so", "--repeats", "1"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("pins         a pinned body was up to 1.766e+02 m off its pin over the run, 1.766e+02 m at the end"),
+            std::string::npos)
+      << r.out;
+  r = run_motus(dir, {"run", "cloth", "--plugin", kAssignmentPlugins + "/cloth-solution.so", "--repeats", "1", "--json"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(json::parse(r.out)["pin_error"]["max"], 0);
+  r = run_motus(dir, {"run", "cloth", "--repeats", "1"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.out.find("\npins "), std::string::npos) << r.out;
+}
+
 TEST(Plugins, MotusRunSaysWhenTheStudentsPartsResolveTheContacts) {
   // The pass list names the plug-in's collisions and projection (once the same words as motus's own).
   TempDir dir;

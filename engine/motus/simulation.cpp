@@ -312,6 +312,8 @@ double Simulation::constraint_error() const {
   return world_ ? world_->constraint_error(y_.head(world_->system().size())) : 0.0;
 }
 
+double Simulation::pin_error() const { return world_ ? world_->pin_error(y_.head(world_->system().size())) : 0.0; }
+
 Vector Simulation::momentum() const {
   if (!world_) return Vector(0);
   return world_->system().momentum(y_.tail(world_->system().size()));

@@ -65,6 +65,9 @@ public:
   bool has_constraints() const { return world_ && world_->has_sticks(); }
   // The largest relative stick-length error now (0 without sticks).
   double constraint_error() const;
+  // Whether the scene has pins, and the farthest a pinned body is from its pin now (m).
+  bool has_pins() const { return world_ && world_->has_pins(); }
+  double pin_error() const;
   FirstOrderSystem* first_order_system() { return first_order_.get(); }
   const FirstOrderSystem* first_order_system() const { return first_order_.get(); }
 

@@ -145,4 +145,6 @@ double World::constraint_error(ConstVectorRef x) const {
   return has_sticks_ ? constraints_->max_relative_stick_error(x) : 0.0;
 }
 
+double World::pin_error(ConstVectorRef x) const { return has_pins() ? constraints_->max_pin_distance(x) : 0.0; }
+
 }  // namespace motus

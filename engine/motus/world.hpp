@@ -53,6 +53,9 @@ public:
   CollisionCounters collision_counters() const;
   // The largest relative stick-length error now (0 without sticks).
   double constraint_error(ConstVectorRef x) const;
+  // The farthest a pinned body is from its pin now (0 without pins).
+  bool has_pins() const { return constraints_ && constraints_->has_pins(); }
+  double pin_error(ConstVectorRef x) const;
 
 private:
   void drift_with_collisions(VectorRef x, VectorRef v, double h, bool kicked);

@@ -447,4 +447,14 @@ double ConstraintProjection::max_relative_stick_error(ConstVectorRef x) const {
   return worst;
 }
 
+double ConstraintProjection::max_pin_distance(ConstVectorRef x) const {
+  double worst = 0;
+  for (const auto& p : pins_) {
+    const double distance = (x.segment(p.body * d_, d_) - Eigen::Map<const Vector>(p.position.data(), d_)).norm();
+    worst = std::isnan(distance) ? distance : std::max(worst, distance);  // (a NaN position is off its pin)
+    if (std::isnan(worst)) break;
+  }
+  return worst;
+}
+
 }  // namespace motus

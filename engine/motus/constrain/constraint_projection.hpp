@@ -40,6 +40,10 @@ public:
 
   // The largest |length − rest length| / rest length over the sticks (0 without sticks).
   double max_relative_stick_error(ConstVectorRef x) const;
+  // The farthest any pinned body is from its pin (0 after motus's own projection, which places
+  // the pins last; a plug-in's projection may leave one off).
+  double max_pin_distance(ConstVectorRef x) const;
+  bool has_pins() const { return !pins_.empty(); }
   bool pinned(int body) const;
 
   long broad_phase_queries() const { return broad_phase_queries_; }
