@@ -271,6 +271,8 @@ int serve_command(const ServeOptions& o) {
     try {
       reply = handle(json::parse(line));
       reply["ok"] = true;
+    } catch (const ExternalCodeFailed& e) {  // (the student's code threw: see probe.cpp)
+      reply = {{"ok", false}, {"error", e.what()}, {"threw", true}};
     } catch (const std::exception& e) {
       reply = {{"ok", false}, {"error", e.what()}};
     }

@@ -850,6 +850,30 @@ TEST(Grade, ATimeoutNamesTheStudentsFunctionAndTheAssignmentsHint) {
   EXPECT_GT(with_hint, 0) << sheet.dump(2);
 }
 
+// A student's exception is no wrong number: the test's hint (explicit Euler's "moves x with the
+// new velocity") followed "threw std::runtime_error: ...", about something else. Numbers the engine
+// refused keep theirs (AStepSizeThatShrinksWithoutEndIsTheStudentsErrorWithItsHint). Found by an audit.
+TEST(Grade, AStudentsExceptionStopsTheTestWithoutTheNumbersHint) {
+  NEEDS_SANDBOX();
+  TempDir dir;
+  const fs::path submission = solution_with_euler_step_starting(dir, "throws", "throw std::runtime_error(\"not written yet\");",
+                                                                "#include <stdexcept>\n");
+  ASSERT_FALSE(submission.empty());
+  const json test = definitions("integrators").at("euler.table");
+  ASSERT_TRUE(test.contains("hint"));
+  const fs::path assignment = integrators_with_tests(dir, "table", json::array({test}));
+  const auto r = run_motus(dir, {"grade", assignment.string(), submission.string(), "--results", (dir / "results.json").string()});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const json result = read_json(dir / "results.json");  // (kept: test_named points into it)
+  const json* t = test_named(result, "euler.table");
+  ASSERT_NE(t, nullptr);
+  EXPECT_EQ((*t)["status"], "failed");
+  const std::string output = (*t)["output"].get<std::string>();
+  EXPECT_EQ(output.rfind("Your code stopped the run: ", 0), 0u) << output;
+  EXPECT_NE(output.find("threw std::runtime_error: not written yet"), std::string::npos) << output;
+  EXPECT_EQ(output.find("This usually means"), std::string::npos) << output;
+}
+
 // An order check whose finer runs blow up measures no order: it says which step size's error was
 // not finite, rather than an order of −∞ (or one from the coarser runs alone, which would pass).
 TEST(Grade, AnOrderCheckWhoseRunBlowsUpSaysWhereAndFails) {

@@ -65,7 +65,7 @@ protected:
   void check(int status) const {
     if (status == 0) return;
     const char* message = integrator_.error ? integrator_.error(integrator_.self) : nullptr;
-    throw ExternalError(name_ + ": " + (message && *message ? message : "failed"));
+    throw ExternalCodeFailed(name_ + ": " + (message && *message ? message : "failed"));
   }
 
   template <class System>

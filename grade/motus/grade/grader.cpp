@@ -242,7 +242,7 @@ GradeResult grade_submission(const Assignment& a, const std::string& submission,
         if (r.output.back() != '.' && r.output.find('\n') == std::string::npos) r.output += ".";
         // The test's hint is about wrong numbers: it helps a run too slow to finish (a step size
         // that shrinks without end) and one that its numbers stopped (a step of 0, a control that
-        // keeps a rejected step), not one that crashed or ran out of memory.
+        // keeps a rejected step), not one that crashed, threw or ran out of memory.
         // An assignment may say what running out of time usually means there (a cloth's sweeps that
         // run until the sticks are exact, rather than constraints.iterations times).
         const std::string& hint = e.out_of_time() && !a.timeout_hint.empty() ? a.timeout_hint : t.hint;

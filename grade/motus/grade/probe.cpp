@@ -129,6 +129,8 @@ nlohmann::json Probe::ask(nlohmann::json request, std::chrono::steady_clock::tim
     // The memory limit shows up as a failed allocation in the student's code.
     if (error.find("std::bad_alloc") != std::string::npos)
       throw ProbeFailure("your code ran out of its " + std::to_string(setup_.limits.memory_mb) + " MB (" + error + ")");
+    // An exception of the student's own is no wrong number: the test's hint would not be about it.
+    if (reply.value("threw", false)) throw ProbeFailure("your code stopped the run: " + error);
     throw ProbeFailure("your code stopped the run: " + error, false, true);
   }
   return reply;
