@@ -201,6 +201,27 @@ TEST(CliErrors, AnEquationThatGivesNaNIsNamedWhenTheStateIsNoLongerFinite) {
   EXPECT_NE(unstable.err.find("the integrator is unstable at this step"), std::string::npos) << unstable.err;
 }
 
+// A small state is looked at after every step: "no longer finite by t" is the first row of the
+// trajectory that is not finite (the oscillator's explicit Euler at dt = 10: its amplitude grows by
+// √101 a step and passes the largest double in step 308; the look every 16 steps said t = 3200). A
+// student's spring that gave NaN from t = 1 read "by t = 5". Found by an audit.
+TEST(CliErrors, ASmallStateNoLongerFiniteIsNamedAtItsFirstStep) {
+  TempDir dir;
+  const Result r = run_motus(dir, {"run", "oscillator", "--integrator", "euler", "--dt", "10", "--steps", "2000", "--repeats",
+                                   "1", "--trajectory", (dir / "t.csv").string()});
+  EXPECT_EQ(r.status, 1) << r.err;
+  std::istringstream csv(read_file(dir / "t.csv"));
+  std::string row, first_not_finite;
+  std::getline(csv, row);
+  ASSERT_EQ(row.rfind("t,x0,vx0,", 0), 0u) << row;  // the state's two columns (the energies after them overflow sooner)
+  while (first_not_finite.empty() && std::getline(csv, row)) {
+    const std::string state = row.substr(0, row.find(',', row.find(',', row.find(',') + 1) + 1));
+    if (state.find("inf") != std::string::npos || state.find("nan") != std::string::npos) first_not_finite = row.substr(0, row.find(','));
+  }
+  ASSERT_EQ(first_not_finite, "3080");
+  EXPECT_NE(r.err.find("the state was no longer finite by t = 3080 (the integrator is unstable"), std::string::npos) << r.err;
+}
+
 TEST(CliErrors, MissingFileIsOneLineExitTwo) {
   TempDir dir;
   const std::string file = (dir / "no_such_scene.json").string();
