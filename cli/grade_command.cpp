@@ -121,8 +121,15 @@ int grade_one(const GradeCommandOptions& o, const std::string& folder) {
   if (!o.results.empty()) check_can_replace(o.results, o.overwrite);
   if (!o.plugin_out.empty()) check_can_replace(o.plugin_out, o.overwrite);
   if (!o.results.empty() && !o.plugin_out.empty()) {
+    // Made absolute first: weakly_canonical keeps a relative path as typed when its first part
+    // does not exist ("same.json"), but makes it absolute when it does ("adir/../same.json"): the
+    // two spellings of one file compared unequal, the grading ran, and its end failed (exit 1).
+    auto where = [](const std::string& path, std::error_code& error) {
+      const fs::path absolute = fs::absolute(path, error);
+      return error ? absolute : fs::weakly_canonical(absolute, error);
+    };
     std::error_code a, b;
-    const fs::path results = fs::weakly_canonical(o.results, a), plugin = fs::weakly_canonical(o.plugin_out, b);
+    const fs::path results = where(o.results, a), plugin = where(o.plugin_out, b);
     if (!a && !b && results == plugin)
       throw InputError(o.plugin_out + ": --plugin-out: is --results's file too; give them two files");
   }

@@ -529,6 +529,24 @@ TEST(Grade, WhatStopsTheGradingStillLeavesAResultsFileThatSaysWhy) {
   EXPECT_NE(result["output"].get<std::string>().find("nor in --hidden"), std::string::npos) << result.dump(2);
 }
 
+// --results and --plugin-out spelt two ways (adir/../same.json and same.json) are still one file:
+// refused before grading. (Compared as typed, through the existing part only, they graded in full
+// and then failed with exit 1, leaving a .partial folder behind.)
+TEST(Grade, ResultsAndPluginOutSpeltTwoWaysAreStillOneFile) {
+  TempDir dir;
+  fs::create_directories(dir / "adir");
+  const std::string solution = (fs::path(kAssignments) / "integrators/solution").string();
+  const fs::path was = fs::current_path();  // (motus starts where this test is: in `dir`, for the run)
+  fs::current_path(dir.path());
+  const auto r = run_motus(dir, {"grade", "integrators", solution, "--results", "adir/../same.json", "--plugin-out", "same.json"});
+  fs::current_path(was);
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_EQ(count_lines(r.err), 1) << r.err;
+  EXPECT_NE(r.err.find("same.json: --plugin-out: is --results's file too"), std::string::npos) << r.err;
+  for (const auto& e : fs::directory_iterator(dir.path()))  // no results, no plug-in, no .partial folder
+    EXPECT_TRUE(e.path().filename() == "adir" || e.path().extension() == ".txt") << e.path();
+}
+
 // Only the handed-in files themselves are taken: a link (to the solution, say) is not followed,
 // and a file over 1 MB is no source code; each says why. (Read through one descriptor that
 // follows no link: a link swapped in after a look would otherwise be followed.)
