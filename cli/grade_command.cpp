@@ -72,11 +72,17 @@ grade::Assignment load(const GradeCommandOptions& o, const std::string& folder) 
   }
 }
 
-void check_limits(const GradeCommandOptions& o) {
+// The limits a grading takes, checked for --package too: its run_autograder passes them on, and
+// out of range every student's grading on Gradescope would fail.
+void check_limit_ranges(const GradeCommandOptions& o) {
   // (Below half a second a correct solution can time out: each test starts a server of its own,
   // and the longer tests take tenths of a second of the reference solution's own time.)
   if (!(o.time_limit >= 0.5) || o.time_limit > 600) throw InputError("--time-limit: must be from 0.5 to 600 s");
   if (o.memory_limit < 64 || o.memory_limit > 65536) throw InputError("--memory-limit: must be from 64 to 65536 MB");
+}
+
+void check_limits(const GradeCommandOptions& o) {
+  check_limit_ranges(o);
   if (o.jobs && (*o.jobs < 1 || *o.jobs > 64)) throw InputError("--jobs: must be from 1 to 64");
   if (!o.no_sandbox)
     if (const auto why = grade::sandbox_unavailable()) throw InputError(*why);
@@ -312,6 +318,7 @@ int grade_command(const GradeCommandOptions& o) {
   if (o.batch.empty()) refuse(o.jobs.has_value(), "--jobs", "it is --batch's");
   if (!o.package.empty()) {
     if (o.out.empty()) throw InputError("--package: needs --out FILE.zip");
+    check_limit_ranges(o);
     const grade::Assignment assignment = load(o, folder);  // checked before it is packed
     const int status = write_gradescope_package(folder, assignment.name, o.hidden, o.out, o.no_sandbox, o.time_limit,
                                                 o.memory_limit, o.overwrite);

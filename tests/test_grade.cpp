@@ -547,6 +547,29 @@ TEST(Grade, ResultsAndPluginOutSpeltTwoWaysAreStillOneFile) {
     EXPECT_TRUE(e.path().filename() == "adir" || e.path().extension() == ".txt") << e.path();
 }
 
+// The zip's run_autograder grades with the limits it is given: a limit that grading refuses
+// (out of range) is refused here, before any zip is written, not by every student's grading on
+// Gradescope.
+TEST(Grade, ThePackageRefusesTheLimitsThatGradingRefuses) {
+  TempDir dir;
+  const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
+      {{"--time-limit", "9999"}, "--time-limit: must be from 0.5 to 600 s"},
+      {{"--time-limit", "0.1"}, "--time-limit: must be from 0.5 to 600 s"},
+      {{"--memory-limit", "1"}, "--memory-limit: must be from 64 to 65536 MB"},
+      {{"--memory-limit", "100000"}, "--memory-limit: must be from 64 to 65536 MB"},
+  };
+  for (const auto& [limit, says] : cases) {
+    std::vector<std::string> args = {"grade", "integrators", "--package", "gradescope", "--out", (dir / "a.zip").string()};
+    args.insert(args.end(), limit.begin(), limit.end());
+    const auto r = run_motus(dir, args);
+    EXPECT_EQ(r.status, 2) << says << ": " << r.err;
+    EXPECT_EQ(count_lines(r.err), 1) << r.err;
+    EXPECT_NE(r.err.find(says), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(dir / "a.zip")) << says;
+    fs::remove(dir / "a.zip");
+  }
+}
+
 // Only the handed-in files themselves are taken: a link (to the solution, say) is not followed,
 // and a file over 1 MB is no source code; each says why. (Read through one descriptor that
 // follows no link: a link swapped in after a look would otherwise be followed.)
