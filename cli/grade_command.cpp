@@ -72,11 +72,17 @@ grade::Assignment load(const GradeCommandOptions& o, const std::string& folder) 
   }
 }
 
-void check_limits(const GradeCommandOptions& o) {
+// The limits a grading takes, checked for --package too: its run_autograder passes them on, and
+// out of range every student's grading on Gradescope would fail.
+void check_limit_ranges(const GradeCommandOptions& o) {
   // (Below half a second a correct solution can time out: each test starts a server of its own,
   // and the longer tests take tenths of a second of the reference solution's own time.)
   if (!(o.time_limit >= 0.5) || o.time_limit > 600) throw InputError("--time-limit: must be from 0.5 to 600 s");
   if (o.memory_limit < 64 || o.memory_limit > 65536) throw InputError("--memory-limit: must be from 64 to 65536 MB");
+}
+
+void check_limits(const GradeCommandOptions& o) {
+  check_limit_ranges(o);
   if (o.jobs && (*o.jobs < 1 || *o.jobs > 64)) throw InputError("--jobs: must be from 1 to 64");
   if (!o.no_sandbox)
     if (const auto why = grade::sandbox_unavailable()) throw InputError(*why);
@@ -121,8 +127,15 @@ int grade_one(const GradeCommandOptions& o, const std::string& folder) {
   if (!o.results.empty()) check_can_replace(o.results, o.overwrite);
   if (!o.plugin_out.empty()) check_can_replace(o.plugin_out, o.overwrite);
   if (!o.results.empty() && !o.plugin_out.empty()) {
+    // Made absolute first: weakly_canonical keeps a relative path as typed when its first part
+    // does not exist ("same.json"), but makes it absolute when it does ("adir/../same.json"): the
+    // two spellings of one file compared unequal, the grading ran, and its end failed (exit 1).
+    auto where = [](const std::string& path, std::error_code& error) {
+      const fs::path absolute = fs::absolute(path, error);
+      return error ? absolute : fs::weakly_canonical(absolute, error);
+    };
     std::error_code a, b;
-    const fs::path results = fs::weakly_canonical(o.results, a), plugin = fs::weakly_canonical(o.plugin_out, b);
+    const fs::path results = where(o.results, a), plugin = where(o.plugin_out, b);
     if (!a && !b && results == plugin)
       throw InputError(o.plugin_out + ": --plugin-out: is --results's file too; give them two files");
   }
@@ -305,6 +318,7 @@ int grade_command(const GradeCommandOptions& o) {
   if (o.batch.empty()) refuse(o.jobs.has_value(), "--jobs", "it is --batch's");
   if (!o.package.empty()) {
     if (o.out.empty()) throw InputError("--package: needs --out FILE.zip");
+    check_limit_ranges(o);
     const grade::Assignment assignment = load(o, folder);  // checked before it is packed
     const int status = write_gradescope_package(folder, assignment.name, o.hidden, o.out, o.no_sandbox, o.time_limit,
                                                 o.memory_limit, o.overwrite);

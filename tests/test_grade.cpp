@@ -7,6 +7,8 @@
 // Grading needs user namespaces for bubblewrap; where the machine has none, the tests that
 // grade in the sandbox say so and skip (this machine has them).
 #include <cmath>
+#include <functional>
+#include <tuple>
 
 #include "grade_harness.hpp"
 
@@ -561,6 +563,113 @@ TEST(Grade, WhatStopsTheGradingStillLeavesAResultsFileThatSaysWhy) {
   const json result = read_json(dir / "results.json");
   EXPECT_EQ(result["score"], 0);
   EXPECT_NE(result["output"].get<std::string>().find("nor in --hidden"), std::string::npos) << result.dump(2);
+}
+
+// --results and --plugin-out spelt two ways (adir/../same.json and same.json) are still one file:
+// refused before grading. (Compared as typed, through the existing part only, they graded in full
+// and then failed with exit 1, leaving a .partial folder behind.)
+TEST(Grade, ResultsAndPluginOutSpeltTwoWaysAreStillOneFile) {
+  TempDir dir;
+  fs::create_directories(dir / "adir");
+  const std::string solution = (fs::path(kAssignments) / "integrators/solution").string();
+  const fs::path was = fs::current_path();  // (motus starts where this test is: in `dir`, for the run)
+  fs::current_path(dir.path());
+  const auto r = run_motus(dir, {"grade", "integrators", solution, "--results", "adir/../same.json", "--plugin-out", "same.json"});
+  fs::current_path(was);
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_EQ(count_lines(r.err), 1) << r.err;
+  EXPECT_NE(r.err.find("same.json: --plugin-out: is --results's file too"), std::string::npos) << r.err;
+  for (const auto& e : fs::directory_iterator(dir.path()))  // no results, no plug-in, no .partial folder
+    EXPECT_TRUE(e.path().filename() == "adir" || e.path().extension() == ".txt") << e.path();
+}
+
+// The zip's run_autograder grades with the limits it is given: a limit that grading refuses
+// (out of range) is refused here, before any zip is written, not by every student's grading on
+// Gradescope.
+TEST(Grade, ThePackageRefusesTheLimitsThatGradingRefuses) {
+  TempDir dir;
+  const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
+      {{"--time-limit", "9999"}, "--time-limit: must be from 0.5 to 600 s"},
+      {{"--time-limit", "0.1"}, "--time-limit: must be from 0.5 to 600 s"},
+      {{"--memory-limit", "1"}, "--memory-limit: must be from 64 to 65536 MB"},
+      {{"--memory-limit", "100000"}, "--memory-limit: must be from 64 to 65536 MB"},
+  };
+  for (const auto& [limit, says] : cases) {
+    std::vector<std::string> args = {"grade", "integrators", "--package", "gradescope", "--out", (dir / "a.zip").string()};
+    args.insert(args.end(), limit.begin(), limit.end());
+    const auto r = run_motus(dir, args);
+    EXPECT_EQ(r.status, 2) << says << ": " << r.err;
+    EXPECT_EQ(count_lines(r.err), 1) << r.err;
+    EXPECT_NE(r.err.find(says), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(dir / "a.zip")) << says;
+    fs::remove(dir / "a.zip");
+  }
+}
+
+// assignment.json and rubric.json are the instructor's, read as strictly as a test file: a field
+// misspelt ("pionts" gave a test 0 points; "visibilty" showed an after_due_date test to students
+// at once), of the wrong type (a raw JSON library error, exit 1, and no results.json) or missing
+// is one line naming the file and the field, exit 2; grading still leaves a results.json that says
+// so, and --package writes no zip.
+void expect_assignment_refused(const TempDir& dir, const fs::path& assignment, const std::string& file,
+                               const std::string& says) {
+  const std::string solution = (fs::path(kAssignments) / "integrators/solution").string();
+  fs::remove(dir / "r.json");
+  auto r = run_motus(dir, {"grade", assignment.string(), solution, "--results", (dir / "r.json").string()});
+  EXPECT_EQ(r.status, 2) << says << ": " << r.err;
+  EXPECT_EQ(count_lines(r.err), 1) << r.err;
+  EXPECT_NE(r.err.find(file + ": " + says), std::string::npos) << r.err;
+  ASSERT_TRUE(fs::exists(dir / "r.json")) << says;
+  const json result = read_json(dir / "r.json");
+  expect_valid_gradescope(result);
+  EXPECT_EQ(result["score"], 0);
+  EXPECT_NE(result["output"].get<std::string>().find(file + ": " + says), std::string::npos) << result.dump(2);
+  r = run_motus(dir, {"grade", assignment.string(), "--package", "gradescope", "--out", (dir / "a.zip").string()});
+  EXPECT_EQ(r.status, 2) << says << ": " << r.err;
+  EXPECT_EQ(count_lines(r.err), 1) << r.err;
+  EXPECT_NE(r.err.find(file + ": " + says), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir / "a.zip")) << says;
+}
+
+// Each case changes a fresh copy of the integrators' assignment.json or rubric.json.
+void expect_each_refused(const std::vector<std::tuple<std::string, std::function<void(json&)>, std::string>>& cases) {
+  TempDir dir;
+  const fs::path assignment = dir / "mine";
+  fs::copy(fs::path(kAssignments) / "integrators", assignment, fs::copy_options::recursive);
+  for (const auto& [file, change, says] : cases) {
+    const std::string original = read_file(assignment / file);
+    json document = json::parse(original);
+    change(document);
+    write_file(assignment / file, document.dump(2));
+    expect_assignment_refused(dir, assignment, file, says);
+    write_file(assignment / file, original);
+  }
+}
+
+TEST(Grade, AFieldMisspeltOrMissingInTheRubricOrAssignmentIsNamed) {
+  expect_each_refused({
+      {"rubric.json", [](json& d) { d["tests"][0]["pionts"] = d["tests"][0]["points"]; d["tests"][0].erase("points"); },
+       "tests[0].pionts: unknown field (expected one of: name, points, visibility)"},
+      {"rubric.json", [](json& d) { d["tests"][3]["visibilty"] = "after_due_date"; d["tests"][3].erase("visibility"); },
+       "tests[3].visibilty: unknown field"},
+      {"rubric.json", [](json& d) { d["tests"][2].erase("points"); }, "tests[2].points: missing (required)"},
+      {"rubric.json", [](json& d) { d["tests"][2].erase("visibility"); }, "tests[2].visibility: missing (required)"},
+      {"rubric.json", [](json& d) { d["test"] = d["tests"]; }, "test: unknown field (expected one of: tests)"},
+      {"assignment.json", [](json& d) { d["flgs"] = {"-O3"}; }, "flgs: unknown field"},
+  });
+}
+
+TEST(Grade, AWrongTypeInTheRubricOrAssignmentIsNamedWithTheTypeExpected) {
+  expect_each_refused({
+      {"rubric.json", [](json& d) { d["tests"][0]["points"] = "2"; }, "tests[0].points: must be a number, not a string"},
+      {"rubric.json", [](json& d) { d["tests"][1]["points"] = nullptr; }, "tests[1].points: must be a number, not null"},
+      {"rubric.json", [](json& d) { d["tests"][0]["visibility"] = 1; }, "tests[0].visibility: must be a string, not a number"},
+      {"rubric.json", [](json& d) { d["tests"][0] = "euler.table"; }, "tests[0]: must be an object, not a string"},
+      {"assignment.json", [](json& d) { d["title"] = 5; }, "title: must be a string, not a number"},
+      {"assignment.json", [](json& d) { d["name"] = json::array(); }, "name: must be a string, not an array"},
+      {"assignment.json", [](json& d) { d["flags"] = "-O3"; }, "flags: must be an array of strings, not a string"},
+      {"assignment.json", [](json& d) { d["files"] = {"integrators.cpp", 3}; }, "files[1]: must be a string, not a number"},
+  });
 }
 
 // Only the handed-in files themselves are taken: a link (to the solution, say) is not followed,

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "motus/scene_error.hpp"
+#include "motus/scene_file/json_fields.hpp"
 #include "motus/scene_file/scene_file.hpp"
 
 namespace fs = std::filesystem;
@@ -29,16 +30,62 @@ json read_json(const fs::path& file) {
   }
 }
 
-std::vector<std::string> strings(const json& object, const std::string& key, const std::string& file) {
+// An optional array of strings (JsonFields has no reader of its own for one).
+std::vector<std::string> strings(JsonFields& f, const std::string& key) {
   std::vector<std::string> out;
-  if (!object.contains(key)) return out;
-  const json& a = object.at(key);
-  if (!a.is_array()) throw AssignmentError(file + ": " + key + ": must be an array of strings");
+  if (!f.has(key)) return out;
+  f.use(key);
+  const json& a = f.raw().at(key);
+  if (!a.is_array()) f.fail(key, "must be an array of strings, not " + json_type_name(a));
   for (size_t i = 0; i < a.size(); ++i) {
-    if (!a[i].is_string()) throw AssignmentError(file + ": " + key + "[" + std::to_string(i) + "]: must be a string");
+    if (!a[i].is_string()) f.fail(key + "[" + std::to_string(i) + "]", "must be a string, not " + json_type_name(a[i]));
     out.push_back(a[i].get<std::string>());
   }
   return out;
+}
+
+// assignment.json and rubric.json are read as strictly as a test is (JsonFields): a field misspelt
+// or of the wrong type is the instructor's mistake, named, never a default ("pionts" gave a test
+// 0 points; "visibilty" showed an after_due_date test to the students at once).
+AssignmentError in_file(const std::string& file, const SceneError& e) {
+  return AssignmentError(file + ": " + e.field() + ": " + e.what());
+}
+
+struct RubricEntry {
+  std::string name, visibility;
+  double points;
+};
+
+// rubric.json: {"tests": [{"name", "points", "visibility"}, ...]}, every field required.
+std::vector<RubricEntry> read_rubric(const std::string& rubric_file) {
+  const json rubric = read_json(rubric_file);
+  if (!rubric.is_object() || !rubric.contains("tests") || !rubric.at("tests").is_array())
+    throw AssignmentError(rubric_file + ": tests: must be an array of {name, points, visibility}");
+  static const std::set<std::string> visibilities = {"visible", "after_due_date", "after_published", "hidden"};
+  std::vector<RubricEntry> entries;
+  std::set<std::string> names;
+  try {
+    JsonFields top(rubric, "");
+    for (auto& f : top.objects("tests")) {
+      // The known fields are asked for first, so that a misspelt one is named as unknown rather
+      // than as the one it was meant to be, missing.
+      for (const char* key : {"name", "points", "visibility"}) f.use(key);
+      f.reject_unknown();
+      RubricEntry e;
+      e.name = f.string("name");
+      if (!names.insert(e.name).second) f.fail("name", "\"" + e.name + "\" is in the rubric twice");
+      e.points = f.number("points");
+      if (!(e.points >= 0) || e.points > 1e6) f.fail("points", "must be a number from 0 to 1,000,000");
+      e.visibility = f.string("visibility");
+      if (!visibilities.count(e.visibility))
+        f.fail("visibility", "must be visible, after_due_date, after_published or hidden");
+      entries.push_back(e);
+    }
+    top.reject_unknown();
+  } catch (const SceneError& e) {
+    throw in_file(rubric_file, e);
+  }
+  return entries;
 }
 
 // A file name the student hands in or the assignment provides: a plain name, never a path.
@@ -97,15 +144,19 @@ Assignment load_assignment(const std::string& folder, const std::optional<std::s
   if (!fs::is_regular_file(manifest_file)) throw AssignmentError(folder + ": not an assignment (no assignment.json)");
   const json manifest = read_json(manifest_file);
   if (!manifest.is_object()) throw AssignmentError(manifest_file + ": must be an object");
-  a.name = manifest.value("name", root.filename().string());
-  a.title = manifest.value("title", a.name);
-  a.files = strings(manifest, "files", manifest_file);
-  a.provided = strings(manifest, "provided", manifest_file);
-  a.flags = strings(manifest, "flags", manifest_file);
-  a.starter_passes = strings(manifest, "starter_passes", manifest_file);
-  if (manifest.contains("timeout_hint") && !manifest.at("timeout_hint").is_string())
-    throw AssignmentError(manifest_file + ": timeout_hint: must be a string");
-  a.timeout_hint = manifest.value("timeout_hint", std::string());
+  try {
+    JsonFields f(manifest, "");
+    a.name = f.string("name", root.filename().string());
+    a.title = f.string("title", a.name);
+    a.files = strings(f, "files");
+    a.provided = strings(f, "provided");
+    a.flags = strings(f, "flags");
+    a.starter_passes = strings(f, "starter_passes");
+    a.timeout_hint = f.string("timeout_hint", "");
+    f.reject_unknown();
+  } catch (const SceneError& e) {
+    throw in_file(manifest_file, e);
+  }
   if (a.files.empty()) throw AssignmentError(manifest_file + ": files: name at least one file the student hands in");
   for (const auto& f : a.files) check_file_name(f, manifest_file + ": files");
   for (const auto& f : a.provided) {
@@ -121,24 +172,13 @@ Assignment load_assignment(const std::string& folder, const std::optional<std::s
   if (hidden) read_definitions(*hidden, true, definitions);
 
   const std::string rubric_file = (root / "rubric.json").string();
-  const json rubric = read_json(rubric_file);
-  if (!rubric.is_object() || !rubric.contains("tests") || !rubric.at("tests").is_array())
-    throw AssignmentError(rubric_file + ": tests: must be an array of {name, points, visibility}");
-  static const std::set<std::string> visibilities = {"visible", "after_due_date", "after_published", "hidden"};
+  const std::vector<RubricEntry> rubric = read_rubric(rubric_file);
   std::set<std::string> in_rubric;
   SceneSource scenes = scenes_in;
-  for (size_t i = 0; i < rubric.at("tests").size(); ++i) {
-    const json& entry = rubric.at("tests")[i];
+  for (size_t i = 0; i < rubric.size(); ++i) {
+    const auto& [name, visibility, points] = rubric[i];
+    in_rubric.insert(name);
     const std::string where = rubric_file + ": tests[" + std::to_string(i) + "]";
-    if (!entry.is_object() || !entry.contains("name") || !entry.at("name").is_string())
-      throw AssignmentError(where + ".name: every rubric entry names a test");
-    const std::string name = entry.at("name").get<std::string>();
-    if (!in_rubric.insert(name).second) throw AssignmentError(where + ".name: \"" + name + "\" is in the rubric twice");
-    const double points = entry.value("points", 0.0);
-    if (!(points >= 0) || points > 1e6) throw AssignmentError(where + ".points: must be a number from 0 to 1,000,000");
-    const std::string visibility = entry.value("visibility", std::string("visible"));
-    if (!visibilities.count(visibility))
-      throw AssignmentError(where + ".visibility: must be visible, after_due_date, after_published or hidden");
     const auto it = definitions.find(name);
     if (it == definitions.end()) {
       if (!hidden) {
@@ -162,13 +202,9 @@ Assignment load_assignment(const std::string& folder, const std::optional<std::s
       f.string("name");
       t.title = f.string("title", name);
       t.hint = f.string("hint", "");
-      if (d.test.contains("catches")) {
-        f.use("catches");
-        t.catches = strings(d.test, "catches", d.file + ": " + d.path);
-      }
-      if (d.test.contains("counts_with_one_of")) {
-        f.use("counts_with_one_of");
-        t.counts_with_one_of = strings(d.test, "counts_with_one_of", d.file + ": " + d.path);
+      t.catches = strings(f, "catches");
+      if (f.has("counts_with_one_of")) {
+        t.counts_with_one_of = strings(f, "counts_with_one_of");
         if (t.counts_with_one_of.empty())
           throw AssignmentError(d.file + ": " + d.path + ".counts_with_one_of: names no test (leave it out instead)");
       }
