@@ -303,7 +303,17 @@ TEST(RenderCommand, ImpossibleSizeExits2WithOneLine) {
   const auto r = run_motus(dir, {"render", "spring", "--out", (dir / "frames").string(), "--size", "100000x16"});
   EXPECT_EQ(r.status, 2);
   EXPECT_EQ(count_lines(r.err), 1) << r.err;
-  EXPECT_NE(r.err.find("motus: error: OSMesa"), std::string::npos) << r.err;
+  // Named as the option (it began "OSMesa could not draw", which cli.md's error format does not allow).
+  EXPECT_NE(r.err.find("motus: error: --size: 100000x16 pixels at --supersample 2 is 200000 x 32, past what OSMesa draws"),
+            std::string::npos)
+      << r.err;
+  // And one whose buffer alone would pass 1 GiB.
+  const auto big = run_motus(dir, {"render", "spring", "--out", (dir / "frames").string(), "--size", "100000x100000"});
+  EXPECT_EQ(big.status, 2);
+  EXPECT_EQ(count_lines(big.err), 1) << big.err;
+  EXPECT_NE(big.err.find("motus: error: --size: 100000x100000 pixels at --supersample 2 needs an offscreen buffer over 1 GiB"),
+            std::string::npos)
+      << big.err;
   EXPECT_FALSE(fs::exists(dir / "frames"));  // nothing made before the failure
 }
 

@@ -24,8 +24,10 @@ Canvas::Canvas(int width, int height, int supersample) : width_(width), height_(
   if (supersample < 1 || supersample > 8) throw RenderError("supersampling must be from 1 to 8");
   const long w = static_cast<long>(width) * supersample, h = static_cast<long>(height) * supersample;
   if (w * h * 4 > kMaxBufferBytes)
-    throw RenderError("OSMesa could not draw " + std::to_string(width) + " x " + std::to_string(height) +
-                      " pixels: the offscreen buffer would exceed 1 GiB; choose a smaller --size");
+    // (Named as the option, as every other bad option is: the size is the user's, not OSMesa's.)
+    throw RenderError("--size: " + std::to_string(width) + "x" + std::to_string(height) + " pixels" +
+                      (supersample > 1 ? " at --supersample " + std::to_string(supersample) : std::string()) +
+                      " needs an offscreen buffer over 1 GiB; choose a smaller --size");
   // Mesa would keep a cache of compiled shaders in ~/.cache/mesa_shader_cache: a write outside
   // the folder the user gave, for shaders that take no time to compile. (Unless the user set it.)
   ::setenv("MESA_SHADER_CACHE_DISABLE", "true", 0);
@@ -37,9 +39,9 @@ Canvas::Canvas(int width, int height, int supersample) : width_(width), height_(
   if (!OSMesaMakeCurrent(context, buffer_.data(), GL_UNSIGNED_BYTE, static_cast<GLsizei>(w), static_cast<GLsizei>(h))) {
     OSMesaDestroyContext(context);
     context_ = nullptr;
-    throw RenderError("OSMesa could not make a " + std::to_string(w) + " x " + std::to_string(h) +
-                      " pixel context (" + std::to_string(width) + " x " + std::to_string(height) + " at " +
-                      std::to_string(supersample) + "x supersampling): choose a smaller --size");
+    throw RenderError("--size: " + std::to_string(width) + "x" + std::to_string(height) + " pixels at --supersample " +
+                      std::to_string(supersample) + " is larger than OSMesa draws (a " + std::to_string(w) + " x " +
+                      std::to_string(h) + " pixel context); choose a smaller --size");
   }
   const auto* version = reinterpret_cast<const char*>(glGetString(GL_VERSION));
   if (!version) {
@@ -60,10 +62,10 @@ Canvas::Canvas(int width, int height, int supersample) : width_(width), height_(
     OSMesaMakeCurrent(nullptr, nullptr, 0, 0, 0);
     OSMesaDestroyContext(context);
     context_ = nullptr;
-    throw RenderError("OSMesa cannot draw " + std::to_string(width) + " x " + std::to_string(height) + " pixels at " +
-                      std::to_string(supersample) + "x supersampling (" + std::to_string(w) + " x " + std::to_string(h) +
-                      "); its limit is " + std::to_string(limit_w) + " x " + std::to_string(limit_h) +
-                      ": choose a smaller --size or --supersample");
+    throw RenderError("--size: " + std::to_string(width) + "x" + std::to_string(height) + " pixels at --supersample " +
+                      std::to_string(supersample) + " is " + std::to_string(w) + " x " + std::to_string(h) +
+                      ", past what OSMesa draws (" + std::to_string(limit_w) + " x " + std::to_string(limit_h) +
+                      "): choose a smaller --size or --supersample");
   }
   OSMesaPixelStore(OSMESA_Y_UP, 1);  // row 0 of the buffer is the bottom row
   glDisable(GL_DITHER);
