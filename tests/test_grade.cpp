@@ -512,8 +512,14 @@ TEST(Grade, BadInputIsOneLineAndExitTwo) {
   write_file(dir / "results.json", "{}");
   fs::create_directories(dir / "empty");
   const std::string solution = (fs::path(kAssignments) / "integrators/solution").string();
+  // A test's shipped scene misspelt: "tests/public.json: sprnig: cannot be read" named neither the
+  // test nor its field (found by an audit).
+  json misspelt_scene = definitions("integrators").at("euler.table");
+  misspelt_scene["scene"] = "sprnig";
+  const std::string misspelt = integrators_with_tests(dir, "misspelt", json::array({misspelt_scene})).string();
   const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
       {{"grade", "nonsense", solution}, "no such assignment"},
+      {{"grade", misspelt, solution}, "public.json: tests[0].scene: \"sprnig\" is no shipped scene (motus list shows them"},
       {{"grade", "integrators", (dir / "nowhere").string()}, "no such submission folder"},
       {{"grade", "integrators", solution, "--results", (dir / "results.json").string()}, "--overwrite"},
       {{"grade", "integrators", solution, "--hidden", (dir / "nowhere").string()}, "--hidden: no such folder"},
