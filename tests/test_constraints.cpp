@@ -750,6 +750,35 @@ TEST(ChainSolver, APinAtEachEndStaysExactAndTheChainIsSolved) {
   EXPECT_LT(worst, 1e-11);
 }
 
+TEST(ChainSolver, AChainThatCannotReachBetweenItsPinsStaysStretchedAndGainsNoEnergy) {
+  // rope.json's rope (20 sticks of 0.1 m, 1 kg in all) stretched between pins 4 m apart: no
+  // projection can make its sticks exact — every one is, on average, twice its length at least
+  // (a relative error ≥ 1). Pulled straight along the line between its pins, the chain's
+  // constraints are one too many for that line, Newton's system is near singular, and its steps
+  // flung the bodies metres a step: Verlet read that as speed, and the energy grew without end
+  // (an audit's chain of 10 sticks gained 458 J from 0 in 2 s). Now such a step is a sweep's: the
+  // chain stays on the line between its pins (within a stick's length of it), its energy within
+  // what gravity could give it over that length (m g × 4 m = 39 J; it starts at E = 0 on the
+  // line), and its sticks' error near the least possible.
+  MechanicalDescription m = with_gravity(50);
+  add_shipped_rope(m);
+  for (int i = 0; i <= 20; ++i) m.bodies[static_cast<size_t>(i)].position[0] = 0.2 * i;  // stretched to twice their length
+  m.pins.push_back({20, {4, 2, 0}});
+  const SceneDescription scene = verlet_scene("stretched rope", m, 4);
+  Simulation sim(scene, Integrator::Verlet);
+  const double e0 = sim.energy()->total, mass = 21 * 0.05, scale = mass * kG * 4;
+  double worst_gain = 0, farthest_off_line = 0;
+  sim.advance(scene.duration, scene.dt, {}, [&](const Simulation& s) {
+    worst_gain = std::max(worst_gain, s.energy()->total - e0);
+    for (int i = 0; i <= 20; ++i) farthest_off_line = std::max(farthest_off_line, std::abs(s.state()[2 * i + 1] - 2));
+  });
+  EXPECT_LT(worst_gain, scale);
+  EXPECT_LT(farthest_off_line, 0.1);
+  const double end_error = sim.world()->constraint_error(sim.state().head(42));
+  EXPECT_GE(end_error, 1.0 - 1e-12);  // (the least possible: no projection gets below it)
+  EXPECT_LT(end_error, 2.0);          // (twice that)
+}
+
 TEST(Rope, TheChainSolverKeepsItExact) {
   // rope.json through the chain solver (theory: Newton's method converges to rounding; its
   // tolerance is 1e-12 of a stick's length).

@@ -107,6 +107,22 @@ bool ChainSolver::iterate_in(double* x, double tolerance) {
     }
     lambda_[m - 1] = rhs_[m - 1] / pivot_[m - 1];
     for (size_t j = m - 1; j-- > 0;) lambda_[j] = (rhs_[j] - off_[j + 1] * lambda_[j + 1]) / pivot_[j];
+    // A Newton step that would move a body farther than the whole chain is long is no step to
+    // take: the system is nearly singular. A chain pulled straight between two pins it cannot
+    // reach has one constraint too many along its line (its errors cannot all vanish), and its λ
+    // was huge: the bodies were flung metres a step, Verlet read that as speed, and the energy
+    // grew without end. A sweep then does what a sweep does (a stretched chain stays stretched,
+    // as in the peers), and Newton resumes at the next iteration.
+    double chain_length = 0, farthest = 0;
+    for (size_t j = 0; j < m; ++j) {
+      chain_length += length_[static_cast<size_t>(chain.sticks[j])];
+      farthest = std::max(farthest, std::abs(lambda_[j]) * std::max(inverse_mass_[q[j]], inverse_mass_[q[j + 1]]));
+    }
+    const bool too_far = !(farthest <= chain_length);  // (NaN too)
+    if (too_far) {
+      sweep_chain<D>(chain, x);
+      continue;
+    }
     // x ← x + W Jᵀ λ: stick j pulls body j along −n_j and body j + 1 along +n_j.
     for (size_t j = 0; j < m; ++j) {
       const double move_a = inverse_mass_[q[j]] * lambda_[j], move_b = inverse_mass_[q[j + 1]] * lambda_[j];
