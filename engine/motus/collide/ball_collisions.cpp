@@ -685,10 +685,11 @@ void BallCollisions<D>::test_pair(int i, int k, double t) {
   ++counters_.pair_tests;
   const Point dp = position_at(k, t) - position_at(i, t);
   const Point dv = velocity(k) - velocity(i);
-  const double R = radius_of(i) + radius_of(k);
+  const double R = radius_of(i) + radius_of(k), dp_dp = dp.squaredNorm();
   const double toi = rules_ ? outside_balls_impact(position_at(i, t), velocity(i), radius_of(i), position_at(k, t),
                                                    velocity(k), radius_of(k), h_ - t)
-                            : sphere_sphere_impact(dp, dv, R, h_ - t);
+                     : far_apart(dp_dp, R) ? far_sphere_sphere_impact(dp, dv, R, h_ - t)
+                                           : sphere_sphere_impact(dp_dp, dp.dot(dv), dv.squaredNorm(), R, h_ - t);
   if (toi != kNoImpact) push(t + toi, i, k);
 }
 
@@ -1049,7 +1050,8 @@ double BallCollisions<D>::segment_impact(const Segment& s, const Point& p, const
     }
     for (const Point* end : {&s.a, &s.b}) {
       const Point d = p - *end;
-      const double te = sphere_sphere_impact(d, u, r, horizon);
+      const double te = far_apart(d.squaredNorm(), r) ? far_sphere_sphere_impact(d, u, r, horizon)
+                                                      : sphere_sphere_impact(d.squaredNorm(), d.dot(u), u.squaredNorm(), r, horizon);
       if (te < best) {
         best = te;
         best_normal = (p + u * te - *end).normalized();

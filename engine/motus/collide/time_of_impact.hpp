@@ -36,12 +36,14 @@ inline double sphere_sphere_impact(double dp_dp, double dp_dv, double dv_dv, dou
 // (an error of 1e-8 R before) the closest approach is found first, t_c = −b/a, where the miss
 // vector m = dp + dv t_c is computed as a vector, with no such loss, and the contact from it:
 //   t = t_c − √((R² − m·m) / a).
+// (The callers test far_apart first and call the scalar form above otherwise: the pair pass and
+// the contacts' searches stay as they were.)
 constexpr double kFarApart2 = 1e8;  // (d/R)² from which the closest approach is found first
+inline bool far_apart(double dp_dp, double R) { return dp_dp > kFarApart2 * R * R; }
 
 template <class Vec>
-double sphere_sphere_impact(const Vec& dp, const Vec& dv, double R, double horizon) {
-  const double dp_dp = dp.squaredNorm(), dp_dv = dp.dot(dv), dv_dv = dv.squaredNorm();
-  if (!(dp_dp > kFarApart2 * R * R)) return sphere_sphere_impact(dp_dp, dp_dv, dv_dv, R, horizon);
+double far_sphere_sphere_impact(const Vec& dp, const Vec& dv, double R, double horizon) {
+  const double dp_dv = dp.dot(dv), dv_dv = dv.squaredNorm();
   if (dp_dv >= 0) return kNoImpact;  // not approaching
   const double closest = -dp_dv / dv_dv;
   const double miss2 = (dp + dv * closest).squaredNorm();
