@@ -707,6 +707,10 @@ TEST(Grade, AHandedInLinkOrAHugeFileIsNotTaken) {
     EXPECT_EQ((*files)["status"], "failed");
     EXPECT_NE((*files)["output"].get<std::string>().find("integrators.cpp: " + why), std::string::npos) << (*files)["output"];
     EXPECT_EQ(result["score"].get<double>(), 0);
+    // What the student reads first says the file may be there (it said "is missing", of a file in plain sight).
+    EXPECT_NE(result["output"].get<std::string>().find("A handed-in file is missing or cannot be taken: see \"files\"."),
+              std::string::npos)
+        << result["output"];
   }
 }
 
@@ -1323,9 +1327,13 @@ TEST(Grade, AMissingFileSaysWhereItMightBe) {
   write_file(dir / "folder/integrators/integrators.cpp", solution);
   fs::create_directories(dir / "packed");
   write_file(dir / "packed/integrators.zip", "PK");
+  // Two folders down (as a zip unpacked with its own folder in it): only one down was looked at.
+  fs::create_directories(dir / "deeper/hw3/src");
+  write_file(dir / "deeper/hw3/src/integrators.cpp", solution);
   const std::map<std::string, std::string> hints = {
       {"case", "there is Integrators.cpp: names are case-sensitive"},
       {"folder", "there is integrators/integrators.cpp: put it at the top"},
+      {"deeper", "there is hw3/src/integrators.cpp: put it at the top"},
       {"packed", "there is integrators.zip: hand in the files themselves, unpacked"}};
   for (const auto& [folder, hint] : hints) {
     const auto r = run_motus(dir, {"grade", "integrators", (dir / folder).string(), "--results",

@@ -40,8 +40,17 @@ std::string where_it_might_be(const std::string& submission, const std::string& 
     for (const char* packed : {".zip", ".tar", ".tar.gz", ".tgz", ".7z", ".rar"})
       if (lowered.size() > std::string(packed).size() && lowered.ends_with(packed))
         return " (there is " + found + ": hand in the files themselves, unpacked)";
-    if (top->is_directory(error) && !top->is_symlink(error) && fs::is_regular_file(fs::symlink_status(top->path() / name, error)))
-      return " (there is " + found + "/" + name + ": put it at the top of the submission, not in a folder)";
+  }
+  // In a folder, up to three down (a zip unpacked as name/src/...: one down only was looked at),
+  // no link followed, a thousand entries at most.
+  error.clear();
+  looked = 0;
+  for (fs::recursive_directory_iterator it(submission, error), end; !error && it != end && looked < 1000;
+       it.increment(error), ++looked) {
+    if (it.depth() >= 2) it.disable_recursion_pending();
+    if (it.depth() >= 1 && it->path().filename() == name && fs::is_regular_file(fs::symlink_status(it->path(), error)))
+      return " (there is " + it->path().lexically_relative(submission).string() +
+             ": put it at the top of the submission, not in a folder)";
   }
   return "";
 }
@@ -204,7 +213,7 @@ GradeResult grade_submission(const Assignment& a, const std::string& submission,
     build.output = built.ok ? fmt::format("Compiled in {:.1f} s.", built.seconds)
                             : "Not graded: the submission does not compile. The compiler said:\n" + built.output;
   } else {
-    build.output = "Not built: a file is missing (see \"files\").";
+    build.output = "Not built: a handed-in file is missing or cannot be taken (see \"files\").";
   }
   result.tests.push_back(build);
   result.compiled = build.passed;
@@ -224,7 +233,7 @@ GradeResult grade_submission(const Assignment& a, const std::string& submission,
     r.visibility = t.visibility;
     if (!build.passed) {
       r.output = files.passed ? "Not run: the submission does not compile (see \"build\")."
-                              : "Not run: a file is missing (see \"files\").";
+                              : "Not run: a handed-in file is missing or cannot be taken (see \"files\").";
     } else {
       // A server of its own: RLIMIT_CPU counts a process's whole life, so a server kept from
       // the tests before would leave this one only what they did not use (and the student's
@@ -325,7 +334,9 @@ GradeResult grade_submission(const Assignment& a, const std::string& submission,
     result.totals = fmt::format("All tests: {} of {} points; {} of {} tests passed{}.", result.score, result.max_score,
                                 passed, a.tests.size(), not_run);
   }
-  if (!files.passed) result.output += " A handed-in file is missing: see \"files\".";
+  // (Or there and not taken: a link, a file over 1 MB. "Missing" alone sent a student looking for
+  // a file they could see.)
+  if (!files.passed) result.output += " A handed-in file is missing or cannot be taken: see \"files\".";
   else if (!build.passed) result.output += " The submission does not compile: see \"build\".";
   return result;
 }
