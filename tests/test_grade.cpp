@@ -961,6 +961,26 @@ TEST(Grade, ATimeoutNamesTheStudentsFunctionAndTheAssignmentsHint) {
   std::string output = (*t)["output"].get<std::string>();
   EXPECT_NE(output.find("timed out after 1 s during time_of_impact"), std::string::npos) << output;
   EXPECT_EQ(output.find("balls_impact"), std::string::npos) << output;
+  // The integrators and collisions assignments have a timeout_hint too (an audit's endless loop in
+  // midpoint_step read "stepping with k1 is Euler again", the test's hint about wrong numbers).
+  for (const std::string assignment : {"collisions", "integrators"}) {
+    const std::string hint = read_json(fs::path(kAssignments) / assignment / "assignment.json").at("timeout_hint").get<std::string>();
+    if (assignment == "collisions") {
+      EXPECT_NE(output.find("This usually means: " + hint), std::string::npos) << output;
+      continue;
+    }
+    const fs::path integrators = with("integrators", "integrators.cpp", "void midpoint_step(const FirstOrderSystem& f, double t, double h, VectorInOut y) {\n",
+                                      "void midpoint_step(const FirstOrderSystem& f, double t, double h, VectorInOut y) {\n  for (volatile int spin = 0;; spin = spin + 1) {}\n");
+    r = run_motus(dir, {"grade", "integrators", integrators.string(), "--time-limit", "1", "--results",
+                        (dir / "integrators.json").string()});
+    ASSERT_EQ(r.status, 0) << r.err;
+    const json steps = read_json(dir / "integrators.json");
+    const json* midpoint = test_named(steps, "midpoint.order");
+    ASSERT_NE(midpoint, nullptr);
+    const std::string said = (*midpoint)["output"].get<std::string>();
+    EXPECT_NE(said.find("timed out after 1 s"), std::string::npos) << said;
+    EXPECT_NE(said.find("This usually means: " + hint), std::string::npos) << said;
+  }
 
   const fs::path cloth = with("cloth", "cloth.cpp", "for (int sweep = 0; sweep < c.iterations; ++sweep) {", "for (;;) {");
   r = run_motus(dir, {"grade", "cloth", cloth.string(), "--time-limit", "1", "--results", (dir / "cloth.json").string()});
