@@ -10,7 +10,12 @@ ChainSolver::ChainSolver(int dimensions, const Vector& inverse_mass, const std::
     : d_(dimensions), inverse_mass_(inverse_mass), chains_(std::move(chains)) {
   for (const auto& s : sticks) length_.push_back(s.length);
   size_t longest = 0;
-  for (const auto& c : chains_) longest = std::max(longest, c.sticks.size());
+  for (const auto& c : chains_) {
+    longest = std::max(longest, c.sticks.size());
+    double length = 0;
+    for (int s : c.sticks) length += length_[static_cast<size_t>(s)];
+    chain_length_.push_back(length);
+  }
   unit_.resize(longest * static_cast<size_t>(d_));
   error_.resize(longest);
   pivot_.resize(longest);
@@ -53,7 +58,8 @@ void ChainSolver::sweep_chain(const StickChain& chain, double* x) const {
 template <int D>
 bool ChainSolver::iterate_in(double* x, double tolerance) {
   bool all_exact = true;
-  for (const StickChain& chain : chains_) {
+  for (size_t c = 0; c < chains_.size(); ++c) {
+    const StickChain& chain = chains_[c];
     const size_t m = chain.sticks.size();
     const int* q = chain.bodies.data();
     // The constraints and their directions, and how far the worst is from its length.
@@ -113,12 +119,10 @@ bool ChainSolver::iterate_in(double* x, double tolerance) {
     // was huge: the bodies were flung metres a step, Verlet read that as speed, and the energy
     // grew without end. A sweep then does what a sweep does (a stretched chain stays stretched,
     // as in the peers), and Newton resumes at the next iteration.
-    double chain_length = 0, farthest = 0;
-    for (size_t j = 0; j < m; ++j) {
-      chain_length += length_[static_cast<size_t>(chain.sticks[j])];
+    double farthest = 0;
+    for (size_t j = 0; j < m; ++j)
       farthest = std::max(farthest, std::abs(lambda_[j]) * std::max(inverse_mass_[q[j]], inverse_mass_[q[j + 1]]));
-    }
-    const bool too_far = !(farthest <= chain_length);  // (NaN too)
+    const bool too_far = !(farthest <= chain_length_[c]);  // (NaN too)
     if (too_far) {
       sweep_chain<D>(chain, x);
       continue;

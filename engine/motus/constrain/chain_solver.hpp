@@ -43,7 +43,8 @@ private:
 
   int d_ = 1;
   Vector inverse_mass_;
-  std::vector<double> length_;  // rest length of each stick
+  std::vector<double> length_;        // rest length of each stick
+  std::vector<double> chain_length_;  // each chain's, the sum of its sticks' (a Newton step's bound)
   std::vector<StickChain> chains_;
   // Scratch, sized for the longest chain: the unit vectors n_j (d each), C_j, the matrix's
   // off-diagonal e_j, the elimination's pivots and right-hand side, λ.

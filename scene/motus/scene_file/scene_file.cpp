@@ -584,7 +584,7 @@ SceneDescription parse_scene(const std::string& text, const std::string& file, c
   // nlohmann's parser ends its input at a NUL byte, as a C string ends: whatever followed it was
   // never read, and a scene cut short that way ran as if whole.
   if (const size_t nul = text.find('\0'); nul != std::string::npos) {
-    const size_t line_start = text.rfind('\n', nul) == std::string::npos ? 0 : text.rfind('\n', nul) + 1;
+    const size_t line_start = text.rfind('\n', nul) + 1;  // (npos + 1 = 0: the first line)
     const auto line = 1 + std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(nul), '\n');
     throw SceneFileError(file, "", "malformed JSON at line " + std::to_string(line) + ", column " +
                                        std::to_string(nul - line_start + 1) + ": a NUL byte (a text file has none)");
