@@ -686,6 +686,35 @@ TEST(Grade, AWrongTypeInTheRubricOrAssignmentIsNamedWithTheTypeExpected) {
   });
 }
 
+// The assignment's own files are read as strictly as a scene: a key twice in one object counted
+// once (the last: a rubric entry with "points" twice gave the second without a word), a NUL byte
+// ended the file there, and a test file's keys beside "tests" (a misspelt second list) were
+// skipped. Each is one line naming the file and the field, exit 2.
+TEST(Grade, AnAssignmentsOwnFilesAreReadAsStrictlyAsAScene) {
+  TempDir dir;
+  const fs::path assignment = dir / "mine";
+  fs::copy(fs::path(kAssignments) / "integrators", assignment, fs::copy_options::recursive);
+  const std::vector<std::tuple<std::string, std::function<std::string(const std::string&)>, std::string>> cases = {
+      {"rubric.json",
+       [](const std::string& text) {
+         const size_t points = text.find("\"points\"");
+         return text.substr(0, points) + "\"points\": 100, " + text.substr(points);
+       },
+       "tests[0].points: duplicate key \"points\""},
+      {"assignment.json", [](const std::string& text) { return std::string(1, '\0') + text; },
+       "malformed JSON at line 1, column 1: a NUL byte"},
+      {"tests/public.json",
+       [](const std::string& text) { return "{\"hidden_tests\": [], " + text.substr(text.find('{') + 1); },
+       "hidden_tests: unknown field (expected one of: tests)"},
+  };
+  for (const auto& [file, change, says] : cases) {
+    const std::string original = read_file(assignment / file);
+    write_file(assignment / file, change(original));
+    expect_assignment_refused(dir, assignment, fs::path(file).filename().string(), says);
+    write_file(assignment / file, original);
+  }
+}
+
 // Only the handed-in files themselves are taken: a link (to the solution, say) is not followed,
 // and a file over 1 MB is no source code; each says why. (Read through one descriptor that
 // follows no link: a link swapped in after a look would otherwise be followed.)

@@ -11,6 +11,7 @@
 #include "motus/scene_error.hpp"
 #include "motus/scene_file/json_fields.hpp"
 #include "motus/scene_file/scene_file.hpp"
+#include "motus/scene_file/strict_json.hpp"
 
 namespace fs = std::filesystem;
 using nlohmann::json;
@@ -23,10 +24,12 @@ json read_json(const fs::path& file) {
   if (!in) throw AssignmentError(file.string() + ": cannot be read");
   std::stringstream text;
   text << in.rdbuf();
+  // As strictly as a scene: a key written twice ("points" twice in one rubric entry) would
+  // otherwise count once, the last, and a NUL byte would end the file unseen.
   try {
-    return json::parse(text.str());
-  } catch (const json::parse_error& e) {
-    throw AssignmentError(file.string() + ": not valid JSON: " + e.what());
+    return parse_strict_json(text.str(), file.string());
+  } catch (const SceneFileError& e) {
+    throw AssignmentError(e.what());
   }
 }
 
@@ -111,6 +114,15 @@ void read_definitions(const fs::path& folder, bool hidden, std::map<std::string,
     const json document = read_json(file);
     if (!document.is_object() || !document.contains("tests") || !document.at("tests").is_array())
       throw AssignmentError(file.string() + ": tests: must be an array of tests");
+    // A test file holds its tests and nothing else: a misspelt "tests" beside the real one (or a
+    // second list, "hidden_tests") would otherwise be skipped without a word.
+    try {
+      JsonFields top(document, "");
+      top.use("tests");
+      top.reject_unknown();
+    } catch (const SceneError& e) {
+      throw in_file(file.string(), e);
+    }
     const json& tests = document.at("tests");
     for (size_t i = 0; i < tests.size(); ++i) {
       const std::string path = "tests[" + std::to_string(i) + "]";

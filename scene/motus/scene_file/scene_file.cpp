@@ -17,6 +17,7 @@
 #include "motus/scene_error.hpp"
 #include "motus/systems/system_catalog.hpp"
 #include "motus/scene_file/scene_overrides.hpp"
+#include "motus/scene_file/strict_json.hpp"
 #include "motus/scene_file/equations_system.hpp"
 
 namespace motus {
@@ -580,7 +581,7 @@ SceneFileError::SceneFileError(const std::string& file_, const std::string& fiel
     : std::runtime_error(clip(file_, 160) + ": " + (field_.empty() ? "" : clip(field_, 100) + ": ") + clip(message_, 240)),
       file(file_), field(field_), message(message_) {}
 
-SceneDescription parse_scene(const std::string& text, const std::string& file, const std::vector<std::string>& overrides) {
+nlohmann::json parse_strict_json(const std::string& text, const std::string& file) {
   // nlohmann's parser ends its input at a NUL byte, as a C string ends: whatever followed it was
   // never read, and a scene cut short that way ran as if whole.
   if (const size_t nul = text.find('\0'); nul != std::string::npos) {
@@ -594,14 +595,17 @@ SceneDescription parse_scene(const std::string& text, const std::string& file, c
     if (!nlohmann::json::sax_parse(text, &checker) && !checker.problem().empty())
       throw SceneFileError(file, checker.path(), checker.problem());
   }
-  nlohmann::json document;
   try {
-    document = nlohmann::json::parse(text);
+    return nlohmann::json::parse(text);
   } catch (const nlohmann::json::parse_error& e) {
     throw_parse_error(text, file, e, e.byte);
   } catch (const nlohmann::json::exception& e) {  // e.g. 1e999: number overflow
     throw_parse_error(text, file, e, 0);
   }
+}
+
+SceneDescription parse_scene(const std::string& text, const std::string& file, const std::vector<std::string>& overrides) {
+  nlohmann::json document = parse_strict_json(text, file);
   std::string current;
   try {
     for (const auto& o : overrides) {
