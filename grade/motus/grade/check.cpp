@@ -597,20 +597,51 @@ public:
     json request = args_;
     request["op"] = op_;
     const json reply = probe.ask(request, deadline);
-    std::string measured, expected;
+    // The student reads which of their functions was called, with what: an argument is no
+    // expected value, and "v_a = (0.5, 0)" alone does not say whose v_a.
+    std::string measured = call_as_written() + " gives ", expected;
+    const size_t measured_start = measured.size();
     bool ok = true;
     for (const auto& [key, want] : expect_.items()) {
       if (!reply.contains(key)) throw ProbeFailure("the call returned no " + key);
       const auto got = want.is_array() ? wire::numbers(reply.at(key)) : std::vector<double>{wire::number(reply.at(key))};
       const auto wanted = want.is_array() ? wire::numbers(want) : std::vector<double>{wire::number(want)};
       ok = ok && all_close(got, wanted, tolerance_);
-      measured += fmt::format("{}{} = {}", measured.empty() ? "" : ", ", key, nums(got));
+      measured += fmt::format("{}{} = {}", measured.size() == measured_start ? "" : ", ", key, nums(got));
       expected += fmt::format("{}{} = {}", expected.empty() ? "" : ", ", key, nums(wanted));
     }
     return ok ? pass(measured) : fail(measured, expected + fmt::format(" (to {})", num(tolerance_)), hint_);
   }
 
 private:
+  // "collide_balls(m_a = 1, v_a = (1, 0), ...)": the student's own function (motus/student/
+  // plugin.hpp names them) with its arguments in the order it declares them.
+  std::string call_as_written() const {
+    struct Signature {
+      const char* op;
+      const char* function;
+      std::vector<const char*> parameters;
+    };
+    static const std::vector<Signature> signatures = {
+        {"collide_balls", "collide_balls", {"m_a", "v_a", "m_b", "v_b", "n", "e"}},
+        {"bounce_off_wall", "bounce_off_wall", {"v", "n", "e"}},
+        {"balls_impact", "time_of_impact", {"p_a", "v_a", "r_a", "p_b", "v_b", "r_b"}},
+        {"plane_impact", "time_of_impact_with_plane", {"p", "v", "r", "n", "offset"}},
+    };
+    for (const auto& s : signatures) {
+      if (op_ != s.op) continue;
+      std::string call = std::string(s.function) + "(";
+      for (const char* p : s.parameters) {
+        if (!args_.contains(p)) continue;
+        const json& a = args_.at(p);
+        call += fmt::format("{}{} = {}", call.back() == '(' ? "" : ", ", p,
+                            a.is_array() ? nums(wire::numbers(a)) : num(wire::number(a)));
+      }
+      return call + ")";
+    }
+    return op_;
+  }
+
   std::string op_;
   json args_, expect_;
   double tolerance_;
