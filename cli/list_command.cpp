@@ -42,8 +42,12 @@ int list_command(const std::vector<std::string>& plugin_files) {
   // (As wide as the longest name, a plug-in's included: student:symplectic-euler is 24.)
   size_t width = 20;
   for (const Method& m : plugins().integrators()) width = std::max(width, m.name().size());
+  // The Verlet family and Yoshida's composition have their order for forces of the positions
+  // alone: a damper or drag is evaluated at a velocity half a step old, and they fall to order 1
+  // (docs/course.md, section 4; tests/test_order.cpp's DampedOrder).
   for (const auto& i : all_integrators())
-    fmt::print("  {:<{}} order {}{}{}  {}\n", i.name, width, i.order, i.adaptive ? ", adaptive" : "",
+    fmt::print("  {:<{}} order {}{}{}{}  {}\n", i.name, width, i.order,
+               i.needs_mechanical && i.order > 1 ? " (1 with damping or drag)" : "", i.adaptive ? ", adaptive" : "",
                i.needs_mechanical ? ", mechanical scenes only" : "", i.description);
   for (const Method& m : plugins().integrators())
     fmt::print("  {:<{}} order {}{}{}  {}\n", m.name(), width, m.order(), m.adaptive() ? ", adaptive" : "",

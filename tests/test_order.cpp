@@ -58,6 +58,22 @@ TEST_P(OscillatorOrder, MatchesTheory) { check_orders(motus_test::oscillator(1),
 // K(−h/2) cancels it to O(h²). A property of that end time, not of the integrators.
 TEST_P(KeplerOrder, MatchesTheory) { check_orders(motus_test::kepler(), 5, GetParam()); }
 
+// With a force of the velocity (a damper), the orders of the Verlet family and of Yoshida's
+// composition are lost: velocity Verlet takes a_{n+1} = a(x_{n+1}, v_{n+½}), half a step's change
+// of v away from a(x_{n+1}, v_{n+1}), an O(h) error in the acceleration that the last half kick
+// carries into v as h/2 × c × O(h): a local error O(h²), so global order 1, whatever order the
+// method has for forces of the positions alone (Störmer Verlet and the composition alike). The
+// Runge–Kutta methods treat v as they treat x and keep theirs. docs/course.md says so; this
+// measures it on the damped_spring scene (m = 1, k = 4, c = 0.4; exact: the damped harmonic
+// solution) to T = 10.
+class DampedOrder : public ::testing::TestWithParam<OrderCase> {};
+
+TEST_P(DampedOrder, MatchesTheory) {
+  motus::SceneDescription scene = motus_test::spring(1, 4, 1, 0);
+  scene.mechanical->forces.springs[0].damping = 0.4;
+  check_orders(scene, 10, GetParam());
+}
+
 std::string case_name(const ::testing::TestParamInfo<OrderCase>& info) {
   std::string name = motus::info(info.param.integrator).name;
   for (char& ch : name)
@@ -86,6 +102,15 @@ INSTANTIATE_TEST_SUITE_P(AllFixedStep, KeplerOrder,
                                            OrderCase{Integrator::VelocityVerlet, 2, 5000},
                                            OrderCase{Integrator::Rk4, 4, 500},  // h = 0.01 …
                                            OrderCase{Integrator::Yoshida4, 4, 500}),
+                         case_name);
+
+INSTANTIATE_TEST_SUITE_P(VelocityDependentForce, DampedOrder,
+                         ::testing::Values(OrderCase{Integrator::SymplecticEuler, 1, 1000},  // h = 1e-2 …
+                                           OrderCase{Integrator::Verlet, 1, 1000},
+                                           OrderCase{Integrator::VelocityVerlet, 1, 1000},
+                                           OrderCase{Integrator::Yoshida4, 1, 1000},
+                                           OrderCase{Integrator::Midpoint, 2, 1000},
+                                           OrderCase{Integrator::Rk4, 4, 100}),  // h = 0.1 …
                          case_name);
 
 }  // namespace
