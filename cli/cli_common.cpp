@@ -124,7 +124,45 @@ void add_plugin_option(CLI::App* command, std::vector<std::string>& files) {
       ->type_name("FILE.so");
 }
 
-void load_plugins(const std::vector<std::string>& files) {
+namespace {
+std::FILE* kept_data_output = nullptr;
+}
+
+std::FILE* data_output() { return kept_data_output ? kept_data_output : stdout; }
+
+void QuietStandardOutput::begin() {
+  if (saved_ >= 0) return;
+  std::fflush(stdout);  // what was printed before belongs to the run reported
+  const int null = ::open("/dev/null", O_WRONLY | O_CLOEXEC);
+  if (null < 0) return;  // (then the prints come once per run, as before)
+  saved_ = ::fcntl(STDOUT_FILENO, F_DUPFD_CLOEXEC, 3);
+  if (saved_ >= 0 && ::dup2(null, STDOUT_FILENO) < 0) {
+    ::close(saved_);
+    saved_ = -1;
+  }
+  ::close(null);
+}
+
+void QuietStandardOutput::end() {
+  if (saved_ < 0) return;
+  std::fflush(stdout);  // the quiet runs' prints, still in the buffer, go where they were sent
+  std::clearerr(stdout);
+  ::dup2(saved_, STDOUT_FILENO);
+  ::close(saved_);
+  saved_ = -1;
+}
+
+void load_plugins(const std::vector<std::string>& files, bool data_on_standard_output) {
+  // Before the plug-in's code runs at all (its constructors run as it loads).
+  if (!files.empty() && data_on_standard_output && !kept_data_output) {
+    std::fflush(stdout);
+    const int data = ::dup(STDOUT_FILENO);
+    std::FILE* kept = data < 0 ? nullptr : ::fdopen(data, "w");
+    if (!kept || ::dup2(STDERR_FILENO, STDOUT_FILENO) < 0)
+      throw std::runtime_error(std::string("standard output could not be kept apart from the plug-in's (") +
+                               std::strerror(errno) + ")");
+    kept_data_output = kept;
+  }
   try {
     for (const auto& file : files) {
       report_crashes_while_loading(file);

@@ -107,9 +107,34 @@ PluginSet& plugins();
 std::string non_finite_suspect(const Simulation& sim, const Method& method, const std::string& smaller_step = "a smaller --dt");
 // Adds --plugin to a subcommand.
 void add_plugin_option(CLI::App* command, std::vector<std::string>& files);
+
+// Where run and compare write data that a program reads (--json, run's --trajectory -): standard
+// output, unless a plug-in was loaded while it carried such data. A plug-in's code runs in this
+// process and shares descriptor 1, so its printf or std::cout would land between a CSV's rows or
+// inside the JSON object; load_plugins(files, true) then points descriptor 1 at standard error
+// for everyone, the plug-in's prints and motus's own messages alike, and the data go to a copy of
+// what standard output was. (serve keeps its answers apart the same way.)
+std::FILE* data_output();
+
+// While begun, descriptor 1 writes to /dev/null: the timing runs after the one reported, so that
+// what a plug-in's code prints on standard output comes once, with the run it belongs to, not
+// once more per timing run. (Standard error, the progress bar's, is left alone.)
+class QuietStandardOutput {
+public:
+  QuietStandardOutput() = default;
+  QuietStandardOutput(const QuietStandardOutput&) = delete;
+  QuietStandardOutput& operator=(const QuietStandardOutput&) = delete;
+  ~QuietStandardOutput() { end(); }
+  void begin();
+  void end();
+
+private:
+  int saved_ = -1;  // descriptor 1 as it was
+};
 // Loads them, in order, and from then on reports a crash in their code; a file that is not
-// a usable plug-in is an InputError (one line, exit 2).
-void load_plugins(const std::vector<std::string>& files);
+// a usable plug-in is an InputError (one line, exit 2). `data_on_standard_output`: the command
+// writes data for a program there (see data_output).
+void load_plugins(const std::vector<std::string>& files, bool data_on_standard_output = false);
 
 // The integrator a subcommand runs: --integrator when given (a built-in, or PLUGIN:NAME from
 // a loaded plug-in), else the scene's; one line naming the file when it is unknown, or

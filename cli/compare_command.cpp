@@ -66,11 +66,12 @@ CLI::App* add_compare_command(CLI::App& app, CompareOptions& o) {
                 "as fit in about 3 s when one round takes longer)")
       ->check(whole_number_in(1, 100));
   c->add_flag("--json", o.json, "Print the summary as one JSON object instead of the table");
-  c->add_flag("--render", o.render,
+  CLI::Option* render = c->add_flag("--render", o.render,
               "Also draw the same instants of every engine side by side: PNG frames, an MP4 (ffmpeg) and a contact "
               "sheet, embedded in the report");
   c->add_option("--size", o.size, "The size of each engine's panel in the pictures (the report's first and last frames; every frame with --render), WxH")->capture_default_str();
-  c->add_option("--fps", o.fps, "With --render: frames per second of simulated time")->capture_default_str();
+  // (Without --render no frame is drawn: an --fps alone would be ignored without a word.)
+  c->add_option("--fps", o.fps, "With --render: frames per second of simulated time")->capture_default_str()->needs(render);
   return c;
 }
 
@@ -81,7 +82,7 @@ int compare_command(const CompareOptions& o) {
     throw InputError(path + ": is a first-order system (\"" + scene.first_order->type +
                      "\"); compare runs scenes of bodies, which the peer engines model");
 
-  load_plugins(o.plugins);
+  load_plugins(o.plugins, o.json);
 
   compare::ComparisonOptions options;
   // A plug-in is a column of its own: motus's world with the plug-in's parts.
@@ -133,6 +134,13 @@ int compare_command(const CompareOptions& o) {
   if (!(options.duration > 0) || !std::isfinite(options.duration)) throw InputError("--duration: must be a finite number > 0");
   options.samples = o.samples;
   options.repeats = o.repeats;
+  // A plug-in's prints come once, with the metrics run; the timing rounds' go to /dev/null.
+  QuietStandardOutput quiet;
+  if (!plugins().empty())
+    options.timing_rounds = [&quiet](bool begin) {
+      if (begin) quiet.begin();
+      else quiet.end();
+    };
   const std::string what = o.duration ? "--duration" : o.dt ? "--dt" : path + ": dt/duration";
   checked_step_count(options.duration, options.dt, what);
   check_time_resolution(scene.start_time, options.duration, options.dt, path + ": start_time", what);
@@ -267,7 +275,7 @@ int compare_command(const CompareOptions& o) {
   summary["report"] = written + "/index.html";
 
   if (o.json) {
-    fmt::print("{}\n", summary.dump(2, ' ', false, nlohmann::json::error_handler_t::replace));  // (a path not in UTF-8)
+    fmt::print(data_output(), "{}\n", summary.dump(2, ' ', false, nlohmann::json::error_handler_t::replace));  // (a path not in UTF-8)
   } else {
     const long steps = fixed_step_count(options.duration, options.dt);
     fmt::print("{}: {} {}, {}-D, dt = {:g} s, {:g} s ({} step{}); motus integrator {}\n", scene.name, context.bodies,

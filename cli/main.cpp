@@ -97,7 +97,7 @@ int main(int argc, char** argv) {
     else if (*serve) status = serve_command(serve_options);
     else if (*stress) status = stress_command(stress_options);
     // Whatever went to standard output must have got there (a full disk is a failure, not 0).
-    if (std::fflush(stdout) != 0 || std::ferror(stdout)) {
+    if (std::fflush(stdout) != 0 || std::ferror(stdout) || std::fflush(data_output()) != 0 || std::ferror(data_output())) {
       tell("motus: the run failed: standard output could not be written ({})\n", std::strerror(errno));
       return kExitFailure;
     }

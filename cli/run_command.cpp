@@ -34,6 +34,25 @@ nlohmann::json energy_json(const std::optional<Energy>& e) {
   return {{"kinetic", e->kinetic}, {"potential", e->potential}, {"total", e->total}};
 }
 
+// An ostream onto a C stream: the trajectory's rows onto data_output() when that is not stdout
+// (a plug-in's prints were moved off standard output, and std::cout went with them).
+class FileStreamBuffer : public std::streambuf {
+public:
+  explicit FileStreamBuffer(std::FILE* file) : file_(file) {}
+
+protected:
+  int_type overflow(int_type c) override {
+    return traits_type::eq_int_type(c, traits_type::eof()) ? traits_type::not_eof(c) : std::fputc(c, file_);
+  }
+  std::streamsize xsputn(const char* s, std::streamsize n) override {
+    return static_cast<std::streamsize>(std::fwrite(s, 1, static_cast<size_t>(n), file_));
+  }
+  int sync() override { return std::fflush(file_) == 0 ? 0 : -1; }
+
+private:
+  std::FILE* file_;
+};
+
 // Writes the trajectory CSV: a header, then one row per output time. A file is written as a
 // PartialFile (in a folder of its own beside it) and moved to NAME when the run is through: a
 // run that is interrupted or fails leaves no half-written CSV, and the file it would have
@@ -43,7 +62,11 @@ public:
   // path "-": standard output.
   TrajectoryWriter(const std::string& path, const Simulation& sim, double interval, bool overwrite)
       : path_(path == "-" ? "standard output" : path), interval_(interval), overwrite_(overwrite) {
-    if (path == "-") {
+    if (path == "-" && data_output() != stdout) {
+      data_buffer_.emplace(data_output());
+      data_stream_.emplace(&*data_buffer_);
+      out_ = &*data_stream_;
+    } else if (path == "-") {
       out_ = &std::cout;
     } else {
       if (!written_in_place(path)) partial_.emplace(path);
@@ -120,6 +143,8 @@ private:
   std::string path_;
   std::optional<PartialFile> partial_;  // the file written until the move (none: standard output, a FIFO, a device)
   std::ofstream file_;
+  std::optional<FileStreamBuffer> data_buffer_;  // standard output kept apart from a plug-in's prints
+  std::optional<std::ostream> data_stream_;
   std::ostream* out_ = nullptr;
   double interval_;
   bool overwrite_;
@@ -217,7 +242,7 @@ bool adaptive_method(const Method& m) { return m.adaptive(); }
 int run_command(const RunOptions& o) {
   const std::string path = resolve_scene_path(o.scene);
   SceneDescription scene = load_scene(path, o.sets);
-  load_plugins(o.plugins);
+  load_plugins(o.plugins, o.json || o.trajectory == "-");
 
   const Method method = method_for(path, scene, o.integrator);
   const std::string integrator_name = method.name();
@@ -331,6 +356,8 @@ int run_command(const RunOptions& o) {
   const int rounds = o.repeats > 0 ? o.repeats : compare::auto_rounds(first_seconds, compare::kRunBudget);
   const int runs = rounds + (first_writes ? 1 : 0);
   if (runs > 1) progress.phase("timing", duration, runs * duration);
+  QuietStandardOutput quiet;  // a plug-in's prints come once, with the run reported
+  if (!plugins().empty()) quiet.begin();
   for (int round = 1; round < runs && sim.state().allFinite(); ++round) {
     Simulation again(scene, method, plugins().parts());
     double worst = again.constraint_error(), worst_pin = 0;
@@ -347,6 +374,7 @@ int run_command(const RunOptions& o) {
     if (round_seconds.size() == 1)  // (the wall time reported is the first timed run's)
       wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - again_began).count();
   }
+  quiet.end();
   // A run that was no longer finite is not run again: its one run is all there is to time.
   if (round_seconds.empty()) round_seconds.push_back(first_seconds);
   progress.finish();
@@ -404,7 +432,7 @@ int run_command(const RunOptions& o) {
                           : nlohmann::json(nullptr);
     j["finite"] = finite;
     if (!o.trajectory.empty()) j["trajectory"] = o.trajectory;
-    fmt::print("{}\n", j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace));  // (a path not in UTF-8)
+    fmt::print(data_output(), "{}\n", j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace));  // (a path not in UTF-8)
     return finite ? 0 : report_non_finite(std::isnan(non_finite_by) ? sim.time() : non_finite_by, sim, method);
   }
 

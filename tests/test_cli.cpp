@@ -244,7 +244,9 @@ TEST(CliErrors, BadOptionValueIsOneLineExitTwo) {
         // a video at a frame rate ffmpeg refuses: refused before a frame is drawn (they were all
         // drawn, then deleted with the failed run's folder)
         std::vector<std::string>{"render", scene("oscillator"), "--out", (dir / "frames").string(), "--duration", "0.5",
-                                 "--fps", "1e-20", "--video", "gif"}}) {
+                                 "--fps", "1e-20", "--video", "gif"},
+        // compare's --fps draws nothing without --render: it was taken and ignored without a word
+        std::vector<std::string>{"compare", scene("head_on"), "--out", (dir / "frames").string(), "--fps", "10"}}) {
     const Result r = run_motus(dir, args);
     EXPECT_EQ(r.status, 2) << args.back() << ": " << r.err;
     EXPECT_EQ(count_lines(r.err), 1) << args.back() << ": " << r.err;

@@ -421,6 +421,44 @@ TEST(Plugins, APluginsBrokenNumbersAreItsOwnFailureNeverAPerfectRun) {
   EXPECT_NE(r.err.find("a step size that shrinks without end?"), std::string::npos) << r.err;
 }
 
+// A plug-in's code runs in motus's process and shares its standard output. Found by an audit: a
+// student's debugging line per step went into --json's object (json.load failed at its first
+// character) and between the rows of --trajectory -; and it came once per timing run (six times
+// over by default, twice with --repeats 1 when the step table is printed), where the handout
+// says once. Now the data keep standard output to themselves (the plug-in's lines go to standard
+// error), and the timing runs after the reported one print nowhere.
+TEST(Plugins, WhatAPluginPrintsComesOnceAndNeverInsideTheData) {
+  TempDir dir;
+  const std::string plugin = kPlugins + "/misbehaving.so";
+  auto lines_with = [](const std::string& text, const std::string& words) {
+    long n = 0;
+    for (size_t at = text.find(words); at != std::string::npos; at = text.find(words, at + 1)) ++n;
+    return n;
+  };
+  const std::string line = "bad:prints step at t = ";
+  // spring: dt = 1, 5 steps; the step table is printed (a first run that writes, then the timed ones).
+  Result r = run_motus(dir, {"run", "spring", "--plugin", plugin, "--integrator", "bad:prints"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(lines_with(r.out, line), 5) << r.out;
+  r = run_motus(dir, {"run", "spring", "--plugin", plugin, "--integrator", "bad:prints", "--repeats", "1"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(lines_with(r.out, line), 5) << r.out;
+  r = run_motus(dir, {"run", "spring", "--plugin", plugin, "--integrator", "bad:prints", "--json"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_TRUE(nlohmann::json::accept(r.out)) << r.out;
+  EXPECT_EQ(lines_with(r.err, line), 5) << r.err;
+  r = run_motus(dir, {"run", "spring", "--plugin", plugin, "--integrator", "bad:prints", "--trajectory", "-"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(lines_with(r.out, line), 0) << r.out;
+  EXPECT_EQ(r.out.rfind("t,x0,vx0,kinetic,potential,total\n0,20,0,", 0), 0u) << r.out;
+  EXPECT_EQ(count_lines(r.out), 7) << r.out;  // the header and t = 0 … 5
+  r = run_motus(dir, {"compare", "spring", "--plugin", plugin, "--integrator", "bad:prints", "--engines", "motus,bad",
+                      "--out", (dir / "c").string(), "--json"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_TRUE(nlohmann::json::accept(r.out)) << r.out;
+  EXPECT_EQ(lines_with(r.err, line), 5) << r.err;  // the metrics run's five steps; no timing round's
+}
+
 // Found by an assignments audit: an impulse over the sum of the masses, or a bounce written for the
 // floor alone, showed only as "more than 1500 collisions in one step ... (does it find a contact
 // between balls that are moving apart?)" or as a NaN time of impact: a wrong impulse read as a

@@ -1,7 +1,10 @@
 // A plug-in whose integrators misbehave on purpose, for test_grade's plug-in errors:
 // "bad:throws" throws, "bad:crashes" dereferences a null pointer, "bad:nan" answers NaN,
 // "bad:keeps-h" is step doubling whose controller keeps a rejected step's size, "bad:shrinks-h"
-// one whose controller halves every step, accepted or not (the sum of the steps never reaches the end).
+// one whose controller halves every step, accepted or not (the sum of the steps never reaches the end);
+// "bad:prints" is explicit Euler that prints a line per step, as a student's debugging does.
+#include <cstdio>
+#include <iostream>
 #include <limits>
 #include <stdexcept>
 
@@ -35,6 +38,13 @@ student::Vector accepted(const student::FirstOrderSystem&, double, double, stude
 }
 double halves_h(double h, double) { return h / 2; }
 
+// A line on standard output per step, half through printf and half through std::cout.
+void prints(const student::FirstOrderSystem& f, double t, double h, student::VectorInOut y) {
+  if (static_cast<long>(t / h + 0.5) % 2 == 0) std::printf("bad:prints step at t = %g\n", t);
+  else std::cout << "bad:prints step at t = " << t << "\n";
+  y += h * f.derivative(t, y);
+}
+
 }  // namespace
 
 MOTUS_PLUGIN("bad", "integrators that misbehave (test_grade)") {
@@ -43,4 +53,5 @@ MOTUS_PLUGIN("bad", "integrators that misbehave (test_grade)") {
   plugin.first_order("nan", 1, "answers NaN", nan);
   plugin.adaptive("keeps-h", 5, "a controller that keeps a rejected step's size", rejected, keeps_h);
   plugin.adaptive("shrinks-h", 5, "a controller that halves every step", accepted, halves_h);
+  plugin.first_order("prints", 1, "explicit Euler that prints a line per step", prints);
 }

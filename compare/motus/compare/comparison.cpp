@@ -221,6 +221,15 @@ std::vector<EngineRun> run_comparison(const SceneDescription& scene, const Compa
   for (size_t e = 0; e < runs.size(); ++e)
     if (runs[e].supported) timed.push_back(e);
   total_steps = done + static_cast<double>(steps) * static_cast<double>(timed.size()) * repeats;
+  struct TimingRounds {
+    const std::function<void(bool)>& tell;
+    explicit TimingRounds(const std::function<void(bool)>& f) : tell(f) {
+      if (tell) tell(true);
+    }
+    ~TimingRounds() {
+      if (tell) tell(false);
+    }
+  } timing_rounds(options.timing_rounds);
   for (int round = 0; round < repeats; ++round) {
     for (size_t turn = 0; turn < timed.size(); ++turn) {
       const size_t e = timed[(turn + static_cast<size_t>(round)) % timed.size()];

@@ -79,6 +79,9 @@ struct ComparisonOptions {
   long samples = 200;  // metric rows over the run (at most one per step)
   long frame_every = 0;  // keep the state every this many steps, and the last, for pictures (0: none)
   int repeats = 0;       // timing rounds; 0: auto_rounds (5, fewer for a long scene)
+  // Called with true as the timing rounds begin and with false as they end, however they end
+  // (the command line quiets a plug-in's prints there: they came once, with the metrics run).
+  std::function<void(bool)> timing_rounds;
 };
 
 // First every engine runs the scene once with its metrics sampled (untimed): the rows, frames,
