@@ -365,6 +365,8 @@ TEST(Plugins, FaultsAreOneLineAndExitTwo) {
   TempDir dir;
   write_file(dir / "notes.so", "these are my notes, not a shared library\n");
   const std::string solution = kAssignmentPlugins + "/integrators-solution.so";
+  // A copy cut short: mapped past its end, its first read was SIGBUS (exit 135). Found by an audit.
+  write_file(dir / "cut.so", read_file(solution).substr(0, 10000));
   struct Case {
     std::vector<std::string> args;
     std::string says;
@@ -375,6 +377,12 @@ TEST(Plugins, FaultsAreOneLineAndExitTwo) {
       {{"run", "spring", "--plugin", kPlugins + "/no_entry.so"}, "no entry point motus_plugin"},
       {{"run", "spring", "--plugin", kPlugins + "/old_version.so"}, "built for plug-in interface 1"},
       {{"run", "spring", "--plugin", solution, "--plugin", solution}, "clashes with"},
+      {{"run", "spring", "--plugin", (dir / "cut.so").string(), "--integrator", "student:euler"},
+       "cut short (a copy that did not finish?)"},
+      // Names a reader cannot tell from a built-in engine's, or that break a line (found by an audit).
+      {{"compare", "head_on", "--plugin", kPlugins + "/named_1.so", "--out", (dir / "c").string()},
+       "its name \"Box2D\" is a built-in engine's (box2d)"},
+      {{"list", "--plugin", kPlugins + "/named_2.so"}, "its name must be 1 to 40 letters, digits"},
       {{"run", "lorenz", "--plugin", kPlugins + "/misbehaving.so", "--integrator", "bad:throws"},
        "bad:throws: threw std::runtime_error: thrown on purpose"},
       {{"run", "spring", "--integrator", "student:euler"}, "load its plug-in with --plugin"},

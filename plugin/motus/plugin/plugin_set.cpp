@@ -1,6 +1,7 @@
 #include "motus/plugin/plugin_set.hpp"
 
 #include <dlfcn.h>
+#include <elf.h>
 #include <link.h>
 #include <signal.h>
 #include <ucontext.h>
@@ -9,12 +10,62 @@
 #include <algorithm>
 #include <cstdlib>
 #include <cstring>
+#include <cctype>
 #include <exception>
 #include <filesystem>
+#include <fstream>
 
 #include "motus/integrator_name.hpp"
 
 namespace motus {
+
+namespace {
+
+// Whether a shared library is whole, read before dlopen maps it: a file cut short (a copy that
+// did not finish) is mapped past its end, and the first read there is SIGBUS, which ended motus
+// (exit 135, "crashed the process while it was being loaded"). The ELF header, its program
+// headers and every segment to be loaded, and the section headers, must lie inside the file.
+// "" when it is whole; otherwise what is wrong. (A file that is not ELF at all is dlopen's to name.)
+std::string cut_short(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  Elf64_Ehdr header{};
+  if (!in.read(reinterpret_cast<char*>(&header), sizeof header)) return "";
+  if (std::memcmp(header.e_ident, ELFMAG, SELFMAG) != 0 || header.e_ident[EI_CLASS] != ELFCLASS64) return "";
+  std::error_code error;
+  const auto size = static_cast<std::uint64_t>(std::filesystem::file_size(path, error));
+  if (error) return "";
+  auto inside = [size](std::uint64_t offset, std::uint64_t length) { return offset <= size && length <= size - offset; };
+  const char* cut = "cut short (a copy that did not finish?): ";
+  if (header.e_phentsize != sizeof(Elf64_Phdr) ||
+      !inside(header.e_phoff, std::uint64_t{header.e_phnum} * sizeof(Elf64_Phdr)))
+    return std::string(cut) + "its program headers lie past its end";
+  if (header.e_shnum > 0 && !inside(header.e_shoff, std::uint64_t{header.e_shnum} * header.e_shentsize))
+    return std::string(cut) + "its section headers lie past its end";
+  in.seekg(static_cast<std::streamoff>(header.e_phoff));
+  for (int i = 0; i < header.e_phnum; ++i) {
+    Elf64_Phdr segment{};
+    if (!in.read(reinterpret_cast<char*>(&segment), sizeof segment)) return std::string(cut) + "its program headers are cut off";
+    if (segment.p_type == PT_LOAD && !inside(segment.p_offset, segment.p_filesz))
+      return std::string(cut) + "a segment it loads lies past its end";
+  }
+  return "";
+}
+
+// A plug-in's or its integrator's name: it is printed in tables and headers and typed in
+// --integrator and --engines lists, so letters, digits, '_', '-' and '.' only, and short.
+bool plain_name(const std::string& name) {
+  if (name.empty() || name.size() > 40) return false;
+  return std::all_of(name.begin(), name.end(), [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.';
+  });
+}
+
+std::string lower(std::string s) {
+  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+
+}  // namespace
 
 PluginSet::~PluginSet() = default;  // the libraries stay loaded: their code may be on the stack of a dying run
 
@@ -27,7 +78,20 @@ void PluginSet::load(const std::string& file) {
     throw PluginError(file + ": --plugin: not a regular file (a plug-in is a shared library, FILE.so)");
   // A path without a slash would make dlopen search the library path instead of this file.
   const std::string path = file.find('/') == std::string::npos ? "./" + file : file;
-  void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
+  if (const std::string why = cut_short(path); !why.empty()) throw PluginError(file + ": --plugin: " + why);
+  // A global's constructor that throws does so inside dlopen, which glibc declares noexcept: the
+  // exception then ended in std::terminate, or went on to motus's own handlers (exit 1, the
+  // plug-in not named) once this function had a cleanup around the call. The loader's state after
+  // such an unwind is not to be trusted, so it always ends in std::terminate: report_crashes_
+  // while_loading's one line, and abort. (Called through a pointer without noexcept, so that the
+  // handler below is kept.)
+  void* (*volatile open_library)(const char*, int) = dlopen;
+  void* handle = nullptr;
+  try {
+    handle = open_library(path.c_str(), RTLD_NOW | RTLD_LOCAL);
+  } catch (...) {
+    std::terminate();
+  }
   if (!handle) throw PluginError(file + ": --plugin: not a plug-in motus can load: " + dlerror());
   using Entry = const PluginEntry* (*)();
   auto entry_point = reinterpret_cast<Entry>(dlsym(handle, kPluginEntryPoint));
@@ -45,11 +109,19 @@ void PluginSet::load(const std::string& file) {
   loaded.entry = entry;
   loaded.name = entry->name ? entry->name : "";
   loaded.description = entry->description ? entry->description : "";
-  if (loaded.name.empty() || loaded.name.find_first_of(":, \t") != std::string::npos)
-    throw PluginError(file + ": --plugin: its name \"" + loaded.name +
-                      "\" must be a word without ':', ',' or spaces (it prefixes its integrators)");
-  if (loaded.name == "motus" || loaded.name == "box2d" || loaded.name == "bullet")
-    throw PluginError(file + ": --plugin: its name \"" + loaded.name + "\" is a built-in engine's");
+  // One line of text where list and compare print it: control characters (a line break, a
+  // terminal's escape) become spaces, and a page of it is cut.
+  for (char& c : loaded.description)
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = ' ';
+  if (loaded.description.size() > 200) loaded.description = loaded.description.substr(0, 197) + "...";
+  // (A name is shown only once it is known to be plain: one with a line break or a terminal's
+  // escape codes in it would break the one-line message.)
+  if (!plain_name(loaded.name))
+    throw PluginError(file + ": --plugin: its name must be 1 to 40 letters, digits, '_', '-' or '.' (it prefixes "
+                      "its integrators and names its column in compare)");
+  for (const char* engine : {"motus", "box2d", "bullet", "odeint"})
+    if (lower(loaded.name) == engine)
+      throw PluginError(file + ": --plugin: its name \"" + loaded.name + "\" is a built-in engine's (" + engine + ")");
   for (const auto& other : plugins_)
     if (other.name == loaded.name)
       throw PluginError(file + ": --plugin: its name \"" + loaded.name + "\" clashes with " + other.file +
@@ -57,7 +129,9 @@ void PluginSet::load(const std::string& file) {
   for (int i = 0; i < entry->integrator_count; ++i) {
     const ExternalIntegrator& integrator = entry->integrators[i];
     const std::string own = integrator.name ? integrator.name : "";
-    if (own.empty()) throw PluginError(file + ": --plugin: integrator " + std::to_string(i) + " has no name");
+    if (!plain_name(own))
+      throw PluginError(file + ": --plugin: integrator " + std::to_string(i) +
+                        "'s name must be 1 to 40 letters, digits, '_', '-' or '.' (it is typed in --integrators lists)");
     if (integrator.kind < kExternalFirstOrder || integrator.kind > kExternalPositionVerlet)
       throw PluginError(file + ": --plugin: integrator \"" + own + "\" is of an unknown kind " +
                         std::to_string(integrator.kind));
