@@ -126,7 +126,24 @@ void add_plugin_option(CLI::App* command, std::vector<std::string>& files) {
 
 namespace {
 std::FILE* kept_data_output = nullptr;
+
+bool g_watch_plugin_exits = false;
+bool g_exit_handler_registered = false;
+volatile bool g_main_returning = false;
+char g_exit_line[1024] = {};  // written by the handler (no allocation there)
+
+void on_exit_without_main() {
+  if (g_main_returning) return;
+  std::fflush(stdout);
+  const size_t length = std::strlen(g_exit_line);
+  if (::write(STDERR_FILENO, g_exit_line, length) < 0) {
+  }
+  ::_exit(kExitFailure);
 }
+}  // namespace
+
+void watch_plugin_exits(bool watch) { g_watch_plugin_exits = watch; }
+void main_is_returning() { g_main_returning = true; }
 
 std::FILE* data_output() { return kept_data_output ? kept_data_output : stdout; }
 
@@ -162,6 +179,15 @@ void load_plugins(const std::vector<std::string>& files, bool data_on_standard_o
       throw std::runtime_error(std::string("standard output could not be kept apart from the plug-in's (") +
                                std::strerror(errno) + ")");
     kept_data_output = kept;
+  }
+  if (!files.empty() && g_watch_plugin_exits) {
+    std::string names;
+    for (const auto& f : files) names += (names.empty() ? "" : ", ") + f;
+    const std::string line = "motus: the run did not finish: code in the plug-in " + one_line(names, 600) +
+                             " called exit() (motus never does); what it was writing may be left under a "
+                             ".NAME.partial-XXXXXX name\n";
+    std::snprintf(g_exit_line, sizeof g_exit_line, "%s", line.c_str());
+    if (!g_exit_handler_registered) g_exit_handler_registered = std::atexit(on_exit_without_main) == 0;
   }
   try {
     for (const auto& file : files) {

@@ -131,6 +131,14 @@ public:
 private:
   int saved_ = -1;  // descriptor 1 as it was
 };
+// A plug-in's code that calls exit() ends motus with the status it gives: exit(0) read as a run
+// that went well and said nothing, its folders half-written. motus itself never calls exit, so
+// once a plug-in is loaded (when watch_plugin_exits(true) was called: not in serve, whose grader
+// reports it) an atexit handler makes any exit that main's return did not make one line naming
+// the plug-ins, and exit 1. main calls main_is_returning() as it returns.
+void watch_plugin_exits(bool watch);
+void main_is_returning();
+
 // Loads them, in order, and from then on reports a crash in their code; a file that is not
 // a usable plug-in is an InputError (one line, exit 2). `data_on_standard_output`: the command
 // writes data for a program there (see data_output).

@@ -28,7 +28,9 @@
 #include "stress_command.hpp"
 #include "motus/scene_file/scene_file.hpp"
 
-int main(int argc, char** argv) {
+namespace {
+
+int motus_main(int argc, char** argv) {
   using namespace motus::cli;
   CLI::App app{
       "motus: a game-physics engine for teaching that tells the truth about its numbers.\n"
@@ -86,6 +88,8 @@ int main(int argc, char** argv) {
   // motus without a word and leaving its partial files. Not in `serve`: the student's code runs in
   // it, and the sandbox names that signal ("wrote more than its 64 MB to a file").
   if (!*serve) ::signal(SIGXFSZ, SIG_IGN);
+  // (serve: the grader reports a student's exit() from its sandbox.)
+  watch_plugin_exits(!*serve);
   int status = 0;
   try {
     if (*run) status = run_command(run_options);
@@ -141,4 +145,12 @@ int main(int argc, char** argv) {
     tell("motus: the run failed: {}\n", one_line(e.what()));
     return kExitFailure;
   }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const int status = motus_main(argc, argv);
+  motus::cli::main_is_returning();  // (an exit() in a plug-in's code does not come this way)
+  return status;
 }

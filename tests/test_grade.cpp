@@ -429,6 +429,25 @@ TEST(Plugins, APluginsBrokenNumbersAreItsOwnFailureNeverAPerfectRun) {
   EXPECT_NE(r.err.find("a step size that shrinks without end?"), std::string::npos) << r.err;
 }
 
+// A plug-in that calls exit(0) ended motus with status 0 and no word, its report folder left
+// half-written (found by an audit): a run that did not finish read as one that went well.
+TEST(Plugins, AnExitInAPluginsCodeIsAFailedRunNamingIt) {
+  TempDir dir;
+  const std::string plugin = kPlugins + "/misbehaving.so";
+  for (const std::vector<std::string>& args :
+       {std::vector<std::string>{"run", "spring", "--plugin", plugin, "--integrator", "bad:exits", "--json"},
+        std::vector<std::string>{"compare", "spring", "--plugin", plugin, "--integrator", "bad:exits", "--engines",
+                                 "motus,bad", "--out", (dir / "c").string()}}) {
+    const Result r = run_motus(dir, args);
+    EXPECT_EQ(r.status, 1) << args[0] << ": " << r.err;
+    EXPECT_EQ(count_lines(r.err), 1) << r.err;
+    EXPECT_NE(r.err.find("motus: the run did not finish: code in the plug-in " + plugin + " called exit()"),
+              std::string::npos)
+        << r.err;
+  }
+  EXPECT_FALSE(fs::exists(dir / "c"));
+}
+
 // A plug-in's code runs in motus's process and shares its standard output. Found by an audit: a
 // student's debugging line per step went into --json's object (json.load failed at its first
 // character) and between the rows of --trajectory -; and it came once per timing run (six times

@@ -2,8 +2,10 @@
 // "bad:throws" throws, "bad:crashes" dereferences a null pointer, "bad:nan" answers NaN,
 // "bad:keeps-h" is step doubling whose controller keeps a rejected step's size, "bad:shrinks-h"
 // one whose controller halves every step, accepted or not (the sum of the steps never reaches the end);
-// "bad:prints" is explicit Euler that prints a line per step, as a student's debugging does.
+// "bad:prints" is explicit Euler that prints a line per step, as a student's debugging does;
+// "bad:exits" calls exit(0) at its first step.
 #include <cstdio>
+#include <cstdlib>
 #include <iostream>
 #include <limits>
 #include <stdexcept>
@@ -45,6 +47,8 @@ void prints(const student::FirstOrderSystem& f, double t, double h, student::Vec
   y += h * f.derivative(t, y);
 }
 
+void exits(const student::FirstOrderSystem&, double, double, student::VectorInOut) { std::exit(0); }
+
 }  // namespace
 
 MOTUS_PLUGIN("bad", "integrators that misbehave (test_grade)") {
@@ -54,4 +58,5 @@ MOTUS_PLUGIN("bad", "integrators that misbehave (test_grade)") {
   plugin.adaptive("keeps-h", 5, "a controller that keeps a rejected step's size", rejected, keeps_h);
   plugin.adaptive("shrinks-h", 5, "a controller that halves every step", accepted, halves_h);
   plugin.first_order("prints", 1, "explicit Euler that prints a line per step", prints);
+  plugin.first_order("exits", 1, "calls exit(0)", exits);
 }
