@@ -322,6 +322,9 @@ int run_command(const RunOptions& o) {
   const double t0 = sim.time();
   ProgressBar progress(0, duration, scene.name);
   const auto began = std::chrono::steady_clock::now();
+  // The largest of a run's errors, a NaN kept (std::max would drop it: a stick or pin error that
+  // stopped being a number read as the last finite one).
+  auto worse = [](double worst, double x) { return std::isnan(worst) || std::isnan(x) ? NAN : std::max(worst, x); };
   double worst_constraint_error = sim.constraint_error();
   const bool constrained = sim.has_constraints();
   // Pins: motus's projection places them exactly, a plug-in's may not (its bodies then fall away
@@ -344,8 +347,8 @@ int run_command(const RunOptions& o) {
     if (trajectory) trajectory->after_step(s);
     if (tabulate) tabulate_row(s);
     if (s.steps() % look_every == 0 && std::isnan(non_finite_by) && !s.state().allFinite()) non_finite_by = s.time();
-    if (constrained) worst_constraint_error = std::max(worst_constraint_error, s.constraint_error());
-    if (pinned) worst_pin_error = std::max(worst_pin_error, s.pin_error());
+    if (constrained) worst_constraint_error = worse(worst_constraint_error, s.constraint_error());
+    if (pinned) worst_pin_error = worse(worst_pin_error, s.pin_error());
     progress.update(s.time() - t0);
   });
   const double first_seconds = compare::cpu_seconds() - cpu_began;
@@ -366,8 +369,8 @@ int run_command(const RunOptions& o) {
     cpu_began = compare::cpu_seconds();
     again.advance(again.time() + duration, dt, tolerance, [&](const Simulation& s) {
       if (s.steps() % look_every == 0 && finite && !s.state().allFinite()) finite = false;
-      if (constrained) worst = std::max(worst, s.constraint_error());
-      if (pinned) worst_pin = std::max(worst_pin, s.pin_error());
+      if (constrained) worst = worse(worst, s.constraint_error());
+      if (pinned) worst_pin = worse(worst_pin, s.pin_error());
       progress.update(round * duration + s.time() - t0);
     });
     round_seconds.push_back(compare::cpu_seconds() - cpu_began);

@@ -416,6 +416,14 @@ TEST(Plugins, APluginsBrokenNumbersAreItsOwnFailureNeverAPerfectRun) {
       for (const char* field : {"max_energy_error", "max_distance_from_exact"})
         EXPECT_FALSE(e.at(field).is_number() && e.at(field).get<double>() == 0) << field << ": " << e.dump();
     }
+  // A projection that answers NaN: the run's largest stick and pin errors are not finite (null),
+  // not the last finite ones (std::max drops a NaN: an audit read 32.3 and 0 of a NaN rope).
+  r = run_motus(dir, {"run", "rope", "--plugin", kPlugins + "/nan_projection.so", "--json"});
+  EXPECT_EQ(r.status, 1) << r.err;
+  const nlohmann::json rope = nlohmann::json::parse(r.out);
+  EXPECT_EQ(rope.at("finite"), false);
+  for (const char* error : {"constraint_error", "pin_error"})
+    for (const char* which : {"max", "final"}) EXPECT_TRUE(rope.at(error).at(which).is_null()) << error << "." << which << ": " << rope.dump();
   r = run_motus(dir, {"run", "lorenz", "--plugin", plugin, "--integrator", "bad:keeps-h"});
   EXPECT_EQ(r.status, 1) << r.err;
   EXPECT_NE(r.err.find("did not shrink a rejected step"), std::string::npos) << r.err;

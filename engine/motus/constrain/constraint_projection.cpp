@@ -442,6 +442,8 @@ double ConstraintProjection::max_relative_stick_error(ConstVectorRef x) const {
   double worst = 0;
   for (const auto& s : sticks_) {
     const double length = (x.segment(s.b * d_, d_) - x.segment(s.a * d_, d_)).norm();
+    // (std::max drops a NaN: a stick between bodies no longer finite read as the others' error)
+    if (std::isnan(length)) return length;
     worst = std::max(worst, std::abs(length - s.length) / s.length);
   }
   return worst;
