@@ -6,6 +6,7 @@
 //   motus stress SCENE ...            the stability stress test: tables and a page
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <csignal>
 #include <cstdio>
@@ -69,6 +70,16 @@ int motus_main(int argc, char** argv) {
     }
     return status;
   };
+  // A word that is no command: CLI11 would say "A subcommand is required", as if none were given.
+  const auto commands_listed = app.get_subcommands([](const CLI::App* s) { return !s->get_group().empty(); });
+  const auto all_commands = app.get_subcommands({});
+  if (argc > 1 && argv[1][0] != '-' &&
+      std::none_of(all_commands.begin(), all_commands.end(), [&](const CLI::App* c) { return c->get_name() == argv[1]; })) {
+    std::string commands;
+    for (const auto* c : commands_listed) commands += (commands.empty() ? "" : ", ") + c->get_name();
+    tell("motus: error: unknown command \"{}\" (the commands: {}; run `motus --help`)\n", one_line(argv[1], 80), commands);
+    return kExitBadInput;
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -340,8 +340,10 @@ int render_command(const RenderOptions& o) {
   // An unstable run is drawn as it went (the frames show it), but it is not a run that went well.
   for (size_t k = 0; k < recording.states.size(); ++k)
     if (!std::all_of(recording.states[k].begin(), recording.states[k].end(), [](double y) { return std::isfinite(y); })) {
-      tell("motus: the run failed: the state was no longer finite by t = {:g} ({})\n", recording.times[k],
-                 non_finite_suspect(sim, method, "a smaller step (--set dt=...)"));
+      std::fflush(stdout);  // (the frames' line first, also through a pipe: it says where they are)
+      tell("motus: the run failed: the state was no longer finite by t = {:g} ({}); the frames above show it as it "
+           "went\n",
+           recording.times[k], non_finite_suspect(sim, method, "a smaller step (--set dt=...)"));
       return 1;
     }
   return 0;

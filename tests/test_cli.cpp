@@ -253,6 +253,10 @@ TEST(CliErrors, BadOptionValueIsOneLineExitTwo) {
     EXPECT_EQ(r.err.rfind("motus: error: ", 0), 0u) << r.err;
   }
   EXPECT_FALSE(fs::exists(dir / "frames"));
+  // A word that is no command was "A subcommand is required", as if none had been given.
+  EXPECT_EQ(run_motus(dir, {"rnu", scene("spring")}).err,
+            "motus: error: unknown command \"rnu\" (the commands: run, compare, list, bench, render, grade, stress; run "
+            "`motus --help`)\n");
   EXPECT_EQ(run_motus(dir, {"run", scene("spring"), "--dt", "1e308", "--steps", "2"}).err,
             "motus: error: --steps: 2 steps of 1e+308 s is more time than a double holds\n");
 }
