@@ -135,9 +135,7 @@ char g_exit_line[1024] = {};  // written by the handler (no allocation there)
 void on_exit_without_main() {
   if (g_main_returning) return;
   std::fflush(stdout);
-  const size_t length = std::strlen(g_exit_line);
-  if (::write(STDERR_FILENO, g_exit_line, length) < 0) {
-  }
+  [[maybe_unused]] const ssize_t written = ::write(STDERR_FILENO, g_exit_line, std::strlen(g_exit_line));
   ::_exit(kExitFailure);
 }
 }  // namespace
@@ -163,7 +161,6 @@ void QuietStandardOutput::begin() {
 void QuietStandardOutput::end() {
   if (saved_ < 0) return;
   std::fflush(stdout);  // the quiet runs' prints, still in the buffer, go where they were sent
-  std::clearerr(stdout);
   ::dup2(saved_, STDOUT_FILENO);
   ::close(saved_);
   saved_ = -1;

@@ -76,6 +76,11 @@ TEST(Compare, RepeatsAreTimingRoundsSummarizedByTheirMinimumAndMedian) {
   const Result d = run_motus(dir, {"compare", scene("head_on"), "--out", (dir / "d").string(), "--json"});
   ASSERT_EQ(d.status, 0) << d.err;
   EXPECT_EQ(nlohmann::json::parse(d.out).at("repeats"), 5);
+  // One round has no spread: null (the table's –), not 0 %, which read as perfectly steady timings.
+  const Result one = run_motus(dir, {"compare", scene("head_on"), "--out", (dir / "one").string(), "--json", "--repeats", "1"});
+  ASSERT_EQ(one.status, 0) << one.err;
+  for (const char* name : {"motus", "box2d", "bullet"})
+    EXPECT_TRUE(engine(nlohmann::json::parse(one.out), name)->at("us_per_step_spread").is_null()) << name;
 }
 
 TEST(Compare, OnTheStickScenesMotusKeepsItsSticksAtLeastAsWellAsBothPeers) {

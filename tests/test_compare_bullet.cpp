@@ -385,7 +385,7 @@ TEST(CompareBullet, ContinuousCollisionStopsTunnellingButNotEnergyLoss) {
   EXPECT_NEAR(s.v[0], 70.0, 1e-9);
   EXPECT_GT(s.x[0], 0.5);
   const auto notes = bullet->notes();
-  EXPECT_TRUE(std::any_of(notes.begin(), notes.end(), [](const std::string& n) { return n.rfind("CCD engaged", 0) == 0; }));
+  EXPECT_TRUE(std::any_of(notes.begin(), notes.end(), [](const std::string& n) { return n.rfind("CCD armed", 0) == 0; }));
 
   SceneDescription pair = one_body({-3, 0}, {100, 0});
   BodyDescription other = pair.mechanical->bodies[0];

@@ -58,7 +58,8 @@ std::string solution_name(const SceneDescription& scene) {
     const auto& m = *scene.mechanical;
     const bool collides = !m.colliders.empty() || std::count_if(m.bodies.begin(), m.bodies.end(),
                                                                 [](const auto& b) { return b.radius > 0; }) > 1;
-    return collides ? "the free-flight solution (true collisions, event by event)" : "the exact parabola x₀ + v₀t + ½gt²";
+    if (collides) return "the free-flight solution (true collisions, event by event)";
+    return m.forces.gravity.empty() ? "the exact straight line x₀ + v₀t" : "the exact parabola x₀ + v₀t + ½gt²";
   }
   if (scene.exact == "harmonic") return "the harmonic oscillator's closed form";
   if (scene.exact == "kepler") return "Kepler's orbit";

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <cerrno>
@@ -254,7 +255,8 @@ nlohmann::json summary_json(const ReportContext& c, const std::vector<EngineRun>
       e["us_per_step"] = or_null(time.min);
       e["us_per_step_median"] = or_null(time.median);
       e["us_per_step_max"] = or_null(time.max);
-      e["us_per_step_spread"] = or_null(time.spread());
+      // (One round has no spread: 0 % read as perfectly steady timings.)
+      e["us_per_step_spread"] = time.rounds > 1 ? nlohmann::json(time.spread()) : nlohmann::json(nullptr);
       nlohmann::json rounds = nlohmann::json::array();
       for (double seconds : r.round_seconds) rounds.push_back(r.steps ? 1e6 * seconds / static_cast<double>(r.steps) : 0.0);
       e["us_per_step_rounds"] = rounds;
@@ -271,7 +273,19 @@ nlohmann::json summary_json(const ReportContext& c, const std::vector<EngineRun>
   }
   if (c.scene && c.scene->mechanical) {
     const auto exact = exact_answer(*c.scene, runs);
-    j["notice"] = what_to_notice(*c.scene, runs, exact);
+    std::string notice = what_to_notice(*c.scene, runs, exact);
+    // A peer integrates with symplectic Euler; motus with what the scene or --integrator says. A
+    // difference in accuracy may be the method's, not the engine's (kepler: velocity Verlet 0.014 m
+    // from the orbit, the peers 0.058 m — and motus too, 0.058 m, with symplectic Euler).
+    const bool motus_ran = std::any_of(runs.begin(), runs.end(), [](const EngineRun& r) { return r.engine == "motus" && r.supported; });
+    const bool peer_ran = std::any_of(runs.begin(), runs.end(), [](const EngineRun& r) {
+      return (r.engine == "box2d" || r.engine == "bullet") && r.supported;
+    });
+    if (motus_ran && peer_ran && !c.integrator.empty() && c.integrator != "symplectic-euler")
+      notice += " motus integrated with " + c.integrator +
+                ", Box2D and Bullet with symplectic Euler (their own): part of any difference is the method's; "
+                "--integrator symplectic-euler compares like with like.";
+    j["notice"] = notice;
     if (exact) {
       nlohmann::json x;
       x["t"] = exact->t;

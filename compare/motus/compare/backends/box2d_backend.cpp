@@ -422,7 +422,7 @@ std::vector<std::string> Box2dBackend::notes() const {
                 "not projected as in motus: their lengths err as far as that solver leaves them");
     if (w.steps > 0)
       s.push_back(format("sticks: the worst length error so far is %.3g%% of the rest length (after step %ld; "
-                         "every step, where the table's constraint column looks at its samples only)",
+                         "every step, as the table's constraint column; metrics.csv has its samples only)",
                          100 * w.worst_stick, w.worst_stick_step));
   }
   return s;

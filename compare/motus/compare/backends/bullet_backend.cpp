@@ -383,12 +383,13 @@ std::vector<std::string> BulletBackend::notes() const {
         "steps and is pulled back, not projected as motus's Verlet sticks; worst relative length error so far " +
         std::to_string(w.worst_stick_error));
   if (w.ccd_steps > 0)
-    n.emplace_back("CCD engaged on " + std::to_string(w.ccd_steps) +
+    n.emplace_back("CCD armed on " + std::to_string(w.ccd_steps) +
                    " body-steps (a body moving more than its radius in a step): Bullet sweeps it against the "
-                   "others' start-of-step positions, clamps its motion at the time of impact (the rest of the step "
-                   "is lost) and adds a predictive contact with restitution 0; this stops tunnelling but not "
-                   "energy loss: a ball at 100 m/s meeting a wall 0.7 step away leaves at 70 m/s, two balls meeting "
-                   "head-on at 100 m/s stop dead (measured at 60 Hz), whatever their e");
+                   "others' start-of-step positions; when the sweep hits, it clamps the motion at the time of impact "
+                   "(the rest of the step is lost) and adds a predictive contact with restitution 0. That stops "
+                   "tunnelling but loses energy at such a contact: a ball at 100 m/s meeting a wall 0.7 step away "
+                   "leaves at 70 m/s, two balls meeting head-on at 100 m/s stop dead (measured at 60 Hz), whatever "
+                   "their e; a fast body that meets nothing is not changed");
   // The π/4-per-step angular clamp never bites here: no body rotates (angular factor 0).
   return n;
 }
