@@ -64,9 +64,19 @@ constexpr int kGapClasses = 4;
 // count against the lists' half skin, as the distance the ball moved.
 constexpr double kNudge = 1e-9;
 
+// A ball that moves more than this many radii in a step crosses others, and a gas of them needs
+// many contacts a step: that, not overlap, is the likelier cause of too many.
+constexpr double kFastRadii = 4;
+
 // With this many fast balls or more at a step's start, they find each other in a grid of their
 // paths (path_grid.hpp) rather than each testing all the others.
 constexpr size_t kPathGridFrom = 32;
+// The grid of paths cuts the time a typical fast ball's path lasts (to its first wall contact,
+// or the step's end) into this many slabs.
+constexpr double kPathSlabs = 8;
+// When stale entries (paths that contacts have changed since) make the grid of paths this
+// many times as big as when it was last entered whole, it is entered whole again, from now.
+constexpr size_t kPathGridGrowth = 4;
 
 }  // namespace
 
@@ -176,6 +186,12 @@ void BallCollisions<D>::drift(VectorRef x, VectorRef v, double h, bool kicked) {
       // (With a plug-in, the contact that passed the limit says which of its times of impact to
       // look at: the contacts that never end are nearly all of one kind.)
       std::string why = "the scene cannot settle (overlapping bodies?)";
+      // (Balls that cross many others in a step need that many contacts: then it is the speed.)
+      double radii = 0;
+      for (int b : balls_) radii = std::max(radii, velocity(b).norm() * h_ / radius_of(b));
+      if (radii > kFastRadii)
+        why = "the balls are too fast for the step (the fastest moves " + message_number(radii, 3) +
+              " radii in one step, crossing many others: a smaller step?)";
       if (rules_ && e.other >= 0)
         why = "with the plug-in's times of impact and impulses, the contacts between balls never end (does its time "
               "of impact of two balls find a contact between balls that are moving apart?)";
@@ -910,8 +926,10 @@ void BallCollisions<D>::find_initial_events() {
   counters_.pair_tests += tested;
   // Fast balls look along their whole path (and at each other). (A ball moved apart above
   // turned fast and joined them.)
+  // (Their walls first: the first wall contact ends the path each enters in the grid of paths.)
+  for (size_t a = 0; a < fast_.size(); ++a) find_wall_events(fast_[a], 0);
   start_fast_paths();
-  for (size_t a = 0; a < fast_.size(); ++a) find_events(fast_[a], 0, -1);
+  for (size_t a = 0; a < fast_.size(); ++a) find_ball_events(fast_[a], 0, -1);
 }
 
 template <int D>
@@ -935,6 +953,12 @@ void BallCollisions<D>::initial_plane_event(int i, int w) {
 template <int D>
 void BallCollisions<D>::find_events(int i, double t, int exclude) {
   find_wall_events(i, t);
+  find_ball_events(i, t, exclude);
+}
+
+template <int D>
+void BallCollisions<D>::find_ball_events(int i, double t, int exclude) {
+  // (After find_wall_events(i, t): its horizon.)
   if (radius_of(i) <= 0 || balls_.size() < 2) return;
   if (!state_[i].fast) {
     // Its possible partners are on its list, or are fast.
@@ -943,9 +967,9 @@ void BallCollisions<D>::find_events(int i, double t, int exclude) {
       if (k != exclude && !state_[k].fast) test_pair(i, k, t);
     }
   } else {
-    // A fast ball's partners are anywhere near its remaining path: within half the skin of
-    // where the grid has them.
-    const Point p = position_at(i, t), q = p + velocity(i) * (h_ - t);
+    // A fast ball's partners are anywhere near its remaining path (up to its horizon): within
+    // half the skin of where the grid has them.
+    const Point p = position_at(i, t), q = p + velocity(i) * (state_[i].horizon - t);
     const double margin = radius_of(i) + max_radius_ + 0.5 * skin_ + kNudge * cell_size_;
     for_cells_in_box(p.cwiseMin(q).array() - margin, p.cwiseMax(q).array() + margin, [&](int k) {
       if (k != i && k != exclude && !state_[k].fast) test_pair(i, k, t);
@@ -962,9 +986,10 @@ void BallCollisions<D>::for_fast_near(int i, double t, Visit&& visit) {
   // The fast balls ball i may meet from t to the step's end: every one, or those whose paths
   // pass near its own in their grid.
   if (fast_paths_on_) {
-    const Point p = position_at(i, t), q = p + velocity(i) * (h_ - t);
-    const double margin = radius_of(i) + kNudge * (path_cell_ + p.cwiseAbs().maxCoeff());
-    const long cells = fast_paths_.for_near(p.cwiseMin(q).array() - margin, p.cwiseMax(q).array() + margin, visit);
+    const Point p = position_at(i, t);
+    const long cells = fast_paths_.for_near(
+        p, velocity(i), t, state_[i].horizon, path_margin(i, p),
+        [this](int k) { return state_[k].collisions_this_step; }, visit);
     if (cells >= 0) {
       counters_.cell_queries += cells;
       return;
@@ -975,31 +1000,59 @@ void BallCollisions<D>::for_fast_near(int i, double t, Visit&& visit) {
 
 template <int D>
 void BallCollisions<D>::start_fast_paths() {
-  // Cells about as wide as a typical fast ball's path box (the median path and a diameter),
-  // so that most paths are in one to 2^D cells.
+  // (After find_wall_events of every fast ball: their horizons.) Slabs of an eighth of a
+  // typical path's time (the median horizon), cells as wide as a typical path's piece in one
+  // (an eighth of the median path, and a diameter), so that most pieces are in one to 2^D cells.
   fast_paths_on_ = false;
   if (fast_.size() < kPathGridFrom) return;
-  path_lengths_.clear();
-  for (int i : fast_) path_lengths_.push_back(velocity(i).norm() * h_);
-  const auto middle = path_lengths_.begin() + static_cast<std::ptrdiff_t>(path_lengths_.size() / 2);
-  std::nth_element(path_lengths_.begin(), middle, path_lengths_.end(), [](double a, double b) {
-    return a < b || (b != b && a == a);  // (NaN last)
-  });
-  path_cell_ = 2 * max_radius_ + *middle;
-  if (!(path_cell_ > 0 && path_cell_ < INFINITY)) return;
-  fast_paths_.start(path_cell_, fast_.size(), n_);
+  auto median = [&](auto&& of) {
+    path_lengths_.clear();
+    for (int i : fast_) path_lengths_.push_back(of(i));
+    const auto middle = path_lengths_.begin() + static_cast<std::ptrdiff_t>(path_lengths_.size() / 2);
+    std::nth_element(path_lengths_.begin(), middle, path_lengths_.end(), [](double a, double b) {
+      return a < b || (b != b && a == a);  // (NaN last)
+    });
+    return *middle;
+  };
+  double slab = median([&](int i) { return state_[i].horizon; }) / kPathSlabs;
+  if (!(slab > 0)) slab = h_ / kPathSlabs;  // (most fast balls at a wall now)
+  path_cell_ = 2 * max_radius_ + median([&](int i) { return velocity(i).norm() * state_[i].horizon; }) / kPathSlabs;
+  if (!(path_cell_ > 0 && path_cell_ < INFINITY && slab < INFINITY)) return;
+  // (Room for every path's entries, up to a few per slab — but not a gigabyte for a million.)
+  const size_t entries = fast_.size() * (size_t{1} << D) * (fast_.size() < (size_t{1} << 16) ? 9 : 2);
+  fast_paths_.start(path_cell_, slab, entries, n_);
   fast_paths_on_ = true;
   ++counters_.path_grids;
   for (int i : fast_) enter_fast_path(i, 0);
+  path_entries_ = fast_paths_.entries();
+}
+
+template <int D>
+double BallCollisions<D>::path_margin(int i, const Point& p) const {
+  // Its radius, and a rounding's worth (two balls that touch must have pieces that overlap).
+  return radius_of(i) + kNudge * (path_cell_ + p.cwiseAbs().maxCoeff() +
+                                  Eigen::Map<const Point>(v_ + D * i).cwiseAbs().maxCoeff() * h_);
 }
 
 template <int D>
 void BallCollisions<D>::enter_fast_path(int i, double t) {
-  // Its line from t to the step's end, widened by its radius (and a rounding's worth, as
-  // for_fast_near widens a query: two balls that touch have boxes that overlap).
-  const Point p = position_at(i, t), q = p + velocity(i) * (h_ - t);
-  const double margin = radius_of(i) + kNudge * (path_cell_ + p.cwiseAbs().maxCoeff());
-  fast_paths_.enter(i, p.cwiseMin(q).array() - margin, p.cwiseMax(q).array() + margin);
+  // Its line from t to its horizon (after find_wall_events(i, t)).
+  const Point p = position_at(i, t);
+  fast_paths_.enter(i, state_[i].collisions_this_step, p, velocity(i), t, state_[i].horizon, path_margin(i, p));
+}
+
+template <int D>
+void BallCollisions<D>::enter_fast_paths(int i, int k, double t) {
+  // The new paths of the bodies of a contact at t (k < 0: a wall). Once the stale entries have
+  // grown the grid kPathGridGrowth times, every fast ball's path from t instead.
+  if (fast_paths_.entries() > kPathGridGrowth * path_entries_ + 1024) {
+    fast_paths_.clear();
+    for (int f : fast_) enter_fast_path(f, t);
+    path_entries_ = fast_paths_.entries();
+    return;
+  }
+  if (state_[i].fast) enter_fast_path(i, t);
+  if (k >= 0 && state_[k].fast) enter_fast_path(k, t);
 }
 
 template <int D>
@@ -1007,6 +1060,7 @@ void BallCollisions<D>::find_wall_events(int i, double t) {
   const Point p = position_at(i, t);
   const Point u = velocity(i);
   const double r = radius_of(i), horizon = h_ - t;
+  double first = horizon;  // (the first contact found, from t)
   for (size_t w = 0; w < planes_.size(); ++w) {
     const Plane& plane = planes_[w];
     double gap, closing;
@@ -1018,12 +1072,15 @@ void BallCollisions<D>::find_wall_events(int i, double t) {
       closing = plane.normal.dot(u);
     }
     const double toi = rules_ ? outside_plane_impact(p, u, r, plane, horizon) : sphere_plane_impact(gap, closing, horizon);
-    if (toi != kNoImpact) push(t + toi, i, -1 - static_cast<int>(w));
+    if (toi != kNoImpact) push(t + toi, i, -1 - static_cast<int>(w)), first = std::min(first, toi);
   }
   for (size_t s = 0; s < segments_.size(); ++s) {
     const double toi = segment_impact(segments_[s], p, u, r, horizon, nullptr);
-    if (toi != kNoImpact) push(t + toi, i, -1 - static_cast<int>(planes_.size() + s));
+    if (toi != kNoImpact) push(t + toi, i, -1 - static_cast<int>(planes_.size() + s)), first = std::min(first, toi);
   }
+  // (The event's own time: a contact of its at exactly that time may still come first, by the
+  // bodies' numbers.)
+  state_[i].horizon = first < horizon ? t + first : h_;
 }
 
 template <int D>
@@ -1141,12 +1198,12 @@ void BallCollisions<D>::resolve(const Event& e) {
     ++counters_.ball_collisions;
     mark_fast_if_needed(i, e.t);
     mark_fast_if_needed(k, e.t);
-    if (fast_paths_on_) {  // (their new paths)
-      if (state_[i].fast) enter_fast_path(i, e.t);
-      if (state_[k].fast) enter_fast_path(k, e.t);
-    }
-    find_events(i, e.t, k);
-    find_events(k, e.t, i);
+    // (Walls first: their first contacts end the new paths.)
+    find_wall_events(i, e.t);
+    find_wall_events(k, e.t);
+    if (fast_paths_on_) enter_fast_paths(i, k, e.t);
+    find_ball_events(i, e.t, k);
+    find_ball_events(k, e.t, i);
   } else {
     const int w = -1 - e.other;
     const double wall_e = w < static_cast<int>(planes_.size())
@@ -1158,8 +1215,9 @@ void BallCollisions<D>::resolve(const Event& e) {
     ++state_[i].collisions_this_step;
     ++counters_.wall_collisions;
     mark_fast_if_needed(i, e.t);
-    if (fast_paths_on_ && state_[i].fast) enter_fast_path(i, e.t);
-    find_events(i, e.t, -1);
+    find_wall_events(i, e.t);
+    if (fast_paths_on_) enter_fast_paths(i, -1, e.t);
+    find_ball_events(i, e.t, -1);
   }
 }
 

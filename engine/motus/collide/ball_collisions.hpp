@@ -136,6 +136,7 @@ private:
   void initial_plane_event(int i, int wall);
   void find_events(int i, double t, int exclude);
   void find_wall_events(int i, double t);
+  void find_ball_events(int i, double t, int exclude);
   void test_pair(int i, int k, double t);
   void separate(int i, int k);
   void separate_from_walls(int i);
@@ -158,6 +159,8 @@ private:
   void mark_fast_if_needed(int i, double t);
   void start_fast_paths();
   void enter_fast_path(int i, double t);
+  void enter_fast_paths(int i, int k, double t);
+  double path_margin(int i, const Point& p) const;
   template <class Visit>
   void for_fast_near(int i, double t, Visit&& visit);
 
@@ -188,6 +191,12 @@ private:
     double lag = 0;
     double travelled = 0;  // since the step's start
     unsigned collisions_this_step = 0;  // events carry it to detect staleness
+    // When its first wall contact is, as its last search found it (the step's end if none): no
+    // contact of its later than that can happen — the wall's comes first, and changes its
+    // velocity, and the later contacts' events are then stale — so its searches and its path
+    // in the grid of paths end there. (A fast gas crosses its container many times in a step:
+    // its lines through the whole step pass near every other ball.)
+    double horizon = 0;
     bool fast = false;     // searches along its path this step (not by its list)
     bool escaped = false;  // off the lists until they are built again: fast every step
   };
@@ -261,6 +270,7 @@ private:
   PathGrid<D> fast_paths_;
   bool fast_paths_on_ = false;
   double path_cell_ = 1;  // its cells' size
+  size_t path_entries_ = 0;  // its entries when it was last entered whole
   std::vector<double> path_lengths_;  // (start_fast_paths's)
 };
 
