@@ -11,6 +11,8 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
+#include <stdexcept>
+#include <string>
 #include <utility>
 
 #include "motus/ball_lattice.hpp"
@@ -131,6 +133,38 @@ TEST(NeighbourLists, ThousandsOfFastBallsTestFarFewerPairsThanAllOfThem) {
     EXPECT_EQ(counters.path_grids, steps) << d << "-D";
     const double fast = 4096 * 0.9;  // (at least: a speed of 3 m/s is 1/8 of the range, fewer than 1 ball in 10 is slower in 2-D)
     EXPECT_LT(static_cast<double>(counters.pair_tests), steps * fast * (fast - 1) / 100) << d << "-D";
+  }
+}
+
+TEST(NeighbourLists, AGasThatCrossesItsBoxInAStepLooksOnlyNearItsPathsInSpaceAndTime) {
+  // peers.md's 400 balls at 2,100 times their speed: the fastest moves about 100 radii (50 m)
+  // in a step, across the 40 m box, and every ball is fast. Each ball's line through the whole
+  // step passes near every other's, and each contact tested every fast ball (about 800 pair
+  // tests a contact). Cut at each ball's first wall contact and into slabs of time
+  // (path_grid.hpp), a contact tests only the balls near its two bodies then.
+  SceneDescription scene = gas_in_a_box(2, 400, 2100);
+  Simulation sim(scene, Integrator::SymplecticEuler);
+  sim.advance(2 * scene.dt, scene.dt, {});
+  const auto counters = sim.world()->collision_counters();
+  const long contacts = counters.ball_collisions + counters.wall_collisions;
+  EXPECT_GT(contacts, 4000) << "the gas must collide for this to say anything";
+  EXPECT_EQ(counters.path_grids, 2);
+  EXPECT_LT(counters.pair_tests, 40 * contacts);
+}
+
+TEST(NeighbourLists, TooManyContactsInAFastGasSaysTheBallsAreTooFastNotThatTheyOverlap) {
+  // 100 balls at 21,000 times their speed, about 1,000 radii a step: more contacts in a step
+  // than the engine allows (1000 + 100 N). Nothing overlaps; the message says what does happen.
+  SceneDescription scene = gas_in_a_box(2, 100, 21000);
+  Simulation sim(scene, Integrator::SymplecticEuler);
+  try {
+    sim.advance(scene.dt, scene.dt, {});
+    ADD_FAILURE() << "the step should have had too many contacts";
+  } catch (const std::exception& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("more than 11000 collisions in one step"), std::string::npos) << message;
+    EXPECT_NE(message.find("radii in one step"), std::string::npos) << message;
+    EXPECT_EQ(message.find("overlapping"), std::string::npos) << message;
   }
 }
 
