@@ -332,10 +332,13 @@ int render_command(const RenderOptions& o) {
   stop_if_interrupted();
   rendering.move_into_place(names);
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count();
-  fmt::print("{} frames of {}x{} at {:g} per simulated {} ({:g} {} of {}) in {}/ ({:.1f} s)\n", frames, width, height,
+  fmt::print("{} frame{} of {}x{} at {:g} per simulated {} ({:g} {} of {}) in {}/ ({:.1f} s)\n", frames, frames == 1 ? "" : "s", width, height,
              o.fps, time_unit_of(scene) == "years" ? "year" : "second", duration, time_unit_of(scene), scene.name, o.out,
              wall);
   if (!plugin_parts.empty()) fmt::print("passes       {}\n", plugin_parts);
+  if (o.trails && scene.is_mechanical() && scene.mechanical->bodies.size() > 64)
+    fmt::print("trails       none drawn: --trails draws scenes of at most 64 bodies, and this one has {}\n",
+               scene.mechanical->bodies.size());
   if (!o.video.empty()) fmt::print("video        {}\n", (fs::path(o.out) / video_name).string());
   // An unstable run is drawn as it went (the frames show it), but it is not a run that went well.
   for (size_t k = 0; k < recording.states.size(); ++k)

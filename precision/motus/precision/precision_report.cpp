@@ -54,9 +54,11 @@ std::vector<plot::Figure> diagrams(const ReportContext& c, const std::vector<Cur
     f->width = 1100;
     f->height = 620;
     f->key = "outside right top";
-    f->note = "down and to the left is better; dashed: the peers (Odeint on the same right-hand side, Box2D and "
-              "Bullet with semi-implicit Euler)";
+    f->note = "down and to the left is better; circles: motus's methods";
   }
+  // (Said only of the peers drawn: a note that named Odeint, Box2D and Bullet on a diagram of motus's
+  // methods alone read as if some of motus's dashed lines were theirs.)
+  std::vector<std::string> peers_drawn;
   int peer_index = 0;
   std::vector<std::string> no_evaluations;  // methods whose every point made no evaluation
   bool plugin_drawn = false;
@@ -67,6 +69,8 @@ std::vector<plot::Figure> diagrams(const ReportContext& c, const std::vector<Cur
     const bool peer = curve.engine == "odeint" || curve.engine == "box2d" || curve.engine == "bullet";
     const bool plugin = !peer && curve.engine != "motus";
     plugin_drawn = plugin_drawn || plugin;
+    if (peer && std::find(peers_drawn.begin(), peers_drawn.end(), curve.engine) == peers_drawn.end())
+      peers_drawn.push_back(curve.engine);
     constexpr int kPeerPoints[] = {5, 9, 11, 13};
     plot::Series s{curve.method, {}, {}};
     s.style = "linespoints";
@@ -92,6 +96,14 @@ std::vector<plot::Figure> diagrams(const ReportContext& c, const std::vector<Cur
   }
   if (plugin_drawn)
     for (plot::Figure* f : {&time, &work}) f->note += "; open circles: the plug-in's";
+  if (!peers_drawn.empty()) {
+    std::string who;
+    for (const auto& p : peers_drawn)
+      who += (who.empty() ? "" : ", ") + std::string(p == "odeint"  ? "Odeint on the same right-hand side"
+                                                     : p == "box2d" ? "Box2D with semi-implicit Euler"
+                                                                    : "Bullet with semi-implicit Euler");
+    for (plot::Figure* f : {&time, &work}) f->note += "; squares, triangles and diamonds on dashed lines: the peers (" + who + ")";
+  }
   if (!no_evaluations.empty())
     work.note += "; not drawn, as they evaluate no force here: " + fmt::format("{}", fmt::join(no_evaluations, ", "));
   return {time, work};
