@@ -130,8 +130,9 @@ std::vector<plot::Figure> figures(const Report& r) {
       }
       f.series.push_back(std::move(line));
     }
-    f.note = fmt::format("blown up: not finite, |E - E0| > {:g} |E0|, or a bound orbit escaping (the points at the top){}",
-                         r.settings.energy_factor, r.omega ? "; theory: ωh = 2 (symplectic Euler, Verlet), 1.573 (yoshida4), 2√2 (rk4)" : "");
+    // (Not "the points at the top": an orbit that escapes may blow up at an error of about 1.)
+    f.note = fmt::format("blown up: not finite, |E - E0| > {:g} |E0|, or a bound orbit escaping{}", r.settings.energy_factor,
+                         r.omega ? "; theory: ωh = 2 (symplectic), 1.573 (yoshida4), 2√2 (rk4)" : "");
     all.push_back(std::move(f));
   }
   if (has(r, "drift")) {

@@ -198,12 +198,13 @@ std::string draw(const std::vector<Figure>& figures, const std::string& folder) 
                    colour + " title " + quoted(s.name + legend_tail(f, s));
     }
     // The legend below the plot, in as many columns as its longest entry lets fit across the
-    // picture (about 6 px a character of the 10-point font, and the sample line): the plot keeps the
-    // picture's width whatever the entries say.
+    // picture (about 7.5 px a character of the 10-point font, and the sample line; at 6 px two
+    // columns were counted where gnuplot drew one, its third row over the x axis's label): the
+    // plot keeps the picture's width whatever the entries say.
     const bool below = f.key.empty();
     size_t longest = 0;
     for (const auto& s : f.series) longest = std::max(longest, s.name.size() + legend_tail(f, s).size());
-    const int columns = std::clamp((f.width - 80) / (6 * static_cast<int>(longest) + 70), 1, 4);
+    const int columns = std::clamp((f.width - 80) / (15 * static_cast<int>(longest) / 2 + 70), 1, 4);
     const int rows = (static_cast<int>(f.series.size()) + columns - 1) / columns;
     const std::string key = !below ? f.key + " Left reverse box opaque"
                                    : "below Left reverse box maxrows " + std::to_string(std::max(rows, 1));
