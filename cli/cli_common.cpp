@@ -309,11 +309,22 @@ PartialFolder::PartialFolder(const std::string& final_path, bool numbered)
   const fs::path target(final_);
   const fs::path parent = target.parent_path().empty() ? fs::path(".") : target.parent_path();
   std::error_code error;
+  // The folders above it that are not there yet: made now, and removed again (when still empty)
+  // if the work never gets there — an interrupted run said "nothing half-written was left behind"
+  // and left the empty folders of its --out's path.
+  for (fs::path above = parent; !above.empty() && !fs::exists(fs::symlink_status(above, error)); above = above.parent_path()) {
+    made_parents_.push_back(above.string());
+    if (above == above.parent_path()) break;
+  }
   fs::create_directories(parent, error);
   if (error) throw InputError(final_ + ": cannot be created (" + error.message() + ")");
   std::string pattern = (parent / ("." + target.filename().string() + ".partial-XXXXXX")).string();
-  if (!::mkdtemp(pattern.data()))
-    throw InputError(final_ + ": cannot be created (" + std::string(std::strerror(errno)) + ")");
+  if (!::mkdtemp(pattern.data())) {
+    const std::string why = std::strerror(errno);
+    for (const auto& folder : made_parents_)
+      if (!fs::remove(folder, error)) break;
+    throw InputError(final_ + ": cannot be created (" + why + ")");
+  }
   ::chmod(pattern.c_str(), 0755);  // as a folder made by create_directories would be (mkdtemp makes 0700)
   partial_ = pattern;
 }
@@ -322,6 +333,8 @@ PartialFolder::~PartialFolder() {
   if (done_) return;
   std::error_code ignored;
   fs::remove_all(partial_, ignored);
+  for (const auto& folder : made_parents_)
+    if (!fs::remove(folder, ignored)) break;  // (only an empty folder goes; a folder with anything in it stays)
 }
 
 namespace {

@@ -204,6 +204,7 @@ public:
 
 private:
   std::string final_, partial_;
+  std::vector<std::string> made_parents_;  // the folders above it that it made, deepest first
   bool numbered_;
   bool done_ = false;
 };

@@ -99,6 +99,12 @@ public:
       // Made here or refused: another render started beside this one may have made it since it was
       // looked at (both went on, and the second replaced the first's frames without --overwrite).
       const fs::path parent = fs::path(out_).parent_path();
+      // (The folders above it that are not there yet go again with it, when still empty.)
+      for (fs::path above = parent; !above.empty() && !fs::exists(fs::symlink_status(above, error));
+           above = above.parent_path()) {
+        made_parents_.push_back(above.string());
+        if (above == above.parent_path()) break;
+      }
       if (!parent.empty()) fs::create_directories(parent, error);
       if (!error && !fs::create_directory(out_, error) && !error)
         throw InputError(out_ + ": already exists (made meanwhile, by another run?); choose another --out or pass --overwrite");
@@ -116,7 +122,7 @@ public:
     if (::mkdtemp(name.data()) == nullptr) {
       const int e = errno;
       ::close(lock_);
-      if (made_folder_) fs::remove(out_, error);
+      if (made_folder_) remove_made_folders();
       throw InputError(out_ + ": cannot be written in (" + std::strerror(e) + ")");
     }
     partial_ = name;
@@ -127,7 +133,7 @@ public:
     if (!moved_) {
       std::error_code ignored;
       fs::remove_all(partial_, ignored);            // (a folder of motus's own making)
-      if (made_folder_) fs::remove(out_, ignored);  // (only if empty: nothing else is ever removed)
+      if (made_folder_) remove_made_folders();
     }
     ::close(lock_);  // (and the lock with it)
   }
@@ -159,6 +165,15 @@ public:
   }
 
 private:
+  // --out and the folders above it that this render made, each only if empty (nothing else is ever
+  // removed).
+  void remove_made_folders() const {
+    std::error_code ignored;
+    if (!fs::remove(out_, ignored)) return;
+    for (const auto& folder : made_parents_)
+      if (!fs::remove(folder, ignored)) return;
+  }
+
   // FOLDER/.motus-render, written whole beside the frames and moved over the old one.
   void write_list(const std::vector<std::string>& names) const {
     const fs::path list = fs::path(partial_) / kManifest;
@@ -177,6 +192,7 @@ private:
 
   std::string out_, partial_;
   bool made_folder_;
+  std::vector<std::string> made_parents_;  // deepest first
   int lock_ = -1;  // the folder, open: flock'ed while this render writes into it
   bool moved_ = false;
 };
@@ -225,6 +241,12 @@ int render_command(const RenderOptions& o) {
   if (!o.video.empty() && frames < 2)
     throw InputError(fmt::format("--fps: {:g} frames per second of a {:g} s run is less than one frame after the first "
                                  "(a video needs two)", o.fps, duration));
+  // A GIF's frame delay is in hundredths of a second, and players slow a delay below 2 to 10: a
+  // GIF past 50 frames a second played at 10 without a word (0.1 s of 10,000 a second took 100 s).
+  if (o.video == "gif" && o.fps > 50)
+    throw InputError(fmt::format("--fps: a GIF plays at most 50 frames per second (its frame delay is in hundredths of a "
+                                 "second), not {:g}: a lower --fps, or --video mp4",
+                                 o.fps));
   if (!o.video.empty() && o.fps < 0.001)
     throw InputError(fmt::format("--fps: a video at {:g} frames per second is slower than ffmpeg plays (0.001 at the least)",
                                  o.fps));

@@ -245,6 +245,9 @@ TEST(CliErrors, BadOptionValueIsOneLineExitTwo) {
         // drawn, then deleted with the failed run's folder)
         std::vector<std::string>{"render", scene("oscillator"), "--out", (dir / "frames").string(), "--duration", "0.5",
                                  "--fps", "1e-20", "--video", "gif"},
+        // a GIF faster than its hundredths of a second: it played at 10 frames a second, without a word
+        std::vector<std::string>{"render", scene("oscillator"), "--out", (dir / "frames").string(), "--duration", "0.1",
+                                 "--fps", "10000", "--video", "gif"},
         // compare's --fps draws nothing without --render: it was taken and ignored without a word
         std::vector<std::string>{"compare", scene("head_on"), "--out", (dir / "frames").string(), "--fps", "10"}}) {
     const Result r = run_motus(dir, args);

@@ -741,10 +741,12 @@ TEST(Hardening, StoppedAtOnceWhileEncodingLeavesNoFfmpegRunning) {
 
 // bench precision stopped only between points: Ctrl-C during a point of 10⁹ Euler steps waited its 30 s of
 // grace, then stopped at once with the run's partial folder left behind. Its untimed runs now stop at
-// the next 65,536th step. Found by an audit of big inputs.
+// the next 65,536th step. Found by an audit of big inputs. And the folders of --out's path that it
+// made (here "new/to/"): they were left, empty, after "nothing half-written was left behind" (an
+// audit of the stress and bench commands).
 TEST(Hardening, CtrlCInALongPrecisionPointStopsAtOnceAndLeavesNothing) {
   TempDir dir;
-  const fs::path out = dir / "sweep";
+  const fs::path out = dir / "new" / "to" / "sweep";
   const pid_t pid = start_motus(dir, {"bench", "precision", "kepler", "--duration", "1e7", "--levels", "1", "--integrators",
                                      "euler", "--repeats", "1", "--out", out.string()});
   ASSERT_GT(pid, 0);
@@ -757,6 +759,7 @@ TEST(Hardening, CtrlCInALongPrecisionPointStopsAtOnceAndLeavesNothing) {
   EXPECT_NE(read_file(dir / "err.txt").find("nothing half-written was left behind"), std::string::npos) << read_file(dir / "err.txt");
   for (const auto& e : fs::directory_iterator(dir.path()))
     EXPECT_EQ(e.path().filename().string().find("partial"), std::string::npos) << "left behind: " << e.path();
+  EXPECT_FALSE(fs::exists(dir / "new")) << "the folders it made for --out were left behind";
 }
 
 // Slow steps (a 500 × 500 cloth's take tenths of a second) stop at the next one: Ctrl-C was
