@@ -74,7 +74,7 @@ double EngineRun::momentum_drift() const {
 }
 
 double EngineRun::max_penetration() const {
-  double worst = 0;
+  double worst = penetration_every_step;
   for (const auto& r : rows) worst = worse(worst, r.penetration);
   return worst;
 }
@@ -107,6 +107,7 @@ std::vector<EngineRun> run_comparison(const SceneDescription& scene, const Compa
                                       const std::function<void(double)>& progress) {
   const Metrics metrics(scene);
   const bool sticks = !scene.mechanical->sticks.empty();
+  const bool contacts = metrics.has_contacts();
   const long steps = fixed_step_count(options.duration, options.dt);
   // The samples after the start: `samples` of them (every step when the run has fewer), at the
   // steps nearest to k·steps/samples, k = 1 … samples — the last at the end.
@@ -189,11 +190,12 @@ std::vector<EngineRun> run_comparison(const SceneDescription& scene, const Compa
       // Step to the next sample (or frame).
       long batch = next_sample - i;
       if (options.frame_every > 0) batch = std::min(batch, options.frame_every - i % options.frame_every);
-      if (sticks) {  // (the stick error every step: reading the state costs little beside a stick scene's step)
+      if (sticks || contacts) {  // (the stick error and the overlap every step: this run is not timed)
         for (long b = 0; b < batch; ++b) {
           backend->step();
           backend->read(s);
-          run.stick_error_every_step = worse(run.stick_error_every_step, metrics.stick_error(s));
+          if (sticks) run.stick_error_every_step = worse(run.stick_error_every_step, metrics.stick_error(s));
+          if (contacts) run.penetration_every_step = worse(run.penetration_every_step, metrics.deepest_penetration(s.x));
         }
       } else {
         for (long b = 0; b < batch; ++b) backend->step();

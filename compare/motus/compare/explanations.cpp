@@ -153,8 +153,9 @@ std::vector<ColumnDefinition> column_definitions(const SceneDescription& scene, 
                                    : "This scene does not keep its momentum (walls or outside forces push on it): the "
                                      "column shows that push, not an error.")});
   d.push_back({"max penetration [m]",
-               "the deepest overlap of two balls (r_a + r_b − distance) or of a ball and a wall (radius − height above it) " +
-                   over + ". Exact collisions never overlap; engines that resolve contacts after they happen do."});
+               "the deepest overlap of two balls (r_a + r_b − distance) or of a ball and a wall (radius − height above it) "
+               "over every step of the run (an overlap lasts a step or two, between samples). Exact collisions never "
+               "overlap; engines that resolve contacts after they happen do."});
   d.push_back({"constraint error",
                scene.mechanical->sticks.empty()
                    ? "the largest |length − rest length| / rest length of a stick; this scene has no sticks (0)."

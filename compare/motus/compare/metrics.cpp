@@ -65,6 +65,12 @@ double Metrics::stick_error(const Snapshot& s) const {
   return worst;
 }
 
+bool Metrics::has_contacts() const {
+  const Colliders& walls = scene_.mechanical->colliders;
+  const bool any_wall = !walls.planes.empty() || !walls.boxes.empty() || !walls.segments.empty();
+  return balls_.size() >= 2 || (any_wall && !radius_.empty());
+}
+
 double Metrics::deepest_penetration(const std::vector<double>& x) const {
   double deepest = 0;
   const Colliders& walls = scene_.mechanical->colliders;

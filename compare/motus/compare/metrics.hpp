@@ -38,9 +38,12 @@ public:
   MetricsRow measure(const Snapshot& s, const Snapshot* motus) const;
   // The largest relative stick-length error in s (0 without sticks; +∞ once not finite).
   double stick_error(const Snapshot& s) const;
+  // How far the deepest ball is inside another or a wall at x (m; 0 when none is; +∞ once not finite).
+  double deepest_penetration(const std::vector<double>& x) const;
+  // Whether anything can overlap: a ball and a wall, or two balls.
+  bool has_contacts() const;
 
 private:
-  double deepest_penetration(const std::vector<double>& x) const;
 
   const SceneDescription& scene_;
   MechanicalSystem system_;
