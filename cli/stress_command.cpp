@@ -30,7 +30,8 @@ void print_tables(const stress::Report& r) {
              fmt::join(r.sections, ", "));
   for (const auto& [section, why] : r.not_applied) fmt::print("  not measured: {}: {}\n", section, why);
   for (const auto& [integrator, why] : r.cannot_run) fmt::print("  cannot run it: {}: {}\n", integrator, why);
-  const auto blown = fmt::format("blown up: not finite, |E - E0| > {:g} |E0|, or a bound orbit escaping", r.settings.energy_factor);
+  const auto blown = fmt::format("blown up: not finite, |E - E0| > {:g} |E0|, or a bound orbit escaping or swing going over the top",
+                                 r.settings.energy_factor);
   if (!r.stability.empty()) {
     fmt::print("\nlargest stable step ({} steps a trial; {})\n", r.settings.steps, blown);
     fmt::print("  {:<20}{:>14}{:>11}  {}\n", "integrator", "largest h", r.omega ? "omega h" : "", "theory (measured/theory)");

@@ -18,13 +18,25 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 // |E − E0| relative to |E0| (to 1 when E0 = 0).
 double relative(double e, double e0) { return std::abs(e - e0) / (e0 != 0 ? std::abs(e0) : 1.0); }
 
+// The energy past which a bound motion is no longer bound: an orbit's 0 (E ≥ 0 escapes), and a
+// pendulum's 2 m g/L, its potential at the top (in the units motus reports a pendulum's energy in,
+// divided by L²): a swing whose energy passes it goes over the top. Without this, a pendulum's
+// energy, whose potential is bounded, never reached 10⁶ |E0|: explicit Euler at ωh ≈ 48 (h = 15 s
+// on a 2 s swing) was "stable" while it spun over the top (two audits).
+double bound_energy(const SceneDescription& scene) {
+  if (!scene.mechanical || scene.mechanical->forces.pendulums.empty()) return 0;
+  double top = 0;
+  for (const auto& p : scene.mechanical->forces.pendulums) top += 2 * scene.mechanical->bodies[static_cast<size_t>(p.body)].mass * p.g / p.length;
+  return top;
+}
+
 // The blow-up rule of every stability, stiffness and drift run (docs/cli.md): the energy is not
-// finite, or it changed by more than `factor` times |E0|, or an orbit that was bound (E0 < 0)
-// escaped (E >= 0).
-std::string blow_up(double e, double e0, double factor) {
+// finite, or it changed by more than `factor` times |E0|, or a motion that was bound (E0 below
+// `bound`, bound_energy's) is no longer (E ≥ bound): an orbit escaped, a pendulum went over the top.
+std::string blow_up(double e, double e0, double factor, double bound) {
   if (!std::isfinite(e)) return "not finite";
   if (relative(e, e0) > factor) return "energy beyond the factor";
-  if (e0 < 0 && e >= 0) return "escaped (E >= 0)";
+  if (e0 < bound && e >= bound) return bound == 0 ? "escaped (E >= 0)" : "over the top (E >= the pendulum's 2 m g/L)";
   return "";
 }
 
@@ -66,14 +78,14 @@ long run_steps(Simulation& sim, long steps, double h, const std::function<bool(c
 // A trial of `steps` steps of h: the largest energy error and whether it blew up.
 StabilityTrial trial(const SceneDescription& scene, Integrator integrator, double h, const Settings& settings, const Tick& tick) {
   Simulation sim(scene, integrator);
-  const double e0 = sim.energy()->total;
+  const double e0 = sim.energy()->total, bound = bound_energy(scene);
   StabilityTrial t{h, 0, false};
   std::string failure;
   run_steps(sim, settings.steps, h,
             [&](const Simulation& s) {
               const double e = s.energy()->total;
               t.max_error = std::max(t.max_error, std::isfinite(e) ? relative(e, e0) : kInf);
-              if (!blow_up(e, e0, settings.energy_factor).empty()) t.blown = true;
+              if (!blow_up(e, e0, settings.energy_factor, bound).empty()) t.blown = true;
               return !t.blown;
             },
             tick, failure);
@@ -173,7 +185,7 @@ DriftResult measure_drift(const SceneDescription& scene, Integrator integrator, 
     return r;
   }
   Simulation sim(scene, integrator);
-  const double e0 = sim.energy()->total;
+  const double e0 = sim.energy()->total, bound = bound_energy(scene);
   const long n = settings.drift_steps;
   const long tenth = std::max(1L, n / 10), hundredth = std::max(1L, n / 100);
   long next_sample = 1;
@@ -189,7 +201,7 @@ DriftResult measure_drift(const SceneDescription& scene, Integrator integrator, 
               if (step <= hundredth) r.first_hundredth_max = std::max(r.first_hundredth_max, error);
               if (step > n - tenth) r.last_tenth_max = std::max(r.last_tenth_max, error);
               r.steps = step;
-              const std::string why = blow_up(e, e0, kInf);  // only not finite, or escaped
+              const std::string why = blow_up(e, e0, kInf, bound);  // only not finite, or no longer bound
               if (step >= next_sample || !why.empty() || step == n) {
                 r.samples.push_back({step, s.time(), error, window});
                 window = 0;

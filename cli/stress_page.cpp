@@ -131,7 +131,7 @@ std::vector<plot::Figure> figures(const Report& r) {
       f.series.push_back(std::move(line));
     }
     // (Not "the points at the top": an orbit that escapes may blow up at an error of about 1.)
-    f.note = fmt::format("blown up: not finite, |E - E0| > {:g} |E0|, or a bound orbit escaping{}", r.settings.energy_factor,
+    f.note = fmt::format("blown up: not finite, |E - E0| > {:g} |E0|, or a bound orbit or swing no longer bound{}", r.settings.energy_factor,
                          r.omega ? "; theory: ωh = 2 (symplectic), 1.573 (yoshida4), 2√2 (rk4)" : "");
     all.push_back(std::move(f));
   }
@@ -373,7 +373,8 @@ std::string write_page(const std::string& folder, const Report& r) {
       h << "<p><a href=\"" << stem << ".png\"><img src=\"" << stem << ".svg\" alt=\"" << html_escape(alt) << "\"></a></p>\n";
   };
   const std::string blown_rule = fmt::format("the energy is not finite, or |E − E₀| &gt; {:g}·|E₀|, or an orbit that was bound "
-                                             "(E₀ &lt; 0) escapes (E ≥ 0)",
+                                             "(E₀ &lt; 0) escapes (E ≥ 0), or a pendulum's swing goes over the top "
+                                             "(E ≥ 2mg/L, its potential there)",
                                              r.settings.energy_factor);
 
   if (has(r, "stability")) {

@@ -204,6 +204,25 @@ TEST(StressPages, TheTerminalTellsTwoLimitsApartAsTheCsvDoes) {
 
 // ---- the other pages -------------------------------------------------------------------------
 
+// A pendulum's potential is bounded, so its energy never reached 10⁶ |E0|: steps of 15 s on a swing
+// of 2 s were "stable" while it spun over the top (two audits). A swing whose energy passes its
+// potential at the top, 2 m g/L, has blown up. At the bottom of the swing the pendulum is the
+// oscillator of ω = √(g/L), which no step past 2/ω keeps (course.md: z < 2 for these methods).
+TEST(StressPages, APendulumThatGoesOverTheTopHasBlownUp) {
+  TempDir dir;
+  const Result r = run_motus(dir, {"stress", "pendulum", "--integrators", "symplectic-euler,verlet,velocity-verlet",
+                                   "--drift-steps", "1000", "--out", (dir / "p").string()});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto summary = nlohmann::json::parse(read_file(dir / "p" / "summary.json"));
+  ASSERT_EQ(summary.at("stability").size(), 3u);
+  const double linear_limit = 2 / std::sqrt(9.81);  // the scene's g = 9.81, L = 1
+  for (const auto& s : summary.at("stability")) {
+    ASSERT_TRUE(s.at("limit_h").is_number()) << s.dump();
+    EXPECT_GT(s.at("limit_h").get<double>(), 0) << s.dump();
+    EXPECT_LT(s.at("limit_h").get<double>(), linear_limit) << s.dump();
+  }
+}
+
 TEST(StressPages, KeplerPage) {
   TempDir dir;
   const Page p = make_page(dir, "kepler");
