@@ -96,7 +96,10 @@ int compare_command(const CompareOptions& o) {
     if (std::find(known.begin(), known.end(), e) == known.end())
       throw InputError("--engines: unknown engine \"" + e + "\" (known: " + known_list + ")" +
                        (plugins().empty() && e != "motus" ? "; a plug-in's column needs --plugin FILE.so" : ""));
-    if (std::find(options.engines.begin(), options.engines.end(), e) == options.engines.end()) options.engines.push_back(e);
+    // (Named twice, an engine would be one column, without a word about the other.)
+    if (std::find(options.engines.begin(), options.engines.end(), e) != options.engines.end())
+      throw InputError("--engines: \"" + e + "\" is named twice");
+    options.engines.push_back(e);
   }
   // --integrator PLUGIN:NAME runs the plug-in's NAME in its column, and motus's own NAME (when
   // motus has one) in motus's; any other integrator runs in both.
@@ -278,9 +281,11 @@ int compare_command(const CompareOptions& o) {
     fmt::print(data_output(), "{}\n", summary.dump(2, ' ', false, nlohmann::json::error_handler_t::replace));  // (a path not in UTF-8)
   } else {
     const long steps = fixed_step_count(options.duration, options.dt);
-    fmt::print("{}: {} {}, {}-D, dt = {:g} s, {:g} s ({} step{}); motus integrator {}\n", scene.name, context.bodies,
+    // (motus's integrator only where motus ran: --engines box2d,bullet named one that did nothing.)
+    const bool motus_ran = std::find(options.engines.begin(), options.engines.end(), "motus") != options.engines.end();
+    fmt::print("{}: {} {}, {}-D, dt = {:g} s, {:g} s ({} step{}){}\n", scene.name, context.bodies,
                context.bodies == 1 ? "body" : "bodies", context.dimensions, options.dt, options.duration, steps,
-               steps == 1 ? "" : "s", integrator_name);
+               steps == 1 ? "" : "s", motus_ran ? "; motus integrator " + integrator_name : std::string());
     // Where the scene has an exact answer, the distance from it matters more than from motus.
     const bool exact_known = has_exact_solution(scene);
     const char* distance_key = exact_known ? "max_distance_from_exact" : "max_distance_from_motus";

@@ -404,6 +404,7 @@ TEST(Compare, BadInputIsOneLineAndExitTwo) {
         std::vector<std::string>{"compare", scene("head_on"), "--engines", "motus,havok"},      // unknown engine
         std::vector<std::string>{"compare", scene("head_on"), "--engines", "motus,,box2d"},     // an empty name
         std::vector<std::string>{"compare", scene("head_on"), "--engines", "motus,"},           // a trailing comma
+        std::vector<std::string>{"compare", scene("head_on"), "--engines", "motus,box2d,motus"},  // one twice (merged without a word)
         std::vector<std::string>{"compare", scene("head_on"), "--integrator", "rk4"},           // rk4 cannot collide
         std::vector<std::string>{"compare", scene("head_on"), "--set", "bodies[0].mass=-1"}}) {  // a bad scene
     const Result r = run_motus(dir, args);
@@ -411,6 +412,10 @@ TEST(Compare, BadInputIsOneLineAndExitTwo) {
     EXPECT_EQ(count_lines(r.err), 1) << r.err;
     EXPECT_EQ(r.err.rfind("motus: error: ", 0), 0u) << r.err;
   }
+  // Without motus among the engines the header names no motus integrator (it named one that ran nothing).
+  const Result peers = run_motus(dir, {"compare", scene("head_on"), "--engines", "box2d,bullet", "--out", (dir / "p").string()});
+  ASSERT_EQ(peers.status, 0) << peers.err;
+  EXPECT_EQ(peers.out.find("motus integrator"), std::string::npos) << peers.out;
 }
 
 }  // namespace
