@@ -236,23 +236,26 @@ int stress_command(const StressOptions& o) {
   ProgressBar progress(0, units, "stress " + scene.name, 256);
   double done = 0;
   const stress::Tick tick = [&] { progress.update(done); };
+  // (Each unit done is shown at once: the bar showed only the units done when the next one ticked,
+  // and stopped short, at 64 %, when the last ones had no step left to tick.)
+  auto unit_done = [&] { progress.update(++done); };
   const auto& settings = report.settings;
   for (const auto& section : report.sections) {
     if (section == "stability")
-      for (Integrator i : runs) report.stability.push_back(stress::measure_stability(scene, i, settings, tick)), ++done;
+      for (Integrator i : runs) report.stability.push_back(stress::measure_stability(scene, i, settings, tick)), unit_done();
     if (section == "drift")
-      for (Integrator i : runs) report.drift.push_back(stress::measure_drift(scene, i, settings, tick)), ++done;
+      for (Integrator i : runs) report.drift.push_back(stress::measure_drift(scene, i, settings, tick)), unit_done();
     if (section == "stiffness")
-      for (Integrator i : runs) report.stiffness.push_back(stress::measure_stiffness(scene, i, settings, tick)), ++done;
+      for (Integrator i : runs) report.stiffness.push_back(stress::measure_stiffness(scene, i, settings, tick)), unit_done();
     if (section == "mass_ratio")
       for (Integrator i : contact_integrators)
-        for (double ratio : stress::mass_ratios()) report.mass_ratio.push_back(stress::measure_mass_ratio(scene, i, ratio, settings, tick)), ++done;
+        for (double ratio : stress::mass_ratios()) report.mass_ratio.push_back(stress::measure_mass_ratio(scene, i, ratio, settings, tick)), unit_done();
     if (section == "speed")
       for (Integrator i : contact_integrators)
-        for (double s : stress::speeds()) report.speed.push_back(stress::measure_speed(scene, i, s, tick)), ++done;
+        for (double s : stress::speeds()) report.speed.push_back(stress::measure_speed(scene, i, s, tick)), unit_done();
     if (section == "sticks")
       for (const auto& variant : stress::stick_variants())
-        for (double ratio : stress::mass_ratios()) report.sticks.push_back(stress::measure_sticks(scene, variant, ratio, settings, tick)), ++done;
+        for (double ratio : stress::mass_ratios()) report.sticks.push_back(stress::measure_sticks(scene, variant, ratio, settings, tick)), unit_done();
   }
   progress.finish();
   stop_if_interrupted();
