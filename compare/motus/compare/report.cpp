@@ -281,7 +281,9 @@ nlohmann::json summary_json(const ReportContext& c, const std::vector<EngineRun>
     const bool peer_ran = std::any_of(runs.begin(), runs.end(), [](const EngineRun& r) {
       return (r.engine == "box2d" || r.engine == "bullet") && r.supported;
     });
-    if (motus_ran && peer_ran && !c.integrator.empty() && c.integrator != "symplectic-euler")
+    // (Not with sticks or pins: motus projects them on Verlet only, so there is no like to compare with.)
+    const bool projected = !c.scene->mechanical->sticks.empty() || !c.scene->mechanical->pins.empty();
+    if (motus_ran && peer_ran && !projected && !c.integrator.empty() && c.integrator != "symplectic-euler")
       notice += " motus integrated with " + c.integrator +
                 ", Box2D and Bullet with symplectic Euler (their own): part of any difference is the method's; "
                 "--integrator symplectic-euler compares like with like.";
