@@ -166,17 +166,20 @@ void QuietStandardOutput::end() {
   saved_ = -1;
 }
 
+std::FILE* keep_data_apart_from_standard_output() {
+  if (kept_data_output) return kept_data_output;
+  std::fflush(stdout);
+  const int data = ::dup(STDOUT_FILENO);
+  std::FILE* kept = data < 0 ? nullptr : ::fdopen(data, "w");
+  if (!kept || ::dup2(STDERR_FILENO, STDOUT_FILENO) < 0)
+    throw std::runtime_error(std::string("standard output could not be kept apart from the plug-in's (") +
+                             std::strerror(errno) + ")");
+  return kept_data_output = kept;
+}
+
 void load_plugins(const std::vector<std::string>& files, bool data_on_standard_output) {
   // Before the plug-in's code runs at all (its constructors run as it loads).
-  if (!files.empty() && data_on_standard_output && !kept_data_output) {
-    std::fflush(stdout);
-    const int data = ::dup(STDOUT_FILENO);
-    std::FILE* kept = data < 0 ? nullptr : ::fdopen(data, "w");
-    if (!kept || ::dup2(STDERR_FILENO, STDOUT_FILENO) < 0)
-      throw std::runtime_error(std::string("standard output could not be kept apart from the plug-in's (") +
-                               std::strerror(errno) + ")");
-    kept_data_output = kept;
-  }
+  if (!files.empty() && data_on_standard_output) keep_data_apart_from_standard_output();
   if (!files.empty() && g_watch_plugin_exits) {
     std::string names;
     for (const auto& f : files) names += (names.empty() ? "" : ", ") + f;
@@ -271,10 +274,12 @@ void check_time_resolution(double start_time, double duration, double dt, const 
   // The times t0 + i·dt must be told apart: far from 0 doubles are too coarse (at 1e17 they are
   // 16 apart), and the steps would land on the wrong times or on the same one. The field to
   // blame is start_time when it is what takes the run far from 0, else dt (or the duration).
-  const double far = std::max(std::abs(start_time), std::abs(start_time + duration));
+  const double end = start_time + duration;
+  const double far = std::max(std::abs(start_time), std::abs(end));
   const double spacing = std::nextafter(far, INFINITY) - far;
   if (spacing <= 1e-6 * dt) return;
-  const std::string coarse = "at t = " + fmt::format("{:g}", far) + " times are " + fmt::format("{:g}", spacing) +
+  const double at = std::abs(start_time) > std::abs(end) ? start_time : end;  // (with its sign: t = -1e308)
+  const std::string coarse = "at t = " + fmt::format("{:g}", at) + " times are " + fmt::format("{:g}", spacing) +
                              " apart, too coarse for steps of " + fmt::format("{:g}", dt);
   if (std::abs(start_time) > duration) throw InputError(start_what + ": " + coarse + " (start nearer t = 0)");
   throw InputError(step_what + ": " + coarse + " (a larger dt or a shorter duration)");
@@ -304,25 +309,35 @@ std::string default_run_folder(const std::string& kind, const std::string& scene
   return fmt::format("runs/{}-{}-{}", kind, safe_file_name(scene_name), stamp);  // (a scene's name is not a path)
 }
 
+std::vector<std::string> folders_not_there_yet(const std::string& folder) {
+  std::vector<std::string> missing;
+  std::error_code ignored;
+  for (fs::path above = folder; !above.empty() && !fs::exists(fs::symlink_status(above, ignored));
+       above = above.parent_path()) {
+    missing.push_back(above.string());
+    if (above == above.parent_path()) break;
+  }
+  return missing;
+}
+
+void remove_if_empty(const std::vector<std::string>& folders) {
+  std::error_code ignored;
+  for (const auto& folder : folders)
+    if (!fs::remove(folder, ignored)) return;
+}
+
 PartialFolder::PartialFolder(const std::string& final_path, bool numbered)
     : final_(without_trailing_separators(final_path).string()), numbered_(numbered) {
   const fs::path target(final_);
   const fs::path parent = target.parent_path().empty() ? fs::path(".") : target.parent_path();
   std::error_code error;
-  // The folders above it that are not there yet: made now, and removed again (when still empty)
-  // if the work never gets there — an interrupted run said "nothing half-written was left behind"
-  // and left the empty folders of its --out's path.
-  for (fs::path above = parent; !above.empty() && !fs::exists(fs::symlink_status(above, error)); above = above.parent_path()) {
-    made_parents_.push_back(above.string());
-    if (above == above.parent_path()) break;
-  }
+  made_parents_ = folders_not_there_yet(parent.string());  // (made now; removed again if the work never gets there)
   fs::create_directories(parent, error);
   if (error) throw InputError(final_ + ": cannot be created (" + error.message() + ")");
   std::string pattern = (parent / ("." + target.filename().string() + ".partial-XXXXXX")).string();
   if (!::mkdtemp(pattern.data())) {
     const std::string why = std::strerror(errno);
-    for (const auto& folder : made_parents_)
-      if (!fs::remove(folder, error)) break;
+    remove_if_empty(made_parents_);
     throw InputError(final_ + ": cannot be created (" + why + ")");
   }
   ::chmod(pattern.c_str(), 0755);  // as a folder made by create_directories would be (mkdtemp makes 0700)
@@ -333,8 +348,7 @@ PartialFolder::~PartialFolder() {
   if (done_) return;
   std::error_code ignored;
   fs::remove_all(partial_, ignored);
-  for (const auto& folder : made_parents_)
-    if (!fs::remove(folder, ignored)) break;  // (only an empty folder goes; a folder with anything in it stays)
+  remove_if_empty(made_parents_);
 }
 
 namespace {

@@ -113,8 +113,12 @@ void add_plugin_option(CLI::App* command, std::vector<std::string>& files);
 // process and shares descriptor 1, so its printf or std::cout would land between a CSV's rows or
 // inside the JSON object; load_plugins(files, true) then points descriptor 1 at standard error
 // for everyone, the plug-in's prints and motus's own messages alike, and the data go to a copy of
-// what standard output was. (serve keeps its answers apart the same way.)
+// what standard output was. (serve keeps its answers apart the same way, before the sandbox's
+// filter is installed: keep_data_apart_from_standard_output.)
 std::FILE* data_output();
+// Makes data_output() a copy of descriptor 1 and points descriptor 1 at standard error (once; later
+// calls return the same copy). Throws std::runtime_error when it cannot.
+std::FILE* keep_data_apart_from_standard_output();
 
 // While begun, descriptor 1 writes to /dev/null: the timing runs after the one reported, so that
 // what a plug-in's code prints on standard output comes once, with the run it belongs to, not
@@ -185,6 +189,15 @@ std::vector<std::string> module_candidates(const char* env_var, const std::strin
 // NAME-2, NAME-3, … free when the run is whole (two runs of a scene started in the same second
 // both get a folder).
 std::string default_run_folder(const std::string& kind, const std::string& scene_name);
+
+// The folders above a path that are not there yet (`folder` and its parents up to the first that
+// exists), deepest first: the ones a create_directories(folder) will make, and that a run which fails
+// or is stopped removes again (remove_if_empty) — an interrupted run said "nothing half-written was
+// left behind" and left the empty folders of its --out's path.
+std::vector<std::string> folders_not_there_yet(const std::string& folder);
+// Removes each of `folders` (deepest first) while it is empty; stops at the first that is not (nothing
+// with anything in it is ever removed).
+void remove_if_empty(const std::vector<std::string>& folders);
 
 // A folder written under a temporary name and renamed to `final_path` only when complete()
 // is called; otherwise the destructor removes it and everything in it. Throws InputError

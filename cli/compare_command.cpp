@@ -182,10 +182,13 @@ int compare_command(const CompareOptions& o) {
                                    options.engines.size(), options.engines.size() == 1 ? "" : "s", options.samples,
                                    numbers, o.render ? "a lower --fps, " : ""));
   }
+  const auto among_engines = [&](const std::string& engine) {
+    return std::find(options.engines.begin(), options.engines.end(), engine) != options.engines.end();
+  };
+  const bool motus_runs = among_engines("motus");
   // Fail before any engine runs if motus cannot run this scene with this integrator.
-  if (std::find(options.engines.begin(), options.engines.end(), "motus") != options.engines.end())
-    Simulation check(scene, options.method);
-  if (options.plugin && std::find(options.engines.begin(), options.engines.end(), plugin) != options.engines.end())
+  if (motus_runs) Simulation check(scene, options.method);
+  if (options.plugin && among_engines(plugin))
     Simulation check(scene, options.plugin->method.value_or(options.method), options.plugin->parts);
 
   const bool default_folder = o.out.empty();
@@ -282,10 +285,9 @@ int compare_command(const CompareOptions& o) {
   } else {
     const long steps = fixed_step_count(options.duration, options.dt);
     // (motus's integrator only where motus ran: --engines box2d,bullet named one that did nothing.)
-    const bool motus_ran = std::find(options.engines.begin(), options.engines.end(), "motus") != options.engines.end();
     fmt::print("{}: {} {}, {}-D, dt = {:g} s, {:g} s ({} step{}){}\n", scene.name, context.bodies,
                context.bodies == 1 ? "body" : "bodies", context.dimensions, options.dt, options.duration, steps,
-               steps == 1 ? "" : "s", motus_ran ? "; motus integrator " + integrator_name : std::string());
+               steps == 1 ? "" : "s", motus_runs ? "; motus integrator " + integrator_name : std::string());
     // Where the scene has an exact answer, the distance from it matters more than from motus.
     const bool exact_known = has_exact_solution(scene);
     const char* distance_key = exact_known ? "max_distance_from_exact" : "max_distance_from_motus";
@@ -319,7 +321,7 @@ int compare_command(const CompareOptions& o) {
       for (const auto& n : e["notes"]) fmt::print("note ({}): {}\n", e["engine"].get<std::string>(), n.get<std::string>());
     for (const auto& e : summary["engines"])
       if (e.contains("not_finite_from") && !e["not_finite_from"].is_null())
-        fmt::print("note ({}): blew up: its state is not finite from t = {:g} s on\n",
+        fmt::print("note ({}): blew up: its energy is not finite from t = {:g} s on\n",
                    e["engine"].get<std::string>(), e["not_finite_from"].get<double>());
     if (summary.contains("notice")) fmt::print("\n{}\n", summary["notice"].get<std::string>());
     fmt::print("\nreport: {} (what each column means, the plots{})\n", summary["report"].get<std::string>(),

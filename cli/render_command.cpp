@@ -99,12 +99,7 @@ public:
       // Made here or refused: another render started beside this one may have made it since it was
       // looked at (both went on, and the second replaced the first's frames without --overwrite).
       const fs::path parent = fs::path(out_).parent_path();
-      // (The folders above it that are not there yet go again with it, when still empty.)
-      for (fs::path above = parent; !above.empty() && !fs::exists(fs::symlink_status(above, error));
-           above = above.parent_path()) {
-        made_parents_.push_back(above.string());
-        if (above == above.parent_path()) break;
-      }
+      made_folders_ = folders_not_there_yet(out_);  // (they go again with it, when still empty)
       if (!parent.empty()) fs::create_directories(parent, error);
       if (!error && !fs::create_directory(out_, error) && !error)
         throw InputError(out_ + ": already exists (made meanwhile, by another run?); choose another --out or pass --overwrite");
@@ -122,7 +117,7 @@ public:
     if (::mkdtemp(name.data()) == nullptr) {
       const int e = errno;
       ::close(lock_);
-      if (made_folder_) remove_made_folders();
+      remove_if_empty(made_folders_);
       throw InputError(out_ + ": cannot be written in (" + std::strerror(e) + ")");
     }
     partial_ = name;
@@ -132,8 +127,8 @@ public:
   ~RenderInProgress() {
     if (!moved_) {
       std::error_code ignored;
-      fs::remove_all(partial_, ignored);            // (a folder of motus's own making)
-      if (made_folder_) remove_made_folders();
+      fs::remove_all(partial_, ignored);  // (a folder of motus's own making)
+      remove_if_empty(made_folders_);
     }
     ::close(lock_);  // (and the lock with it)
   }
@@ -165,15 +160,6 @@ public:
   }
 
 private:
-  // --out and the folders above it that this render made, each only if empty (nothing else is ever
-  // removed).
-  void remove_made_folders() const {
-    std::error_code ignored;
-    if (!fs::remove(out_, ignored)) return;
-    for (const auto& folder : made_parents_)
-      if (!fs::remove(folder, ignored)) return;
-  }
-
   // FOLDER/.motus-render, written whole beside the frames and moved over the old one.
   void write_list(const std::vector<std::string>& names) const {
     const fs::path list = fs::path(partial_) / kManifest;
@@ -192,7 +178,7 @@ private:
 
   std::string out_, partial_;
   bool made_folder_;
-  std::vector<std::string> made_parents_;  // deepest first
+  std::vector<std::string> made_folders_;  // --out and the folders above it this render made, deepest first
   int lock_ = -1;  // the folder, open: flock'ed while this render writes into it
   bool moved_ = false;
 };

@@ -247,14 +247,16 @@ int serve_command(const ServeOptions& o) {
   // the student's own std::cout included — goes to standard error, so that its printing cannot
   // corrupt an answer. (Code in the plug-in could still write to the answers' descriptor; it
   // gains nothing: serve is never told the expected values.)
-  const int protocol = ::dup(STDOUT_FILENO);
-  ::dup2(STDERR_FILENO, STDOUT_FILENO);
-  std::FILE* out = ::fdopen(protocol, "w");
   auto failed_write = [] {
     tell("motus: the run failed: standard output could not be written ({})\n", std::strerror(errno));
     return kExitFailure;
   };
-  if (!out) return failed_write();
+  std::FILE* out = nullptr;
+  try {
+    out = keep_data_apart_from_standard_output();
+  } catch (const std::runtime_error&) {
+    return failed_write();
+  }
   // Before the student's code runs at all (a plug-in's constructors run as it loads): no new
   // processes and no memory outside this one's address space, so that the sandbox's memory limit
   // holds all of the student's code at once.
