@@ -16,7 +16,9 @@
 #include <nlohmann/json.hpp>
 
 #include "cli_common.hpp"
+#include "interrupt.hpp"
 #include "motus/compare/timing.hpp"
+#include "motus/message_number.hpp"
 #include "motus/plot/write_failure.hpp"
 #include "motus/simulation.hpp"
 #include "progress_bar.hpp"
@@ -73,7 +75,10 @@ public:
       file_.open(partial_ ? partial_->path() : path, std::ios::binary | std::ios::trunc);
       out_ = &file_;
     }
-    if (!*out_) throw InputError(path + ": cannot be written (" + std::strerror(errno) + ")");
+    if (!*out_) {
+      stop_if_interrupted();  // (Ctrl-C while a FIFO waited for its reader: EINTR, an interrupt, not bad input)
+      throw InputError(path + ": cannot be written (" + std::strerror(errno) + ")");
+    }
     *out_ << "t";
     for (const auto& n : sim.state_names()) *out_ << ',' << n;
     if (sim.is_mechanical()) *out_ << ",kinetic,potential,total";
@@ -155,8 +160,13 @@ private:
 };
 
 // A state that overflowed is a result to show, but not a run that went well.
+// A state still finite whose energy is not (an oscillator at 1e193 m: its ½ k x² overflows) has
+// blown up as surely: it was reported as a run that went well, "total energy 0.5 inf".
 int report_non_finite(double by, const Simulation& sim, const Method& method) {
-  tell("motus: the run failed: the state was no longer finite by t = {:g} ({})\n", by, non_finite_suspect(sim, method));
+  const bool state = !sim.state().allFinite();
+  tell("motus: the run failed: the {} was no longer finite by t = {:g} ({}{})\n", state ? "state" : "energy", by,
+       state ? "" : "its largest number had reached " + message_number(sim.state().cwiseAbs().maxCoeff(), 2) + "; ",
+       non_finite_suspect(sim, method));
   return kExitFailure;
 }
 
@@ -223,7 +233,11 @@ CLI::App* add_run_command(CLI::App& app, RunOptions& o) {
   run->add_option("--atol", o.atol, "Absolute tolerance of rk45, dop853 and rk4-doubling (default: the scene's)");
   run->add_option("--set", o.sets, "Override a scene field, e.g. --set bodies[0].mass=2 (repeatable)")
       ->type_name("PATH=VALUE");
-  run->add_option("--trajectory", o.trajectory, "Write t, state and energies per output time to this CSV file")->check(non_empty_path());
+  run->add_option("--trajectory", o.trajectory, "Write t, state and energies per output time to this CSV file (- or /dev/stdout: standard output)")
+      ->check(non_empty_path())
+      ->transform([](std::string path) {  // (/dev/stdout is -: not a link to write a file through)
+        return path == "/dev/stdout" || path == "/dev/fd/1" || path == "/proc/self/fd/1" ? std::string("-") : path;
+      });
   run->add_flag("--overwrite", o.overwrite, "Allow --trajectory to replace an existing file");
   run->add_flag("--json", o.json, "Print one JSON object instead of the summary (see docs/cli.md)");
   run->add_option("--repeats", o.repeats,
@@ -389,7 +403,8 @@ int run_command(const RunOptions& o) {
   const bool adaptive = method.adaptive();
   const World* world = sim.world();
   const CollisionCounters collisions = world ? world->collision_counters() : CollisionCounters{};
-  const bool finite = sim.state().allFinite();
+  const std::optional<Energy> end_energy = sim.energy();
+  const bool finite = sim.state().allFinite() && (!end_energy || std::isfinite(end_energy->total));
 
   if (o.json) {
     nlohmann::json j;

@@ -110,6 +110,7 @@ Simulation::Simulation(const SceneDescription& scene, Method method, ExternalPar
       }
     }
     world_ = std::make_unique<World>(m, method_, parts);  // throws if the integrator cannot run its passes
+    check_start_is_finite();
   } else if (scene.first_order) {
     if (scene.first_order->make) {
       first_order_ = scene.first_order->make();  // e.g. the scene file's "equations"
@@ -296,6 +297,21 @@ std::vector<std::string> Simulation::state_names() const {
     for (int i = 0; i < world_->system().particles(); ++i)
       for (int k = 0; k < d; ++k) names.push_back(std::string(prefix) + axes[k] + std::to_string(i));
   return names;
+}
+
+void Simulation::check_start_is_finite() const {
+  // Each body's own ½ m |v|² is checked by the loader, but sums of finite terms can pass the
+  // largest double (two bodies of 1e308 kg), and so can a potential (1e307 kg, 100 m up): every
+  // energy the run reported was then infinite from the start, and compare said motus had blown up.
+  const Energy e = *energy();
+  const Vector p = momentum();
+  if (!std::isfinite(e.kinetic) || !p.allFinite())
+    throw SceneError("bodies", "the bodies' kinetic energy or momentum together is past the largest double (1.8e308) "
+                               "at the start: masses or speeds too large");
+  if (!std::isfinite(e.potential) || !std::isfinite(e.total))
+    throw SceneError("forces", "the potential energy at the start is not a finite number (" +
+                                   message_number(e.potential, 3) +
+                                   " J): masses, distances or forces too large for a double");
 }
 
 std::optional<Energy> Simulation::energy() const {

@@ -88,6 +88,8 @@ public:
   long evaluations() const;
 
 private:
+  // Throws SceneError when the start's energy or momentum is not a finite number.
+  void check_start_is_finite() const;
   struct Steppers;
   SceneDescription scene_;
   Method method_;

@@ -41,7 +41,7 @@ MetricsRow Metrics::measure(const Snapshot& s, const Snapshot* motus) const {
   row.constraint_error = stick_error(s);
   auto farthest = [&](const Vector& other_x) {
     double worst = 0;
-    for (Eigen::Index i = 0; i < x.size(); i += d_) worst = worse(worst, (x.segment(i, d_) - other_x.segment(i, d_)).norm());
+    for (Eigen::Index i = 0; i < x.size(); i += d_) worst = worse(worst, (x.segment(i, d_) - other_x.segment(i, d_)).stableNorm());  // (stable: 1e193 m apart is not ∞)
     return worst;
   };
   // (motus against itself: 0, also once its state is not finite, where ∞ − ∞ would read as ∞)

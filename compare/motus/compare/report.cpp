@@ -238,7 +238,7 @@ nlohmann::json summary_json(const ReportContext& c, const std::vector<EngineRun>
     e["unsupported"] = r.unsupported;
     if (r.supported && !r.rows.empty()) {
       e["steps"] = r.steps;
-      // When the state stopped being finite (a run that blew up; null: it never did). The figures
+      // When the energy stopped being finite (a run that blew up; null: it never did). The figures
       // that are not finite from then on are null below (JSON has no infinity).
       e["not_finite_from"] = number_or_null(r.not_finite_from());
       const double divisor = energy_divisor(runs, r);
@@ -415,7 +415,7 @@ std::string write_report(const std::string& folder, const ReportContext& c, cons
             "that column shows their push, not an engine's error.</p>\n";
   for (const auto& e : summary["engines"])
     if (e.contains("not_finite_from") && !e["not_finite_from"].is_null())
-      html << fmt::format("<p class=\"no\">{} blew up: its state is not finite from t = {:g} s on (its figures after "
+      html << fmt::format("<p class=\"no\">{} blew up: its energy is not finite from t = {:g} s on (its figures after "
                           "that are infinite, or not a number).</p>\n",
                           html_escape(e["engine"].get<std::string>()), e["not_finite_from"].get<double>());
   if (c.scene) {  // the engines side by side, played back in the page

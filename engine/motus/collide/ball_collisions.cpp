@@ -189,6 +189,18 @@ void BallCollisions<D>::drift(VectorRef x, VectorRef v, double h, bool kicked) {
       // (Balls that cross many others in a step need that many contacts: then it is the speed.)
       double radii = 0;
       for (int b : balls_) radii = std::max(radii, velocity(b).norm() * h_ / radius_of(b));
+      // (A ball pressed between others, or into a wall, by contacts that keep little of their
+      // speed, is touched again and again at one instant, each contact leaving the next a little
+      // less to do, without end: "inelastic collapse". The one with the most contacts says so.)
+      int busiest = e.i;
+      for (int b : balls_)
+        if (state_[b].collisions_this_step > state_[busiest].collisions_this_step) busiest = b;
+      if (state_[busiest].collisions_this_step >= kCollapseLimit)
+        why = "body " + std::to_string(busiest) + " was touched " +
+              std::to_string(state_[busiest].collisions_this_step) +
+              " times in this step, pressed against others with little restitution: contacts taken one at a time "
+              "at one instant cannot settle it (inelastic collapse); give the balls more restitution, or use "
+              "--integrator verlet, which projects contacts";
       if (radii > kFastRadii)
         why = "the balls are too fast for the step (the fastest moves " + message_number(radii, 3) +
               " radii in one step, crossing many others: a smaller step?)";

@@ -95,7 +95,9 @@ double pair_contact(const World& w, int i, int j) {
 double wall_contact(const World& w, int i, const Wall& wall) {
   const double c = w.height(i, wall), b = w.dot(wall.n, w.v_of(i)), a = w.dot(wall.n, w.g);
   const double touching = kTouching * std::max(1.0, w.radius[static_cast<size_t>(i)]);
-  if (c <= touching && b < 0) return 0;
+  // Touching and approaching, or touching at rest with gravity pulling it in (a ball set down on the
+  // floor: without this it fell through, ½ g t² below, and every engine was blamed for holding it).
+  if (c <= touching && (b < 0 || (b == 0 && a < 0))) return 0;
   if (a == 0) return b < 0 ? std::max(0.0, -c / b) : kNever;
   const double disc = b * b - 2 * a * c;
   if (disc < 0) return kNever;

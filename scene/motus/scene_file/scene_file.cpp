@@ -122,7 +122,11 @@ void read_lattice(JsonFields f, MechanicalDescription& m) {
     f.fail("count", "must be from 1 to " + std::to_string(kMaxBodies) + " (the limit of a scene's bodies)");
   lattice.spacing = f.positive("spacing", lattice.spacing);
   lattice.radius = f.positive("radius", lattice.radius);
-  if (2 * lattice.radius > lattice.spacing) f.fail("radius", "balls of this radius overlap at this spacing");
+  // (Touching balls packed wall to wall are jammed: each contact passes its push on to the next, and back
+  // from the walls, all at one instant, without end.)
+  if (2 * lattice.radius >= lattice.spacing)
+    f.fail("radius", "balls of this radius touch or overlap at this spacing (the lattice would be jammed): it must be "
+                     "less than spacing/2");
   lattice.mass = f.positive("mass", lattice.mass);
   lattice.speed = f.non_negative("speed", lattice.speed);
   const long seed = f.integer("seed", 1);
@@ -234,6 +238,40 @@ double distance(const BodyDescription& a, const BodyDescription& b) {
   return std::sqrt(s);
 }
 
+// A spring of rest length L > 0 between two bodies at one point (or a body at its anchor) pushes
+// along no direction: it held 5 J of energy and never moved. Refused, as a stick there without a length is.
+void check_spring_has_a_direction(JsonFields& f, const std::vector<BodyDescription>& bodies, const Spring& s) {
+  if (!(s.rest_length > 0) || !(s.stiffness > 0)) return;
+  const auto& a = bodies[static_cast<size_t>(s.a)].position;
+  bool same = true;
+  for (size_t k = 0; k < a.size(); ++k)
+    same = same && a[k] == (s.b >= 0 ? bodies[static_cast<size_t>(s.b)].position[k] : s.anchor[k]);
+  if (same)
+    f.fail("rest_length", s.b >= 0 ? "the two bodies start at the same point, where a spring of rest length > 0 has no "
+                                     "direction to push them apart; move one"
+                                   : "the body starts at the anchor, where a spring of rest length > 0 has no direction "
+                                     "to push it; move it");
+}
+
+// Unsoftened gravity about a centre is infinite at the centre (and, in a double, near enough to it):
+// the first step failed and blamed the step size.
+void check_no_body_at_the_centre(JsonFields& f, const MechanicalDescription& m, const CentralGravity& g) {
+  if (g.softening > 0) return;
+  for (size_t i = 0; i < m.bodies.size(); ++i) {
+    if (g.body >= 0 && static_cast<size_t>(g.body) != i) continue;
+    double r2 = 0;
+    bool at = true;
+    for (int k = 0; k < m.dimensions; ++k) {
+      r2 += (m.bodies[i].position[k] - g.centre[k]) * (m.bodies[i].position[k] - g.centre[k]);
+      at = at && m.bodies[i].position[k] == g.centre[k];
+    }
+    if (!std::isfinite(g.mu * m.bodies[i].mass / (r2 * std::sqrt(r2))))
+      f.fail("centre", "body " + std::to_string(i) + " starts " + (at ? "at the centre" : "so near the centre") +
+                           ", where unsoftened gravity is infinite" + (at ? "" : " in a double") +
+                           "; move it, or give the force a softening");
+  }
+}
+
 // Unsoftened mutual gravity between two bodies at one point is infinite: refuse the scene
 // (naming both, and the force by its place in "forces", its path) rather than let the first step
 // fail and blame the step size.
@@ -265,10 +303,12 @@ void check_balls_fit_their_boxes(const MechanicalDescription& m, size_t listed, 
       for (int k = 0; k < m.dimensions; ++k) {
         const auto& box = m.colliders.boxes[first + j];
         const double width = box.max[k] - box.min[k], r = m.bodies[i].radius;
-        if (2 * r > width)
+        // (One exactly as wide as the box touches both walls at once, and cannot move across it either.)
+        if (2 * r >= width)
           throw SceneError("bodies[" + std::to_string(i) + "].radius",
-                           "a ball of radius " + nlohmann::json(r).dump() + " does not fit in the box " + box_paths[j] + " (its width along " + "xyz"[k] + " is " +
-                               nlohmann::json(width).dump() + ")");
+                           "a ball of radius " + nlohmann::json(r).dump() + " does not fit in the box " + box_paths[j] +
+                               " (its width along " + "xyz"[k] + " is " + nlohmann::json(width).dump() +
+                               "; a ball must be narrower than its box)");
       }
 }
 
@@ -283,6 +323,9 @@ MechanicalDescription read_mechanical(JsonFields& scene) {
     body.position = b.numbers("position", m.dimensions);
     body.velocity = b.numbers("velocity", m.dimensions, std::vector<double>(static_cast<size_t>(d), 0.0));
     body.radius = b.non_negative("radius", 0);
+    // Times of impact square distances: r² must be a normal double, as must (r_a + r_b)².
+    if (body.radius > 0 && !(body.radius >= 1e-100 && body.radius <= 1e100))
+      b.fail("radius", "must be 0 (a point) or between 1e-100 and 1e100 m (got " + nlohmann::json(body.radius).dump() + ")");
     body.restitution = restitution(b, "restitution");
     // A speed whose kinetic energy is past the largest double makes every energy measure
     // infinite from the start, and the first steps blamed the integrator.
@@ -306,8 +349,11 @@ MechanicalDescription read_mechanical(JsonFields& scene) {
 
   std::vector<std::string> mutual_gravity_paths;  // (for check_coincident_under_gravity)
   for (auto& f : scene.objects("forces")) {
+    const size_t springs = m.forces.springs.size(), centres = m.forces.central_gravity.size();
     read_force(f, m.dimensions, m.bodies.size(), m.forces);
     if (mutual_gravity_paths.size() < m.forces.mutual_gravity.size()) mutual_gravity_paths.push_back(f.path());
+    if (m.forces.springs.size() > springs) check_spring_has_a_direction(f, m.bodies, m.forces.springs.back());
+    if (m.forces.central_gravity.size() > centres) check_no_body_at_the_centre(f, m, m.forces.central_gravity.back());
   }
   std::vector<std::string> box_paths;  // (for check_balls_fit_their_boxes)
   for (auto& c : scene.objects("colliders")) {
@@ -330,6 +376,11 @@ MechanicalDescription read_mechanical(JsonFields& scene) {
     PinConstraint pin;
     pin.body = body_index(f, "body", m.bodies.size());
     pin.position = padded(f.numbers("position", m.dimensions, m.bodies[static_cast<size_t>(pin.body)].position));
+    // A body has one pin: two at different points cannot both hold (the projection puts it at the last).
+    for (size_t other = 0; other < m.pins.size(); ++other)
+      if (m.pins[other].body == pin.body && m.pins[other].position != pin.position)
+        f.fail("body", "body " + std::to_string(pin.body) + " is pinned already, at another point, by pins[" +
+                           std::to_string(other) + "]: a body can be held at one point only");
     f.reject_unknown();
     m.pins.push_back(pin);
   }
