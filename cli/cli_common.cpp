@@ -340,7 +340,10 @@ PartialFolder::PartialFolder(const std::string& final_path, bool numbered)
     remove_if_empty(made_parents_);
     throw InputError(final_ + ": cannot be created (" + why + ")");
   }
-  ::chmod(pattern.c_str(), 0755);  // as a folder made by create_directories would be (mkdtemp makes 0700)
+  // As a folder made by create_directories would be (mkdtemp makes 0700): 0777 less the umask.
+  const mode_t umask = ::umask(0);
+  ::umask(umask);
+  ::chmod(pattern.c_str(), 0777 & ~umask);
   partial_ = pattern;
 }
 
@@ -444,9 +447,20 @@ bool output_exists(const std::string& path) {
 void check_can_write(const std::string& path, bool overwrite) {
   std::error_code error;
   const auto status = fs::status(path, error);
-  // (A FIFO or a device is no file the user wrote: it is written as it is, below.)
+  // (A FIFO or a device is no file the user wrote: it is written as it is, below — also through a
+  // link to one, as /dev/stderr is when it is a terminal or a pipe.)
   const auto link_status = fs::symlink_status(path, error);
-  if ((fs::is_regular_file(link_status) || fs::is_symlink(link_status)) && !overwrite)
+  const bool link = fs::is_symlink(link_status);
+  const bool to_a_device = link && fs::exists(status) && !fs::is_regular_file(status) && !fs::is_directory(status);
+  // A link to an open descriptor (/dev/stderr → /proc/self/fd/2) whose file is a regular one: with
+  // --overwrite the link itself was replaced (as root, /dev/stdout became a file of rows).
+  if (link && !to_a_device) {
+    const fs::path target = fs::read_symlink(path, error);
+    if (!error && target.string().starts_with("/proc/"))
+      throw InputError(path + ": is a link to an open file (" + target.string() +
+                       "); motus writes no file through a link: for standard output, use -");
+  }
+  if ((fs::is_regular_file(link_status) || link) && !to_a_device && !overwrite)
     throw InputError(path + ": already exists; choose another name or pass --overwrite");
   if (fs::is_directory(status)) throw InputError(path + ": is a folder, not a file");
   const fs::path parent = fs::path(path).parent_path();
@@ -485,6 +499,19 @@ void check_can_replace(const std::string& path, bool overwrite) {
 const CLI::Validator& non_empty_path() {
   static const CLI::Validator validator(
       [](const std::string& path) { return path.empty() ? std::string("an empty path names no file") : std::string(); },
+      "PATH");
+  return validator;
+}
+
+const CLI::Validator& folder_path() {
+  static const CLI::Validator validator(
+      [](const std::string& path) {
+        if (path.empty()) return std::string("an empty path names no folder");
+        const std::string last = without_trailing_separators(path).filename().string();
+        if (last == "." || last == "..")
+          return "ends in \"" + last + "\": name the new folder itself, by its own name";
+        return std::string();
+      },
       "PATH");
   return validator;
 }

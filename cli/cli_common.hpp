@@ -264,6 +264,9 @@ bool output_exists(const std::string& path);
 
 // For the options that name a file or folder to write: an empty one is refused, not taken for
 // "not given" (which would write nothing, or somewhere else, and say nothing).
+// A folder to be made: not empty, and not ending in "." or ".." ("new/." ran the whole job, then
+// failed to move the finished folder into place and left it under a hidden name).
+const CLI::Validator& folder_path();
 const CLI::Validator& non_empty_path();
 
 // For the options that count (steps, repeats, samples, levels): a whole number from `low` to `high`,

@@ -58,7 +58,7 @@ CLI::App* add_compare_command(CLI::App& app, CompareOptions& o) {
   c->add_option("--dt", o.dt, "Step size, s (default: the scene's)");
   c->add_option("--duration", o.duration, "Time to run, s (default: the scene's)");
   c->add_option("--set", o.sets, "Override a scene field (repeatable), e.g. --set lattice.count=10000")->type_name("PATH=VALUE");
-  c->add_option("--out", o.out, "Report folder (default: a new folder under runs/); must not exist yet")->check(non_empty_path());
+  c->add_option("--out", o.out, "Report folder (default: a new folder under runs/); must not exist yet")->check(folder_path());
   c->add_option("--samples", o.samples, "Metric samples over the run")->check(whole_number_in(2, 100000));
   c->add_option("--repeats", o.repeats,
                 "Timing rounds: every engine runs the scene again this many times, taking turns; the time per step "

@@ -124,6 +124,10 @@ grade::Assignment ready_to_grade(const GradeCommandOptions& o, const std::string
 }
 
 int grade_one(const GradeCommandOptions& o, const std::string& folder) {
+  // (`motus run --trajectory -` writes to standard output; here a file called "-" was made.)
+  for (const auto& [option, path] : {std::pair{"--results", &o.results}, std::pair{"--plugin-out", &o.plugin_out}})
+    if (*path == "-")
+      throw InputError(std::string(option) + " -: standard output is the summary's; give the file a name");
   if (!o.results.empty()) check_can_replace(o.results, o.overwrite);
   if (!o.plugin_out.empty()) check_can_replace(o.plugin_out, o.overwrite);
   if (!o.results.empty() && !o.plugin_out.empty()) {
@@ -289,7 +293,7 @@ CLI::App* add_grade_command(CLI::App& app, GradeCommandOptions& o) {
   g->add_flag("--overwrite", o.overwrite, "Allow --results and --plugin-out to replace existing files");
   g->add_option("--batch", o.batch, "Grade every subfolder of this folder, one submission each");
   g->add_option("--jobs", o.jobs, "With --batch: submissions graded at once (default 1)");
-  g->add_option("--out", o.out, "With --batch: the results folder (default: a new folder under runs/); with --package: the zip")->check(non_empty_path());
+  g->add_option("--out", o.out, "With --batch: the results folder (default: a new folder under runs/); with --package: the zip")->check(folder_path());
   g->add_option("--package", o.package, "Write the autograder zip for this platform instead of grading")
       ->check(CLI::IsMember({"gradescope"}));
   return g;

@@ -39,12 +39,23 @@ void leave_out_answers(const fs::path& assignment) {
   for (const char* answers : {"solution", "hidden"}) fs::remove_all(assignment / answers);
 }
 
-// zip -q -r -X ZIP . in `folder`, started directly (no shell).
-void zip_folder(const fs::path& folder, const fs::path& zip) {
+// zip -q -r -X ZIP . in `folder`, started directly (no shell). zip adds ".zip" to a name without an
+// extension: then it writes ZIP.zip, moved to ZIP (--out autograder wrote autograder.zip, and the move
+// of "autograder" into place failed after the work). `shown`: the user's name for the zip, for messages.
+void zip_folder(const fs::path& folder, const fs::path& zip, const std::string& shown) {
   const std::string program = process::find_program("zip");
   if (program.empty()) throw InputError("--package: the program zip was not found on PATH (apt-get install zip)");
-  if (!process::run_program({program, "-q", "-r", "-X", zip.string(), "."}, folder.string()).ok())
-    throw std::runtime_error("zip failed on " + zip.string());
+  const fs::path made = zip.has_extension() ? zip : fs::path(zip.string() + ".zip");
+  const process::Outcome run = process::run_program({program, "-q", "-r", "-X", made.string(), "."}, folder.string());
+  if (!run.ok())
+    throw std::runtime_error(shown + ": zip failed to write it (" +
+                             (run.signal ? "signal " + std::to_string(run.signal) : "exit status " + std::to_string(run.status)) +
+                             (run.status == 14 ? ": a write failed; a full disk?" : "") + ")");
+  if (made != zip) {
+    std::error_code error;
+    fs::rename(made, zip, error);
+    if (error) throw std::runtime_error(shown + ": could not be written (" + error.message() + ")");
+  }
 }
 
 std::string quoted(const std::string& s) {  // for a shell script's double quotes
@@ -123,7 +134,7 @@ exec "$MOTUS" grade "$SOURCE/assignment" "$ROOT/submission" {}--results "$ROOT/r
                            "run_autograder grades each submission.\n",
                            quoted(assignment_name), quoted(assignment_name)));
   PartialFile partial(zip);  // (zip adds to an archive that is there: it writes a new one in a folder of its own)
-  zip_folder(staging, fs::absolute(partial.path()));
+  zip_folder(staging, fs::absolute(partial.path()), zip);
   partial.complete(overwrite);
   fmt::print("autograder  {} (setup.sh, run_autograder; motus's sources, the assignment{})\n", zip,
              hidden ? " and its hidden tests" : "");

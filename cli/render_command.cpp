@@ -128,6 +128,9 @@ public:
     if (!moved_) {
       std::error_code ignored;
       fs::remove_all(partial_, ignored);  // (a folder of motus's own making)
+      // --out itself when this render made it (and has held its lock since): a failure after the frames
+      // were moved in (writing the list of them, on a full disk) left a finished-looking render there.
+      if (made_folder_) fs::remove_all(out_, ignored);
       remove_if_empty(made_folders_);
     }
     ::close(lock_);  // (and the lock with it)
@@ -188,7 +191,7 @@ private:
 CLI::App* add_render_command(CLI::App& app, RenderOptions& o) {
   auto* render = app.add_subcommand("render", "Simulate a scene and draw it as PNG frames (and optionally one MP4 or GIF)");
   render->add_option("scene", o.scene, "Scene file, or the name of a shipped scene (see `motus list`)")->required();
-  render->add_option("--out", o.out, "Folder for frame_00000.png, ... (must not exist unless --overwrite)")->required()->check(non_empty_path());
+  render->add_option("--out", o.out, "Folder for frame_00000.png, ... (must not exist unless --overwrite)")->required()->check(folder_path());
   render->add_option("--size", o.size, "Frame size in pixels")->type_name("WxH")->capture_default_str();
   render->add_option("--fps", o.fps, "Frames per second of simulated time (World2: per simulated year)")->capture_default_str();
   render->add_option("--duration", o.duration, "Simulated time to draw, s (World2: years; default: the scene's)");

@@ -625,6 +625,11 @@ TEST(Grade, BadInputIsOneLineAndExitTwo) {
        "--plugin-out: has no use with --package"},
       {{"grade", "integrators", solution, "--results", (dir / "same").string(), "--plugin-out", (dir / "same").string()},
        "is --results's file too"},
+      // A file called "-" was made (run's --trajectory - is standard output); a batch's folder
+      // ending in "." ran every submission, then failed to move the finished folder into place.
+      {{"grade", "integrators", solution, "--results", "-"}, "--results -: standard output is the summary's"},
+      {{"grade", "integrators", "--batch", (dir / "empty").string(), "--out", (dir / "new/.").string()},
+       "--out: ends in \".\": name the new folder itself"},
   };
   for (const auto& [args, says] : cases) {
     const auto r = run_motus(dir, args);
@@ -633,7 +638,42 @@ TEST(Grade, BadInputIsOneLineAndExitTwo) {
     EXPECT_NE(r.err.find(says), std::string::npos) << r.err;
   }
   EXPECT_EQ(read_file(dir / "results.json"), "{}");  // nothing the user had is overwritten
-  for (const char* name : {"r.json", "out", "a.zip", "p.so", "same"}) EXPECT_FALSE(fs::exists(dir / name)) << name;
+  for (const char* name : {"r.json", "out", "a.zip", "p.so", "same", "-", "new"}) EXPECT_FALSE(fs::exists(dir / name)) << name;
+}
+
+// --package --out autograder (no .zip): zip wrote autograder.zip, and moving "autograder" into place
+// failed after the work (exit 1). The zip is written under the name given. (From an audit.)
+TEST(Grade, APackageNamedWithoutZipIsWrittenUnderThatName) {
+  TempDir dir;
+  const auto r = run_motus(dir, {"grade", "integrators", "--package", "gradescope", "--out", (dir / "autograder").string()});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_TRUE(fs::is_regular_file(dir / "autograder"));
+  EXPECT_FALSE(fs::exists(dir / "autograder.zip"));
+  const auto listed = run_program(dir, "/usr/bin/unzip", {"-l", (dir / "autograder").string()});
+  EXPECT_NE(listed.out.find("run_autograder"), std::string::npos) << listed.out << listed.err;
+}
+
+// The grader's own disk full under the compiler (TMPDIR on a 256 kB file system, nearly full): the
+// reference solution was graded "does not compile", 0 points, exit 0 — on Gradescope, every
+// student. It is the grader's failure: exit 1, and a results file that says so. (From an audit.
+// Needs a mount of its own: in a private mount namespace, as root.)
+TEST(Grade, AFullDiskUnderTheCompilerIsTheGradersFailureNotTheStudents) {
+  NEEDS_SANDBOX();
+  TempDir dir;
+  fs::create_directories(dir / "small");
+  const std::string script =
+      "mount -t tmpfs -o size=256k tmpfs \"$1\" && dd if=/dev/zero of=\"$1/fill\" bs=1k count=200 2>/dev/null && "
+      "TMPDIR=\"$1\" exec \"$2\" grade integrators \"$3\" --results \"$4\"";
+  const auto r = run_program(dir, "/usr/bin/unshare",
+                             {"--mount", "--propagation", "private", "/bin/sh", "-c", script, "sh", (dir / "small").string(),
+                              kMotus, (fs::path(kAssignments) / "integrators/solution").string(),
+                              (dir / "results.json").string()});
+  if (r.status != 1 && r.err.find("mount") != std::string::npos) GTEST_SKIP() << "no private mounts here: " << r.err;
+  EXPECT_EQ(r.status, 1) << r.err;
+  EXPECT_NE(r.err.find("for want of disk space on this machine"), std::string::npos) << r.err;
+  const json result = read_json(dir / "results.json");
+  expect_valid_gradescope(result);
+  EXPECT_NE(result["output"].get<std::string>().find("not the submission's fault"), std::string::npos);
 }
 
 // Where grading cannot start (here: an assignment whose hidden folder has none of its hidden

@@ -325,7 +325,7 @@ TEST(Hardening, ABallWiderThanItsBoxOrASpeedPastEveryDoubleIsRefused) {
                  "colliders": [{"type": "plane", "normal": [0, 1]}, {"type": "box", "min": [0, 0], "max": [12, 10]}],
                  "integrator": "symplectic-euler", "dt": 0.01, "duration": 1})");
   expect_one_line_exit_2(run_motus(dir, {"run", (dir / "wide.json").string()}),
-                         "wide.json: bodies[1].radius: a ball of radius 5.5 does not fit in the box colliders[1] (its width along y is 10.0)");
+                         "wide.json: bodies[1].radius: a ball of radius 5.5 does not fit in the box colliders[1] (its width along y is 10.0;");
   write_file(dir / "fast.json",
              R"({"name": "f", "dimensions": 2, "bodies": [{"mass": 4, "radius": 0.5, "position": [2, 5], "velocity": [1e154, 0]}],
                  "integrator": "symplectic-euler", "dt": 0.01, "duration": 1})");
@@ -336,6 +336,108 @@ TEST(Hardening, ABallWiderThanItsBoxOrASpeedPastEveryDoubleIsRefused) {
              R"({"name": "f", "dimensions": 2, "bodies": [{"mass": 4, "radius": 0.5, "position": [2, 5], "velocity": [1e153, 0]}],
                  "integrator": "symplectic-euler", "dt": 0.01, "duration": 1})");
   EXPECT_EQ(run_motus(dir, {"run", (dir / "fast.json").string()}).status, 0);
+}
+
+// Scenes that could only fail, or run and mislead, each refused at the field that makes it so.
+// Each one ran before (from an audit): a ball exactly as wide as its box, or a lattice of balls
+// touching wall to wall, failed with "more than N collisions in one step … (overlapping bodies?)";
+// balls of 1e-160 m passed through each other (their r² is below every double); a body pinned at
+// two points ended 1 m off one of them, exit 0; a spring of rest length 1 between two bodies at
+// one point kept 5 J and never moved; a body at the centre of unsoftened gravity failed blaming
+// the step size; a potential energy (1e307 kg, 100 m up) or a momentum (two bodies of 1e308 kg)
+// past the largest double ran with "inf" for every figure, and compare said motus blew up.
+TEST(Hardening, ScenesThatCouldOnlyFailOrMisleadAreRefusedAtTheirField) {
+  TempDir dir;
+  auto refused = [&](const std::string& name, const std::string& scene, const std::string& says) {
+    write_file(dir / (name + ".json"), scene);
+    expect_one_line_exit_2(run_motus(dir, {"run", (dir / (name + ".json")).string()}), name + ".json: " + says);
+  };
+  const std::string tail = R"("integrator": "symplectic-euler", "dt": 0.01, "duration": 1})";
+  refused("snug", R"({"dimensions": 2, "bodies": [{"mass": 1, "radius": 0.5, "position": [0, 0], "velocity": [1, 0]}],
+                     "colliders": [{"type": "box", "min": [-0.5, -1], "max": [0.5, 1]}], )" + tail,
+          "bodies[0].radius: a ball of radius 0.5 does not fit in the box colliders[0] (its width along x is 1.0; a ball "
+          "must be narrower than its box)");
+  refused("jammed", R"({"dimensions": 2, "lattice": {"count": 100, "radius": 1}, )" + tail,
+          "lattice.radius: balls of this radius touch or overlap at this spacing");
+  refused("tiny", R"({"dimensions": 2, "bodies": [{"mass": 1, "radius": 1e-160, "position": [-3e-160, 0]},
+                     {"mass": 1, "radius": 1e-160, "position": [3e-160, 0]}], )" + tail,
+          "bodies[0].radius: must be 0 (a point) or between 1e-100 and 1e100 m (got 1e-160)");
+  refused("twice", R"({"dimensions": 2, "bodies": [{"mass": 1, "position": [0, 0]}],
+                      "pins": [{"body": 0, "position": [0, 0]}, {"body": 0, "position": [1, 0]}], )" + tail,
+          "pins[1].body: body 0 is pinned already, at another point, by pins[0]");
+  refused("spring", R"({"dimensions": 2, "bodies": [{"mass": 1, "position": [0, 0]}, {"mass": 1, "position": [0, 0]}],
+                       "forces": [{"type": "spring", "a": 0, "b": 1, "stiffness": 10, "rest_length": 1}], )" + tail,
+          "forces[0].rest_length: the two bodies start at the same point, where a spring of rest length > 0 has no "
+          "direction to push them apart");
+  refused("anchor", R"({"dimensions": 2, "bodies": [{"mass": 1, "position": [2, 3]}],
+                       "forces": [{"type": "spring", "a": 0, "anchor": [2, 3], "stiffness": 10, "rest_length": 1}], )" + tail,
+          "forces[0].rest_length: the body starts at the anchor");
+  refused("centre", R"({"dimensions": 2, "bodies": [{"mass": 1, "position": [1, 0]}, {"mass": 1, "position": [1e-200, 0]}],
+                       "forces": [{"type": "central_gravity", "mu": 1}], )" + tail,
+          "forces[0].centre: body 1 starts so near the centre, where unsoftened gravity is infinite in a double");
+  refused("heavy", R"({"dimensions": 2, "bodies": [{"mass": 1e307, "position": [0, 100]}],
+                      "forces": [{"type": "gravity", "g": [0, -9.81]}], )" + tail,
+          "forces: the potential energy at the start is not a finite number (inf J)");
+  refused("heavier", R"({"dimensions": 1, "bodies": [{"mass": 1e308, "position": [0], "velocity": [1.4]},
+                        {"mass": 1e308, "position": [5], "velocity": [1.4]}], )" + tail,
+          "bodies: the bodies' kinetic energy or momentum together is past the largest double");
+  // (What stays allowed: a softened centre, a spring of rest length 0 at one point, one pin twice at one point.)
+  write_file(dir / "fine.json", R"({"dimensions": 2, "bodies": [{"mass": 1, "position": [0, 0]}, {"mass": 1, "position": [0, 0]}],
+      "forces": [{"type": "central_gravity", "mu": 1, "softening": 0.1}, {"type": "spring", "a": 0, "b": 1, "stiffness": 10}],
+      "pins": [{"body": 0, "position": [0, 0]}, {"body": 0, "position": [0, 0]}], "integrator": "verlet", "dt": 0.01, "duration": 1})");
+  EXPECT_EQ(run_motus(dir, {"run", (dir / "fine.json").string()}).status, 0);
+}
+
+// An oscillator blown up past the largest double's energy, its state still finite (1e193 m: its
+// ½ k x² is not), was a run that went well: "total energy 0.5 inf", exit 0, "finite": true. It is
+// a failed run, as a state that stopped being a number is. (From an audit.)
+TEST(Hardening, AnEnergyThatOverflowsIsAFailedRun) {
+  TempDir dir;
+  write_file(dir / "spring.json", R"({"dimensions": 2, "bodies": [{"mass": 1, "position": [1, 0]}],
+      "forces": [{"type": "spring", "a": 0, "anchor": [0, 0], "stiffness": 1}], "integrator": "euler", "dt": 0.5, "duration": 2000})");
+  // Explicit Euler at h = 0.5 multiplies the amplitude by √(1 + h²) = 1.118 a step: 4000 steps take
+  // 1 m to 1.118^4000 = 10^193.8 m, whose square is past 1.8e308.
+  const Result r = run_motus(dir, {"run", (dir / "spring.json").string(), "--json", "--repeats", "1"});
+  EXPECT_EQ(r.status, 1) << r.err;
+  EXPECT_EQ(count_lines(r.err), 1) << r.err;
+  const std::string says = "the energy was no longer finite by t = 2000 (its largest number had reached ";
+  const size_t at = r.err.find(says);
+  ASSERT_NE(at, std::string::npos) << r.err;
+  const double reached = std::stod(r.err.substr(at + says.size()));
+  EXPECT_GT(reached, 1e193);   // (a coordinate of a state turning at 10^193.8 m)
+  EXPECT_LT(reached, 6.7e193);
+  const json j = json::parse(r.out);
+  EXPECT_FALSE(j["finite"].get<bool>());
+  EXPECT_TRUE(std::isfinite(j["state"]["x"][0][0].get<double>()));
+}
+
+// Output paths that misled (from an audit of failed writes): a report folder ending in "." or ".."
+// ran the whole job, then could not be moved into place (exit 1, the work under a hidden name);
+// --trajectory /dev/stdout was refused as a file that "already exists", and with --overwrite the link
+// was replaced; a render folder starting with "-" failed in ffmpeg, after every frame was drawn
+// ("Unrecognized option").
+TEST(Hardening, OutputPathsAreTakenAsTheUserMeantThem) {
+  TempDir dir;
+  expect_one_line_exit_2(run_motus(dir, {"compare", "head_on", "--out", (dir / "new/.").string()}),
+                         "--out: ends in \".\": name the new folder itself");
+  expect_one_line_exit_2(run_motus(dir, {"render", "head_on", "--out", (dir / "new/..").string()}),
+                         "--out: ends in \"..\": name the new folder itself");
+  EXPECT_FALSE(fs::exists(dir / "new"));
+  // /dev/stdout is standard output, as - is: the rows where the summary's standard output went.
+  Result r = run_motus(dir, {"run", "spring", "--trajectory", "/dev/stdout", "--repeats", "1"});
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.out.rfind("t,x0,vx0,kinetic,potential,total\n", 0), 0u) << r.out;
+  EXPECT_EQ(count_lines(r.out), 7);  // the header and six rows (t = 0 … 5)
+  // A link of one's own to an open descriptor: refused, not replaced (with --overwrite too).
+  fs::create_symlink("/proc/self/fd/1", dir / "mine");
+  expect_one_line_exit_2(run_motus(dir, {"run", "spring", "--trajectory", (dir / "mine").string(), "--overwrite"}),
+                         "is a link to an open file (/proc/self/fd/1)");
+  EXPECT_TRUE(fs::is_symlink(dir / "mine"));
+  // A folder whose name starts with "-", relative to where motus runs: the video is made.
+  r = run_program(dir, "/usr/bin/env", {"-C", dir.path().string(), kMotus, "render", "head_on", "--out", "-lead", "--size",
+                                        "64x48", "--fps", "10", "--duration", "0.5", "--video", "mp4"});
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_TRUE(fs::is_regular_file(dir / "-lead" / "head_on.mp4"));
 }
 
 // 9. A key twice in one object.

@@ -4,6 +4,7 @@
 #include <fmt/ranges.h>
 #include <fcntl.h>
 #include <sys/stat.h>
+#include <sys/statvfs.h>
 #include <unistd.h>
 
 #include <cctype>
@@ -122,6 +123,14 @@ TestResult gate(const std::string& name, const std::string& number, const std::s
   return t;
 }
 
+// Whether the file system holding `folder` has less than 64 MB left for this user (or cannot be
+// looked at): no compiler's objects are made there then.
+bool disk_nearly_full(const std::filesystem::path& folder) {
+  struct statvfs disk {};
+  if (::statvfs(folder.c_str(), &disk) != 0) return true;
+  return static_cast<double>(disk.f_bavail) * static_cast<double>(disk.f_frsize) < 64.0 * 1024 * 1024;
+}
+
 }  // namespace
 
 std::string make_temporary_folder(const std::string& root, const std::string& prefix) {
@@ -209,6 +218,14 @@ GradeResult grade_submission(const Assignment& a, const std::string& submission,
   BuildResult built;
   if (files.passed) {
     built = build_plugin(a, staged.string(), out.string(), o.headers, o.isolate, user.uid(), o.stop);
+    // A disk that filled up under the compiler is this machine's failure, not the submission's: it
+    // was graded "does not compile", 0 points, exit 0 — on Gradescope, every student at once. (The
+    // disk is looked at too: a submission's #error could print the same words.)
+    for (const char* machine : {"No space left on device", "Disk quota exceeded"})
+      if (!built.ok && built.output.find(machine) != std::string::npos && disk_nearly_full(out))
+        throw std::runtime_error(std::string("the build of the submission stopped for want of disk space on this machine (the "
+                                             "compiler said: ") + machine + ", in " + out.parent_path().string() +
+                                 "): not the submission's fault; free some space (or set TMPDIR) and grade again");
     build.passed = built.ok;
     build.output = built.ok ? fmt::format("Compiled in {:.1f} s.", built.seconds)
                             : "Not graded: the submission does not compile. The compiler said:\n" + built.output;
@@ -300,7 +317,8 @@ GradeResult grade_submission(const Assignment& a, const std::string& submission,
     if (!fs::is_regular_file(fs::symlink_status(built.plugin, error)))
       throw std::runtime_error(built.plugin + ": the built plug-in is no longer a file (the submission's code replaced "
                                               "it); --plugin-out is not written");
-    fs::copy_file(built.plugin, o.plugin_out, fs::copy_options::overwrite_existing);
+    fs::copy_file(built.plugin, o.plugin_out, fs::copy_options::overwrite_existing, error);
+    if (error) throw std::runtime_error("--plugin-out: the plug-in could not be written (" + error.message() + ")");
   }
 
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count();

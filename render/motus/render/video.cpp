@@ -36,7 +36,10 @@ void encode_video(const std::string& frame_pattern, double fps, const std::strin
     pattern += frame_pattern[at];
     if (frame_pattern[at] == '%' && name != std::string::npos && at < name) pattern += '%';
   }
-  std::vector<std::string> args{ffmpeg, "-nostdin", "-y", "-loglevel", "error", "-framerate", rate, "-i", pattern};
+  // A relative path is given as ./PATH: ffmpeg takes "-lead/…" for an option and "a:b/…" for a
+  // protocol's URL (the render failed after drawing every frame).
+  auto as_file = [](const std::string& path) { return path.starts_with('/') ? path : "./" + path; };
+  std::vector<std::string> args{ffmpeg, "-nostdin", "-y", "-loglevel", "error", "-framerate", rate, "-i", as_file(pattern)};
   if (format == VideoFormat::mp4) {
     args.insert(args.end(), {"-c:v", "libx264", "-pix_fmt", "yuv420p", "-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2",
                              "-movflags", "+faststart"});
@@ -44,7 +47,7 @@ void encode_video(const std::string& frame_pattern, double fps, const std::strin
     args.insert(args.end(), {"-vf", "split[a][b];[a]palettegen=stats_mode=diff[p];[b][p]paletteuse=dither=bayer:bayer_scale=5",
                              "-loop", "0"});
   }
-  args.push_back(out_path);
+  args.push_back(as_file(out_path));
   // What ffmpeg says (at -loglevel error, only errors) goes to a file of its own and is read back:
   // it can report an error and still exit 0 (a full disk while it writes the trailer leaves a
   // video that does not play), and its lines are not motus's one-line message.
