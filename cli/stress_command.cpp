@@ -133,6 +133,7 @@ int stress_command(const StressOptions& o) {
   const double longest =
       std::max(static_cast<double>(std::max(o.steps, o.drift_steps)) * scene.dt, std::min(o.duration, scene.duration));
   check_time_resolution(scene.start_time, longest, scene.dt, path + ": start_time", path + ": dt");
+  check_position_resolution(scene, scene.dt, path);
 
   std::vector<Integrator> asked;
   if (o.integrators.empty()) {

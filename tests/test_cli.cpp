@@ -166,11 +166,19 @@ INSTANTIATE_TEST_SUITE_P(Cli, BadInputTest, ::testing::ValuesIn(kBadInputs),
 // past the scene's for stress (its help says it is at most the scene's; the file's dt was blamed).
 TEST(CliErrors, ExtremeButFiniteNumbersEndInAMessageThatSaysWhat) {
   TempDir dir;
+  // (At rest: moving, at 1 m/s where doubles are 2e292 m apart, the scene is refused before it runs,
+  // by check_position_resolution.)
   const Result apart = run_motus(dir, {"run", scene("head_on"), "--set", "bodies[0].position=[-9e307,0]", "--set",
-                                       "bodies[1].position=[9e307,0]", "--set", "exact="});
+                                       "bodies[1].position=[9e307,0]", "--set", "bodies[0].velocity=[0,0]", "--set",
+                                       "bodies[1].velocity=[0,0]", "--set", "exact="});
   EXPECT_EQ(apart.status, 1) << apart.err;
   EXPECT_EQ(count_lines(apart.err), 1) << apart.err;
   EXPECT_NE(apart.err.find("too far apart for the collision grid"), std::string::npos) << apart.err;
+  const Result moving = run_motus(dir, {"run", scene("head_on"), "--set", "bodies[0].position=[-9e307,0]", "--set",
+                                        "bodies[1].position=[9e307,0]", "--set", "exact="});
+  EXPECT_EQ(moving.status, 2) << moving.err;
+  EXPECT_NE(moving.err.find("head_on.json: bodies[0].position: at 9e+307 m positions are"), std::string::npos)
+      << moving.err;
   const Result stress = run_motus(dir, {"stress", scene("oscillator"), "--out", (dir / "stress").string(), "--steps", "100",
                                         "--drift-steps", "100", "--duration", "1e308", "--integrators", "euler"});
   EXPECT_EQ(stress.status, 0) << stress.err;

@@ -388,6 +388,27 @@ TEST(Hardening, ScenesThatCouldOnlyFailOrMisleadAreRefusedAtTheirField) {
   EXPECT_EQ(run_motus(dir, {"run", (dir / "fine.json").string()}).status, 0);
 }
 
+// A scene so far from the origin that its positions cannot take its moves: two balls at x = 1e17 m
+// moving at 1 m/s with dt = 0.01 s (moves of 0.01 m where doubles are 16 m apart) ran 4 s and never
+// moved, exit 0. Refused, naming the farthest body; the same scene at 1e9 m (doubles 1.2e-7 m apart)
+// runs. (From an audit.)
+TEST(Hardening, PositionsTooCoarseForTheScenesMovesAreRefused) {
+  TempDir dir;
+  auto scene = [](double x) {
+    return json{{"dimensions", 2},
+                {"bodies", {{{"mass", 1}, {"radius", 0.5}, {"position", {x, 0}}, {"velocity", {1, 0}}},
+                            {{"mass", 1}, {"radius", 0.5}, {"position", {x, 3}}, {"velocity", {-1, 0}}}}},
+                {"integrator", "symplectic-euler"}, {"dt", 0.01}, {"duration", 1}}.dump();
+  };
+  write_file(dir / "far.json", scene(1e17));
+  for (const char* command : {"run", "compare", "stress"})
+    expect_one_line_exit_2(run_motus(dir, {command, (dir / "far.json").string()}),
+                           "far.json: bodies[0].position: at 1e+17 m positions are 16 m apart, too coarse for the "
+                           "scene's moves of 0.01 m a step");
+  write_file(dir / "near.json", scene(1e9));
+  EXPECT_EQ(run_motus(dir, {"run", (dir / "near.json").string()}).status, 0);
+}
+
 // An oscillator blown up past the largest double's energy, its state still finite (1e193 m: its
 // ½ k x² is not), was a run that went well: "total energy 0.5 inf", exit 0, "finite": true. It is
 // a failed run, as a state that stopped being a number is. (From an audit.)
