@@ -280,6 +280,32 @@ TEST(Hardening, CoincidentBallsAreSeparatedUnderVerlet) {
   sim.advance(0.01, 0.01, {});
   const auto& y = sim.state();
   EXPECT_NEAR(std::hypot(y[2] - y[0], y[3] - y[1]), 1.0, 1e-12);
+  // Moved apart, and still at rest: the positions were projected before the first step, so Verlet
+  // takes no velocity from the move (they flew apart at 50 m/s: 0 → 2500 J, exit 0; from an audit).
+  EXPECT_EQ(y.tail(4).norm(), 0.0) << y.transpose();
+  sim.advance(1, 0.01, {});
+  EXPECT_NEAR(std::hypot(sim.state()[2] - sim.state()[0], sim.state()[3] - sim.state()[1]), 1.0, 1e-12);
+}
+
+// A ball set outside its box, run with verlet: moved in, at rest, where symplectic Euler moves it
+// too (the wall's surface), not flung back across the box at 9950 m/s (4.95e7 J from nothing, and
+// the summary said 0 → 0). (From an audit.)
+TEST(Hardening, ABallSetOutsideItsBoxIsMovedInAtRestUnderVerlet) {
+  motus::SceneDescription scene;
+  motus::MechanicalDescription m;
+  m.dimensions = 2;
+  m.bodies.push_back({1, {100, 0}, {0, 0}, 0.5, 1});
+  motus::BoxCollider box;
+  box.min = {-1, -1, 0};
+  box.max = {1, 1, 0};
+  m.colliders.boxes.push_back(box);
+  scene.mechanical = m;
+  for (const auto integrator : {motus::Integrator::Verlet, motus::Integrator::SymplecticEuler}) {
+    motus::Simulation sim(scene, integrator);
+    sim.advance(1, 0.01, {});
+    EXPECT_NEAR(sim.state()[0], 0.5, 1e-12) << motus::info(integrator).name;  // the box's side less the radius
+    EXPECT_EQ(sim.state().tail(2).norm(), 0.0) << motus::info(integrator).name;
+  }
 }
 
 // 8. Coincident bodies under unsoftened mutual gravity: refused, naming both.

@@ -22,6 +22,8 @@ public:
   }
   // Forget p_{n−1} (call after changing x or v from outside).
   void reset() { started_ = false; }
+  // Whether p_{n−1} is known (the first step takes it from x and v).
+  bool started() const { return started_; }
   // p_n after a step (p_{n+1} is the state's x): a world that moves x by projection
   // (constraints, walls) reads the velocity from the two, as Jakobsen's Verlet does.
   const Vector& previous_positions() const { return x_previous_; }
