@@ -22,7 +22,7 @@ namespace {
 constexpr unsigned kCollapseLimit = 64;
 
 // Overlap smaller than this fraction of the contact distance is rounding, not overlap.
-constexpr double kOverlapSlack = 1e-12;
+constexpr double kOverlapSlack = kRoundingOverlap;  // (time_of_impact.hpp: the same rounding)
 // Bodies whose gap is at most this fraction of their contact distance touch, for a plug-in's
 // time of impact (its rounding and the engine's differ by a few units in the last place).
 constexpr double kTouching = 1e-9;
