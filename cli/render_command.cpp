@@ -93,9 +93,9 @@ void check_folder(const std::string& out, bool overwrite, const std::vector<std:
 // --out itself if it made it.
 class RenderInProgress {
 public:
-  RenderInProgress(std::string out, bool made_folder) : out_(std::move(out)), made_folder_(made_folder) {
+  RenderInProgress(std::string out, bool make_folder) : out_(std::move(out)) {
     std::error_code error;
-    if (made_folder_) {
+    if (make_folder) {
       // Made here or refused: another render started beside this one may have made it since it was
       // looked at (both went on, and the second replaced the first's frames without --overwrite).
       const fs::path parent = fs::path(out_).parent_path();
@@ -130,7 +130,7 @@ public:
       fs::remove_all(partial_, ignored);  // (a folder of motus's own making)
       // --out itself when this render made it (and has held its lock since): a failure after the frames
       // were moved in (writing the list of them, on a full disk) left a finished-looking render there.
-      if (made_folder_) fs::remove_all(out_, ignored);
+      if (!made_folders_.empty()) fs::remove_all(out_, ignored);
       remove_if_empty(made_folders_);
     }
     ::close(lock_);  // (and the lock with it)
@@ -180,8 +180,8 @@ private:
   }
 
   std::string out_, partial_;
-  bool made_folder_;
-  std::vector<std::string> made_folders_;  // --out and the folders above it this render made, deepest first
+  // --out and the folders above it this render made, deepest first (none: --out was there already).
+  std::vector<std::string> made_folders_;
   int lock_ = -1;  // the folder, open: flock'ed while this render writes into it
   bool moved_ = false;
 };
