@@ -343,9 +343,11 @@ std::vector<std::string> folders_not_there_yet(const std::string& folder) {
 }
 
 void remove_if_empty(const std::vector<std::string>& folders) {
-  std::error_code ignored;
-  for (const auto& folder : folders)
-    if (!fs::remove(folder, ignored)) return;
+  for (const auto& folder : folders) {
+    std::error_code error;
+    fs::remove(folder, error);  // (one already gone counts as removed: render's --out, taken with its frames)
+    if (error) return;          // not empty: it and the folders above it stay
+  }
 }
 
 PartialFolder::PartialFolder(const std::string& final_path, bool numbered)

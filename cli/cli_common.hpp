@@ -200,8 +200,8 @@ std::string default_run_folder(const std::string& kind, const std::string& scene
 // or is stopped removes again (remove_if_empty) — an interrupted run said "nothing half-written was
 // left behind" and left the empty folders of its --out's path.
 std::vector<std::string> folders_not_there_yet(const std::string& folder);
-// Removes each of `folders` (deepest first) while it is empty; stops at the first that is not (nothing
-// with anything in it is ever removed).
+// Removes each of `folders` (deepest first) while it is empty or already gone; stops at the first that
+// is not (nothing with anything in it is ever removed).
 void remove_if_empty(const std::vector<std::string>& folders);
 
 // A folder written under a temporary name and renamed to `final_path` only when complete()
