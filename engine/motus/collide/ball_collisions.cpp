@@ -21,6 +21,12 @@ namespace {
 // without touching elastic scenes.
 constexpr unsigned kCollapseLimit = 64;
 
+// A cluster settled at once (settle_cluster) has at most this many balls (the rest of a big
+// pile is left to the events), and is settled when no contact approaches faster than this
+// fraction of its fastest speed.
+constexpr size_t kClusterBalls = 128;
+constexpr double kSettled = 1e-14;
+
 // Overlap smaller than this fraction of the contact distance is rounding, not overlap.
 constexpr double kOverlapSlack = kRoundingOverlap;  // (time_of_impact.hpp: the same rounding)
 // Bodies whose gap is at most this fraction of their contact distance touch, for a plug-in's
@@ -958,7 +964,7 @@ void BallCollisions<D>::initial_plane_event(int i, int w) {
   }
   const double closing = plane.axis >= 0 ? plane.sign * u[plane.axis] : plane.normal.dot(u);
   if (gap + closing * h_ > 0) return;  // does not reach it this step
-  const double toi = rules_ ? outside_plane_impact(p, u, radius_of(i), plane, h_) : sphere_plane_impact(gap, closing, h_);
+  const double toi = rules_ ? outside_plane_impact(p, u, radius_of(i), plane, h_) : sphere_plane_impact(gap, closing, h_, radius_of(i));
   if (toi != kNoImpact) push(toi, i, -1 - w);
 }
 
@@ -1083,7 +1089,7 @@ void BallCollisions<D>::find_wall_events(int i, double t) {
       gap = plane.normal.dot(p) - plane.offset - r;
       closing = plane.normal.dot(u);
     }
-    const double toi = rules_ ? outside_plane_impact(p, u, r, plane, horizon) : sphere_plane_impact(gap, closing, horizon);
+    const double toi = rules_ ? outside_plane_impact(p, u, r, plane, horizon) : sphere_plane_impact(gap, closing, horizon, r);
     if (toi != kNoImpact) push(t + toi, i, -1 - static_cast<int>(w)), first = std::min(first, toi);
   }
   for (size_t s = 0; s < segments_.size(); ++s) {
@@ -1109,7 +1115,7 @@ double BallCollisions<D>::segment_impact(const Segment& s, const Point& p, const
     Point best_normal = side;
     const double offset = side.dot(p - s.a);
     const double sign = offset > 0 || (offset == 0 && side.dot(u) < 0) ? 1 : -1;
-    const double toi = sphere_plane_impact(sign * offset - r, sign * side.dot(u), horizon);
+    const double toi = sphere_plane_impact(sign * offset - r, sign * side.dot(u), horizon, r);
     if (toi != kNoImpact) {
       const double reach = tangent.dot(p + u * toi - s.a);
       if (reach >= 0 && reach <= length) {
@@ -1190,6 +1196,15 @@ void BallCollisions<D>::mark_fast_if_needed(int i, double t) {
 template <int D>
 void BallCollisions<D>::resolve(const Event& e) {
   const int i = e.i;
+  // A ball in inelastic collapse: it and the balls that touch it are settled at once (below).
+  // (Not with a plug-in's impulses: their contacts are the student's, one at a time.)
+  if ((state_[i].collisions_this_step >= kCollapseLimit ||
+       (e.other >= 0 && state_[e.other].collisions_this_step >= kCollapseLimit)) &&
+      !rules_ &&
+      restitution_of(i) * (e.other >= 0 ? restitution_of(e.other) : wall_restitution(-1 - e.other)) < 1) {
+    settle_cluster(e);
+    return;
+  }
   if (state_[i].collisions_this_step == 0) moved_.push_back(i);
   advance(i, e.t);
   if (e.other >= 0) {
@@ -1218,10 +1233,7 @@ void BallCollisions<D>::resolve(const Event& e) {
     find_ball_events(k, e.t, i);
   } else {
     const int w = -1 - e.other;
-    const double wall_e = w < static_cast<int>(planes_.size())
-                              ? planes_[static_cast<size_t>(w)].restitution
-                              : segments_[static_cast<size_t>(w) - planes_.size()].restitution;
-    double restitution = restitution_of(i) * wall_e;
+    double restitution = restitution_of(i) * wall_restitution(w);
     if (restitution < 1 && state_[i].collisions_this_step >= kCollapseLimit) restitution = 0;
     bounce(i, wall_normal(i, w), restitution);
     ++state_[i].collisions_this_step;
@@ -1231,6 +1243,98 @@ void BallCollisions<D>::resolve(const Event& e) {
     if (fast_paths_on_) enter_fast_paths(i, -1, e.t);
     find_ball_events(i, e.t, -1);
   }
+}
+
+template <int D>
+double BallCollisions<D>::wall_restitution(int wall) const {
+  return wall < static_cast<int>(planes_.size()) ? planes_[static_cast<size_t>(wall)].restitution
+                                                 : segments_[static_cast<size_t>(wall) - planes_.size()].restitution;
+}
+
+// Inelastic collapse (contact_cluster.hpp): once a ball has had kCollapseLimit contacts in a step,
+// its next contact with little restitution settles it together with every ball that touches it,
+// or touches one of them, through such contacts (and the walls they touch), now, at once and
+// perfectly inelastically — as its contacts one at a time would have, in the limit (they were
+// already perfectly inelastic from that many on). Elastic contacts (e = 1) stay the events'.
+template <int D>
+void BallCollisions<D>::settle_cluster(const Event& e) {
+  const double t = e.t;
+  cluster_.clear();
+  cluster_balls_.clear();
+  auto join = [&](int k) {  // (at t, like every body a contact moves)
+    if (state_[k].collisions_this_step == 0) moved_.push_back(k);
+    advance(k, t);
+    cluster_balls_.push_back(k);
+    return cluster_.add_body(velocity(k), inverse_mass_of(k));
+  };
+  auto member = [&](int k) {  // its place in the cluster, or −1
+    const auto at = std::find(cluster_balls_.begin(), cluster_balls_.end(), k);
+    return at == cluster_balls_.end() ? -1 : static_cast<int>(at - cluster_balls_.begin());
+  };
+  join(e.i);
+  if (e.other >= 0) join(e.other);
+  const int walls = static_cast<int>(planes_.size() + segments_.size());
+  for (int m = 0; m < static_cast<int>(cluster_balls_.size()); ++m) {
+    const int b = cluster_balls_[static_cast<size_t>(m)];
+    const double r = radius_of(b);
+    const Point p = position(b);
+    for (int w = 0; w < walls; ++w) {
+      if (restitution_of(b) * wall_restitution(w) >= 1) continue;
+      double gap;
+      if (w < static_cast<int>(planes_.size())) {
+        const Plane& plane = planes_[static_cast<size_t>(w)];
+        gap = plane.normal.dot(p) - plane.offset - r;
+      } else {
+        const Segment& s = segments_[static_cast<size_t>(w) - planes_.size()];
+        const Point along = s.b - s.a;
+        const double reach = std::clamp(along.dot(p - s.a) / along.squaredNorm(), 0.0, 1.0);
+        gap = (p - (s.a + reach * along)).norm() - r;
+      }
+      if (gap <= kTouching * std::max(r, 1e-300)) cluster_.add_contact(-1, m, wall_normal(b, w));
+    }
+    if (r <= 0 || balls_.size() < 2) continue;
+    auto consider = [&](int k) {
+      if (k == b || radius_of(k) <= 0 || restitution_of(b) * restitution_of(k) >= 1) return;
+      const double R = r + radius_of(k);
+      const Point d = position_at(k, t) - p;
+      const double distance = d.norm();
+      if (!(distance - R <= kTouching * R) || distance == 0) return;
+      int j = member(k);
+      if (j >= 0 && (j < m || cluster_.has_contact(m, j))) return;  // (given when k was taken, or just now)
+      if (j < 0) {
+        if (cluster_balls_.size() >= kClusterBalls) return;  // (left to the events)
+        j = join(k);
+      }
+      cluster_.add_contact(m, j, d / distance);
+    };
+    // Its neighbours: on its list, or (a fast ball's) near it in the grid; and the fast balls.
+    if (!state_[b].fast) {
+      for (int u = neighbour_start_[b], end = neighbour_start_[b + 1]; u < end; ++u)
+        if (!state_[neighbours_[u]].fast) consider(neighbours_[u]);
+    } else {
+      const double margin = r + max_radius_ + 0.5 * skin_ + kNudge * cell_size_;
+      for_cells_in_box(p.array() - margin, p.array() + margin, [&](int k) {
+        if (!state_[k].fast) consider(k);
+      });
+    }
+    for_fast_near(b, t, consider);
+  }
+  double scale = 0;  // (the speeds', for when a contact is at rest)
+  for (int j = 0; j < cluster_.bodies(); ++j) scale = std::max(scale, cluster_.velocity(j).norm());
+  cluster_.settle(kSettled * scale);  // (if not quite, what is left is the events')
+
+  for (int j = 0; j < cluster_.bodies(); ++j) {
+    const int b = cluster_balls_[static_cast<size_t>(j)];
+    velocity(b) = cluster_.velocity(j);
+    ++state_[b].collisions_this_step;
+  }
+  for (int c = 0; c < cluster_.contacts(); ++c)
+    if (cluster_.impulse(c) > 0) ++(cluster_.wall_side(c) < 0 ? counters_.wall_collisions : counters_.ball_collisions);
+  for (int b : cluster_balls_) mark_fast_if_needed(b, t);
+  for (int b : cluster_balls_) find_wall_events(b, t);  // (walls first: their first contacts end the new paths)
+  if (fast_paths_on_)
+    for (int b : cluster_balls_) enter_fast_paths(b, -1, t);
+  for (int b : cluster_balls_) find_ball_events(b, t, -1);
 }
 
 namespace {

@@ -22,6 +22,8 @@
 //   2. take the earliest contact, move its two bodies to that time, apply the impulse
 //      (impulse.hpp), and look again for the contacts of just those two (their lists);
 //   3. repeat until no contact is left within h; move the bodies that collided on to the end.
+//      (A ball that has had 64 contacts in the step, pressed between others with little
+//      restitution, is settled at once with every ball touching it: contact_cluster.hpp.)
 // Overlap found at the start of a step (from the scene, or rounding) is removed by
 // moving positions apart along the normal, mass-weighted; velocities are not touched.
 // The lists assume that only this drift moves the bodies: a drift given other arrays
@@ -30,6 +32,7 @@
 #include <vector>
 
 #include "motus/collide/colliders.hpp"
+#include "motus/collide/contact_cluster.hpp"
 #include "motus/collide/path_grid.hpp"
 #include "motus/external/external_parts.hpp"
 #include "motus/huge_pages.hpp"
@@ -156,6 +159,8 @@ private:
   void collide(int i, int k, const Point& n, double e);
   void bounce(int i, const Point& n, double e);
   void resolve(const Event& e);
+  double wall_restitution(int wall) const;
+  void settle_cluster(const Event& e);
   void mark_fast_if_needed(int i, double t);
   void start_fast_paths();
   void enter_fast_path(int i, double t);
@@ -272,6 +277,10 @@ private:
   double path_cell_ = 1;  // its cells' size
   size_t path_entries_ = 0;  // its entries when it was last entered whole
   std::vector<double> path_lengths_;  // (start_fast_paths's)
+
+  // A ball in inelastic collapse, and the balls touching it, settled at once (contact_cluster.hpp).
+  ContactCluster<D> cluster_;
+  std::vector<int> cluster_balls_;
 };
 
 extern template class BallCollisions<1>;

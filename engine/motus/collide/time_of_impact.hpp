@@ -63,10 +63,15 @@ double far_sphere_sphere_impact(const Vec& dp, const Vec& dv, double R, double h
   return t <= horizon ? std::max(t, 0.0) : kNoImpact;
 }
 
-// A sphere and a plane: `gap` = n·p − offset − r (the distance left to touch), `closing`
-// = n·v (negative when moving towards the plane). Linear: t = gap / −closing.
-inline double sphere_plane_impact(double gap, double closing, double horizon) {
+// A sphere of radius r and a plane: `gap` = n·p − offset − r (the distance left to touch),
+// `closing` = n·v (negative when moving towards the plane). Linear: t = gap / −closing.
+// Touching and moving in so slowly that by the horizon it has gone less than kRoundingOverlap of
+// r into the plane is rounding, as for two spheres (a cluster of balls settled at once on a floor,
+// contact_cluster.hpp, is left at rest to within rounding, and found its contact again and again).
+inline double sphere_plane_impact(double gap, double closing, double horizon, double r) {
   if (closing >= 0) return kNoImpact;
+  if (-closing * horizon <= 0.5 * kRoundingOverlap * r && gap + closing * horizon > -kRoundingOverlap * r)
+    return kNoImpact;
   if (gap <= 0) return 0;
   const double t = gap / -closing;
   return t <= horizon ? t : kNoImpact;
