@@ -136,6 +136,29 @@ TEST(Compare, ABox2dCannotRunA3dSceneAndSaysSo) {
   EXPECT_TRUE(engine(j, "motus")->at("supported").get<bool>());
 }
 
+// Explicit Euler at h = 0.5 s on the 1 s spring grows by √(1 + (ωh)²) a step: by t = 2000 the
+// momentum is −5.7e193 kg·m/s, a finite number whose square is not. The scene starts at rest
+// (p₀ = 0), so the momentum column is the change in kg·m/s, |p − p₀| = |p| — in the summary and
+// in metrics.csv's every row, not ∞ or "-" from the square's overflow.
+TEST(Compare, AMomentumPastTheSquareRootOfTheLargestDoubleIsStillItsSize) {
+  TempDir dir;
+  const Result r = run_motus(dir, {"compare", scene("oscillator"), "--engines", "motus", "--integrator", "euler", "--dt",
+                                   "0.5", "--duration", "2000", "--repeats", "1", "--out", (dir / "r").string()});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto j = nlohmann::json::parse(read_file(dir / "r" / "summary.json"));
+  const auto& motus = *engine(j, "motus");
+  const double p = motus.at("momentum").at("final")[0].get<double>();
+  ASSERT_GT(std::abs(p), 1e190);
+  ASSERT_TRUE(motus.at("momentum_drift").is_number()) << motus.dump();
+  EXPECT_DOUBLE_EQ(motus.at("momentum_drift").get<double>(), std::abs(p));
+  for (const auto& row : csv_data_rows(read_file(dir / "r" / "metrics.csv"))) {
+    const double px = std::stod(row.at(7)), change = std::stod(row.at(6));
+    if (std::isfinite(px)) {
+      EXPECT_NEAR(change, std::abs(px), 1e-6 * std::abs(px)) << "t = " << row.at(1);
+    }
+  }
+}
+
 TEST(Compare, NeverWritesOverAnExistingFolder) {
   TempDir dir;
   fs::create_directories(dir / "taken");

@@ -11,6 +11,19 @@ namespace motus::compare {
 
 double in_energy_unit(double change, double divisor) { return divisor != 0 ? change / divisor : change; }
 
+double length_of_change(const std::vector<double>& from, const std::vector<double>& to) {
+  auto part = [&](size_t k) { return to[k] - (k < from.size() ? from[k] : 0); };
+  double largest = 0;
+  for (size_t k = 0; k < to.size(); ++k) {
+    if (std::isnan(part(k))) return NAN;  // (not lost in the max)
+    largest = std::max(largest, std::abs(part(k)));
+  }
+  if (largest == 0 || !std::isfinite(largest)) return largest;
+  double sum = 0;
+  for (size_t k = 0; k < to.size(); ++k) sum += (part(k) / largest) * (part(k) / largest);
+  return largest * std::sqrt(sum);
+}
+
 Timings EngineRun::microseconds_per_step() const {
   std::vector<double> per_step;
   for (double seconds : round_seconds) per_step.push_back(steps ? 1e6 * seconds / static_cast<double>(steps) : 0);
@@ -58,19 +71,12 @@ double EngineRun::max_energy_error(double divisor) const {
 }
 
 double EngineRun::momentum_scale() const {
-  double size = 0;
-  for (double p : rows.front().momentum) size += p * p;
-  const double scale = std::max(std::sqrt(size), scale_of_momentum);
+  const double scale = std::max(length_of_change({}, rows.front().momentum), scale_of_momentum);
   return scale > 0 ? scale : 1;
 }
 
 double EngineRun::momentum_drift() const {
-  double change = 0;
-  for (size_t k = 0; k < rows.front().momentum.size(); ++k) {
-    const double a = rows.front().momentum[k], b = rows.back().momentum[k];
-    change += (b - a) * (b - a);
-  }
-  return std::sqrt(change) / momentum_scale();
+  return length_of_change(rows.front().momentum, rows.back().momentum) / momentum_scale();
 }
 
 double EngineRun::max_penetration() const {

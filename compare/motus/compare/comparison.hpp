@@ -61,6 +61,9 @@ bool energy_in_joules(const std::vector<EngineRun>& runs);
 double energy_divisor(const std::vector<EngineRun>& runs, const EngineRun& r);
 // An energy change in the columns' unit: divided by energy_divisor's divisor, or itself when that is 0.
 double in_energy_unit(double change, double divisor);
+// |to − from| (from empty: |to|), computed without overflow: a momentum of 1e154 kg·m/s has a
+// finite length though its square is past the largest double.
+double length_of_change(const std::vector<double>& from, const std::vector<double>& to);
 // Whether the momentum columns are changes in kg·m/s: the scene starts with nothing moving (p₀ = 0
 // and Σ m|v₀| = 0), so there is no scale to divide by.
 bool momentum_in_kg_m_s(const std::vector<EngineRun>& runs);

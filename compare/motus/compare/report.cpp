@@ -156,9 +156,8 @@ std::vector<plot::Figure> figures(const ReportContext& c, const std::vector<Engi
     for (const auto& r : runs) {
       if (!r.supported || r.rows.empty()) continue;
       const auto& first = angular ? r.rows.front().angular_momentum : r.rows.front().momentum;
-      double size = 0;
-      for (double x : first) size += x * x;
-      scale = angular ? std::sqrt(size) : std::max(std::sqrt(size), r.scale_of_momentum);
+      const double size = length_of_change({}, first);
+      scale = angular ? size : std::max(size, r.scale_of_momentum);
       break;
     }
     f.y_label = std::string("|") + (angular ? "L - L0" : "p - p0") + "|" +
@@ -172,10 +171,9 @@ std::vector<plot::Figure> figures(const ReportContext& c, const std::vector<Engi
       for (const auto& row : r.rows) {
         if (&row == &r.rows.front()) continue;  // (0 by definition at the start, as the energy's)
         const auto& now = angular ? row.angular_momentum : row.momentum;
-        double change = 0;
-        for (size_t k = 0; k < now.size() && k < first.size(); ++k) change += (now[k] - first[k]) * (now[k] - first[k]);
+        const double change = length_of_change(first, now);
         s.x.push_back(row.t);
-        s.y.push_back(scale > 0 ? std::sqrt(change) / scale : std::sqrt(change));
+        s.y.push_back(scale > 0 ? change / scale : change);
       }
       f.series.push_back(std::move(s));
     }
@@ -324,15 +322,12 @@ std::string write_report(const std::string& folder, const ReportContext& c, cons
       const double scale = r.momentum_scale();  // (the summary's momentum_drift's)
       const double divisor = energy_divisor(runs, r);
       for (const auto& row : r.rows) {
-        double change = 0;
+        const double change = length_of_change(first.momentum, row.momentum);
         double p[3] = {0, 0, 0};
-        for (size_t k = 0; k < row.momentum.size(); ++k) {
-          change += (row.momentum[k] - first.momentum[k]) * (row.momentum[k] - first.momentum[k]);
-          p[k] = row.momentum[k];
-        }
+        for (size_t k = 0; k < row.momentum.size(); ++k) p[k] = row.momentum[k];
         const double e_error = in_energy_unit(row.total - first.total, divisor);
         csv << fmt::format("{},{:.17g},{:.17g},{:.17g},{:.17g},{:.6e},{:.6e},{:.17g},{:.17g},{:.17g},{:.6e},{:.6e},{},{}\n",
-                           r.engine, row.t, row.kinetic, row.potential, row.total, e_error, std::sqrt(change) / scale, p[0],
+                           r.engine, row.t, row.kinetic, row.potential, row.total, e_error, change / scale, p[0],
                            p[1], p[2], row.penetration, row.constraint_error,
                            motus_ran ? fmt::format("{:.6e}", row.from_motus) : "",
                            row.from_exact >= 0 ? fmt::format("{:.6e}", row.from_exact) : "");
