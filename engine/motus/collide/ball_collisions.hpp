@@ -281,6 +281,7 @@ private:
   // A ball in inelastic collapse, and the balls touching it, settled at once (contact_cluster.hpp).
   ContactCluster<D> cluster_;
   std::vector<int> cluster_balls_;
+  long cluster_budget_ = 0;  // the work clusters may still take in this step (settle_cluster)
 };
 
 extern template class BallCollisions<1>;

@@ -16,10 +16,10 @@
 // Solved by projected Gauss–Seidel: contact after contact, the one-contact impulse of impulse.hpp
 // with e = 0, but taken as a change of the contact's running total, which is never let below
 // zero (so a contact may take back what it gave) — the same loop as the events', over a handful
-// of numbers in cache instead of a step's queue of events. And every few sweeps, the contacts
-// pushing now are taken as the ones that push in the answer, and the equations A_SS λ_S = −u_S
-// of just those are solved directly: if every λ comes out ≥ 0 and no contact approaches, that is
-// the exact answer, however narrow the wedge.
+// of numbers in cache instead of a step's queue of events. And now and then (after 16 sweeps,
+// 32, 64, …), the contacts pushing now are taken as the ones that push in the answer, and the
+// equations A_SS λ_S = −u_S of just those are solved directly: if every λ comes out ≥ 0 and no
+// contact approaches, that is the exact answer, however narrow the wedge.
 //
 // Momentum is kept (each impulse is equal and opposite, or taken by a wall), and kinetic energy
 // can only fall: every Gauss–Seidel update is a perfectly inelastic contact, and the answer
@@ -58,16 +58,16 @@ public:
   double impulse(int contact) const { return contacts_[static_cast<size_t>(contact)].impulse; }
   int wall_side(int contact) const { return contacts_[static_cast<size_t>(contact)].a; }
 
-  // Finds the impulses, and the velocities after them. Returns whether no contact is left
-  // approaching faster than `tolerance` (m/s); if not, the velocities are the last sweep's,
+  // Finds the impulses, and the velocities after them, spending at most `work` of `budget`
+  // (a contact's update is one; a direct solve of m contacts, m³/3). Returns whether no contact is
+  // left approaching faster than `tolerance` (m/s); if not, the velocities are the last sweep's,
   // every contact's impulse still a push.
-  bool settle(double tolerance) {
+  bool settle(double tolerance, long& budget) {
     for (Contact& c : contacts_) {
       const double w = (c.a >= 0 ? body(c.a).inverse_mass : 0) + body(c.b).inverse_mass;
       c.effective_mass = w > 0 ? 1 / w : 0;  // (between two immovable bodies nothing changes)
     }
-    const long sweeps = std::max(64L, kWork / std::max<long>(1, contacts()));
-    for (long sweep = 1; sweep <= sweeps; ++sweep) {
+    for (long sweep = 1; budget > 0; ++sweep) {
       double worst = 0;
       for (Contact& c : contacts_) {
         const double u = closing(c, false);
@@ -76,8 +76,14 @@ public:
         push(c, total - c.impulse);
         c.impulse = total;
       }
+      budget -= contacts();
       if (worst <= tolerance) return true;
-      if (sweep % kSweepsPerSolve == 0 && contacts() <= kDirectSolveUpTo && solve_pushing(tolerance)) return true;
+      // (At sweeps 16, 32, 64, …: a solve costs up to a few hundred sweeps' work.)
+      if (sweep >= kFirstSolve && (sweep & (sweep - 1)) == 0 && contacts() <= kDirectSolveUpTo) {
+        const long m = pushing();
+        budget -= m * m * m / 3;
+        if (solve_pushing(tolerance)) return true;
+      }
     }
     return settled(tolerance);
   }
@@ -92,10 +98,9 @@ private:
     Point n;
     double impulse, effective_mass;
   };
-  // The Gauss–Seidel sweeps' work at most (contacts × sweeps), and how often the pushing
-  // contacts' equations are tried, for clusters of up to how many contacts (a dense solve).
-  static constexpr long kWork = 4'000'000;
-  static constexpr int kSweepsPerSolve = 16;
+  // The first sweep after which the pushing contacts' equations are tried (and again after twice
+  // as many, and so on), for clusters of up to how many contacts (a dense solve).
+  static constexpr long kFirstSolve = 16;
   static constexpr int kDirectSolveUpTo = 256;
 
   Body& body(int i) { return bodies_[static_cast<size_t>(i)]; }
@@ -125,10 +130,13 @@ private:
 
   // The contacts pushing now (λ > 0) taken as those that push in the answer: A_SS λ_S = −u_S,
   // from the velocities before. Kept if every λ_S ≥ 0 and no contact then approaches.
-  bool solve_pushing(double tolerance) {
+  long pushing() {
     pushing_.clear();
     for (int c = 0; c < contacts(); ++c)
       if (contacts_[static_cast<size_t>(c)].impulse > 0) pushing_.push_back(c);
+    return static_cast<long>(pushing_.size());
+  }
+  bool solve_pushing(double tolerance) {  // (after pushing())
     const int m = static_cast<int>(pushing_.size());
     if (m == 0) return false;
     A_.setZero(m, m);
