@@ -86,14 +86,17 @@ TEST(Grade, HostileSubmissionsEndWithinTheirLimitsAndHarmNothing) {
       // namespace of its own, to mount a tmpfs of any size; System V semaphores; a page spliced into a
       // pipe (it keeps its huge page); a million empty files in /tmp (a tmpfs limits bytes, not files).
       {"kernel-memory",
-       "#include <fcntl.h>\n#include <sched.h>\n#include <sys/ipc.h>\n#include <sys/sem.h>\n#include <sys/uio.h>\n"
-       "#include <unistd.h>\n#include <stdexcept>\n",
+       "#include <fcntl.h>\n#include <sched.h>\n#include <sys/ipc.h>\n#include <sys/sem.h>\n#include <sys/syscall.h>\n"
+       "#include <sys/uio.h>\n#include <unistd.h>\n#include <stdexcept>\n",
        "static bool tried = false; if (!tried) { tried = true; "
        "if (::unshare(CLONE_NEWUSER | CLONE_NEWNS) == 0) throw std::runtime_error(\"MADE A NAMESPACE\"); "
        "if (::semget(IPC_PRIVATE, 32000, IPC_CREAT | 0600) >= 0) throw std::runtime_error(\"MADE SEMAPHORES\"); "
        "int ends[2]; static char page[4096]; iovec piece{page, sizeof page}; "
        "if (::pipe(ends) == 0 && ::vmsplice(ends[1], &piece, 1, SPLICE_F_NONBLOCK) > 0) throw std::runtime_error(\"SPLICED\"); "
-       "if (::open(\"/tmp/one-of-a-million\", O_CREAT | O_WRONLY, 0600) >= 0) throw std::runtime_error(\"MADE A FILE\"); }",
+       "if (::open(\"/tmp/one-of-a-million\", O_CREAT | O_WRONLY, 0600) >= 0) throw std::runtime_error(\"MADE A FILE\"); "
+       // io_uring's operations are the kernel's, out of the filter's sight: its IORING_OP_SOCKET made
+       // 248 sockets after socket() was refused, and their queues held 1 GB.
+       "char params[512] = {}; if (::syscall(SYS_io_uring_setup, 4, params) >= 0) throw std::runtime_error(\"MADE AN IO_URING\"); }",
        ""},
       {"flood", "#include <iostream>\n#include <string>\n",
        // 256 MB at the first call of each test: drained, it costs a fraction of the 2 s, and the

@@ -16,7 +16,7 @@ namespace motus::grade {
 // outside its address space: fork, vfork and clone without CLONE_THREAD fail with EPERM, execve (so
 // posix_spawn's and system's child) with EPERM, clone3 with ENOSYS (glibc then makes its threads
 // with clone); memfd_create, shmget, msgget, semget, socket, socketpair, vmsplice, splice, tee,
-// unshare, setns and the mount calls with EPERM. A seccomp filter: it cannot be lifted, and it
+// unshare, setns, the mount calls and io_uring (setup, enter, register) with EPERM. A seccomp filter: it cannot be lifted, and it
 // holds for every thread made after it. Throws std::runtime_error when the kernel refuses
 // the filter or this machine's architecture has no filter here (x86-64 and AArch64 do).
 void install_server_filter();
