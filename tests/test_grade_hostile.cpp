@@ -66,8 +66,8 @@ TEST(Grade, HostileSubmissionsEndWithinTheirLimitsAndHarmNothing) {
       // shared memory filled and unmapped (12 + 12 of 60 MB: 1.4 GB held), a socket's queue, and
       // descriptors past the sandbox's 256 (the machine allows 20,000). All refused now.
       {"memory-elsewhere",
-       "#include <sys/ipc.h>\n#include <sys/mman.h>\n#include <sys/shm.h>\n#include <sys/socket.h>\n#include <unistd.h>\n"
-       "#include <cstring>\n#include <stdexcept>\n#include <string>\n",
+       "#include <sched.h>\n#include <sys/ipc.h>\n#include <sys/mman.h>\n#include <sys/shm.h>\n#include <sys/socket.h>\n"
+       "#include <unistd.h>\n#include <cstring>\n#include <stdexcept>\n#include <string>\n",
        "static bool tried = false; if (!tried) { tried = true; const size_t chunk = size_t(60) << 20; size_t held = 0; "
        "for (int i = 0; i < 12; ++i) { const int fd = ::memfd_create(\"held\", 0); if (fd < 0 || ::ftruncate(fd, chunk) != 0) break; "
        "void* p = ::mmap(nullptr, chunk, PROT_READ | PROT_WRITE, MAP_SHARED, fd, 0); if (p == MAP_FAILED) break; "
@@ -80,7 +80,11 @@ TEST(Grade, HostileSubmissionsEndWithinTheirLimitsAndHarmNothing) {
        // (closed again: the server's own work after it needs a few, as the sanitizers' reports do)
        "int opened[300]; int count = 0; while (count < 300 && (opened[count] = ::dup(0)) >= 0) ++count; "
        "for (int i = 0; i < count; ++i) ::close(opened[i]); "
-       "if (count == 300) throw std::runtime_error(\"OPENED 300 DESCRIPTORS\"); }",
+       "if (count == 300) throw std::runtime_error(\"OPENED 300 DESCRIPTORS\"); "
+       // A thread without CLONE_FILES has a descriptor table of its own, and 256 more descriptors
+       // (one held 504 against the 256): refused too.
+       "static char stack[1 << 16]; if (::clone(+[](void*) -> int { for (;;) ::pause(); }, stack + sizeof stack, "
+       "CLONE_VM | CLONE_SIGHAND | CLONE_THREAD, nullptr) >= 0) throw std::runtime_error(\"MADE A THREAD WITH DESCRIPTORS OF ITS OWN\"); }",
        ""},
       // Kernel memory by other ways (a red-team pass found each holding 1.1 to 1.5 GB): a user and mount
       // namespace of its own, to mount a tmpfs of any size; System V semaphores; a page spliced into a

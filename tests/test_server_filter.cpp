@@ -47,9 +47,20 @@ enum Wrong : int {
   kNamespace = 1 << 13,
   kSharedMemoryProcess = 1 << 14,
   kIoUring = 1 << 15,
+  kThreadOwnDescriptors = 1 << 16,
 };
 
 int child_of_clone(void*) { return 0; }
+
+// A thread of clone's own that holds 4 descriptors of its own table, whose count it leaves in
+// `arg` (an int that starts at -1); it waits, so that the descriptors stay held, until the test's
+// process ends.
+int thread_with_its_own_descriptors(void* arg) {
+  int held = 0;
+  while (held < 4 && ::dup(0) >= 0) ++held;
+  __atomic_store_n(static_cast<int*>(arg), held, __ATOMIC_RELEASE);
+  for (;;) ::pause();
+}
 
 int checks_after_the_filter() {
   try {
@@ -84,6 +95,13 @@ int checks_after_the_filter() {
   static char stack[1 << 16];
   const int sharing = ::clone(child_of_clone, stack + sizeof stack, CLONE_VM | SIGCHLD, nullptr);
   if (!refused(sharing, EPERM)) wrong |= kSharedMemoryProcess;
+  // A thread without CLONE_FILES: a descriptor table of its own, and a second 256 descriptors (one
+  // held 504 against the sandbox's 256). Refused; with CLONE_FILES it is the thread std::thread makes.
+  static char thread_stack[1 << 16];
+  static int thread_held = -1;
+  const int thread = ::clone(thread_with_its_own_descriptors, thread_stack + sizeof thread_stack,
+                             CLONE_VM | CLONE_SIGHAND | CLONE_THREAD, &thread_held);
+  if (!refused(thread, EPERM)) wrong |= kThreadOwnDescriptors;
 #endif
   // io_uring: the kernel makes its operations (a socket, say) out of the filter's sight.
   char params[512] = {};  // (struct io_uring_params, with room: its size varies with the kernel's headers)
@@ -124,6 +142,7 @@ TEST(ServerFilter, RefusesProcessesAndMemoryOutsideTheAddressSpaceAndKeepsThread
   EXPECT_EQ(wrong & kSpliced, 0) << "vmsplice was not refused with EPERM";
   EXPECT_EQ(wrong & kNamespace, 0) << "unshare or mount was not refused with EPERM";
   EXPECT_EQ(wrong & kSharedMemoryProcess, 0) << "clone(CLONE_VM) without CLONE_THREAD was not refused with EPERM";
+  EXPECT_EQ(wrong & kThreadOwnDescriptors, 0) << "clone(CLONE_THREAD) without CLONE_FILES was not refused with EPERM";
   EXPECT_EQ(wrong & kIoUring, 0) << "io_uring_setup, io_uring_enter or io_uring_register was not refused with EPERM";
 }
 

@@ -13,7 +13,8 @@
 namespace motus::grade {
 
 // From here on this process (and its threads) cannot start a process or a program, nor hold memory
-// outside its address space: fork, vfork and clone without CLONE_THREAD fail with EPERM, execve (so
+// outside its address space: fork, vfork and a clone that is not a thread sharing the memory and
+// the descriptors (CLONE_THREAD, CLONE_VM and CLONE_FILES, all three) fail with EPERM, execve (so
 // posix_spawn's and system's child) with EPERM, clone3 with ENOSYS (glibc then makes its threads
 // with clone); memfd_create, shmget, msgget, semget, socket, socketpair, vmsplice, splice, tee,
 // unshare, setns, the mount calls and io_uring (setup, enter, register) with EPERM. A seccomp filter: it cannot be lifted, and it
