@@ -22,7 +22,16 @@ using nlohmann::json;
 struct Hostile {
   std::string name, includes, body;
   std::string message;  // what the affected tests' output says ("" : they pass)
+  std::string run_message = "";  // and what euler.table's says (a run's: the others are steps and runs of their own)
 };
+
+// Code that writes `line` once, at its first call, to the server's answers' descriptor (3: its
+// standard output kept apart, the lowest free when serve starts), ahead of the server's own reply.
+std::string forging(const std::string& line_expression) {
+  return "static bool forged = false; if (!forged) { forged = true; const std::string line = " + line_expression +
+         "; for (size_t at = 0; at < line.size();) { const ssize_t n = ::write(3, line.data() + at, line.size() - at); "
+         "if (n <= 0) break; at += size_t(n); } }";
+}
 
 TEST(Grade, HostileSubmissionsEndWithinTheirLimitsAndHarmNothing) {
   NEEDS_SANDBOX();
@@ -119,6 +128,32 @@ TEST(Grade, HostileSubmissionsEndWithinTheirLimitsAndHarmNothing) {
        "for (int fd = 1; fd < 10; ++fd) for (int i = 0; i < 70; ++i) if (::write(fd, junk.data(), junk.size()) < 0) break; "
        "for (;;) ::pause(); }); return true; }(); (void)hooked;",
        ""},
+      // Replies the student's code writes over the server's (on its answers' descriptor), whose shape
+      // is not the request's: no times for 100 states of one number each (read as they came, they
+      // crashed the grader, SIGSEGV, and the whole batch with it), no "t" at all (nlohmann's
+      // out_of_range: "motus grade could not finish", every test lost), a state of one number for
+      // two, 10 states of 200,001 numbers (40 MB: one test's output held 9 MB of them), and more
+      // values than the run can need. Each fails the tests it answers, and only them.
+      {"reply-without-times", "#include <unistd.h>\n#include <string>\n",
+       forging("[] { std::string l = \"{\\\"ok\\\":true,\\\"t\\\":[],\\\"y\\\":[[0]\"; "
+               "for (int i = 1; i < 100; ++i) l += \",[0]\"; return l + \"]}\\n\"; }()"),
+       "was malformed: ", "The run's reply was malformed: 0 times but 100 states"},
+      {"reply-without-keys", "#include <unistd.h>\n#include <string>\n", forging("std::string(\"{\\\"ok\\\":true}\\n\")"),
+       "was malformed: ", "The run's reply was malformed: it has no \"t\" or no \"y\""},
+      {"reply-of-short-states", "#include <unistd.h>\n#include <string>\n",
+       forging("std::string(\"{\\\"ok\\\":true,\\\"t\\\":[0,1],\\\"y\\\":[[0],[0]]}\\n\")"),
+       "was malformed: ", "The run's reply was malformed: y[0] is not 2 numbers (the scene's state)"},
+      {"reply-too-long", "#include <unistd.h>\n#include <string>\n",
+       forging("[] { std::string row = \"[1\"; for (int i = 0; i < 200000; ++i) row += \",1.2345678901234567\"; "
+               "std::string l = \"{\\\"ok\\\":true,\\\"t\\\":[0,1,2,3,4,5,6,7,8,9],\\\"y\\\":[\" + row; "
+               "for (int i = 0; i < 9; ++i) l += \",\" + row; return l + \"]}\\n\"; }()"),
+       "was malformed: ", "The run's reply was malformed: longer than"},
+      // Within the bytes a run of 5 steps may send (66 kB), 30,000 values: zeros, which a parsed
+      // document holds in 16 bytes each (63 MB of them held 1.1 GB). Refused as it is parsed.
+      {"reply-of-many-values", "#include <unistd.h>\n#include <string>\n",
+       forging("[] { std::string l = \"{\\\"ok\\\":true,\\\"t\\\":[0],\\\"y\\\":[[1,0]],\\\"z\\\":[0\"; "
+               "for (int i = 1; i < 30000; ++i) l += \",0\"; return l + \"]}\\n\"; }()"),
+       "was malformed: ", "The run's reply was malformed: more than 4132 JSON values"},
       // /dev is a tmpfs of its own, unsized: writable, it held memory past every limit.
       {"write-dev", "#include <fstream>\n#include <stdexcept>\n",
        "for (const char* f : {\"/dev/filled\", \"/dev/shm/filled\"}) if (std::ofstream(f) << \"x\") "
@@ -186,6 +221,11 @@ TEST(Grade, HostileSubmissionsEndWithinTheirLimitsAndHarmNothing) {
         const json* t = test_named(result, name);
         ASSERT_NE(t, nullptr);
         EXPECT_NE((*t)["output"].get<std::string>().find(c.message), std::string::npos) << c.name << ": " << (*t)["output"];
+      }
+      if (!c.run_message.empty()) {
+        const json* t = test_named(result, "euler.table");
+        ASSERT_NE(t, nullptr);
+        EXPECT_NE((*t)["output"].get<std::string>().find(c.run_message), std::string::npos) << c.name << ": " << (*t)["output"];
       }
     }
     double euler_points = 0;
