@@ -127,10 +127,6 @@ struct RunRequest {
   double atol = NAN, rtol = NAN;
 };
 
-// The most numbers `motus serve` records in one run (serve_command.cpp's kMaxNumbers: rows × (the
-// state's size + 1)); past them it stops the run with an error of its own.
-constexpr double kServerMostNumbers = 5e6;
-
 // The size of a scene's state: positions and velocities, or the first-order system's variables.
 size_t state_size(const SceneDescription& scene) {
   return scene.mechanical ? 2 * static_cast<size_t>(scene.mechanical->dimensions) * scene.mechanical->bodies.size()
@@ -168,7 +164,7 @@ RunOutput run(Probe& probe, const CheckScene& scene, const RunRequest& r, Clock:
   // anything in it is read: a reply the student's code wrote over the server's ("t": [], 100
   // states of one number) was indexed as it came, and crashed the grader (SIGSEGV, the batch with it).
   const size_t n = state_size(scene.description);
-  const double server_rows = std::floor(kServerMostNumbers / static_cast<double>(n + 1));
+  const double server_rows = std::floor(wire::kMostRunNumbers / static_cast<double>(n + 1));
   const double rows = std::isnan(r.until) ? std::min(static_cast<double>(r.steps / std::max(1L, r.every)) + 3, server_rows)
                                           : server_rows;
   const std::string whose = "the run's reply";

@@ -123,8 +123,6 @@ TestResult gate(const std::string& name, const std::string& number, const std::s
   return t;
 }
 
-// Whether the file system holding `folder` has less than 64 MB left for this user (or cannot be
-// looked at): no compiler's objects are made there then.
 // The most of a test's own text (what was measured and expected, or what happened) its output
 // keeps; what the student's code printed comes after it, cut to its own 1,200 bytes. Every check
 // prints what it measured, and a reply the student's code wrote over the server's once put 9 MB
@@ -138,6 +136,8 @@ std::string bounded(std::string text, size_t bytes) {
   return text.substr(0, cut) + "… (cut: " + std::to_string(text.size()) + " bytes in all)";
 }
 
+// Whether the file system holding `folder` has less than 64 MB left for this user (or cannot be
+// looked at): no compiler's objects are made there then.
 bool disk_nearly_full(const std::filesystem::path& folder) {
   struct statvfs disk {};
   if (::statvfs(folder.c_str(), &disk) != 0) return true;
