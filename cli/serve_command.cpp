@@ -46,12 +46,11 @@ json run(const json& r) {
                                           : sim.time() + static_cast<double>(r.value("steps", 1L)) * dt;
   const Tolerance tolerance{r.value("atol", scene.atol), r.value("rtol", scene.rtol)};
   json t = json::array(), y = json::array();
-  // What one run may record: a step-size control that shrinks the step without end records rows
-  // until memory runs out — and a JSON array that big cannot even be destroyed then (nlohmann's
-  // destructor allocates: std::terminate, "killed by SIGABRT" in place of the student's error).
-  constexpr double kMaxNumbers = 5e6;
+  // What one run may record (wire.hpp): a step-size control that shrinks the step without end
+  // records rows until memory runs out — and a JSON array that big cannot even be destroyed then
+  // (nlohmann's destructor allocates: std::terminate, "killed by SIGABRT" in place of the student's error).
   auto row = [&](const Simulation& s) {
-    if (static_cast<double>(t.size() + 1) * static_cast<double>(s.state().size() + 1) > kMaxNumbers)
+    if (static_cast<double>(t.size() + 1) * static_cast<double>(s.state().size() + 1) > wire::kMostRunNumbers)
       throw std::runtime_error("by t = " + std::to_string(s.time()) + " the run had taken " + std::to_string(sim.steps()) +
                                " steps and recorded " + std::to_string(t.size()) +
                                " states, the most one run may record: a step size that shrinks without end?");

@@ -22,7 +22,16 @@ using nlohmann::json;
 struct Hostile {
   std::string name, includes, body;
   std::string message;  // what the affected tests' output says ("" : they pass)
+  std::string run_message = "";  // and what euler.table's says (a run's: the others are steps and runs of their own)
 };
+
+// Code that writes `line` once, at its first call, to the server's answers' descriptor (3: its
+// standard output kept apart, the lowest free when serve starts), ahead of the server's own reply.
+std::string forging(const std::string& line_expression) {
+  return "static bool forged = false; if (!forged) { forged = true; const std::string line = " + line_expression +
+         "; for (size_t at = 0; at < line.size();) { const ssize_t n = ::write(3, line.data() + at, line.size() - at); "
+         "if (n <= 0) break; at += size_t(n); } }";
+}
 
 TEST(Grade, HostileSubmissionsEndWithinTheirLimitsAndHarmNothing) {
   NEEDS_SANDBOX();
@@ -66,8 +75,8 @@ TEST(Grade, HostileSubmissionsEndWithinTheirLimitsAndHarmNothing) {
       // shared memory filled and unmapped (12 + 12 of 60 MB: 1.4 GB held), a socket's queue, and
       // descriptors past the sandbox's 256 (the machine allows 20,000). All refused now.
       {"memory-elsewhere",
-       "#include <sys/ipc.h>\n#include <sys/mman.h>\n#include <sys/shm.h>\n#include <sys/socket.h>\n#include <unistd.h>\n"
-       "#include <cstring>\n#include <stdexcept>\n#include <string>\n",
+       "#include <sched.h>\n#include <sys/ipc.h>\n#include <sys/mman.h>\n#include <sys/shm.h>\n#include <sys/socket.h>\n"
+       "#include <unistd.h>\n#include <cstring>\n#include <stdexcept>\n#include <string>\n",
        "static bool tried = false; if (!tried) { tried = true; const size_t chunk = size_t(60) << 20; size_t held = 0; "
        "for (int i = 0; i < 12; ++i) { const int fd = ::memfd_create(\"held\", 0); if (fd < 0 || ::ftruncate(fd, chunk) != 0) break; "
        "void* p = ::mmap(nullptr, chunk, PROT_READ | PROT_WRITE, MAP_SHARED, fd, 0); if (p == MAP_FAILED) break; "
@@ -80,20 +89,27 @@ TEST(Grade, HostileSubmissionsEndWithinTheirLimitsAndHarmNothing) {
        // (closed again: the server's own work after it needs a few, as the sanitizers' reports do)
        "int opened[300]; int count = 0; while (count < 300 && (opened[count] = ::dup(0)) >= 0) ++count; "
        "for (int i = 0; i < count; ++i) ::close(opened[i]); "
-       "if (count == 300) throw std::runtime_error(\"OPENED 300 DESCRIPTORS\"); }",
+       "if (count == 300) throw std::runtime_error(\"OPENED 300 DESCRIPTORS\"); "
+       // A thread without CLONE_FILES has a descriptor table of its own, and 256 more descriptors
+       // (one held 504 against the 256): refused too.
+       "static char stack[1 << 16]; if (::clone(+[](void*) -> int { for (;;) ::pause(); }, stack + sizeof stack, "
+       "CLONE_VM | CLONE_SIGHAND | CLONE_THREAD, nullptr) >= 0) throw std::runtime_error(\"MADE A THREAD WITH DESCRIPTORS OF ITS OWN\"); }",
        ""},
       // Kernel memory by other ways (a red-team pass found each holding 1.1 to 1.5 GB): a user and mount
       // namespace of its own, to mount a tmpfs of any size; System V semaphores; a page spliced into a
       // pipe (it keeps its huge page); a million empty files in /tmp (a tmpfs limits bytes, not files).
       {"kernel-memory",
-       "#include <fcntl.h>\n#include <sched.h>\n#include <sys/ipc.h>\n#include <sys/sem.h>\n#include <sys/uio.h>\n"
-       "#include <unistd.h>\n#include <stdexcept>\n",
+       "#include <fcntl.h>\n#include <sched.h>\n#include <sys/ipc.h>\n#include <sys/sem.h>\n#include <sys/syscall.h>\n"
+       "#include <sys/uio.h>\n#include <unistd.h>\n#include <stdexcept>\n",
        "static bool tried = false; if (!tried) { tried = true; "
        "if (::unshare(CLONE_NEWUSER | CLONE_NEWNS) == 0) throw std::runtime_error(\"MADE A NAMESPACE\"); "
        "if (::semget(IPC_PRIVATE, 32000, IPC_CREAT | 0600) >= 0) throw std::runtime_error(\"MADE SEMAPHORES\"); "
        "int ends[2]; static char page[4096]; iovec piece{page, sizeof page}; "
        "if (::pipe(ends) == 0 && ::vmsplice(ends[1], &piece, 1, SPLICE_F_NONBLOCK) > 0) throw std::runtime_error(\"SPLICED\"); "
-       "if (::open(\"/tmp/one-of-a-million\", O_CREAT | O_WRONLY, 0600) >= 0) throw std::runtime_error(\"MADE A FILE\"); }",
+       "if (::open(\"/tmp/one-of-a-million\", O_CREAT | O_WRONLY, 0600) >= 0) throw std::runtime_error(\"MADE A FILE\"); "
+       // io_uring's operations are the kernel's, out of the filter's sight: its IORING_OP_SOCKET made
+       // 248 sockets after socket() was refused, and their queues held 1 GB.
+       "char params[512] = {}; if (::syscall(SYS_io_uring_setup, 4, params) >= 0) throw std::runtime_error(\"MADE AN IO_URING\"); }",
        ""},
       {"flood", "#include <iostream>\n#include <string>\n",
        // 256 MB at the first call of each test: drained, it costs a fraction of the 2 s, and the
@@ -112,6 +128,32 @@ TEST(Grade, HostileSubmissionsEndWithinTheirLimitsAndHarmNothing) {
        "for (int fd = 1; fd < 10; ++fd) for (int i = 0; i < 70; ++i) if (::write(fd, junk.data(), junk.size()) < 0) break; "
        "for (;;) ::pause(); }); return true; }(); (void)hooked;",
        ""},
+      // Replies the student's code writes over the server's (on its answers' descriptor), whose shape
+      // is not the request's: no times for 100 states of one number each (read as they came, they
+      // crashed the grader, SIGSEGV, and the whole batch with it), no "t" at all (nlohmann's
+      // out_of_range: "motus grade could not finish", every test lost), a state of one number for
+      // two, 10 states of 200,001 numbers (40 MB: one test's output held 9 MB of them), and more
+      // values than the run can need. Each fails the tests it answers, and only them.
+      {"reply-without-times", "#include <unistd.h>\n#include <string>\n",
+       forging("[] { std::string l = \"{\\\"ok\\\":true,\\\"t\\\":[],\\\"y\\\":[[0]\"; "
+               "for (int i = 1; i < 100; ++i) l += \",[0]\"; return l + \"]}\\n\"; }()"),
+       "was malformed: ", "The run's reply was malformed: 0 times but 100 states"},
+      {"reply-without-keys", "#include <unistd.h>\n#include <string>\n", forging("std::string(\"{\\\"ok\\\":true}\\n\")"),
+       "was malformed: ", "The run's reply was malformed: it has no \"t\" or no \"y\""},
+      {"reply-of-short-states", "#include <unistd.h>\n#include <string>\n",
+       forging("std::string(\"{\\\"ok\\\":true,\\\"t\\\":[0,1],\\\"y\\\":[[0],[0]]}\\n\")"),
+       "was malformed: ", "The run's reply was malformed: y[0] is not 2 numbers (the scene's state)"},
+      {"reply-too-long", "#include <unistd.h>\n#include <string>\n",
+       forging("[] { std::string row = \"[1\"; for (int i = 0; i < 200000; ++i) row += \",1.2345678901234567\"; "
+               "std::string l = \"{\\\"ok\\\":true,\\\"t\\\":[0,1,2,3,4,5,6,7,8,9],\\\"y\\\":[\" + row; "
+               "for (int i = 0; i < 9; ++i) l += \",\" + row; return l + \"]}\\n\"; }()"),
+       "was malformed: ", "The run's reply was malformed: longer than"},
+      // Within the bytes a run of 5 steps may send (66 kB), 30,000 values: zeros, which a parsed
+      // document holds in 16 bytes each (63 MB of them held 1.1 GB). Refused as it is parsed.
+      {"reply-of-many-values", "#include <unistd.h>\n#include <string>\n",
+       forging("[] { std::string l = \"{\\\"ok\\\":true,\\\"t\\\":[0],\\\"y\\\":[[1,0]],\\\"z\\\":[0\"; "
+               "for (int i = 1; i < 30000; ++i) l += \",0\"; return l + \"]}\\n\"; }()"),
+       "was malformed: ", "The run's reply was malformed: more than 4132 JSON values"},
       // /dev is a tmpfs of its own, unsized: writable, it held memory past every limit.
       {"write-dev", "#include <fstream>\n#include <stdexcept>\n",
        "for (const char* f : {\"/dev/filled\", \"/dev/shm/filled\"}) if (std::ofstream(f) << \"x\") "
@@ -179,6 +221,11 @@ TEST(Grade, HostileSubmissionsEndWithinTheirLimitsAndHarmNothing) {
         const json* t = test_named(result, name);
         ASSERT_NE(t, nullptr);
         EXPECT_NE((*t)["output"].get<std::string>().find(c.message), std::string::npos) << c.name << ": " << (*t)["output"];
+      }
+      if (!c.run_message.empty()) {
+        const json* t = test_named(result, "euler.table");
+        ASSERT_NE(t, nullptr);
+        EXPECT_NE((*t)["output"].get<std::string>().find(c.run_message), std::string::npos) << c.name << ": " << (*t)["output"];
       }
     }
     double euler_points = 0;

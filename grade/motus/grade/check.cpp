@@ -127,6 +127,28 @@ struct RunRequest {
   double atol = NAN, rtol = NAN;
 };
 
+// The size of a scene's state: positions and velocities, or the first-order system's variables.
+size_t state_size(const SceneDescription& scene) {
+  return scene.mechanical ? 2 * static_cast<size_t>(scene.mechanical->dimensions) * scene.mechanical->bodies.size()
+                          : scene.first_order->initial.size();
+}
+
+// A number as the wire carries it (wire.hpp): a JSON number, or "inf", "-inf" or "nan".
+bool is_wire_number(const json& j) {
+  return j.is_number() || (j.is_string() && (j == "inf" || j == "-inf" || j == "nan"));
+}
+
+std::string count_of(size_t n, const char* one, const char* many) { return std::to_string(n) + " " + (n == 1 ? one : many); }
+
+// A non-negative whole number of the reply (a run's steps, say), 0 when it has none.
+long count_field(const json& reply, const char* key, const std::string& whose) {
+  const auto at = reply.find(key);
+  if (at == reply.end()) return 0;
+  if (!at->is_number_integer() || at->get<long long>() < 0)
+    malformed_reply(whose, fmt::format("\"{}\" is not a whole number ≥ 0", key));
+  return static_cast<long>(at->get<long long>());
+}
+
 RunOutput run(Probe& probe, const CheckScene& scene, const RunRequest& r, Clock::time_point deadline) {
   json request = {{"op", "run"},        {"scene", scene.text}, {"file", fs::path(scene.file).filename().string()},
                   {"integrator", r.integrator}, {"dt", r.dt},      {"every", r.every}};
@@ -136,17 +158,44 @@ RunOutput run(Probe& probe, const CheckScene& scene, const RunRequest& r, Clock:
     request["until"] = r.until;
   if (!std::isnan(r.atol)) request["atol"] = r.atol;
   if (!std::isnan(r.rtol)) request["rtol"] = r.rtol;
-  const json reply = probe.ask(request, deadline);
+  // Its shape, known before it is asked: a row (a time and a state of the scene's size) at the
+  // start, every `every` steps and at the end of a fixed run (a few more, for rounding), and of an
+  // adaptive one as many as the server records at most. Every reply is checked against it before
+  // anything in it is read: a reply the student's code wrote over the server's ("t": [], 100
+  // states of one number) was indexed as it came, and crashed the grader (SIGSEGV, the batch with it).
+  const size_t n = state_size(scene.description);
+  const double server_rows = std::floor(wire::kMostRunNumbers / static_cast<double>(n + 1));
+  const double rows = std::isnan(r.until) ? std::min(static_cast<double>(r.steps / std::max(1L, r.every)) + 3, server_rows)
+                                          : server_rows;
+  const std::string whose = "the run's reply";
+  const json reply = probe.ask(request, deadline, ReplySize{static_cast<size_t>(rows * static_cast<double>(n + 1))});
+  const auto t = reply.find("t"), y = reply.find("y");
+  if (t == reply.end() || y == reply.end()) malformed_reply(whose, "it has no \"t\" or no \"y\"");
+  if (!t->is_array() || !y->is_array()) malformed_reply(whose, "its \"t\" or its \"y\" is not an array");
+  if (t->size() != y->size())
+    malformed_reply(whose, fmt::format("{} but {}", count_of(t->size(), "time", "times"), count_of(y->size(), "state", "states")));
+  if (y->empty()) malformed_reply(whose, "it has no states");
+  if (static_cast<double>(y->size()) > rows)
+    malformed_reply(whose, fmt::format("{} states, more than this run can make ({})", y->size(), rows));
   RunOutput out;
-  for (const auto& t : reply.at("t")) out.t.push_back(wire::number(t));
-  for (const auto& row : reply.at("y")) {
-    const auto values = wire::numbers(row);
-    out.y.push_back(Eigen::Map<const Vector>(values.data(), static_cast<Eigen::Index>(values.size())));
+  for (size_t k = 0; k < t->size(); ++k) {
+    const json& time = (*t)[k];
+    // (A time is always finite: the server stops a run whose step size is not a number.)
+    if (!time.is_number()) malformed_reply(whose, fmt::format("t[{}] is not a finite number", k));
+    out.t.push_back(time.get<double>());
+    const json& row = (*y)[k];
+    if (!row.is_array() || row.size() != n)
+      malformed_reply(whose, fmt::format("y[{}] is not {} (the scene's state)", k, count_of(n, "number", "numbers")));
+    Vector state(static_cast<Eigen::Index>(n));
+    for (size_t i = 0; i < n; ++i) {
+      if (!is_wire_number(row[i])) malformed_reply(whose, fmt::format("y[{}][{}] is not a number", k, i));
+      state[static_cast<Eigen::Index>(i)] = wire::number(row[i]);
+    }
+    out.y.push_back(std::move(state));
   }
-  out.steps = reply.value("steps", 0L);
-  out.rejected = reply.value("rejected", 0L);
-  out.evaluations = reply.value("evaluations", 0L);
-  if (out.y.empty()) throw ProbeFailure("the run returned no states");
+  out.steps = count_field(reply, "steps", whose);
+  out.rejected = count_field(reply, "rejected", whose);
+  out.evaluations = count_field(reply, "evaluations", whose);
   return out;
 }
 
@@ -603,8 +652,15 @@ public:
     const size_t measured_start = measured.size();
     bool ok = true;
     for (const auto& [key, want] : expect_.items()) {
-      if (!reply.contains(key)) throw ProbeFailure("the call returned no " + key);
-      const auto got = want.is_array() ? wire::numbers(reply.at(key)) : std::vector<double>{wire::number(reply.at(key))};
+      if (!reply.contains(key)) malformed_reply("the reply of " + call_as_written(), "it has no \"" + key + "\"");
+      const json& value = reply.at(key);
+      // (A number where one is expected, a vector of 1 to 3 dimensions where one is: the server's.)
+      if (want.is_array() ? !value.is_array() || value.empty() || value.size() > 3 ||
+                                !std::all_of(value.begin(), value.end(), is_wire_number)
+                          : !is_wire_number(value))
+        malformed_reply("the reply of " + call_as_written(),
+                        fmt::format("its \"{}\" is not {}", key, want.is_array() ? "a vector of 1 to 3 numbers" : "a number"));
+      const auto got = want.is_array() ? wire::numbers(value) : std::vector<double>{wire::number(value)};
       const auto wanted = want.is_array() ? wire::numbers(want) : std::vector<double>{wire::number(want)};
       ok = ok && all_close(got, wanted, tolerance_);
       measured += fmt::format("{}{} = {}", measured.size() == measured_start ? "" : ", ", key, nums(got));
@@ -693,8 +749,13 @@ public:
     std::string measured, expected;
     std::vector<std::string> wrong;
     for (const auto& [key, want] : expect_.items()) {
-      if (!reply.contains(key)) throw ProbeFailure("the step returned no " + key);
-      const auto got = wire::numbers(reply.at(key).is_array() ? reply.at(key) : json::array({reply.at(key)}));
+      if (!reply.contains(key))
+        malformed_reply("the reply of a step of your integrator " + integrator_, "it has no \"" + key + "\"");
+      const json value = reply.at(key).is_array() ? reply.at(key) : json::array({reply.at(key)});
+      // (One coordinate: each output of a step is one number.)
+      if (value.size() != 1 || !is_wire_number(value[0]))
+        malformed_reply("the reply of a step of your integrator " + integrator_, fmt::format("its \"{}\" is not one number", key));
+      const auto got = wire::numbers(value);
       const auto wanted = wire::numbers(want.is_array() ? want : json::array({want}));
       if (!all_close(got, wanted, tolerance_)) wrong.push_back(key);
       measured += fmt::format("{}{} = {}", measured.empty() ? "" : ", ", key, nums(got));
@@ -975,8 +1036,11 @@ public:
   }
 
   CheckResult run(Probe& probe, Clock::time_point deadline) const override {
-    const json reply = probe.ask(request_, deadline);
-    const std::vector<double> x = wire::numbers(reply.at("x"));
+    const json reply = probe.ask(request_, deadline, ReplySize{x_.size() + 256});
+    const auto x_at = reply.find("x");
+    if (x_at == reply.end() || !x_at->is_array() || !std::all_of(x_at->begin(), x_at->end(), is_wire_number))
+      malformed_reply("the reply of satisfy_constraints", "its \"x\" is not an array of numbers");
+    const std::vector<double> x = wire::numbers(*x_at);
     if (x.size() != x_.size()) throw ProbeFailure("the projection returned " + std::to_string(x.size()) + " numbers");
     bool ok = true;
     std::string measured, expected;

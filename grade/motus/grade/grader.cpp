@@ -123,6 +123,19 @@ TestResult gate(const std::string& name, const std::string& number, const std::s
   return t;
 }
 
+// The most of a test's own text (what was measured and expected, or what happened) its output
+// keeps; what the student's code printed comes after it, cut to its own 1,200 bytes. Every check
+// prints what it measured, and a reply the student's code wrote over the server's once put 9 MB
+// of it in one test's output.
+constexpr size_t kTestTextBytes = 5000;
+
+std::string bounded(std::string text, size_t bytes) {
+  if (text.size() <= bytes) return text;
+  size_t cut = bytes;
+  while (cut > 0 && (static_cast<unsigned char>(text[cut]) & 0xC0) == 0x80) --cut;  // (not inside a UTF-8 character)
+  return text.substr(0, cut) + "… (cut: " + std::to_string(text.size()) + " bytes in all)";
+}
+
 // Whether the file system holding `folder` has less than 64 MB left for this user (or cannot be
 // looked at): no compiler's objects are made there then.
 bool disk_nearly_full(const std::filesystem::path& folder) {
@@ -307,8 +320,11 @@ GradeResult grade_submission(const Assignment& a, const std::string& submission,
   // own debugging of a wrong answer. A passing test does not (results.json stays small). In the
   // test's own output it is shown when the test is (its visibility), and the terminal's summary
   // shows it made safe (terminal_safe), as it does a crash's output.
-  for (TestResult& r : result.tests)
+  for (size_t k = 2; k < result.tests.size(); ++k) {  // (files' and build's outputs are bounded where they are made)
+    TestResult& r = result.tests[k];
+    r.output = bounded(r.output, kTestTextBytes);
     if (!r.passed && !r.printed.empty()) r.output += (r.output.ends_with('\n') ? "" : "\n") + r.printed;
+  }
   if (built.ok && !o.plugin_out.empty()) {
     // The student's code ran as the user that owns the build's folder (and, without a sandbox,
     // could reach it): the plug-in there must still be a file, not a link to one of the grader's.

@@ -1,5 +1,6 @@
 #include "motus/grade/probe.hpp"
 
+#include <algorithm>
 #include <cctype>
 #include <filesystem>
 
@@ -9,6 +10,9 @@ namespace {
 constexpr size_t kMessageBytes = 2000;
 // The most of what the student's code printed a test's output shows: its last bytes.
 constexpr size_t kShownBytes = 1200;
+// The longest reply that says the student's code failed: its exception's message, cut to
+// kMessageBytes for the test's output (8 MB of message is the student's own doing, not a forgery).
+constexpr size_t kFailureReplyBytes = size_t(16) << 20;
 
 // What the student's code printed — its standard output and error as the sandbox kept them (past
 // its cap, the first half and the last, "…" between) — for a test's output: "" when it printed
@@ -31,6 +35,16 @@ std::string shown_output(std::string text, const std::string& what) {
   return heading + ":\n" + text;
 }
 }  // namespace
+
+void malformed_reply(const std::string& whose, const std::string& why) { throw ProbeFailure(whose + " was malformed: " + why); }
+
+size_t ReplySize::bytes() const {
+  return static_cast<size_t>(std::min(32.0 * static_cast<double>(numbers) + 65536.0, static_cast<double>(SandboxProcess::kMaxLineBytes)));
+}
+
+size_t ReplySize::values() const {
+  return static_cast<size_t>(std::min(1.5 * static_cast<double>(numbers) + 4096.0, static_cast<double>(SandboxProcess::kMaxLineBytes)));
+}
 
 Probe::Probe(ProbeSetup setup) : setup_(std::move(setup)) {}
 
@@ -88,7 +102,7 @@ void Probe::died(const std::string& while_doing) {
   throw ProbeFailure(what, out_of_time);
 }
 
-nlohmann::json Probe::ask(nlohmann::json request, std::chrono::steady_clock::time_point deadline) {
+nlohmann::json Probe::ask(nlohmann::json request, std::chrono::steady_clock::time_point deadline, ReplySize size) {
   if (!server_) start();
   const std::string op = request.value("op", std::string("?"));
   // What the student's code was doing, by the names the student wrote: the wire's operations are
@@ -102,25 +116,59 @@ nlohmann::json Probe::ask(nlohmann::json request, std::chrono::steady_clock::tim
                             : op == "balls_impact" ? "time_of_impact"
                             : op == "plane_impact" ? "time_of_impact_with_plane"
                                                    : op;
+  const std::string whose = op == "run" ? "the run's reply" : "the reply of " + doing;
   const bool written =
       server_->write_line(request.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace), deadline);
-  const auto line = written ? server_->read_line(deadline) : std::nullopt;
+  // (Read as far as a failure's reply may go: it carries the student's exception's message, of any
+  // length, which a run's numbers do not bound. An answer is held to its own size below.)
+  const size_t most_bytes = std::max(size.bytes(), kFailureReplyBytes);
+  const auto line = written ? server_->read_line(deadline, most_bytes) : std::nullopt;
   if (!line && server_->interrupted()) {
     server_->kill();
     server_.reset();
     throw GradingInterrupted();
   }
+  if (!line && server_->line_too_long()) {
+    // (Read no further: the server is ended, what it printed kept for the test's output.)
+    server_->kill();
+    printed_ = server_->errors();
+    server_.reset();
+    malformed_reply(whose, "longer than " + std::to_string(most_bytes) + " bytes, more than this request can need");
+  }
   if (!line) died(doing);
+  // Parsed with a count of its values: within the bytes, a reply of 0s would still make a document
+  // 16 times its size.
   nlohmann::json reply;
+  struct TooMany {};
+  size_t values = 0;
+  const size_t most = size.values();
   try {
-    reply = nlohmann::json::parse(*line);
+    reply = nlohmann::json::parse(*line, [&](int depth, nlohmann::json::parse_event_t event, nlohmann::json&) {
+      if (event != nlohmann::json::parse_event_t::object_end && event != nlohmann::json::parse_event_t::array_end &&
+          (++values > most || depth > 8))
+        throw TooMany{};
+      return true;
+    });
+  } catch (const TooMany&) {
+    malformed_reply(whose, "more than " + std::to_string(most) + " JSON values, or nested deeper than 8, more than this request can need");
   } catch (const std::exception&) {
     died(doing);
   }
-  if (!reply.value("ok", false)) {
+  // Every key read as what it must be: a missing "ok", or an "error" that is no string, threw
+  // nlohmann's out_of_range or type_error, which the grader took for a fault of its own.
+  if (!reply.is_object()) malformed_reply(whose, "not a JSON object");
+  const auto ok = reply.find("ok");
+  if (ok == reply.end() || !ok->is_boolean()) malformed_reply(whose, "no \"ok\": true or false");
+  if (ok->get<bool>() && line->size() > size.bytes())
+    malformed_reply(whose, "longer than " + std::to_string(size.bytes()) + " bytes, more than this request can need");
+  if (!ok->get<bool>()) {
+    const auto error_at = reply.find("error"), threw_at = reply.find("threw");
+    if (error_at != reply.end() && !error_at->is_string()) malformed_reply(whose, "its \"error\" is not a string");
+    if (threw_at != reply.end() && !threw_at->is_boolean()) malformed_reply(whose, "its \"threw\" is not true or false");
+    const bool threw = threw_at != reply.end() && threw_at->get<bool>();
     // The student's own words (an exception's message), cut as its output is: 8 MB of them went
     // whole into results.json.
-    std::string error = reply.value("error", std::string("failed"));
+    std::string error = error_at != reply.end() ? error_at->get<std::string>() : std::string("failed");
     if (error.size() > kMessageBytes) {
       size_t cut = kMessageBytes;
       while (cut > 0 && (static_cast<unsigned char>(error[cut]) & 0xC0) == 0x80) --cut;  // (not inside a UTF-8 character)
@@ -130,7 +178,7 @@ nlohmann::json Probe::ask(nlohmann::json request, std::chrono::steady_clock::tim
     if (error.find("std::bad_alloc") != std::string::npos)
       throw ProbeFailure("your code ran out of its " + std::to_string(setup_.limits.memory_mb) + " MB (" + error + ")");
     // An exception of the student's own is no wrong number: the test's hint would not be about it.
-    if (reply.value("threw", false)) throw ProbeFailure("your code stopped the run: " + error);
+    if (threw) throw ProbeFailure("your code stopped the run: " + error);
     throw ProbeFailure("your code stopped the run: " + error, false, true);
   }
   return reply;

@@ -29,6 +29,23 @@ private:
   bool out_of_time_, stopped_the_run_;
 };
 
+// A reply that has not the shape its request asks for — not JSON, a key missing or of the wrong
+// type, rows of the wrong size, longer than the request can need: the student's code can write
+// over the server's answers (docs/grading.md, "The sandbox"), so this fails that one test, with
+// "WHOSE was malformed: WHY" ("the run's reply was malformed: …"), and never the grader.
+[[noreturn]] void malformed_reply(const std::string& whose, const std::string& why);
+
+// The most an answer may hold: this many numbers (a run's rows × its state's size, say), and room
+// for its keys and brackets. A longer one is refused, as malformed, and one of more values as soon
+// as its parse counts them: a 63 MB reply held 1.1 GB of the grader's memory as a parsed document.
+// (A reply that says the code failed may be longer, up to 16 MB: it carries the student's own
+// exception's message.)
+struct ReplySize {
+  size_t numbers = 256;  // (a call's or a step's few outputs)
+  size_t bytes() const;  // 32 per number (the longest a double or "-inf" takes, with its comma), and 64 kB
+  size_t values() const;  // the JSON values a parse may make: numbers, and the rows and keys around them
+};
+
 struct ProbeSetup {
   std::string motus;   // the motus executable (this one), mounted read-only
   std::string plugin;  // the student's plug-in, mounted read-only
@@ -46,8 +63,9 @@ public:
   explicit Probe(ProbeSetup setup);
   ~Probe();
 
-  // One request and its reply; throws ProbeFailure. The deadline is the check's.
-  nlohmann::json ask(nlohmann::json request, std::chrono::steady_clock::time_point deadline);
+  // One request and its reply, a JSON object whose "ok" is true; throws ProbeFailure (a reply
+  // larger than `size` allows, or not such an object, is malformed_reply's). The deadline is the check's.
+  nlohmann::json ask(nlohmann::json request, std::chrono::steady_clock::time_point deadline, ReplySize size = {});
   // How long the current check may take.
   double seconds_per_check() const { return setup_.limits.cpu_seconds; }
   // Stops the server (and everything it started), its output read to the end: what the student's

@@ -298,7 +298,7 @@ void SandboxProcess::pump(std::chrono::steady_clock::time_point deadline, Until 
   char buffer[65536];
   auto writing = [&] { return in_ >= 0 && !write_failed_ && pending_at_ < pending_.size(); };
   while (out_ >= 0 || err_ >= 0 || writing()) {
-    if (want_line && out_buffer_.find('\n') != std::string::npos) return;
+    if (want_line && (line_end() != std::string::npos || out_ < 0)) return;
     if (until == Until::written && !writing()) return;
     const auto now = std::chrono::steady_clock::now();
     if (now >= deadline) {
@@ -340,10 +340,16 @@ void SandboxProcess::pump(std::chrono::steady_clock::time_point deadline, Until 
         if (want_line) return;
       } else {
         out_buffer_.append(buffer, static_cast<size_t>(n));
-        if (out_buffer_.size() > (64u << 20)) {  // a line longer than any answer
+        // A line longer than any answer (or than the one this request can need: read_line's cap).
+        const size_t cap = want_line ? line_cap_ : kMaxLineBytes;
+        if (out_buffer_.size() > cap && (!want_line || line_end() == std::string::npos || line_end() > cap)) {
           if (until == Until::end) {
             out_buffer_.clear();  // (no line is wanted now: read on and drop, until it ends)
+            scanned_ = 0;
           } else {
+            line_too_long_ = true;  // (for good: its output is read no further)
+            out_buffer_.clear();
+            scanned_ = 0;
             ::close(out_);
             out_ = -1;
             return;
@@ -354,12 +360,24 @@ void SandboxProcess::pump(std::chrono::steady_clock::time_point deadline, Until 
   }
 }
 
-std::optional<std::string> SandboxProcess::read_line(std::chrono::steady_clock::time_point deadline) {
+size_t SandboxProcess::line_end() {
+  const size_t end = out_buffer_.find('\n', scanned_);
+  scanned_ = end == std::string::npos ? out_buffer_.size() : end;
+  return end;
+}
+
+std::optional<std::string> SandboxProcess::read_line(std::chrono::steady_clock::time_point deadline, size_t max_bytes) {
+  line_cap_ = std::min(max_bytes, kMaxLineBytes);
   pump(deadline, Until::line);
-  const size_t end = out_buffer_.find('\n');
+  const size_t end = line_end();
   if (end == std::string::npos) return std::nullopt;
+  if (end > line_cap_) {  // (a whole line already read, by an earlier wait, longer than this one may be)
+    line_too_long_ = true;
+    return std::nullopt;
+  }
   std::string line = out_buffer_.substr(0, end);
   out_buffer_.erase(0, end + 1);
+  scanned_ = 0;
   return line;
 }
 

@@ -102,9 +102,13 @@ public:
   // a program that stops reading cannot hold the grader); false when it is gone, at the deadline
   // (then timed_out() is true) or when the spec's `stop` said so (interrupted()).
   bool write_line(const std::string& line, std::chrono::steady_clock::time_point deadline);
-  // Its next line of standard output, waiting until `deadline`; nullopt at end of file or
-  // at the deadline (then timed_out() is true).
-  std::optional<std::string> read_line(std::chrono::steady_clock::time_point deadline);
+  // Its next line of standard output, waiting until `deadline`; nullopt at end of file, at the
+  // deadline (then timed_out() is true), or when the line is longer than `max_bytes` (then
+  // line_too_long() is true: what it wrote is read no further, and only it can end its waits).
+  std::optional<std::string> read_line(std::chrono::steady_clock::time_point deadline, size_t max_bytes = kMaxLineBytes);
+  bool line_too_long() const { return line_too_long_; }
+  // The longest line read_line ever takes (a run's reply: serve records at most 5 million numbers).
+  static constexpr size_t kMaxLineBytes = size_t(64) << 20;
   bool timed_out() const { return timed_out_; }
   // Whether a wait ended because the spec's `stop` said so.
   bool interrupted() const { return interrupted_; }
@@ -124,12 +128,18 @@ private:
   void pump(std::chrono::steady_clock::time_point deadline, Until until);
   Ending reap(bool killed);
   void keep_errors(const char* data, size_t n);
+  // Where the first line in out_buffer_ ends (its '\n'), or npos: each byte is looked at once
+  // (a search of the whole buffer after every read made a long line's reading quadratic).
+  size_t line_end();
   size_t error_tail_room() const { return error_cap_ / 2; }  // (the cap's last half; its first is the rest)
 
   pid_t pid_ = -1;
   uid_t uid_ = 0;
   int in_ = -1, out_ = -1, err_ = -1;
   std::string out_buffer_, errors_;
+  size_t scanned_ = 0;  // out_buffer_'s bytes before this hold no '\n' (or it is there: line_end)
+  size_t line_cap_ = kMaxLineBytes;
+  bool line_too_long_ = false;
   std::string errors_tail_;  // (past the cap's first half: the newest, see keep_errors)
   std::string pending_;     // what write_line has still to write, from pending_at_
   size_t pending_at_ = 0;

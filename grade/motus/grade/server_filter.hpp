@@ -13,10 +13,11 @@
 namespace motus::grade {
 
 // From here on this process (and its threads) cannot start a process or a program, nor hold memory
-// outside its address space: fork, vfork and clone without CLONE_THREAD fail with EPERM, execve (so
+// outside its address space: fork, vfork and a clone that is not a thread sharing the memory and
+// the descriptors (CLONE_THREAD, CLONE_VM and CLONE_FILES, all three) fail with EPERM, execve (so
 // posix_spawn's and system's child) with EPERM, clone3 with ENOSYS (glibc then makes its threads
 // with clone); memfd_create, shmget, msgget, semget, socket, socketpair, vmsplice, splice, tee,
-// unshare, setns and the mount calls with EPERM. A seccomp filter: it cannot be lifted, and it
+// unshare, setns, the mount calls and io_uring (setup, enter, register) with EPERM. A seccomp filter: it cannot be lifted, and it
 // holds for every thread made after it. Throws std::runtime_error when the kernel refuses
 // the filter or this machine's architecture has no filter here (x86-64 and AArch64 do).
 void install_server_filter();

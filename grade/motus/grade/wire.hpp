@@ -27,6 +27,11 @@
 
 namespace motus::grade::wire {
 
+// The most numbers one run's reply records, rows × (the state's size + 1): the server stops a run
+// past them with an error of its own (a step-size control that shrinks the step without end
+// records rows until memory runs out), and the grader reads no reply larger.
+constexpr double kMostRunNumbers = 5e6;
+
 inline nlohmann::json number(double x) {
   if (std::isnan(x)) return "nan";
   if (std::isinf(x)) return x > 0 ? "inf" : "-inf";
