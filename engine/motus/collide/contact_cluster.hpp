@@ -58,10 +58,10 @@ public:
   double impulse(int contact) const { return contacts_[static_cast<size_t>(contact)].impulse; }
   int wall_side(int contact) const { return contacts_[static_cast<size_t>(contact)].a; }
 
-  // Finds the impulses, and the velocities after them, spending at most `work` of `budget`
-  // (a contact's update is one; a direct solve of m contacts, m³/3). Returns whether no contact is
-  // left approaching faster than `tolerance` (m/s); if not, the velocities are the last sweep's,
-  // every contact's impulse still a push.
+  // Finds the impulses, and the velocities after them, taking its work from `budget` (a
+  // contact's update is one; a direct solve of m contacts, m³/3) and stopping when that is spent.
+  // Returns whether no contact is left approaching faster than `tolerance` (m/s); if not, the
+  // velocities are the last sweep's, every contact's impulse still a push (momentum kept).
   bool settle(double tolerance, long& budget) {
     for (Contact& c : contacts_) {
       const double w = (c.a >= 0 ? body(c.a).inverse_mass : 0) + body(c.b).inverse_mass;
