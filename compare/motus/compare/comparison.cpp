@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <Eigen/Core>
+
 #include "motus/compare/backends/motus_backend.hpp"
 #include "motus/simulation.hpp"
 #include "motus/systems/mechanical_system.hpp"
@@ -12,16 +14,9 @@ namespace motus::compare {
 double in_energy_unit(double change, double divisor) { return divisor != 0 ? change / divisor : change; }
 
 double length_of_change(const std::vector<double>& from, const std::vector<double>& to) {
-  auto part = [&](size_t k) { return to[k] - (k < from.size() ? from[k] : 0); };
-  double largest = 0;
-  for (size_t k = 0; k < to.size(); ++k) {
-    if (std::isnan(part(k))) return NAN;  // (not lost in the max)
-    largest = std::max(largest, std::abs(part(k)));
-  }
-  if (largest == 0 || !std::isfinite(largest)) return largest;
-  double sum = 0;
-  for (size_t k = 0; k < to.size(); ++k) sum += (part(k) / largest) * (part(k) / largest);
-  return largest * std::sqrt(sum);
+  Eigen::VectorXd change(static_cast<Eigen::Index>(to.size()));
+  for (size_t k = 0; k < to.size(); ++k) change[static_cast<Eigen::Index>(k)] = to[k] - (k < from.size() ? from[k] : 0);
+  return change.stableNorm();  // (as metrics.cpp's distances: scaled, so that no square overflows)
 }
 
 Timings EngineRun::microseconds_per_step() const {

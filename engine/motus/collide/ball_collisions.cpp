@@ -1149,6 +1149,13 @@ double BallCollisions<D>::segment_impact(const Segment& s, const Point& p, const
 }
 
 template <int D>
+typename BallCollisions<D>::Point BallCollisions<D>::nearest_on(const Segment& s, const Point& p) {
+  const Point along = s.b - s.a;
+  const double reach = std::clamp(along.dot(p - s.a) / along.squaredNorm(), 0.0, 1.0);
+  return s.a + reach * along;
+}
+
+template <int D>
 typename BallCollisions<D>::Point BallCollisions<D>::wall_normal(int i, int wall) {
   if (wall < static_cast<int>(planes_.size())) return planes_[static_cast<size_t>(wall)].normal;
   // A segment, at the moment of contact: the normal points from the nearest point of the
@@ -1156,13 +1163,12 @@ typename BallCollisions<D>::Point BallCollisions<D>::wall_normal(int i, int wall
   // not by searching for an impact again: at the contact itself rounding can put the ball a
   // hair short of the end cap, and the search would then fall back to the flat side.)
   const Segment& s = segments_[static_cast<size_t>(wall) - planes_.size()];
-  const Point along = s.b - s.a;
-  const double reach = std::clamp(along.dot(position(i) - s.a) / along.squaredNorm(), 0.0, 1.0);
-  const Point away = position(i) - (s.a + reach * along);
+  const Point away = position(i) - nearest_on(s, position(i));
   const double distance = away.norm();
   if (distance > 0) return away / distance;
   Point side = Point::Zero();  // on the segment itself: the side it comes from
   if constexpr (D == 2) {
+    const Point along = s.b - s.a;
     side = Point(-along[1], along[0]).normalized();
     if (side.dot(velocity(i)) > 0) side = -side;
   }
@@ -1182,9 +1188,7 @@ void BallCollisions<D>::separate_from_walls(int i) {
   }
   if constexpr (D == 2) {
     for (const Segment& s : segments_) {
-      const Point along = s.b - s.a;
-      const double reach = std::clamp(along.dot(position(i) - s.a) / along.squaredNorm(), 0.0, 1.0);
-      const Point d = position(i) - (s.a + reach * along);
+      const Point d = position(i) - nearest_on(s, position(i));
       const double distance = d.norm();
       if (distance < radius_of(i) && distance > 0) {
         position(i) += (radius_of(i) - distance) / distance * d;
@@ -1288,16 +1292,9 @@ void BallCollisions<D>::settle_cluster(const Event& e) {
     const Point p = position(b);
     for (int w = 0; w < walls; ++w) {
       if (restitution_of(b) * wall_restitution(w) >= 1) continue;
-      double gap;
-      if (w < static_cast<int>(planes_.size())) {
-        const Plane& plane = planes_[static_cast<size_t>(w)];
-        gap = plane.normal.dot(p) - plane.offset - r;
-      } else {
-        const Segment& s = segments_[static_cast<size_t>(w) - planes_.size()];
-        const Point along = s.b - s.a;
-        const double reach = std::clamp(along.dot(p - s.a) / along.squaredNorm(), 0.0, 1.0);
-        gap = (p - (s.a + reach * along)).norm() - r;
-      }
+      const double gap = w < static_cast<int>(planes_.size())
+                             ? planes_[static_cast<size_t>(w)].normal.dot(p) - planes_[static_cast<size_t>(w)].offset - r
+                             : (p - nearest_on(segments_[static_cast<size_t>(w) - planes_.size()], p)).norm() - r;
       if (gap <= kTouching * std::max(r, 1e-300)) cluster_.add_contact(-1, m, wall_normal(b, w));
     }
     if (r <= 0 || balls_.size() < 2) continue;

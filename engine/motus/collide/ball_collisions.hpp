@@ -146,6 +146,7 @@ private:
   void moved_apart(int i, double distance);
   void make_fast(int i);
   double segment_impact(const Segment& s, const Point& p, const Point& u, double r, double horizon, Point* normal) const;
+  static Point nearest_on(const Segment& s, const Point& p);  // the segment's point nearest p
   Point wall_normal(int i, int wall);
   void push(double t, int i, int other);
   // (noipa: a prefetch is no side effect to GCC, which then finds the function pure and
