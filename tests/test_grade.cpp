@@ -828,6 +828,63 @@ TEST(Grade, AnAssignmentsOwnFilesAreReadAsStrictlyAsAScene) {
   }
 }
 
+// The sticks, pins and walls of a project test, a bounce_ratio's body and a trajectory's rows are
+// read when the tests are: a stick naming a body the test does not have went to every student's
+// code, which stopped with "a stick names no body" (the student's failed test, for the
+// instructor's slip); a string for a body number was a raw JSON library error; a bounce_ratio's
+// body past the scene's read past its state; a trajectory's x of the wrong size failed whatever
+// the student wrote. Each is one line naming the file and the field, exit 2.
+TEST(Grade, ATestFilesSticksPinsWallsBodiesAndRowsAreCheckedWhenRead) {
+  TempDir dir;
+  struct Case {
+    std::string assignment;
+    std::function<void(json&)> change;
+    std::string says;
+  };
+  const std::vector<Case> cases = {
+      {"cloth", [](json& d) { d["tests"][0]["sticks"] = json::parse("[[0, 5, 1]]"); },
+       "tests[0].sticks[0][1]: must name one of the test's 2 bodies, a whole number from 0 to 1, not 5"},
+      {"cloth", [](json& d) { d["tests"][0]["sticks"] = json::parse("[[\"a\", 1, 1]]"); },
+       "tests[0].sticks[0][0]: must name one of the test's 2 bodies, a whole number from 0 to 1, not \"a\""},
+      {"cloth", [](json& d) { d["tests"][0]["sticks"] = json::parse("[[0, 1]]"); },
+       "tests[0].sticks[0]: must be an array of 3 items, not 2 items"},
+      {"cloth", [](json& d) { d["tests"][0]["sticks"] = json::parse("[[1, 1, 1]]"); }, "tests[0].sticks[0]: joins body 1 to itself"},
+      {"cloth", [](json& d) { d["tests"][0]["sticks"] = json::parse("[[0, 1, 0]]"); },
+       "tests[0].sticks[0][2]: a stick's length must be > 0"},
+      {"cloth", [](json& d) { d["tests"][5]["pins"] = json::parse("[[7, [0, 0]]]"); },
+       "tests[5].pins[0][0]: must name one of the test's 3 bodies, a whole number from 0 to 2, not 7"},
+      {"cloth", [](json& d) { d["tests"][5]["pins"] = json::parse("[[0, [0]]]"); },
+       "tests[5].pins[0][1]: must be an array of 2 numbers (the test's dimensions), not [0]"},
+      {"cloth", [](json& d) { d["tests"][4]["walls"] = json::parse("[[[0, 0], 0]]"); },
+       "tests[4].walls[0][0]: a wall's normal must not be zero"},
+      {"cloth", [](json& d) { d["tests"][4]["walls"] = 5; }, "tests[4].walls: must be an array, not a number"},
+      {"cloth", [](json& d) { d["tests"][5]["iterations"] = 0; }, "tests[5].iterations: must be from 1 to 1,000,000"},
+      {"collisions", [](json& d) { d["tests"][10]["measure"][0]["body"] = 99; },
+       "tests[10].measure[0].body: must name one of the scene's"},
+      {"collisions", [](json& d) { d["tests"][10]["measure"][0]["bounces"] = 0; },
+       "tests[10].measure[0].bounces: must be from 1 to 1,000"},
+      {"integrators", [](json& d) { d["tests"][0]["expect"][1]["x"] = json::parse("[1, 2]"); },
+       "tests[0].expect[1].x: must have 1 number"},
+      {"integrators", [](json& d) { d["tests"][0]["expect"][1]["step"] = 1e12; },
+       "tests[0].expect[1].step: must be from 0 to 10,000,000"},
+  };
+  for (const auto& [name, change, says] : cases) {
+    const fs::path assignment = dir / name;
+    if (!fs::exists(assignment)) fs::copy(fs::path(kAssignments) / name, assignment, fs::copy_options::recursive);
+    const fs::path tests = assignment / "tests/public.json";
+    const std::string original = read_file(tests);
+    json document = json::parse(original);
+    change(document);
+    write_file(tests, document.dump(2));
+    const auto r = run_motus(dir, {"grade", assignment.string(), (fs::path(kAssignments) / name / "solution").string(),
+                                   "--results", (dir / "r.json").string(), "--overwrite"});
+    EXPECT_EQ(r.status, 2) << says << ": " << r.err;
+    EXPECT_EQ(count_lines(r.err), 1) << r.err;
+    EXPECT_NE(r.err.find("public.json: " + says), std::string::npos) << r.err;
+    write_file(tests, original);
+  }
+}
+
 // Only the handed-in files themselves are taken: a link (to the solution, say) is not followed,
 // and a file over 1 MB is no source code; each says why. (Read through one descriptor that
 // follows no link: a link swapped in after a look would otherwise be followed.)

@@ -64,6 +64,43 @@ bool all_close(const std::vector<double>& measured, const std::vector<double>& e
   return true;
 }
 
+// ---- Fields read by hand ----------------------------------------------------------------------------
+
+// `key`: an array (none: empty) of arrays of `size` items each, such as a project test's sticks.
+json read_rows(const JsonFields& f, const json& test, const std::string& key, size_t size) {
+  const json rows = test.value(key, json::array());
+  if (!rows.is_array()) throw SceneError(f.path_of(key), "must be an array, not " + json_type_name(rows));
+  for (size_t k = 0; k < rows.size(); ++k)
+    if (!rows[k].is_array() || rows[k].size() != size)
+      throw SceneError(f.path_of(key) + "[" + std::to_string(k) + "]",
+                       "must be an array of " + std::to_string(size) + " items, not " +
+                           (rows[k].is_array() ? std::to_string(rows[k].size()) + " items" : json_type_name(rows[k])));
+  return rows;
+}
+
+double finite_number(const json& value, const std::string& path) {
+  if (!value.is_number() || !std::isfinite(value.get<double>()))
+    throw SceneError(path, "must be a finite number, not " + json_type_name(value));
+  return value.get<double>();
+}
+
+// A body's number, one of the test's n bodies.
+int body_number(const json& value, int n, const std::string& path) {
+  if (!value.is_number_integer() || value.get<long>() < 0 || value.get<long>() >= n)
+    throw SceneError(path, "must name one of the test's " + std::to_string(n) + " bodies, a whole number from 0 to " +
+                               std::to_string(n - 1) + ", not " + value.dump());
+  return value.get<int>();
+}
+
+// A point (or a direction) of d finite numbers.
+std::vector<double> point(const json& value, int d, const std::string& path) {
+  if (!value.is_array() || value.size() != static_cast<size_t>(d))
+    throw SceneError(path, "must be an array of " + std::to_string(d) + " numbers (the test's dimensions), not " + value.dump());
+  std::vector<double> out;
+  for (size_t k = 0; k < value.size(); ++k) out.push_back(finite_number(value[k], path + "[" + std::to_string(k) + "]"));
+  return out;
+}
+
 // ---- Scenes and runs ------------------------------------------------------------------------------
 
 std::string read_text(const std::string& file) {
@@ -241,13 +278,19 @@ public:
     request_.integrator = integrator_field(f, scene_.description);
     request_.dt = f.positive("dt", scene_.description.dt);
     tolerance_ = f.positive("tolerance", 1e-9);
+    // The state's size: x and v are half of it each, y all of it (a row of another size could only fail).
+    const auto& m = scene_.description.mechanical;
+    const int half = m ? m->dimensions * static_cast<int>(m->bodies.size()) : -1;
+    const int whole = m ? 2 * half : static_cast<int>(scene_.description.first_order->initial.size());
     for (auto& e : f.objects("expect")) {
       Row row;
       row.step = e.integer("step");
-      if (row.step < 0) e.fail("step", "must be ≥ 0");
-      if (e.has("x")) row.x = e.numbers("x", -1);
-      if (e.has("v")) row.v = e.numbers("v", -1);
-      if (e.has("y")) row.y = e.numbers("y", -1);
+      if (row.step < 0 || row.step > 10'000'000) e.fail("step", "must be from 0 to 10,000,000");
+      for (const char* key : {"x", "v"})
+        if (!m && e.has(key)) e.fail(key, "the scene has no bodies: its state is y");
+      if (e.has("x")) row.x = e.numbers("x", half);
+      if (e.has("v")) row.v = e.numbers("v", half);
+      if (e.has("y")) row.y = e.numbers("y", whole);
       if (row.x.empty() && row.v.empty() && row.y.empty()) e.fail("", "needs x, v or y");
       e.reject_unknown();
       request_.steps = std::max(request_.steps, row.step);
@@ -820,10 +863,17 @@ public:
         // (measured in the same check), with `max` as the floor.
         measure.motus_times = m.non_negative("motus_times", 0);
       } else if (measure.kind == "bounce_ratio") {
-        measure.body = static_cast<int>(m.integer("body", 0));
+        const long bodies = static_cast<long>(scene_.description.mechanical->bodies.size());
+        const long body = m.integer("body", 0);
+        if (body < 0 || body >= bodies)
+          m.fail("body", "must name one of the scene's " + std::to_string(bodies) + " bodies, from 0 to " + std::to_string(bodies - 1));
+        measure.body = static_cast<int>(body);
+        if (scene_.description.mechanical->dimensions < 2) m.fail("kind", "bounce_ratio needs a scene in 2-D or 3-D (heights are y)");
         measure.expected = m.positive("expect");
         measure.tolerance = m.positive("tolerance", 1e-3);
-        measure.bounces = static_cast<int>(m.integer("bounces", 3));
+        const long bounces = m.integer("bounces", 3);
+        if (bounces < 1 || bounces > 1000) m.fail("bounces", "must be from 1 to 1,000");
+        measure.bounces = static_cast<int>(bounces);
       } else {
         m.fail("kind",
                "must be final_velocities, final_positions, energy, momentum, stick_error, pins, inside_walls, "
@@ -1021,11 +1071,32 @@ public:
     if (static_cast<int>(x_.size()) != n * d_) f.fail("x", "needs dimensions × bodies numbers");
     radius_ = f.numbers("radius", n, std::vector<double>(static_cast<size_t>(n), 0.0));
     iterations_ = static_cast<int>(f.integer("iterations", 1));
+    if (iterations_ < 1 || iterations_ > 1'000'000) f.fail("iterations", "must be from 1 to 1,000,000");
+    // Each stick, pin and wall is checked here, when the tests are read: a slip in them is the
+    // instructor's one-line error, not every student's failed test ("your code stopped the run").
+    const json sticks = read_rows(f, test, "sticks", 3), pins = read_rows(f, test, "pins", 2),
+               walls = read_rows(f, test, "walls", 2);
+    for (size_t k = 0; k < sticks.size(); ++k) {
+      const std::string at = f.path_of("sticks") + "[" + std::to_string(k) + "]";
+      const Stick s{body_number(sticks[k][0], n, at + "[0]"), body_number(sticks[k][1], n, at + "[1]"),
+                    finite_number(sticks[k][2], at + "[2]")};
+      if (s.a == s.b) throw SceneError(at, "joins body " + std::to_string(s.a) + " to itself");
+      if (!(s.length > 0)) throw SceneError(at + "[2]", "a stick's length must be > 0");
+      sticks_.push_back(s);
+    }
+    for (size_t k = 0; k < pins.size(); ++k) {
+      const std::string at = f.path_of("pins") + "[" + std::to_string(k) + "]";
+      pins_.push_back({body_number(pins[k][0], n, at + "[0]"), point(pins[k][1], d_, at + "[1]")});
+    }
+    for (size_t k = 0; k < walls.size(); ++k) {
+      const std::string at = f.path_of("walls") + "[" + std::to_string(k) + "]";
+      const std::vector<double> normal = point(walls[k][0], d_, at + "[0]");
+      if (std::all_of(normal.begin(), normal.end(), [](double c) { return c == 0; }))
+        throw SceneError(at + "[0]", "a wall's normal must not be zero");
+      finite_number(walls[k][1], at + "[1]");
+    }
     request_ = {{"op", "project"}, {"dimensions", d_}, {"x", x_}, {"inverse_mass", inverse_mass_}, {"radius", radius_},
-                {"sticks", test.value("sticks", json::array())}, {"pins", test.value("pins", json::array())},
-                {"walls", test.value("walls", json::array())}, {"iterations", iterations_}};
-    for (const auto& s : request_["sticks"]) sticks_.push_back({s.at(0).get<int>(), s.at(1).get<int>(), s.at(2).get<double>()});
-    for (const auto& p : request_["pins"]) pins_.push_back({p.at(0).get<int>(), p.at(1).get<std::vector<double>>()});
+                {"sticks", sticks}, {"pins", pins}, {"walls", walls}, {"iterations", iterations_}};
     auto e = f.object("expect");
     if (e.has("x")) expect_x_ = e.numbers("x", n * d_);
     if (e.has("stick_error")) stick_error_ = e.non_negative("stick_error");
