@@ -833,7 +833,9 @@ TEST(Grade, AnAssignmentsOwnFilesAreReadAsStrictlyAsAScene) {
 // code, which stopped with "a stick names no body" (the student's failed test, for the
 // instructor's slip); a string for a body number was a raw JSON library error; a bounce_ratio's
 // body past the scene's read past its state; a trajectory's x of the wrong size failed whatever
-// the student wrote. Each is one line naming the file and the field, exit 2.
+// the student wrote, and so did a call test's missing argument ("your code stopped the run") or
+// misspelt output (read as the student's reply lacking it). Each is one line naming the file and
+// the field, exit 2.
 TEST(Grade, ATestFilesSticksPinsWallsBodiesAndRowsAreCheckedWhenRead) {
   TempDir dir;
   struct Case {
@@ -863,6 +865,16 @@ TEST(Grade, ATestFilesSticksPinsWallsBodiesAndRowsAreCheckedWhenRead) {
        "tests[10].measure[0].body: must name one of the scene's"},
       {"collisions", [](json& d) { d["tests"][10]["measure"][0]["bounces"] = 0; },
        "tests[10].measure[0].bounces: must be from 1 to 1,000"},
+      {"collisions", [](json& d) { d["tests"][0]["args"].erase("m_b"); },
+       "tests[0].args.m_b: missing (collide_balls takes it)"},
+      {"collisions", [](json& d) { d["tests"][0]["args"]["mass_b"] = 1; }, "tests[0].args.mass_b: is no argument of collide_balls"},
+      {"collisions", [](json& d) { d["tests"][0]["args"]["v_b"] = json::parse("[-1, 0, 0]"); },
+       "tests[0].args.v_b: has 3 numbers where the call's other vectors have 2"},
+      {"collisions", [](json& d) { d["tests"][4]["args"]["e"] = "0.8"; }, "tests[4].args.e: must be a finite number, not \"0.8\""},
+      {"collisions", [](json& d) { d["tests"][0]["expect"]["va"] = d["tests"][0]["expect"]["v_a"]; },
+       "tests[0].expect.va: is no output of collide_balls (it gives v_a, v_b)"},
+      {"collisions", [](json& d) { d["tests"][5]["expect"]["t"] = json::parse("[1]"); },
+       "tests[5].expect.t: must be a number (or \"inf\"), not [1]"},
       {"integrators", [](json& d) { d["tests"][0]["expect"][1]["x"] = json::parse("[1, 2]"); },
        "tests[0].expect[1].x: must have 1 number"},
       {"integrators", [](json& d) { d["tests"][0]["expect"][1]["step"] = 1e12; },

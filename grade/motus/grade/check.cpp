@@ -9,6 +9,7 @@
 #include <fstream>
 #include <map>
 #include <optional>
+#include <ranges>
 #include <sstream>
 
 #include "motus/exact/exact_solution.hpp"
@@ -668,12 +669,33 @@ private:
 
 // ---- call ------------------------------------------------------------------------------------------
 
+// The functions a call test calls (motus/student/plugin.hpp names them), their parameters in the
+// order they declare them (true: a vector) and their outputs.
+struct CallSignature {
+  const char* op;
+  const char* function;
+  std::vector<std::pair<std::string, bool>> parameters, outputs;
+};
+const CallSignature kCallSignatures[] = {
+    {"collide_balls", "collide_balls",
+     {{"m_a", false}, {"v_a", true}, {"m_b", false}, {"v_b", true}, {"n", true}, {"e", false}},
+     {{"v_a", true}, {"v_b", true}}},
+    {"bounce_off_wall", "bounce_off_wall", {{"v", true}, {"n", true}, {"e", false}}, {{"v", true}}},
+    {"balls_impact", "time_of_impact",
+     {{"p_a", true}, {"v_a", true}, {"r_a", false}, {"p_b", true}, {"v_b", true}, {"r_b", false}},
+     {{"t", false}}},
+    {"plane_impact", "time_of_impact_with_plane", {{"p", true}, {"v", true}, {"r", false}, {"n", true}, {"offset", false}},
+     {{"t", false}}},
+};
+const CallSignature& call_signature(const std::string& op) {
+  return *std::find_if(std::begin(kCallSignatures), std::end(kCallSignatures), [&](const auto& s) { return op == s.op; });
+}
+
 class CallCheck final : public Check {
 public:
   CallCheck(JsonFields& f, const json& test, std::string hint) : hint_(std::move(hint)) {
     op_ = f.string("op");
-    static const std::vector<std::string> ops = {"collide_balls", "bounce_off_wall", "balls_impact", "plane_impact"};
-    if (std::find(ops.begin(), ops.end(), op_) == ops.end())
+    if (std::none_of(std::begin(kCallSignatures), std::end(kCallSignatures), [&](const auto& s) { return op_ == s.op; }))
       f.fail("op", "must be one of collide_balls, bounce_off_wall, balls_impact, plane_impact");
     f.use("args");
     f.use("expect");
@@ -683,6 +705,38 @@ public:
     args_ = test.at("args");
     expect_ = test.at("expect");
     tolerance_ = f.positive("tolerance", 1e-9);
+    // Every argument the function takes, and only those, each a finite number or a vector of one
+    // size; every output expected one the function gives. (A slip here went to every student's
+    // code: a missing argument stopped their run, a misspelt output read as their reply lacking it.)
+    const CallSignature& signature = call_signature(op_);
+    size_t size = 0;
+    for (const auto& [name, vector] : signature.parameters) {
+      const std::string at = f.path_of("args") + "." + name;
+      if (!args_.contains(name)) throw SceneError(at, std::string("missing (") + signature.function + " takes it)");
+      const json& a = args_.at(name);
+      auto finite = [](const json& x) { return x.is_number() && std::isfinite(x.get<double>()); };
+      if (!vector && !finite(a)) throw SceneError(at, "must be a finite number, not " + a.dump());
+      if (vector && (!a.is_array() || a.empty() || a.size() > 3 || !std::all_of(a.begin(), a.end(), finite)))
+        throw SceneError(at, "must be a vector of 1 to 3 finite numbers, not " + a.dump());
+      if (vector && size != 0 && a.size() != size)
+        throw SceneError(at, fmt::format("has {} numbers where the call's other vectors have {}", a.size(), size));
+      if (vector) size = a.size();
+    }
+    for (const auto& [name, value] : args_.items())
+      if (std::none_of(signature.parameters.begin(), signature.parameters.end(), [&](const auto& p) { return name == p.first; }))
+        throw SceneError(f.path_of("args") + "." + name, std::string("is no argument of ") + signature.function);
+    for (const auto& [name, value] : expect_.items()) {
+      const std::string at = f.path_of("expect") + "." + name;
+      const auto output = std::find_if(signature.outputs.begin(), signature.outputs.end(), [&](const auto& o) { return name == o.first; });
+      if (output == signature.outputs.end())
+        throw SceneError(at, fmt::format("is no output of {} (it gives {})", signature.function,
+                                         fmt::join(signature.outputs | std::views::keys, ", ")));
+      const bool vector = output->second;
+      auto number = [](const json& x) { return x.is_number() || x == "inf" || x == "-inf"; };
+      if (vector ? !value.is_array() || value.size() != size || !std::all_of(value.begin(), value.end(), number) : !number(value))
+        throw SceneError(at, vector ? fmt::format("must be a vector of {} numbers (as the arguments), not {}", size, value.dump())
+                                    : "must be a number (or \"inf\"), not " + value.dump());
+    }
   }
 
   CheckResult run(Probe& probe, Clock::time_point deadline) const override {
@@ -716,29 +770,13 @@ private:
   // "collide_balls(m_a = 1, v_a = (1, 0), ...)": the student's own function (motus/student/
   // plugin.hpp names them) with its arguments in the order it declares them.
   std::string call_as_written() const {
-    struct Signature {
-      const char* op;
-      const char* function;
-      std::vector<const char*> parameters;
-    };
-    static const std::vector<Signature> signatures = {
-        {"collide_balls", "collide_balls", {"m_a", "v_a", "m_b", "v_b", "n", "e"}},
-        {"bounce_off_wall", "bounce_off_wall", {"v", "n", "e"}},
-        {"balls_impact", "time_of_impact", {"p_a", "v_a", "r_a", "p_b", "v_b", "r_b"}},
-        {"plane_impact", "time_of_impact_with_plane", {"p", "v", "r", "n", "offset"}},
-    };
-    for (const auto& s : signatures) {
-      if (op_ != s.op) continue;
-      std::string call = std::string(s.function) + "(";
-      for (const char* p : s.parameters) {
-        if (!args_.contains(p)) continue;
-        const json& a = args_.at(p);
-        call += fmt::format("{}{} = {}", call.back() == '(' ? "" : ", ", p,
-                            a.is_array() ? nums(wire::numbers(a)) : num(wire::number(a)));
-      }
-      return call + ")";
+    const CallSignature& s = call_signature(op_);
+    std::string call = std::string(s.function) + "(";
+    for (const auto& [p, vector] : s.parameters) {
+      const json& a = args_.at(p);
+      call += fmt::format("{}{} = {}", call.back() == '(' ? "" : ", ", p, vector ? nums(wire::numbers(a)) : num(wire::number(a)));
     }
-    return op_;
+    return call + ")";
   }
 
   std::string op_;
