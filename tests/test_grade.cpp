@@ -875,6 +875,8 @@ TEST(Grade, ATestFilesSticksPinsWallsBodiesAndRowsAreCheckedWhenRead) {
        "tests[0].expect.va: is no output of collide_balls (it gives v_a, v_b)"},
       {"collisions", [](json& d) { d["tests"][5]["expect"]["t"] = json::parse("[1]"); },
        "tests[5].expect.t: must be a number (or \"inf\"), not [1]"},
+      {"integrators", [](json& d) { d["tests"][2]["expect"]["x_prev"] = 1; },  // (a "step" test)
+       "tests[2].expect.x_prev: is no output of a step (x, v, y, x_start, x_previous, accepted, h)"},
       {"integrators", [](json& d) { d["tests"][0]["expect"][1]["x"] = json::parse("[1, 2]"); },
        "tests[0].expect[1].x: must have 1 number"},
       {"integrators", [](json& d) { d["tests"][0]["expect"][1]["step"] = 1e12; },

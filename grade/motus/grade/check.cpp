@@ -812,6 +812,14 @@ public:
     if (!test.contains("expect") || !test.at("expect").is_object() || test.at("expect").empty())
       f.fail("expect", "must be an object of the outputs expected (x, v, y, x_start, x_previous, accepted, h)");
     expect_ = test.at("expect");
+    for (const auto& [key, value] : expect_.items()) {
+      static const std::vector<std::string> outputs = {"x", "v", "y", "x_start", "x_previous", "accepted", "h"};
+      if (std::find(outputs.begin(), outputs.end(), key) == outputs.end())
+        throw SceneError(f.path_of("expect") + "." + key, "is no output of a step (x, v, y, x_start, x_previous, accepted, h)");
+      const json& number = value.is_array() && value.size() == 1 ? value[0] : value;
+      if (!number.is_number() || !std::isfinite(number.get<double>()))
+        throw SceneError(f.path_of("expect") + "." + key, "must be one finite number (a step moves one coordinate), not " + value.dump());
+    }
     if (test.contains("hints")) {
       const json& hints = test.at("hints");
       if (!hints.is_array()) f.fail("hints", "must be an array of [OUTPUT, HINT] pairs, the most telling first");
