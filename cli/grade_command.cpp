@@ -251,7 +251,24 @@ int grade_batch(const GradeCommandOptions& o, const std::string& folder) {
     std::this_thread::sleep_for(std::chrono::milliseconds(100));
   }
   for (auto& t : threads) t.join();  // (after Ctrl-C each ends its sandbox at once)
-  stop_if_interrupted();
+  // The submissions graded so far keep their results (each took its seconds of grading): the
+  // folder is kept without a scores.csv, which only a whole batch has. Nothing graded: no folder.
+  auto keep_what_was_graded = [&]() -> std::string {  // where they are now ("": nothing to keep)
+    if (done == 0) return "";
+    try {
+      return folder_of_results.complete();
+    } catch (const std::exception&) {
+      return written;  // (--out appeared meanwhile: the folder stays where it was written)
+    }
+  };
+  if (interrupted()) {
+    progress.finish();
+    const std::string kept = keep_what_was_graded();
+    if (kept.empty()) tell("motus: interrupted before any submission was graded; nothing was written\n");
+    else tell("motus: interrupted; the {} graded so far {} in {}/ (no scores.csv: the batch is not whole)\n",
+              done == 1 ? "1 submission" : std::to_string(done.load()) + " submissions", done == 1 ? "has its results" : "have their results", kept);
+    return kExitInterrupted;
+  }
   progress.finish();
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count();
 
@@ -259,7 +276,12 @@ int grade_batch(const GradeCommandOptions& o, const std::string& folder) {
   for (size_t i = 0; i < submissions.size(); ++i)
     csv += fmt::format("{},{},{},{:.2f},{}\n", csv_field(submissions[i].filename().string()), rows[i].score, rows[i].max_score,
                        rows[i].seconds, rows[i].status);
-  write_whole_file((fs::path(written) / "scores.csv").string(), csv, false);
+  try {
+    write_whole_file((fs::path(written) / "scores.csv").string(), csv, false);
+  } catch (const std::exception& e) {
+    throw std::runtime_error(one_line(e.what()) + "; the " + std::to_string(done.load()) + " submissions' results are kept in " +
+                             keep_what_was_graded() + "/ (no scores.csv)");
+  }
   folder_of_results.complete();
   fmt::print("{}", csv);
   tell("motus: graded {} submissions of {} in {:.1f} s with {} job{}; results in {}/\n", submissions.size(),

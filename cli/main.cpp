@@ -116,7 +116,9 @@ int motus_main(int argc, char** argv) {
       tell("motus: the run failed: standard output could not be written ({})\n", std::strerror(errno));
       return kExitFailure;
     }
-    stop_if_interrupted();
+    // A Ctrl-C that came once the command had finished changes nothing it wrote: its files are
+    // whole and in place (it said "nothing half-written was left behind" of a file just written).
+    if (interrupted() && status == 0) tell("motus: interrupted once the work was done: everything was written\n");
     return status;
   } catch (const Interrupted&) {
     tell("motus: interrupted; nothing half-written was left behind\n");

@@ -431,4 +431,40 @@ TEST(Grade, CtrlCEndsTheGradingWhileTheStudentsCodeRuns) {
     EXPECT_EQ(e.path().filename().string().find("graded"), std::string::npos) << e.path();  // nor .graded.partial-…
 }
 
+// A batch interrupted after some submissions were graded keeps their results, as grading.md says
+// (each took its seconds of grading): the folder is there without a scores.csv. It was removed
+// whole, with the message "nothing half-written was left behind".
+TEST(Grade, CtrlCInABatchKeepsTheSubmissionsGradedSoFar) {
+  NEEDS_SANDBOX();
+  TempDir dir;
+  copy_solution(dir, "integrators", "batch/a_correct");
+  solution_with_euler_step_starting(dir, "batch/b_loops", "for (volatile long i = 0;; i = i + 1) {}");
+  MotusFiles files;
+  files.err = (dir / "err.txt").string();
+  files.folder = dir.path().string();
+  const pid_t pid = start_motus_with({"grade", "integrators", "--batch", (dir / "batch").string(), "--time-limit", "600",
+                                      "--out", (dir / "graded").string()},
+                                     files);
+  ASSERT_GT(pid, 0);
+  // Interrupted once a_correct's results are written (then b_loops is being graded, for 600 s).
+  auto a_graded = [&] {
+    for (const auto& e : fs::directory_iterator(dir.path()))
+      if (e.path().filename().string().starts_with(".graded.partial-") && fs::exists(e.path() / "a_correct.json")) return true;
+    return false;
+  };
+  for (int tenth = 0; tenth < 1200 && !a_graded(); ++tenth) ::usleep(100'000);
+  const bool graded = a_graded();
+  ::kill(pid, SIGINT);
+  int raw = 0;
+  ASSERT_TRUE(ended_within(pid, 60, raw)) << read_file(dir / "err.txt");
+  ASSERT_TRUE(graded) << "a_correct was not graded within 120 s: " << read_file(dir / "err.txt");
+  EXPECT_TRUE(WIFEXITED(raw) && WEXITSTATUS(raw) == 130) << raw << ": " << read_file(dir / "err.txt");
+  ASSERT_TRUE(fs::exists(dir / "graded/a_correct.json")) << read_file(dir / "err.txt");
+  EXPECT_EQ(json::parse(read_file(dir / "graded/a_correct.json"))["score"], 24);  // (the solution's full marks)
+  EXPECT_FALSE(fs::exists(dir / "graded/b_loops.json"));
+  EXPECT_FALSE(fs::exists(dir / "graded/scores.csv"));
+  EXPECT_NE(read_file(dir / "err.txt").find("the 1 submission graded so far has its results in"), std::string::npos)
+      << read_file(dir / "err.txt");
+}
+
 }  // namespace
