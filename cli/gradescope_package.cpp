@@ -42,15 +42,34 @@ void leave_out_answers(const fs::path& assignment) {
 // zip -q -r -X ZIP . in `folder`, started directly (no shell). zip adds ".zip" to a name without an
 // extension: then it writes ZIP.zip, moved to ZIP (--out autograder wrote autograder.zip, and the move
 // of "autograder" into place failed after the work). `shown`: the user's name for the zip, for messages.
+// A temporary folder, removed with what it holds however the scope is left.
+struct RemovedAtEnd {
+  fs::path path;
+  ~RemovedAtEnd() {
+    std::error_code ignored;
+    fs::remove_all(path, ignored);
+  }
+};
+
 void zip_folder(const fs::path& folder, const fs::path& zip, const std::string& shown) {
   const std::string program = process::find_program("zip");
   if (program.empty()) throw InputError("--package: the program zip was not found on PATH (apt-get install zip)");
   const fs::path made = zip.has_extension() ? zip : fs::path(zip.string() + ".zip");
-  const process::Outcome run = process::run_program({program, "-q", "-r", "-X", made.string(), "."}, folder.string());
-  if (!run.ok())
+  // zip's own words go to a log outside the zipped folder, and its last line into motus's one
+  // line: on a full disk it printed two lines of its own before motus's.
+  const fs::path logs(grade::make_temporary_folder("", "motus-zip-"));
+  const RemovedAtEnd remove_logs{logs};
+  const process::Outcome run =
+      process::run_program({program, "-q", "-r", "-X", made.string(), "."}, folder.string(), (logs / "zip.log").string());
+  if (!run.ok()) {
+    std::ifstream log(logs / "zip.log");
+    std::string line, last;
+    while (std::getline(log, line))
+      if (!line.empty()) last = line;
     throw std::runtime_error(shown + ": zip failed to write it (" +
                              (run.signal ? "signal " + std::to_string(run.signal) : "exit status " + std::to_string(run.status)) +
-                             (run.status == 14 ? ": a write failed; a full disk?" : "") + ")");
+                             (run.status == 14 ? ": a write failed; a full disk?" : "") + (last.empty() ? "" : "; zip said: " + last) + ")");
+  }
   if (made != zip) {
     std::error_code error;
     fs::rename(made, zip, error);
@@ -76,13 +95,7 @@ int write_gradescope_package(const std::string& assignment_folder, const std::st
   const std::string source = source_directory();
   if (source.empty()) throw InputError("--package: needs the source tree motus was built from (it goes into the zip)");
   const fs::path staging(grade::make_temporary_folder("", "motus-package-"));
-  struct Cleanup {
-    fs::path path;
-    ~Cleanup() {
-      std::error_code ignored;
-      fs::remove_all(path, ignored);
-    }
-  } cleanup{staging};
+  const RemovedAtEnd cleanup{staging};
 
   const fs::path motus = staging / "motus";
   fs::create_directories(motus);

@@ -681,6 +681,20 @@ TEST(Hardening, APictureThatCannotBeWrittenIsAFailureNotAHalfPicture) {
   EXPECT_FALSE(fs::exists(page));
 }
 
+// The autograder's zip past the file-size limit (its 550 kB or so, under a limit of 400 kB): one
+// line, with zip's own reason in it, and no zip. zip printed two lines of its own first ("zip I/O
+// error: …", "zip error: Output file write failure …"). Found by an audit of interruptions.
+TEST(Hardening, AnAutograderZipThatCannotBeWrittenIsOneLine) {
+  TempDir dir;
+  EXPECT_EQ(run_motus_with_file_limit(dir, {"grade", "integrators", "--package", "gradescope", "--out", "a.zip"}, 400 * 1024), 1);
+  const std::string err = read_file(dir / "err.txt");
+  EXPECT_EQ(count_lines(err), 1) << err;
+  EXPECT_NE(err.find("a.zip: zip failed to write it (exit status 14: a write failed; a full disk?; zip said: zip error: "),
+            std::string::npos)
+      << err;
+  for (const auto& e : fs::directory_iterator(dir.path())) EXPECT_TRUE(e.path().filename() == "err.txt") << e.path();
+}
+
 // A trajectory past the file-size limit: a ball gas's header alone (ball_gas's 800 coordinates'
 // names) is past 1 kB. The run fails with the system's reason, not "disk full?" (the header's
 // failure lost its errno to the first row's), and leaves no file, whole or partial.
