@@ -143,6 +143,11 @@ int motus_main(int argc, char** argv) {
     for (const auto& p : plugins().plugins()) files += (files.empty() ? "" : ", ") + p.file;
     tell("motus: error: {}\n", one_line((files.empty() ? "plug-in" : files) + ": " + e.what()));
     return kExitBadInput;
+  } catch (const std::bad_alloc&) {
+    // (The bare "std::bad_alloc" said nothing a user could act on.)
+    tell("motus: the run failed: out of memory (a smaller scene, a shorter run or fewer kept states — "
+         "--duration, --fps, fewer bodies — needs less; `ulimit -v` may also be limiting motus)\n");
+    return kExitFailure;
   } catch (const std::exception& e) {
     if (interrupted()) {  // a program motus waited for died of the same Ctrl-C
       tell("motus: interrupted; nothing half-written was left behind\n");

@@ -695,6 +695,33 @@ TEST(Hardening, AnAutograderZipThatCannotBeWrittenIsOneLine) {
   for (const auto& e : fs::directory_iterator(dir.path())) EXPECT_TRUE(e.path().filename() == "err.txt") << e.path();
 }
 
+// Running out of memory (here an address-space limit of 300 MB, as `ulimit -v` sets it, against a
+// million balls' 64 MB of state and the collisions' arrays): one line that says so and what needs
+// less. It was "motus: the run failed: std::bad_alloc". Found by an audit of interruptions and resources.
+TEST(Hardening, RunningOutOfMemoryIsOneLineThatSaysSo) {
+  TempDir dir;
+  const std::string err = (dir / "err.txt").string();
+  std::vector<std::string> args = {kMotus, "run", "ball_gas", "--set", "lattice.count=1000000", "--duration", "0.05", "--repeats", "1"};
+  std::vector<char*> argv;
+  for (auto& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    const int to = ::open(err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644), null = ::open("/dev/null", O_RDWR);
+    if (to < 0 || null < 0 || ::dup2(to, 2) < 0 || ::dup2(null, 1) < 0 || ::dup2(null, 0) < 0) ::_exit(126);
+    const rlimit limit{300L << 20, 300L << 20};
+    if (::setrlimit(RLIMIT_AS, &limit) != 0) ::_exit(126);
+    ::execv(argv[0], argv.data());
+    ::_exit(127);
+  }
+  int raw = 0;
+  while (::waitpid(pid, &raw, 0) < 0 && errno == EINTR) {
+  }
+  EXPECT_TRUE(WIFEXITED(raw) && WEXITSTATUS(raw) == 1) << raw << ": " << read_file(err);
+  EXPECT_EQ(count_lines(read_file(err)), 1) << read_file(err);
+  EXPECT_NE(read_file(err).find("motus: the run failed: out of memory ("), std::string::npos) << read_file(err);
+}
+
 // A trajectory past the file-size limit: a ball gas's header alone (ball_gas's 800 coordinates'
 // names) is past 1 kB. The run fails with the system's reason, not "disk full?" (the header's
 // failure lost its errno to the first row's), and leaves no file, whole or partial.
