@@ -1,6 +1,7 @@
 #include "interrupt.hpp"
 
 #include <signal.h>
+#include <time.h>
 #include <unistd.h>
 
 #include <atomic>
@@ -41,10 +42,32 @@ static_assert(std::atomic<void (*)() noexcept>::is_always_lock_free);  // (read 
   ::_exit(kExitInterrupted);
 }
 
+// A second interrupt this soon after the first is the same one, delivered twice: `timeout` signals
+// motus and then its own process group, which holds motus too (and a terminal's Ctrl-C reaches
+// every process of the group at once). Counted as a second one, it stopped motus at once and left
+// its partial folder behind; a person's second Ctrl-C comes a good deal later than this.
+constexpr long long kSameInterruptNanoseconds = 50'000'000;
+std::atomic<long long> g_first_interrupt{0};
+static_assert(std::atomic<long long>::is_always_lock_free);
+
+long long monotonic_nanoseconds() {  // (clock_gettime is async-signal-safe)
+  timespec t{};
+  ::clock_gettime(CLOCK_MONOTONIC, &t);
+  return static_cast<long long>(t.tv_sec) * 1'000'000'000 + t.tv_nsec;
+}
+
 void on_interrupt(int) {
-  if (g_interrupted) stop_now("stopped at once, at the second interrupt");
+  const int saved = errno;
+  const long long now = monotonic_nanoseconds();
+  if (g_interrupted) {
+    if (now - g_first_interrupt.load() >= kSameInterruptNanoseconds) stop_now("stopped at once, at the second interrupt");
+    errno = saved;
+    return;
+  }
+  g_first_interrupt = now;
   g_interrupted = 1;
   ::alarm(kNoticeSeconds);  // no safe point yet: on_alarm says so, then waits out the grace
+  errno = saved;
 }
 
 void on_alarm(int) {
