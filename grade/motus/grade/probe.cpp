@@ -87,10 +87,22 @@ std::string Probe::printed() {
 }
 
 void Probe::died(const std::string& while_doing) {
-  const Ending ending = server_->timed_out() ? server_->kill()
-                                             : server_->finish(std::chrono::steady_clock::now() + std::chrono::seconds(2));
+  // At the test's deadline (the wall-clock backstop), or gone by itself (then given 2 s to end).
+  const bool at_deadline = server_->timed_out();
+  Ending ending = at_deadline ? server_->kill()
+                              : server_->finish(std::chrono::steady_clock::now() + std::chrono::seconds(2));
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count();
-  const double seconds = server_->timed_out() ? setup_.limits.cpu_seconds : wall;
+  double seconds = wall;
+  if (at_deadline) {
+    // Whether it was too slow, waiting, or never given a core: the last is the machine's failure.
+    const double cpu = cpu_limit_seconds(setup_.limits.cpu_seconds);
+    ending.verdict = judge_wall_timeout(ending.use, cpu);
+    if (*ending.verdict == WallVerdict::starved) {
+      server_.reset();
+      throw MachineTooBusy(starved_message("the student's code", ending.use, cpu));
+    }
+    seconds = wall_backstop(setup_.limits.cpu_seconds);  // (as the result says it: the same on any machine)
+  }
   const bool out_of_time = ending.out_of_time(setup_.limits, seconds);
   std::string what = "your code " + ending.describe(setup_.limits, seconds);
   if (!while_doing.empty()) what += " during " + while_doing;
