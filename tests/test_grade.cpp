@@ -1753,4 +1753,31 @@ TEST(Grade, AServerStarvedOfItsCpuByABusyMachineIsTheGradersFailure) {
   EXPECT_NE(result["output"].get<std::string>().find("the machine was too busy"), std::string::npos) << result.dump(2);
 }
 
+// bubblewrap that cannot start the test's server (the audit's "bwrap: execvp /motus/motus:
+// Permission denied", while motus was being relinked) read as the student's code exiting with
+// status 1, every test lost. It is the grader's failure: exit 1, and a results file that says so.
+TEST(Grade, BubblewrapFailingToStartTheServerIsTheGradersFailure) {
+  NEEDS_SANDBOX();
+  TempDir dir;
+  const fs::path bwrap = dir / "bwrap";
+  write_file(bwrap,
+             "#!/bin/sh\n"
+             "for a in \"$@\"; do if [ \"$a\" = serve ]; then echo 'bwrap: execvp /motus/motus: Permission denied' >&2; exit 1; fi; done\n"
+             "exec /usr/bin/bwrap \"$@\"\n");
+  fs::permissions(bwrap, fs::perms::owner_all | fs::perms::group_read | fs::perms::group_exec | fs::perms::others_read |
+                             fs::perms::others_exec);
+  const fs::path assignment = integrators_with_tests(dir, "one", json::array({definitions("integrators").at("euler.table")}));
+  const fs::path submission = copy_solution(dir, "integrators", "solution");
+  const auto r = run_motus(dir, {"grade", assignment.string(), submission.string(), "--results", (dir / "results.json").string()},
+                           {"MOTUS_BWRAP=" + bwrap.string()});
+  EXPECT_EQ(r.status, 1) << r.err << r.out;
+  EXPECT_NE(r.err.find("the sandbox could not start the student's code's server: bwrap: execvp /motus/motus: Permission denied"),
+            std::string::npos)
+      << r.err;
+  const json result = read_json(dir / "results.json");
+  EXPECT_EQ(result["extra_data"]["internal_error"], true) << result.dump(2);
+  EXPECT_NE(result["output"].get<std::string>().find("This is a fault of the grader, not of the submission"), std::string::npos)
+      << result.dump(2);
+}
+
 }  // namespace

@@ -66,6 +66,7 @@ void Probe::start() {
   }
   server_ = std::make_unique<SandboxProcess>(spec, setup_.limits);
   started_ = std::chrono::steady_clock::now();
+  answered_ = false;
 }
 
 void Probe::stop() {
@@ -102,6 +103,14 @@ void Probe::died(const std::string& while_doing) {
       throw MachineTooBusy(starved_message("the student's code", ending.use, cpu));
     }
     seconds = wall_backstop(setup_.limits.cpu_seconds);  // (as the result says it: the same on any machine)
+  }
+  // bubblewrap's own failure to start the server (it says "bwrap: …" and exits 1; the server never
+  // answered): the sandbox's, not the student's code's, as for the compiler (build.cpp). (The
+  // student's code prints after bwrap's words, if at all: they come first only when it never ran.)
+  if (!answered_ && !at_deadline && ending.exited && ending.status == 1 && server_->errors().rfind("bwrap: ", 0) == 0) {
+    const std::string line = server_->errors().substr(0, server_->errors().find('\n'));
+    server_.reset();
+    throw std::runtime_error("the sandbox could not start the student's code's server: " + line);
   }
   const bool out_of_time = ending.out_of_time(setup_.limits, seconds);
   std::string what = "your code " + ending.describe(setup_.limits, seconds);
@@ -148,6 +157,7 @@ nlohmann::json Probe::ask(nlohmann::json request, std::chrono::steady_clock::tim
     malformed_reply(whose, "longer than " + std::to_string(most_bytes) + " bytes, more than this request can need");
   }
   if (!line) died(doing);
+  answered_ = true;
   // Parsed with a count of its values: within the bytes, a reply of 0s would still make a document
   // 16 times its size.
   nlohmann::json reply;
