@@ -1780,4 +1780,52 @@ TEST(Grade, BubblewrapFailingToStartTheServerIsTheGradersFailure) {
       << result.dump(2);
 }
 
+// --jobs above the cores is allowed, with one line that says the tests will wait for a core.
+TEST(Grade, MoreJobsThanCoresIsOneWarning) {
+  NEEDS_SANDBOX();
+  const long cores = [] {
+    cpu_set_t set;
+    CPU_ZERO(&set);
+    return ::sched_getaffinity(0, sizeof set, &set) == 0 ? static_cast<long>(CPU_COUNT(&set)) : ::sysconf(_SC_NPROCESSORS_ONLN);
+  }();
+  if (cores >= 64) GTEST_SKIP() << "--jobs goes to 64";
+  TempDir dir;
+  fs::create_directories(dir / "batch/empty");  // (nothing to build: quick)
+  auto r = run_motus(dir, {"grade", "integrators", "--batch", (dir / "batch").string(), "--jobs", std::to_string(cores + 1),
+                           "--out", (dir / "many").string()});
+  EXPECT_EQ(r.status, 0) << r.err;
+  const std::string warning = "motus: warning: --jobs " + std::to_string(cores + 1) + " is more than this machine's " +
+                              std::to_string(cores) + " core" + (cores == 1 ? "" : "s") +
+                              ": tests will wait for a core, and take longer\n";
+  EXPECT_EQ(r.err.rfind(warning, 0), 0u) << r.err;
+  EXPECT_EQ(r.err.find("warning", warning.size()), std::string::npos) << r.err;  // once
+  r = run_motus(dir, {"grade", "integrators", "--batch", (dir / "batch").string(), "--jobs", std::to_string(cores), "--out",
+                      (dir / "as-many").string()});
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.err.find("warning"), std::string::npos) << r.err;
+}
+
+// Hidden tests under /usr (bound read-only into every sandbox) would be readable by the student's
+// code: refused before anything is graded, however the folder is reached (here through a link).
+TEST(Grade, HiddenTestsWhereTheSandboxShowsThemAreRefused) {
+  TempDir dir;
+  const std::string solution = (fs::path(kAssignments) / "integrators/solution").string();
+  fs::create_directory_symlink("/usr/share", dir / "looks-elsewhere");
+  for (const std::string& hidden_folder : {std::string("/usr/share"), (dir / "looks-elsewhere").string()}) {
+    const auto r = run_motus(dir, {"grade", "integrators", solution, "--hidden", hidden_folder, "--results",
+                                   (dir / "results.json").string(), "--overwrite"});
+    EXPECT_EQ(r.status, 2) << r.err;
+    EXPECT_EQ(r.err, "motus: error: " + hidden_folder +
+                         ": --hidden: is under /usr, which the sandbox shows the student's code (read-only): it could read "
+                         "the hidden tests; keep them elsewhere, readable by the grader only\n");
+    EXPECT_EQ(r.out, "");
+  }
+  // The folder of the assignment's own hidden tests is not under one: an empty submission is graded.
+  if (!sandbox_available()) return;
+  fs::create_directories(dir / "empty");
+  const auto r = run_motus(dir, {"grade", "integrators", (dir / "empty").string(), "--hidden", hidden("integrators")});
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.err.find("--hidden"), std::string::npos) << r.err;
+}
+
 }  // namespace
