@@ -1474,7 +1474,7 @@ TEST(Grade, TheGradescopeZipGradesTheSolutionToFullMarks) {
 
 TEST(Grade, EachTestHasTheWholeCpuLimitOfItsOwn) {
   // Five copies of one test, and an euler_step that spends 0.15 s of CPU on every call: 0.75 s a
-  // test, well within the 3 s limit (which is wall-clock time too: room for a busy machine), but
+  // test, well within the 3 s limit (of CPU; its wall clock is a backstop of 11 s), but
   // 3.75 s in all. Each test's limit is its own (docs/grading.md), not what the tests before it
   // left over.
   NEEDS_SANDBOX();
