@@ -105,8 +105,9 @@ void Probe::died(const std::string& while_doing) {
     seconds = wall_backstop(setup_.limits.cpu_seconds);  // (as the result says it: the same on any machine)
   }
   // bubblewrap's own failure to start the server (it says "bwrap: …" and exits 1; the server never
-  // answered): the sandbox's, not the student's code's, as for the compiler (build.cpp). (The
-  // student's code prints after bwrap's words, if at all: they come first only when it never ran.)
+  // answered): the sandbox's, not the student's code's, as for the compiler (build.cpp). (Code that
+  // itself prints "bwrap: " first and exits 1 before any answer is taken for it too: the grading
+  // stops as the grader's failure, which a grading again shows up, and gains no point.)
   if (!answered_ && !at_deadline && ending.exited && ending.status == 1 && server_->errors().rfind("bwrap: ", 0) == 0) {
     const std::string line = server_->errors().substr(0, server_->errors().find('\n'));
     server_.reset();
