@@ -61,8 +61,28 @@ grade::GradeOptions grade_options(const GradeCommandOptions& o) {
   return g;
 }
 
+// Hidden tests the sandbox would show the student's code: under /usr (bound read-only into every
+// sandbox) or a folder of the student API headers, however the path is spelt (links followed).
+void check_hidden_out_of_sight(const std::string& hidden) {
+  std::error_code error;
+  const fs::path where = fs::canonical(hidden, error);
+  if (error) return;  // (is_directory said it is there)
+  const grade::ApiHeaders headers{student_api_directory("student"), student_api_directory("plugin"),
+                                  student_api_directory("external")};
+  for (const std::string& shown : grade::folders_in_sight(headers)) {
+    const fs::path folder = fs::canonical(shown, error);
+    if (error) continue;
+    const fs::path inside = where.lexically_relative(folder);
+    if (!inside.empty() && *inside.begin() != "..")
+      throw InputError(hidden + ": --hidden: is under " + shown + ", which the sandbox shows the student's code (read-only): "
+                       "it could read the hidden tests; keep them elsewhere, readable by the grader only");
+  }
+}
+
 grade::Assignment load(const GradeCommandOptions& o, const std::string& folder) {
   if (o.hidden && !fs::is_directory(*o.hidden)) throw InputError(*o.hidden + ": --hidden: no such folder");
+  // (Not for --package: the zip takes a copy, which Gradescope keeps in the autograder's own folder.)
+  if (o.hidden && o.package.empty()) check_hidden_out_of_sight(*o.hidden);
   grade::SceneSource scenes;
   scenes.shipped = [](const std::string& name) { return resolve_scene_path(name); };
   try {
@@ -195,6 +215,12 @@ int grade_batch(const GradeCommandOptions& o, const std::string& folder) {
   if (output_exists(out)) throw InputError(out + ": --out: already exists; grading never writes over earlier results");
   const grade::Assignment assignment = load(o, folder);
   check_limits(o);
+  // More jobs than cores: not wrong (each test's CPU limit still holds, and its wall clock has room
+  // for the wait), but every test waits for a core, and a test starved past that room is the
+  // grader's failure (exit 1), not the student's.
+  if (const int cores = grade::available_cores(); o.jobs && *o.jobs > cores)
+    tell("motus: warning: --jobs {} is more than this machine's {} core{}: tests will wait for a core, and take longer\n",
+         *o.jobs, cores, cores == 1 ? "" : "s");
   std::vector<fs::path> submissions;
   for (const auto& e : fs::directory_iterator(o.batch))
     if (e.is_directory()) submissions.push_back(e.path());
@@ -307,7 +333,7 @@ CLI::App* add_grade_command(CLI::App& app, GradeCommandOptions& o) {
   g->add_option("--format", o.format, "What standard output shows: text (a summary; the default) or gradescope (the JSON)")
       ->check(CLI::IsMember({"text", "gradescope"}));
   g->add_option("--hidden", o.hidden, "The folder of hidden tests (the instructor's; not given: only the public tests run)");
-  g->add_option("--time-limit", o.time_limit, "Seconds each test may take (CPU and wall clock)")->capture_default_str();
+  g->add_option("--time-limit", o.time_limit, "Seconds of CPU each test may take (whole seconds; its wall clock is a backstop: 2 x this + 5 s)")->capture_default_str();
   g->add_option("--memory-limit", o.memory_limit, "Megabytes of address space the student's code may use (its server can start no other process)")->capture_default_str();
   g->add_flag("--no-sandbox", o.no_sandbox,
               "Grade without bubblewrap (limits and another user only): for machines without user namespaces, knowingly");

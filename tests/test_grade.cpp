@@ -6,11 +6,16 @@
 //
 // Grading needs user namespaces for bubblewrap; where the machine has none, the tests that
 // grade in the sandbox say so and skip (this machine has them).
+#include <sched.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+
 #include <cmath>
 #include <functional>
 #include <tuple>
 
 #include "grade_harness.hpp"
+#include "motus/grade/sandbox.hpp"
 
 namespace {
 
@@ -1172,7 +1177,7 @@ TEST(Grade, ATimeoutNamesTheStudentsFunctionAndTheAssignmentsHint) {
   const json* t = test_named(balls, "impact.head-on");
   ASSERT_NE(t, nullptr);
   std::string output = (*t)["output"].get<std::string>();
-  EXPECT_NE(output.find("timed out after 1 s during time_of_impact"), std::string::npos) << output;
+  EXPECT_NE(output.find("timed out after 1 s of CPU during time_of_impact"), std::string::npos) << output;
   EXPECT_EQ(output.find("balls_impact"), std::string::npos) << output;
   // The integrators and collisions assignments have a timeout_hint too (an audit's endless loop in
   // midpoint_step read "stepping with k1 is Euler again", the test's hint about wrong numbers).
@@ -1191,7 +1196,7 @@ TEST(Grade, ATimeoutNamesTheStudentsFunctionAndTheAssignmentsHint) {
     const json* midpoint = test_named(steps, "midpoint.order");
     ASSERT_NE(midpoint, nullptr);
     const std::string said = (*midpoint)["output"].get<std::string>();
-    EXPECT_NE(said.find("timed out after 1 s"), std::string::npos) << said;
+    EXPECT_NE(said.find("timed out after 1 s of CPU"), std::string::npos) << said;
     EXPECT_NE(said.find("This usually means: " + hint), std::string::npos) << said;
   }
 
@@ -1469,7 +1474,7 @@ TEST(Grade, TheGradescopeZipGradesTheSolutionToFullMarks) {
 
 TEST(Grade, EachTestHasTheWholeCpuLimitOfItsOwn) {
   // Five copies of one test, and an euler_step that spends 0.15 s of CPU on every call: 0.75 s a
-  // test, well within the 3 s limit (which is wall-clock time too: room for a busy machine), but
+  // test, well within the 3 s limit (of CPU; its wall clock is a backstop of 11 s), but
   // 3.75 s in all. Each test's limit is its own (docs/grading.md), not what the tests before it
   // left over.
   NEEDS_SANDBOX();
@@ -1582,6 +1587,245 @@ TEST(Grade, AMissingFileSaysWhereItMightBe) {
   EXPECT_EQ(zip.status, 2);
   EXPECT_NE(zip.err.find("is a file; a submission is the folder of the handout's files (unpack it first)"),
             std::string::npos) << zip.err;
+}
+
+// ---------------------------------------------------------------------------------------------------
+// Fair timing (docs/grading.md, "The limits"): the CPU limit decides whether the student's code was
+// too slow; the wall clock is a backstop with room for a wait for a core, and a process starved at
+// it by a busy machine is the grader's failure. Found by an audit: 32 copies of the solution graded
+// with --jobs 32 on 2 cores all scored 0 ("the compiler timed out after 90.6 s"), and a solution
+// that takes 6 s of a 10 s limit failed ("timed out after 10 s") whenever the machine was loaded.
+
+motus::grade::TimeUse used(double wall, double cpu, double run_delay, bool known = true) {
+  motus::grade::TimeUse u;
+  u.wall = wall, u.cpu = cpu, u.run_delay = run_delay, u.run_delay_known = known;
+  return u;
+}
+
+TEST(Grade, TheWallClockBackstopIsTwiceTheCpuLimitAndFiveSeconds) {
+  using namespace motus::grade;
+  EXPECT_DOUBLE_EQ(wall_backstop(10), 25);   // a test's, at the default limit
+  EXPECT_DOUBLE_EQ(wall_backstop(2), 9);
+  EXPECT_DOUBLE_EQ(wall_backstop(60), 125);  // the compiler's
+  EXPECT_DOUBLE_EQ(cpu_limit_seconds(0.5), 1);  // RLIMIT_CPU counts whole seconds
+  EXPECT_DOUBLE_EQ(cpu_limit_seconds(10), 10);
+}
+
+TEST(Grade, AProcessAtItsWallBackstopIsJudgedByWhatItDidWithItsTime) {
+  using namespace motus::grade;
+  // The audit's batch: a compiler that had 8 s of CPU in 125 s and waited 110 s for a core.
+  EXPECT_EQ(judge_wall_timeout(used(125, 8, 110), 60), WallVerdict::starved);
+  // A test of 10 s that had a sixteenth of a core (32 jobs on 2 cores).
+  EXPECT_EQ(judge_wall_timeout(used(25, 1.5, 23), 10), WallVerdict::starved);
+  // Runnable half the time, exactly: starved; a little less: waiting.
+  EXPECT_EQ(judge_wall_timeout(used(25, 4, 8.5), 10), WallVerdict::starved);
+  EXPECT_EQ(judge_wall_timeout(used(25, 4, 8.4), 10), WallVerdict::waiting);
+  // A submission that stops reading its input: asleep, no CPU, no wait for a core.
+  EXPECT_EQ(judge_wall_timeout(used(9, 0.05, 0.01), 2), WallVerdict::waiting);
+  // It computed 8 s of its 10, then blocked for good.
+  EXPECT_EQ(judge_wall_timeout(used(25, 8, 0.5), 10), WallVerdict::waiting);
+  // Its CPU used up (the compiler's processes have a limit each: together they can pass it).
+  EXPECT_EQ(judge_wall_timeout(used(125, 61, 40), 60), WallVerdict::used_its_cpu);
+  EXPECT_EQ(judge_wall_timeout(used(25, 10, 0), 10), WallVerdict::used_its_cpu);
+  // It made itself nicer than the grader (or SCHED_IDLE), and so was not run: its own doing.
+  TimeUse nicer = used(25, 0.2, 24);
+  nicer.lowered_priority = true;
+  EXPECT_EQ(judge_wall_timeout(nicer, 10), WallVerdict::lowered_its_priority);
+  // Without schedstat: runnable when measured, the time it did not compute was a wait for a core.
+  TimeUse unknown = used(25, 1, 0, false);
+  unknown.runnable_now = true;
+  EXPECT_EQ(judge_wall_timeout(unknown, 10), WallVerdict::starved);
+  unknown.runnable_now = false;
+  EXPECT_EQ(judge_wall_timeout(unknown, 10), WallVerdict::waiting);
+  // What the grader's failure then says: what it got, and what to do.
+  const std::string said = starved_message("the compiler", used(125, 8, 110), 60);
+  EXPECT_EQ(said.rfind("the machine was too busy to give the compiler its 60 s of CPU (in 125 s it had 8 s of CPU and "
+                       "waited 110 s for a core): not the submission's fault; grade it again with fewer --jobs (this machine has ", 0),
+            0u)
+      << said;
+}
+
+// Code that waits 1.5 s (no CPU) in its first call, under a 1 s limit: the wall clock is no longer
+// the limit (its backstop is 7 s), and its CPU is well within 1 s. It timed out before.
+TEST(Grade, ATestsWallClockIsABackstopWithRoomBeyondItsCpuLimit) {
+  NEEDS_SANDBOX();
+  TempDir dir;
+  const fs::path assignment = integrators_with_tests(dir, "one", json::array({definitions("integrators").at("euler.table")}));
+  const fs::path submission = solution_with_euler_step_starting(
+      dir, "waits", "static bool waited = false; if (!waited) { waited = true; ::usleep(1500000); }", "#include <unistd.h>\n");
+  ASSERT_FALSE(submission.empty());
+  const auto r = run_motus(dir, {"grade", assignment.string(), submission.string(), "--time-limit", "1", "--results",
+                                 (dir / "results.json").string()});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const json result = read_json(dir / "results.json");
+  expect_valid_gradescope(result);
+  EXPECT_TRUE(failed(result).empty()) << result.dump(2);
+  EXPECT_EQ(result["score"].get<double>(), 1);
+}
+
+// A test's server starved by a busy machine: once the test's server has started, it is pinned to one
+// core, on which a process of nice -20 (in a scheduling autogroup of nice -20: the sandbox's
+// session is an autogroup of its own) spins. The server, which needs 0.5 s of CPU of its 1 s, gets
+// about 1 % of the core: at the backstop (7 s) it had little CPU and waited nearly all the time
+// for the core. The grader's failure: exit 1, and a results file that says so (before, "timed out
+// after 1 s", the student's 0).
+bool descends_from(pid_t pid, pid_t ancestor) {
+  for (int hops = 0; pid > 1 && hops < 16; ++hops) {
+    if (pid == ancestor) return true;
+    const std::string stat = read_file("/proc/" + std::to_string(pid) + "/stat");
+    const size_t after = stat.rfind(')');
+    if (after == std::string::npos) return false;
+    pid = static_cast<pid_t>(std::strtol(stat.c_str() + after + 4, nullptr, 10));  // (") S PPID")
+  }
+  return false;
+}
+
+pid_t server_of(pid_t grader) {
+  for (const auto& entry : fs::directory_iterator("/proc")) {
+    const std::string name = entry.path().filename().string();
+    if (!std::all_of(name.begin(), name.end(), ::isdigit)) continue;
+    std::string command = read_file(entry.path() / "cmdline");
+    std::replace(command.begin(), command.end(), '\0', ' ');
+    if (command.find("/motus/motus serve --plugin") == 0 && descends_from(std::stoi(name), grader)) return std::stoi(name);
+  }
+  return -1;
+}
+
+TEST(Grade, AServerStarvedOfItsCpuByABusyMachineIsTheGradersFailure) {
+  NEEDS_SANDBOX();
+  if (::geteuid() != 0) GTEST_SKIP() << "needs root, for a process of nice -20 that the server cannot outrun";
+  TempDir dir;
+  const fs::path assignment = integrators_with_tests(dir, "one", json::array({definitions("integrators").at("euler.table")}));
+  const fs::path submission = solution_with_euler_step_starting(
+      dir, "computes",
+      "static bool done = false; if (!done) { done = true; "
+      "for (const std::clock_t until = std::clock() + CLOCKS_PER_SEC / 2; std::clock() < until;) {} }",
+      "#include <ctime>\n");
+  ASSERT_FALSE(submission.empty());
+  cpu_set_t all, one;
+  ASSERT_EQ(::sched_getaffinity(0, sizeof all, &all), 0);
+  int core = -1;
+  for (int c = 0; c < CPU_SETSIZE; ++c)
+    if (CPU_ISSET(c, &all)) core = c;
+  CPU_ZERO(&one);
+  CPU_SET(core, &one);
+  MotusFiles files;
+  files.err = (dir / "err.txt").string();
+  files.folder = dir.path().string();
+  const pid_t grader = start_motus_with({"grade", assignment.string(), submission.string(), "--time-limit", "1",
+                                         "--results", (dir / "results.json").string()},
+                                        files);
+  ASSERT_GT(grader, 0);
+  pid_t server = -1;
+  for (int i = 0; i < 24000 && server < 0; ++i) {  // (the build first: up to 120 s)
+    server = server_of(grader);
+    if (server < 0) ::usleep(2000);
+  }
+  pid_t hog = -1;
+  if (server > 0) {
+    hog = ::fork();
+    if (hog == 0) {
+      ::sched_setaffinity(0, sizeof one, &one);
+      ::setpriority(PRIO_PROCESS, 0, -20);
+      std::ofstream("/proc/self/autogroup") << "-20";
+      volatile long spin = 0;
+      for (;;) spin = spin + 1;
+    }
+    std::error_code error;  // (the server's threads, and the processes it is in)
+    for (const auto& task : fs::directory_iterator("/proc/" + std::to_string(server) + "/task", error))
+      ::sched_setaffinity(static_cast<pid_t>(std::stoi(task.path().filename().string())), sizeof one, &one);
+  }
+  int raw = 0;
+  const bool ended = ended_within(grader, 120, raw);
+  if (hog > 0) {
+    ::kill(hog, SIGKILL);
+    ::waitpid(hog, nullptr, 0);
+  }
+  ASSERT_GT(server, 0) << "no server seen: " << read_file(dir / "err.txt");
+  ASSERT_TRUE(ended) << read_file(dir / "err.txt");
+  const std::string err = read_file(dir / "err.txt");
+  EXPECT_TRUE(WIFEXITED(raw) && WEXITSTATUS(raw) == 1) << raw << ": " << err;
+  EXPECT_NE(err.find("test euler.table: the machine was too busy to give the student's code its 1 s of CPU (in "), std::string::npos)
+      << err;
+  EXPECT_NE(err.find("grade it again with fewer --jobs"), std::string::npos) << err;
+  const json result = read_json(dir / "results.json");
+  EXPECT_EQ(result["extra_data"]["internal_error"], true) << result.dump(2);
+  EXPECT_NE(result["output"].get<std::string>().find("the machine was too busy"), std::string::npos) << result.dump(2);
+}
+
+// bubblewrap that cannot start the test's server (the audit's "bwrap: execvp /motus/motus:
+// Permission denied", while motus was being relinked) read as the student's code exiting with
+// status 1, every test lost. It is the grader's failure: exit 1, and a results file that says so.
+TEST(Grade, BubblewrapFailingToStartTheServerIsTheGradersFailure) {
+  NEEDS_SANDBOX();
+  TempDir dir;
+  const fs::path bwrap = dir / "bwrap";
+  write_file(bwrap,
+             "#!/bin/sh\n"
+             "for a in \"$@\"; do if [ \"$a\" = serve ]; then echo 'bwrap: execvp /motus/motus: Permission denied' >&2; exit 1; fi; done\n"
+             "exec /usr/bin/bwrap \"$@\"\n");
+  fs::permissions(bwrap, fs::perms::owner_all | fs::perms::group_read | fs::perms::group_exec | fs::perms::others_read |
+                             fs::perms::others_exec);
+  const fs::path assignment = integrators_with_tests(dir, "one", json::array({definitions("integrators").at("euler.table")}));
+  const fs::path submission = copy_solution(dir, "integrators", "solution");
+  const auto r = run_motus(dir, {"grade", assignment.string(), submission.string(), "--results", (dir / "results.json").string()},
+                           {"MOTUS_BWRAP=" + bwrap.string()});
+  EXPECT_EQ(r.status, 1) << r.err << r.out;
+  EXPECT_NE(r.err.find("the sandbox could not start the student's code's server: bwrap: execvp /motus/motus: Permission denied"),
+            std::string::npos)
+      << r.err;
+  const json result = read_json(dir / "results.json");
+  EXPECT_EQ(result["extra_data"]["internal_error"], true) << result.dump(2);
+  EXPECT_NE(result["output"].get<std::string>().find("This is a fault of the grader, not of the submission"), std::string::npos)
+      << result.dump(2);
+}
+
+// --jobs above the cores is allowed, with one line that says the tests will wait for a core.
+TEST(Grade, MoreJobsThanCoresIsOneWarning) {
+  NEEDS_SANDBOX();
+  const long cores = [] {
+    cpu_set_t set;
+    CPU_ZERO(&set);
+    return ::sched_getaffinity(0, sizeof set, &set) == 0 ? static_cast<long>(CPU_COUNT(&set)) : ::sysconf(_SC_NPROCESSORS_ONLN);
+  }();
+  if (cores >= 64) GTEST_SKIP() << "--jobs goes to 64";
+  TempDir dir;
+  fs::create_directories(dir / "batch/empty");  // (nothing to build: quick)
+  auto r = run_motus(dir, {"grade", "integrators", "--batch", (dir / "batch").string(), "--jobs", std::to_string(cores + 1),
+                           "--out", (dir / "many").string()});
+  EXPECT_EQ(r.status, 0) << r.err;
+  const std::string warning = "motus: warning: --jobs " + std::to_string(cores + 1) + " is more than this machine's " +
+                              std::to_string(cores) + " core" + (cores == 1 ? "" : "s") +
+                              ": tests will wait for a core, and take longer\n";
+  EXPECT_EQ(r.err.rfind(warning, 0), 0u) << r.err;
+  EXPECT_EQ(r.err.find("warning", warning.size()), std::string::npos) << r.err;  // once
+  r = run_motus(dir, {"grade", "integrators", "--batch", (dir / "batch").string(), "--jobs", std::to_string(cores), "--out",
+                      (dir / "as-many").string()});
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.err.find("warning"), std::string::npos) << r.err;
+}
+
+// Hidden tests under /usr (bound read-only into every sandbox) would be readable by the student's
+// code: refused before anything is graded, however the folder is reached (here through a link).
+TEST(Grade, HiddenTestsWhereTheSandboxShowsThemAreRefused) {
+  TempDir dir;
+  const std::string solution = (fs::path(kAssignments) / "integrators/solution").string();
+  fs::create_directory_symlink("/usr/share", dir / "looks-elsewhere");
+  for (const std::string& hidden_folder : {std::string("/usr/share"), (dir / "looks-elsewhere").string()}) {
+    const auto r = run_motus(dir, {"grade", "integrators", solution, "--hidden", hidden_folder, "--results",
+                                   (dir / "results.json").string(), "--overwrite"});
+    EXPECT_EQ(r.status, 2) << r.err;
+    EXPECT_EQ(r.err, "motus: error: " + hidden_folder +
+                         ": --hidden: is under /usr, which the sandbox shows the student's code (read-only): it could read "
+                         "the hidden tests; keep them elsewhere, readable by the grader only\n");
+    EXPECT_EQ(r.out, "");
+  }
+  // The folder of the assignment's own hidden tests is not under one: an empty submission is graded.
+  if (!sandbox_available()) return;
+  fs::create_directories(dir / "empty");
+  const auto r = run_motus(dir, {"grade", "integrators", (dir / "empty").string(), "--hidden", hidden("integrators")});
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.err.find("--hidden"), std::string::npos) << r.err;
 }
 
 }  // namespace

@@ -21,6 +21,10 @@ std::string cut(const std::string& text, size_t lines, size_t bytes) {
   return text.substr(0, end) + "… (" + std::to_string(left) + " more lines left out)\n";
 }
 
+std::vector<std::string> folders_in_sight(const ApiHeaders& headers) {
+  return {"/usr", headers.student, headers.plugin, headers.external};
+}
+
 BuildResult build_plugin(const Assignment& a, const std::string& staged, const std::string& out,
                          const ApiHeaders& headers, bool isolate, uid_t uid, const std::function<bool()>& stop) {
   const auto began = std::chrono::steady_clock::now();
@@ -74,9 +78,19 @@ BuildResult build_plugin(const Assignment& a, const std::string& staged, const s
     // (A sandbox that cannot be made is the grader's fault, never the student's: it throws on.)
     SandboxProcess compiler(spec, limits);
     const auto started = std::chrono::steady_clock::now();
-    const Ending ending = compiler.finish(started + std::chrono::seconds(90));
+    // The wall clock is a backstop (wall_backstop: 125 s for the 60 s of CPU): a compiler waiting
+    // for a core on a busy machine (a --jobs above the cores) is not the submission's failure.
+    const double backstop = wall_backstop(limits.cpu_seconds);
+    Ending ending = compiler.finish(started + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                                  std::chrono::duration<double>(backstop)));
     interrupted = compiler.interrupted();
-    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    if (ending.timed_out && !interrupted) {
+      ending.verdict = judge_wall_timeout(ending.use, cpu_limit_seconds(limits.cpu_seconds));
+      if (*ending.verdict == WallVerdict::starved)
+        throw MachineTooBusy(starved_message("the compiler", ending.use, cpu_limit_seconds(limits.cpu_seconds)));
+      wall = backstop;  // (as the submission's result says it: the same on any machine)
+    }
     result.output = cut(compiler.errors(), 40, 6000);
     result.ok = ending.exited && ending.status == 0 && fs::is_regular_file(fs::path(out) / "student.so");
     if (!ending.exited || ending.status != 0)

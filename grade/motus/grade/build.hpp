@@ -18,6 +18,11 @@ struct ApiHeaders {
   std::string external;  // …/motus/external
 };
 
+// Every folder of the host a sandbox shows the student's code (read-only): /usr (sandbox.cpp) and
+// the student API headers the compiler reads. (Other mounts are single files, or the grading's own
+// temporary folders.) Hidden tests kept under one of them would be readable by the code.
+std::vector<std::string> folders_in_sight(const ApiHeaders& headers);
+
 struct BuildResult {
   bool ok = false;
   std::string plugin;  // the built plug-in, on the host

@@ -269,13 +269,18 @@ GradeResult grade_submission(const Assignment& a, const std::string& submission,
       // the tests before would leave this one only what they did not use (and the student's
       // code could carry state from one test into the next). The test's clock starts once the
       // last one's server is gone (its ending may take a second: not this test's time).
+      // Its CPU limit (RLIMIT_CPU) says whether the code was too slow; the wall clock is only a
+      // backstop, with room for a wait for a core (wall_backstop: 2 × the limit + 5 s), and a
+      // server starved at it by a busy machine is the grader's failure (MachineTooBusy), not a 0.
       probe.stop();
       const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                                                                    std::chrono::duration<double>(limits.cpu_seconds));
+                                                                    std::chrono::duration<double>(wall_backstop(limits.cpu_seconds)));
       try {
         const CheckResult c = t.check->run(probe, deadline);
         r.passed = c.passed;
         r.output = c.output;
+      } catch (const MachineTooBusy& e) {
+        throw MachineTooBusy("test " + t.name + ": " + e.what());
       } catch (const ProbeFailure& e) {
         r.output = std::string(1, static_cast<char>(std::toupper(e.what()[0]))) + (e.what() + 1);
         if (r.output.back() != '.' && r.output.find('\n') == std::string::npos) r.output += ".";

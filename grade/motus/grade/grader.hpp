@@ -21,7 +21,7 @@ struct GradeOptions {
   // grading at once with GradingInterrupted (sandbox.hpp).
   std::function<bool()> stop;
   ApiHeaders headers;
-  Limits limits;          // per test: cpu_seconds is also its wall-clock limit
+  Limits limits;          // per test: its CPU; its wall clock is a backstop, wall_backstop(cpu_seconds)
   bool isolate = true;    // false: --no-sandbox
   std::string plugin_out; // also keep the built plug-in here ("" : no)
   std::string work_root;  // where the temporary folders go ("": the system's temporary folder)

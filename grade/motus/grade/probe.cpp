@@ -66,6 +66,7 @@ void Probe::start() {
   }
   server_ = std::make_unique<SandboxProcess>(spec, setup_.limits);
   started_ = std::chrono::steady_clock::now();
+  answered_ = false;
 }
 
 void Probe::stop() {
@@ -87,10 +88,31 @@ std::string Probe::printed() {
 }
 
 void Probe::died(const std::string& while_doing) {
-  const Ending ending = server_->timed_out() ? server_->kill()
-                                             : server_->finish(std::chrono::steady_clock::now() + std::chrono::seconds(2));
+  // At the test's deadline (the wall-clock backstop), or gone by itself (then given 2 s to end).
+  const bool at_deadline = server_->timed_out();
+  Ending ending = at_deadline ? server_->kill()
+                              : server_->finish(std::chrono::steady_clock::now() + std::chrono::seconds(2));
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count();
-  const double seconds = server_->timed_out() ? setup_.limits.cpu_seconds : wall;
+  double seconds = wall;
+  if (at_deadline) {
+    // Whether it was too slow, waiting, or never given a core: the last is the machine's failure.
+    const double cpu = cpu_limit_seconds(setup_.limits.cpu_seconds);
+    ending.verdict = judge_wall_timeout(ending.use, cpu);
+    if (*ending.verdict == WallVerdict::starved) {
+      server_.reset();
+      throw MachineTooBusy(starved_message("the student's code", ending.use, cpu));
+    }
+    seconds = wall_backstop(setup_.limits.cpu_seconds);  // (as the result says it: the same on any machine)
+  }
+  // bubblewrap's own failure to start the server (it says "bwrap: …" and exits 1; the server never
+  // answered): the sandbox's, not the student's code's, as for the compiler (build.cpp). (Code that
+  // itself prints "bwrap: " first and exits 1 before any answer is taken for it too: the grading
+  // stops as the grader's failure, which a grading again shows up, and gains no point.)
+  if (!answered_ && !at_deadline && ending.exited && ending.status == 1 && server_->errors().rfind("bwrap: ", 0) == 0) {
+    const std::string line = server_->errors().substr(0, server_->errors().find('\n'));
+    server_.reset();
+    throw std::runtime_error("the sandbox could not start the student's code's server: " + line);
+  }
   const bool out_of_time = ending.out_of_time(setup_.limits, seconds);
   std::string what = "your code " + ending.describe(setup_.limits, seconds);
   if (!while_doing.empty()) what += " during " + while_doing;
@@ -136,6 +158,7 @@ nlohmann::json Probe::ask(nlohmann::json request, std::chrono::steady_clock::tim
     malformed_reply(whose, "longer than " + std::to_string(most_bytes) + " bytes, more than this request can need");
   }
   if (!line) died(doing);
+  answered_ = true;
   // Parsed with a count of its values: within the bytes, a reply of 0s would still make a document
   // 16 times its size.
   nlohmann::json reply;

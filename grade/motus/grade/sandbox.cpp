@@ -6,6 +6,7 @@
 #include <signal.h>
 #include <sys/prctl.h>
 #include <sys/file.h>
+#include <sched.h>
 #include <sys/resource.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
@@ -108,7 +109,114 @@ std::string unreachable_along(uid_t uid, const fs::path& path) {
   return "";
 }
 
+// A process's /proc/PID/stat (or a thread's, …/task/TID/stat) after its name: its fields from
+// the third (state) on, split at spaces; empty when it is gone.
+std::vector<std::string> stat_fields(const std::string& path) {
+  FILE* file = std::fopen(path.c_str(), "re");
+  if (!file) return {};
+  char text[2048];
+  const size_t n = std::fread(text, 1, sizeof text - 1, file);
+  std::fclose(file);
+  text[n] = '\0';
+  const char* after = std::strrchr(text, ')');  // (the name, in parentheses, may hold spaces)
+  std::vector<std::string> fields;
+  if (!after) return fields;
+  std::string field;
+  for (const char* c = after + 1; *c; ++c) {
+    if (*c == ' ' || *c == '\n') {
+      if (!field.empty()) fields.push_back(field), field.clear();
+    } else {
+      field += *c;
+    }
+  }
+  if (!field.empty()) fields.push_back(field);
+  return fields;
+}
+
+double field_number(const std::vector<std::string>& fields, size_t number) {  // (number: stat's, from 1)
+  return number >= 3 && number - 3 < fields.size() ? std::strtod(fields[number - 3].c_str(), nullptr) : 0;
+}
+
+// What `root` and every process under it did with their time. (Its descendants by their parents in
+// /proc/*/stat: /proc/PID/task/*/children is not on every kernel.)
+TimeUse measure_tree(pid_t root, double wall) {
+  TimeUse use;
+  use.wall = wall;
+  std::vector<std::pair<pid_t, pid_t>> parents;  // (pid, its parent)
+  std::error_code error;
+  for (const auto& entry : fs::directory_iterator("/proc", error)) {
+    const std::string name = entry.path().filename().string();
+    if (name.empty() || !std::all_of(name.begin(), name.end(), ::isdigit)) continue;
+    const auto fields = stat_fields(entry.path().string() + "/stat");
+    if (!fields.empty()) parents.emplace_back(std::stoi(name), static_cast<pid_t>(field_number(fields, 4)));
+  }
+  std::vector<pid_t> tree = {root};
+  for (size_t i = 0; i < tree.size(); ++i)
+    for (const auto& [pid, parent] : parents)
+      if (parent == tree[i]) tree.push_back(pid);
+  const double ticks = static_cast<double>(::sysconf(_SC_CLK_TCK));
+  errno = 0;
+  const int own_nice = ::getpriority(PRIO_PROCESS, 0);
+  const bool own_idle = ::sched_getscheduler(0) == SCHED_IDLE;  // (inherited by the sandbox: not the code's doing)
+  bool delay_seen = false, delay_missing = false;
+  for (const pid_t pid : tree) {
+    const std::string folder = "/proc/" + std::to_string(pid);
+    const auto fields = stat_fields(folder + "/stat");
+    if (fields.empty()) continue;
+    // utime, stime, cutime, cstime: its threads' and its reaped children's.
+    use.cpu += (field_number(fields, 14) + field_number(fields, 15) + field_number(fields, 16) + field_number(fields, 17)) / ticks;
+    for (const auto& task : fs::directory_iterator(folder + "/task", error)) {
+      const auto thread = stat_fields(task.path().string() + "/stat");
+      if (thread.empty()) continue;
+      use.runnable_now = use.runnable_now || thread[0] == "R";
+      const int policy = static_cast<int>(field_number(thread, 41));
+      if (field_number(thread, 19) > own_nice || (policy == SCHED_IDLE && !own_idle)) use.lowered_priority = true;
+      // schedstat: time on a CPU, time runnable waiting for one (run_delay), in ns; timeslices.
+      FILE* file = std::fopen((task.path().string() + "/schedstat").c_str(), "re");
+      unsigned long long on_cpu = 0, delay = 0;
+      if (file && std::fscanf(file, "%llu %llu", &on_cpu, &delay) == 2) {
+        use.run_delay += static_cast<double>(delay) * 1e-9;
+        delay_seen = true;
+      } else {
+        delay_missing = true;
+      }
+      if (file) std::fclose(file);
+    }
+  }
+  use.run_delay_known = delay_seen && !delay_missing;
+  return use;
+}
+
 }  // namespace
+
+int available_cores() {
+  cpu_set_t set;
+  CPU_ZERO(&set);
+  if (::sched_getaffinity(0, sizeof set, &set) == 0) return std::max(1, CPU_COUNT(&set));
+  const long online = ::sysconf(_SC_NPROCESSORS_ONLN);
+  return online > 0 ? static_cast<int>(online) : 1;
+}
+
+std::string starved_message(const std::string& what, const TimeUse& use, double cpu_limit) {
+  const int cores = available_cores();
+  std::string got = "in " + format_seconds(use.wall) + " s it had " + format_seconds(use.cpu) + " s of CPU";
+  if (use.run_delay_known) got += " and waited " + format_seconds(use.run_delay) + " s for a core";
+  return "the machine was too busy to give " + what + " its " + format_seconds(cpu_limit) + " s of CPU (" + got +
+         "): not the submission's fault; grade it again with fewer --jobs (this machine has " + std::to_string(cores) +
+         " core" + (cores == 1 ? "" : "s") + ") or when the machine is less busy";
+}
+
+double wall_backstop(double cpu_seconds) { return 2 * cpu_seconds + 5; }
+
+double cpu_limit_seconds(double cpu_seconds) { return std::ceil(cpu_seconds); }
+
+WallVerdict judge_wall_timeout(const TimeUse& use, double cpu_limit) {
+  if (use.cpu >= cpu_limit) return WallVerdict::used_its_cpu;
+  if (use.lowered_priority) return WallVerdict::lowered_its_priority;
+  const double idle = std::max(0.0, use.wall - use.cpu);  // the time it did not compute
+  const double waited_for_a_core = use.run_delay_known ? use.run_delay : use.runnable_now ? idle : 0;
+  return use.wall > 0 && use.cpu + waited_for_a_core >= kStarvedShare * use.wall ? WallVerdict::starved : WallVerdict::waiting;
+}
 
 // Why the sandbox's user (uid, no supplementary groups) cannot reach `host` for a mount, or "":
 // bubblewrap runs as that user, who must pass through every folder on the way and read the
@@ -161,8 +269,22 @@ bool Ending::out_of_time(const Limits& limits, double wall_seconds) const {
 }
 
 std::string Ending::describe(const Limits& limits, double wall_seconds) const {
+  const std::string cpu = format_seconds(cpu_limit_seconds(limits.cpu_seconds));
+  if (timed_out && verdict) {
+    switch (*verdict) {
+      case WallVerdict::used_its_cpu: return "timed out after " + cpu + " s of CPU";
+      case WallVerdict::waiting:
+        return "timed out after " + format_seconds(wall_seconds) + " s waiting, not computing (blocked or asleep, it did not use its " +
+               cpu + " s of CPU)";
+      case WallVerdict::lowered_its_priority:
+        return "timed out after " + format_seconds(wall_seconds) + " s: it lowered its own priority (nice, SCHED_IDLE) and was "
+               "left waiting for a core";
+      case WallVerdict::starved:
+        return "was not given its " + cpu + " s of CPU in " + format_seconds(wall_seconds) + " s: the machine was too busy";
+    }
+  }
   if (timed_out) return "timed out after " + format_seconds(wall_seconds) + " s";
-  if (out_of_time(limits, wall_seconds)) return "used up its " + format_seconds(limits.cpu_seconds) + " s of CPU";
+  if (out_of_time(limits, wall_seconds)) return "timed out after " + cpu + " s of CPU";
   if (signal == SIGXFSZ) return "wrote more than its " + std::to_string(limits.file_mb) + " MB to a file";
   if (signal) {
     const char* name = signal_name(signal);
@@ -227,6 +349,7 @@ SandboxProcess::SandboxProcess(const SandboxSpec& spec, const Limits& limits)
   int in[2], out[2], err[2];
   if (::pipe2(in, O_CLOEXEC) || ::pipe2(out, O_CLOEXEC) || ::pipe2(err, O_CLOEXEC))
     throw std::runtime_error(std::string("cannot make pipes: ") + std::strerror(errno));
+  started_ = std::chrono::steady_clock::now();
   pid_ = ::fork();
   if (pid_ < 0) throw std::runtime_error(std::string("cannot start a process: ") + std::strerror(errno));
   if (pid_ == 0) {
@@ -452,9 +575,16 @@ Ending SandboxProcess::finish(std::chrono::steady_clock::time_point deadline) {
 
 Ending SandboxProcess::kill() {
   if (ending_) return *ending_;
+  // At its deadline: what it did with its time, while it is there to be looked at (the caller
+  // judges whether it was too slow, waiting, or starved by a busy machine).
+  TimeUse use;
+  if (timed_out_) use = measure_tree(pid_, std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count());
   ::kill(-pid_, SIGKILL);  // its process group (without bubblewrap, what it started)
   ::kill(pid_, SIGKILL);   // and bubblewrap, whose namespace ends with it
-  return reap(true);
+  Ending e = reap(true);
+  e.use = use;
+  ending_ = e;
+  return e;
 }
 
 std::optional<std::string> sandbox_unavailable() {

@@ -12,6 +12,7 @@
 #include <sys/types.h>
 
 #include <chrono>
+#include <stdexcept>
 #include <functional>
 #include <optional>
 #include <string>
@@ -20,7 +21,7 @@
 namespace motus::grade {
 
 struct Limits {
-  double cpu_seconds = 10;   // RLIMIT_CPU (the wall clock is the caller's deadline)
+  double cpu_seconds = 10;   // RLIMIT_CPU, in whole seconds (rounded up); the wall clock is the caller's deadline (wall_backstop)
   long memory_mb = 512;      // RLIMIT_AS
   long file_mb = 64;         // RLIMIT_FSIZE
   int processes = 64;        // RLIMIT_NPROC, for this sandbox's own user
@@ -77,14 +78,62 @@ private:
   int lock_ = -1;
 };
 
+// The wall clock is a backstop, not the limit: the CPU limit (RLIMIT_CPU) decides whether the
+// student's code (or the compiler) was too slow, and a process waiting for a core on a busy machine
+// must not be killed for it. The wall-clock deadline for `cpu_seconds` of CPU: 2 × it + 5 s.
+double wall_backstop(double cpu_seconds);
+// The whole seconds RLIMIT_CPU holds for `cpu_seconds` (it counts in seconds: rounded up).
+double cpu_limit_seconds(double cpu_seconds);
+
+// What a sandboxed process tree (bubblewrap and every process under it) did with its time,
+// measured just before it is killed at its deadline.
+struct TimeUse {
+  double wall = 0;       // seconds since it started
+  double cpu = 0;        // seconds of CPU it used (user and system, with its reaped children's)
+  double run_delay = 0;  // seconds its threads were runnable but waiting for a core (/proc/…/schedstat)
+  bool run_delay_known = false;  // false: no schedstat on this kernel
+  bool runnable_now = false;     // one of its threads was runnable (state R) when measured
+  bool lowered_priority = false; // it made itself nicer than the grader, or SCHED_IDLE
+};
+
+// Why the wall-clock backstop fired, from what the process did (a pure function of its numbers):
+// - used_its_cpu: it used `cpu_limit` seconds of CPU or more (too slow: the student's);
+// - lowered_its_priority: it asked to run only when nothing else wants to (nice, SCHED_IDLE) and
+//   was not run (the student's doing);
+// - starved: it was runnable for most of the wall time — CPU used plus time waiting for a core at
+//   least half of it — and used less than its CPU: the machine was too busy (the grader's failure);
+// - waiting: it was mostly blocked or asleep (the student's: waiting, not computing).
+// Without schedstat the wait for a core is unknown: then the time it did not compute counts as
+// waiting for a core if it was runnable when measured, else as blocked.
+enum class WallVerdict { used_its_cpu, lowered_its_priority, starved, waiting };
+WallVerdict judge_wall_timeout(const TimeUse& use, double cpu_limit);
+// The share of the wall time a process must have been runnable to count as starved.
+constexpr double kStarvedShare = 0.5;
+
+// The cores this process may run on (its CPU affinity; at least 1).
+int available_cores();
+// The grader's failure when `what` ("the compiler", "the test euler.table") was starved: one
+// sentence with what it got in its wall time, and what to do (fewer --jobs).
+std::string starved_message(const std::string& what, const TimeUse& use, double cpu_limit);
+
+// A test or a build that the machine did not give its CPU (WallVerdict::starved): the grader's
+// failure, never the student's. (Not a ProbeFailure: it ends the grading, exit 1.)
+class MachineTooBusy : public std::runtime_error {
+public:
+  explicit MachineTooBusy(const std::string& what) : std::runtime_error(what) {}
+};
+
 // How a sandboxed process ended.
 struct Ending {
   bool exited = false;
   int status = 0;       // exit status, when it exited
   int signal = 0;       // the signal that killed it, else 0
   bool timed_out = false;  // killed by us at its deadline
-  // One phrase: "exited with status 3", "killed by SIGSEGV", "timed out after 10 s",
-  // "used up its 10 s of CPU", "ran out of its 512 MB".
+  TimeUse use;             // when timed out: what it did with its time, measured before it was killed
+  // When timed out at the backstop: the caller's judgement of it (judge_wall_timeout), for describe.
+  std::optional<WallVerdict> verdict;
+  // One phrase: "exited with status 3", "killed by SIGSEGV", "timed out after 10 s of CPU",
+  // "timed out after 25 s waiting, not computing", "ran out of its 512 MB".
   std::string describe(const Limits& limits, double wall_seconds) const;
   // Whether it ended for want of time: its deadline, or its CPU limit.
   bool out_of_time(const Limits& limits, double wall_seconds) const;
@@ -150,6 +199,7 @@ private:
   std::function<bool()> stop_;
   bool interrupted_ = false;
   std::optional<Ending> ending_;
+  std::chrono::steady_clock::time_point started_;
 };
 
 // Why the user `uid` (no supplementary groups) cannot reach `host` — a folder on the way, as given
