@@ -904,6 +904,29 @@ TEST(Grade, ATestFilesSticksPinsWallsBodiesAndRowsAreCheckedWhenRead) {
   }
 }
 
+// As root, motus's own files out of the sandbox's user's reach — root's clone in /root, 0700 as
+// Debian makes it — are copied into the grading's own folder: every grading failed with "/root
+// (mode 0700): the sandbox's user (uid 61000) cannot pass through it", and so did these tests on a
+// fresh Debian 12 with the clone in /root (found by running the README's test command there).
+// Here motus and its modules are in a 0700 folder; without the sandbox, so that it runs where
+// bubblewrap cannot (the sandbox's user is the same).
+TEST(Grade, MotusInAFolderOnlyRootCanEnterStillGrades) {
+  if (::geteuid() != 0) GTEST_SKIP() << "as root only: only root's gradings run as a sandbox user of their own";
+  TempDir dir;
+  const fs::path bin = dir / "private/bin";
+  fs::create_directories(bin);
+  ASSERT_EQ(::chmod((dir / "private").c_str(), 0700), 0);
+  for (const auto& e : fs::directory_iterator(fs::path(kMotus).parent_path()))
+    if (e.path() == fs::path(kMotus) || (e.path().filename().string().starts_with("motus-") && e.path().extension() == ".so"))
+      fs::copy(e.path(), bin / e.path().filename());
+  const std::string solution = (fs::path(kAssignments) / "integrators/solution").string();
+  const auto r = run_program(dir, (bin / "motus").string(), {"grade", "integrators", solution, "--no-sandbox", "--results",
+                                                              (dir / "r.json").string()});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const json result = read_json(dir / "r.json");
+  EXPECT_EQ(result["score"], 24) << result.dump(2);  // (the solution's full marks on the public tests)
+}
+
 // Only the handed-in files themselves are taken: a link (to the solution, say) is not followed,
 // and a file over 1 MB is no source code; each says why. (Read through one descriptor that
 // follows no link: a link swapped in after a look would otherwise be followed.)

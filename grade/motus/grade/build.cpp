@@ -25,7 +25,7 @@ std::vector<std::string> folders_in_sight(const ApiHeaders& headers) {
   return {"/usr", headers.student, headers.plugin, headers.external};
 }
 
-BuildResult build_plugin(const Assignment& a, const std::string& staged, const std::string& out,
+BuildResult build_plugin(const Assignment& a, const std::string& provided, const std::string& staged, const std::string& out,
                          const ApiHeaders& headers, bool isolate, uid_t uid, const std::function<bool()>& stop) {
   const auto began = std::chrono::steady_clock::now();
   SandboxSpec spec;
@@ -35,7 +35,7 @@ BuildResult build_plugin(const Assignment& a, const std::string& staged, const s
   // submission at /submission, and /out for the plug-in. Without the sandbox, the same
   // files where they are.
   const std::string include = isolate ? "/motus/include" : "";
-  const std::string assignment_dir = isolate ? "/assignment" : a.folder;
+  const std::string assignment_dir = isolate ? "/assignment" : provided;
   const std::string submission_dir = isolate ? "/submission" : staged;
   const std::string out_dir = isolate ? "/out" : out;
   // -z defs: a function the handout asks for that the submission does not define (misspelt, or
@@ -49,7 +49,7 @@ BuildResult build_plugin(const Assignment& a, const std::string& staged, const s
                    {headers.external, "/motus/include/motus/external", false},
                    {staged, "/submission", false},
                    {out, "/out", true}};
-    for (const auto& f : a.provided) spec.mounts.push_back({(fs::path(a.folder) / f).string(), "/assignment/" + f, false});
+    for (const auto& f : a.provided) spec.mounts.push_back({(fs::path(provided) / f).string(), "/assignment/" + f, false});
     argv.push_back("-I" + include);
   } else {
     argv.push_back("-I" + fs::path(headers.student).parent_path().parent_path().string());

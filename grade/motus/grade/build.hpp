@@ -30,10 +30,12 @@ struct BuildResult {
   double seconds = 0;
 };
 
-// `staged` holds copies of the handed-in files; `out` is an empty folder the sandbox may write.
-// Throws GradingInterrupted when `stop` (SandboxSpec::stop) ends the compiler's run.
-BuildResult build_plugin(const Assignment& assignment, const std::string& staged, const std::string& out,
-                         const ApiHeaders& headers, bool isolate, uid_t uid, const std::function<bool()>& stop = {});
+// `staged` holds copies of the handed-in files; `out` is an empty folder the sandbox may write;
+// `provided` the folder of the assignment's provided files (its own, or a copy the sandbox's user
+// can reach). Throws GradingInterrupted when `stop` (SandboxSpec::stop) ends the compiler's run.
+BuildResult build_plugin(const Assignment& assignment, const std::string& provided, const std::string& staged,
+                         const std::string& out, const ApiHeaders& headers, bool isolate, uid_t uid,
+                         const std::function<bool()>& stop = {});
 
 // The first `lines` lines of `text` (and at most `bytes` bytes), with a line saying how much
 // was left out.

@@ -184,11 +184,46 @@ GradeResult grade_submission(const Assignment& a, const std::string& submission,
   ::chmod(out.c_str(), 0700);
   // As root the student's code runs as the sandbox's user, sandbox or not (--no-sandbox): what it
   // will read (and the sandbox mount) must be within its reach, or every student fails for the
-  // grader's fault. Every such path is here: the build's, the servers', the modules.
+  // grader's fault. What motus brings — its API headers, the assignment's provided files, motus
+  // itself and its modules — is copied into this grading's own folder when that user cannot reach
+  // it where it is: root's clone in /root (0700, as Debian makes it) failed every grading with
+  // "/root (mode 0700): the sandbox's user cannot pass through it". Every path is then checked:
+  // the build's, the servers', the modules.
+  ApiHeaders headers = o.headers;
+  std::string provided = a.folder, motus = o.motus;
+  std::vector<std::string> modules = o.modules;
   if (::geteuid() == 0) {
-    std::vector<std::string> used = {staged.string(), out.string(), o.headers.student, o.headers.plugin, o.headers.external, o.motus};
-    for (const auto& f : a.provided) used.push_back((fs::path(a.folder) / f).string());
-    used.insert(used.end(), o.modules.begin(), o.modules.end());
+    const fs::path inputs = work.path() / "motus";
+    auto reachable = [&](const std::string& host, const fs::path& copy) -> std::string {
+      if (host.empty() || unreachable_for(user.uid(), host).empty()) return host;
+      fs::create_directories(copy.parent_path());
+      fs::copy(host, copy, fs::copy_options::recursive);  // (links followed: a copy of what they lead to)
+      for (fs::path p = copy.parent_path(); p != work.path(); p = p.parent_path()) ::chmod(p.c_str(), 0755);
+      auto open_to_all = [](const fs::path& p) {  // readable by all; runnable by all if it was by its owner
+        const bool runnable = fs::is_directory(p) || (fs::status(p).permissions() & fs::perms::owner_exec) != fs::perms::none;
+        ::chmod(p.c_str(), runnable ? 0755 : 0644);
+      };
+      open_to_all(copy);
+      if (fs::is_directory(copy))
+        for (const auto& e : fs::recursive_directory_iterator(copy)) open_to_all(e.path());
+      return copy.string();
+    };
+    // (The headers keep their two levels, INCLUDE/motus/NAME: the build without the sandbox
+    // includes them from INCLUDE.)
+    headers.student = reachable(o.headers.student, inputs / "api/motus/student");
+    headers.plugin = reachable(o.headers.plugin, inputs / "api/motus/plugin");
+    headers.external = reachable(o.headers.external, inputs / "engine-api/motus/external");
+    bool provided_reachable = true;
+    for (const auto& f : a.provided) provided_reachable = provided_reachable && unreachable_for(user.uid(), (fs::path(a.folder) / f).string()).empty();
+    if (!provided_reachable) {
+      provided = (inputs / "assignment").string();
+      for (const auto& f : a.provided) reachable((fs::path(a.folder) / f).string(), inputs / "assignment" / f);
+    }
+    motus = reachable(o.motus, inputs / "bin" / fs::path(o.motus).filename());
+    for (auto& m : modules) m = reachable(m, inputs / "bin" / fs::path(m).filename());
+    std::vector<std::string> used = {staged.string(), out.string(), headers.student, headers.plugin, headers.external, motus};
+    for (const auto& f : a.provided) used.push_back((fs::path(provided) / f).string());
+    used.insert(used.end(), modules.begin(), modules.end());
     for (const auto& path : used)
       if (!path.empty())
         if (const std::string why = unreachable_for(user.uid(), path); !why.empty())
@@ -230,7 +265,7 @@ GradeResult grade_submission(const Assignment& a, const std::string& submission,
   TestResult build = gate("build", "0.2", "The submission compiles into a plug-in");
   BuildResult built;
   if (files.passed) {
-    built = build_plugin(a, staged.string(), out.string(), o.headers, o.isolate, user.uid(), o.stop);
+    built = build_plugin(a, provided, staged.string(), out.string(), headers, o.isolate, user.uid(), o.stop);
     // A disk that filled up under the compiler is this machine's failure, not the submission's: it
     // was graded "does not compile", 0 points, exit 0 — on Gradescope, every student at once. (The
     // disk is looked at too: a submission's #error could print the same words.)
@@ -250,7 +285,7 @@ GradeResult grade_submission(const Assignment& a, const std::string& submission,
 
   // 3. Every test of the rubric, each against its own deadline and in a server of its own.
   Limits limits = o.limits;
-  ProbeSetup setup{o.motus, built.plugin, o.modules, o.stop, limits, o.isolate, user.uid()};
+  ProbeSetup setup{motus, built.plugin, modules, o.stop, limits, o.isolate, user.uid()};
   Probe probe(setup);
   int number = 0;
   for (const auto& t : a.tests) {
