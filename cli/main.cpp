@@ -13,6 +13,7 @@
 #include <system_error>
 #include <cstring>
 #include <iostream>
+#include <new>
 
 #include <CLI/CLI.hpp>
 
@@ -141,6 +142,20 @@ int motus_main(int argc, char** argv) {
     for (const auto& p : plugins().plugins()) files += (files.empty() ? "" : ", ") + p.file;
     tell("motus: error: {}\n", one_line((files.empty() ? "plug-in" : files) + ": " + e.what()));
     return kExitBadInput;
+  } catch (const std::bad_alloc&) {
+    // Memory ran out (a limit such as `ulimit -v`, or the machine's): one line saying so and what
+    // to make smaller; what was being written went with the unwinding (the partial folders).
+    if (interrupted()) {
+      tell("motus: interrupted; nothing half-written was left behind\n");
+      return kExitInterrupted;
+    }
+    tell("motus: the run failed: out of memory (the system refused an allocation): {}\n",
+         compare->parsed() ? "run fewer bodies (a smaller --set lattice.count=N, say), fewer --engines at once, a "
+                             "shorter --duration or fewer --samples, or allow motus more memory"
+         : render->parsed() ? "run fewer bodies, a shorter --duration, a lower --fps or a smaller --size, or allow "
+                              "motus more memory"
+                            : "run fewer bodies or a shorter --duration, or allow motus more memory");
+    return kExitFailure;
   } catch (const std::exception& e) {
     if (interrupted()) {  // a program motus waited for died of the same Ctrl-C
       tell("motus: interrupted; nothing half-written was left behind\n");
