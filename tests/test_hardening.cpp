@@ -1072,6 +1072,20 @@ TEST(Hardening, BulletOutOfMemoryIsOneLineNotACrash) {
   expect_out_of_memory(dir, status, out);
 }
 
+// Memory that ran out while the report's pictures were drawn was "pictures skipped: font file
+// …/DejaVuSans.ttf could not be read by FreeType (is it a TrueType/OpenType font?)" (FreeType's
+// Out_Of_Memory read as a bad font), or "pictures skipped: std::bad_alloc", and exit 0 with a report
+// lacking its pictures. Now it fails the run (docs/cli.md: a picture that cannot be made leaves no report).
+// (100,000 balls within 300,000 kB: the engine's run fits, the font's face does not; within the audit's
+// 600,000 kB the pictures are now drawn, llvmpipe rasterizing in motus's thread under a memory limit.)
+TEST(Hardening, OutOfMemoryWhileDrawingFailsTheRun) {
+  TempDir dir;
+  const fs::path out = dir / "cm2";
+  const int status = run_motus_with_memory_limit(
+      dir, {"compare", "ball_gas", "--set", "lattice.count=100000", "--set", "lattice.radius=0.1", "--duration", "0.1",
+            "--engines", "motus", "--out", out.string()}, 300'000 * 1024);
+  expect_out_of_memory(dir, status, out);
+}
 #endif
 
 // 17. Sizes that would be allowed but unusable are refused with the limit named (docs: at most

@@ -18,7 +18,12 @@
 
 namespace motus::draw {
 
-constexpr int kApiVersion = 5;
+constexpr int kApiVersion = 6;
+// What a call returns, exactly, when memory ran out (std::bad_alloc in the module, FreeType's
+// Out_Of_Memory): the caller fails the run as out of memory (exit 1), never "pictures skipped"
+// nor a bad font or a bad option.
+constexpr const char* kOutOfMemory = "out of memory";
+inline bool out_of_memory(const std::string& error) { return error == kOutOfMemory; }
 // The function the module exports (extern "C", so dlsym finds it by this name).
 constexpr const char* kEntryPoint = "motus_draw_api";
 
