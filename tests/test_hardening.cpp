@@ -1018,6 +1018,25 @@ TEST(Hardening, AnInterruptedCompareExits130AndLeavesNoFolder) {
   EXPECT_NE(r.err.find("interrupted"), std::string::npos);
 }
 
+// Ctrl-C while a gnuplot runs that caught the same SIGINT and hung (2 of ~25 tries found by an
+// audit: a futex wait in gnuplot's handler). motus waited for it out the 30 s grace, then stopped
+// "at once", leaving its partial report. Now the program it waits for gets SIGTERM at the interrupt
+// (SIGKILL 1 s later): exit 130 promptly, one line, nothing left. The stand-in ignores SIGINT.
+TEST(Hardening, AnInterruptDoesNotWaitForAPlotterThatIgnoresIt) {
+  TempDir dir;
+  const fs::path out = dir / "report";
+  const auto began = std::chrono::steady_clock::now();
+  const Result r = interrupt_motus_while_plotting(dir, {"compare", "head_on", "--out", out.string()}, true);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count();
+  EXPECT_EQ(r.status, 130) << r.err;
+  EXPECT_LT(seconds, 10) << r.err;
+  EXPECT_EQ(count_lines(r.err), 1) << r.err;
+  EXPECT_NE(r.err.find("interrupted; nothing half-written was left behind"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(out));
+  for (const auto& e : fs::directory_iterator(dir.path()))
+    EXPECT_EQ(e.path().filename().string().find(".report.partial"), std::string::npos) << e.path();
+}
+
 // Runs `motus ARGS...` in `dir` with at most `bytes` of address space (RLIMIT_AS, as `ulimit -v`
 // sets it), set in the child before exec; standard error to dir/err.txt. Its exit status (128 + the
 // signal that ended it).

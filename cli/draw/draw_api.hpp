@@ -89,6 +89,9 @@ struct Api {
   // SIGKILL to the programs the module is waiting for (ffmpeg): async-signal-safe, for motus
   // stopping at once (the module has its own copy of motus::process, and so its own list of them).
   void (*kill_running_programs)() noexcept;
+  // SIGTERM to them, and SIGKILL after a short grace (process::stop_running_programs): for the first
+  // interrupt, so that motus does not wait for an ffmpeg that caught the same Ctrl-C. Async-signal-safe.
+  void (*stop_running_programs)() noexcept;
 };
 
 }  // namespace motus::draw

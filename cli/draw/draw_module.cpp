@@ -175,6 +175,7 @@ std::string draw_comparison(const ComparisonJob& job, ComparisonPictures& pictur
 extern "C" __attribute__((visibility("default"))) const motus::draw::Api* motus_draw_api() {
   static const motus::draw::Api api{motus::draw::kApiVersion,       motus::draw::check,
                                     motus::draw::render_frames,       motus::draw::encode_video,
-                                    motus::draw::draw_comparison,     motus::process::kill_running_programs};
+                                    motus::draw::draw_comparison,     motus::process::kill_running_programs,
+                                    motus::process::stop_running_programs};
   return &api;
 }
