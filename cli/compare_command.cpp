@@ -5,6 +5,7 @@
 #include <cmath>
 #include <ctime>
 #include <filesystem>
+#include <new>
 #include <sstream>
 
 #include "motus/compare/backends/backend.hpp"
@@ -257,6 +258,9 @@ int compare_command(const CompareOptions& o) {
     } catch (const InputError& e) {  // no drawing module: the report is still worth having
       error = e.what();
     }
+    // Memory that ran out while drawing is a failed run (exit 1, saying so), not pictures skipped:
+    // the report would lack what every report has, for a reason the user can do something about.
+    if (draw::out_of_memory(error)) throw std::bad_alloc();
     // A picture that could not be written (a full disk) is a failed run: the report would link a
     // truncated PNG. Named where the report was to be (the partial folder goes with the failure).
     if (!error.empty() && pictures.write_failed) {

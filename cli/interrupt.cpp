@@ -28,6 +28,9 @@ volatile sig_atomic_t g_noticed = 0;
 std::atomic<void (*)() noexcept> g_also[4] = {};
 static_assert(std::atomic<void (*)() noexcept>::is_always_lock_free);  // (read in stop_now, from a handler)
 
+// What else on_interrupt calls (on_interrupt_also).
+std::atomic<void (*)() noexcept> g_on_interrupt[4] = {};
+
 // Only async-signal-safe calls here: write, kill and _exit.
 [[noreturn]] void stop_now(const char* why) {
   process::kill_running_programs();  // (an ffmpeg motus started went on writing after it)
@@ -66,6 +69,12 @@ void on_interrupt(int) {
   }
   g_first_interrupt = now;
   g_interrupted = 1;
+  // The programs motus waits for (gnuplot, ffmpeg, zip) are ended, not waited for: a gnuplot that
+  // caught the same Ctrl-C and hung kept motus waiting out the 30 s below, and its partial report
+  // was left. SIGTERM now, SIGKILL after a short grace (run_program).
+  process::stop_running_programs();
+  for (auto& also : g_on_interrupt)
+    if (const auto f = also.load()) f();
   ::alarm(kNoticeSeconds);  // no safe point yet: on_alarm says so, then waits out the grace
   errno = saved;
 }
@@ -104,6 +113,13 @@ void catch_interrupts() {
 
 void on_stop_at_once(void (*also)() noexcept) {
   for (auto& slot : g_also) {
+    void (*empty)() noexcept = nullptr;
+    if (!also || slot.load() == also || slot.compare_exchange_strong(empty, also)) return;
+  }
+}
+
+void on_interrupt_also(void (*also)() noexcept) {
+  for (auto& slot : g_on_interrupt) {
     void (*empty)() noexcept = nullptr;
     if (!also || slot.load() == also || slot.compare_exchange_strong(empty, also)) return;
   }

@@ -13,6 +13,7 @@
 #include <system_error>
 #include <cstring>
 #include <iostream>
+#include <new>
 
 #include <CLI/CLI.hpp>
 
@@ -144,9 +145,18 @@ int motus_main(int argc, char** argv) {
     tell("motus: error: {}\n", one_line((files.empty() ? "plug-in" : files) + ": " + e.what()));
     return kExitBadInput;
   } catch (const std::bad_alloc&) {
-    // (The bare "std::bad_alloc" said nothing a user could act on.)
-    tell("motus: the run failed: out of memory (a smaller scene, a shorter run or fewer kept states — "
-         "--duration, --fps, fewer bodies — needs less; `ulimit -v` may also be limiting motus)\n");
+    // Memory ran out (a limit such as `ulimit -v`, or the machine's): one line saying so and what
+    // to make smaller; what was being written went with the unwinding (the partial folders).
+    if (interrupted()) {
+      tell("motus: interrupted; nothing half-written was left behind\n");
+      return kExitInterrupted;
+    }
+    tell("motus: the run failed: out of memory (the system refused an allocation): {}\n",
+         compare->parsed() ? "run fewer bodies (a smaller --set lattice.count=N, say), fewer --engines at once, a "
+                             "shorter --duration or fewer --samples, or allow motus more memory"
+         : render->parsed() ? "run fewer bodies, a shorter --duration, a lower --fps or a smaller --size, or allow "
+                              "motus more memory"
+                            : "run fewer bodies or a shorter --duration, or allow motus more memory");
     return kExitFailure;
   } catch (const std::exception& e) {
     if (interrupted()) {  // a program motus waited for died of the same Ctrl-C

@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <new>
 #include <fstream>
 #include <regex>
 
@@ -246,7 +247,10 @@ int render_command(const RenderOptions& o) {
   if (!o.video.empty() && process::find_program("ffmpeg").empty())
     throw InputError("ffmpeg not found on PATH: --video needs it (install the Debian package ffmpeg)");
   // A canvas and a font, before any folder is made.
-  if (const std::string error = drawing.check(width, height, o.supersample); !error.empty()) throw InputError(error);
+  if (const std::string error = drawing.check(width, height, o.supersample); !error.empty()) {
+    if (draw::out_of_memory(error)) throw std::bad_alloc();  // (exit 1, out of memory: not a bad option)
+    throw InputError(error);
+  }
 
   std::optional<Simulation> built;
   try {
@@ -330,6 +334,7 @@ int render_command(const RenderOptions& o) {
   job.frame_done = [&](long k) { progress.update(static_cast<double>(k)); };
   if (const std::string error = drawing.render_frames(job); !error.empty()) {
     stop_if_interrupted();  // (a Ctrl-C that stopped the drawing is exit 130, not a failure)
+    if (draw::out_of_memory(error)) throw std::bad_alloc();
     throw std::runtime_error(error);  // everything the user could get wrong was refused before the run
   }
   progress.finish();
@@ -339,6 +344,7 @@ int render_command(const RenderOptions& o) {
                                                    (fs::path(rendering.folder()) / video_name).string(), o.video);
     progress.finish();
     stop_if_interrupted();
+    if (draw::out_of_memory(error)) throw std::bad_alloc();
     if (!error.empty()) throw std::runtime_error(error);
   }
   stop_if_interrupted();

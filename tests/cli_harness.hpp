@@ -202,10 +202,14 @@ inline Result run_motus(const TempDir& dir, const std::vector<std::string>& args
 // mark, "plotting-started", in the folder it is started in and then waits; as soon as a folder
 // of `dir` has the mark, the whole group gets SIGINT. The result as run_program gives it (its
 // output in dir/stdout.txt and dir/stderr.txt), or status -1 when no plotting began in 20 s.
-inline Result interrupt_motus_while_plotting(const TempDir& dir, const std::vector<std::string>& args) {
+// `ignoring_interrupts`: the stand-in ignores SIGINT, as a gnuplot that caught the same Ctrl-C and
+// hung did (it is ended only by motus, or by `sleep 30` ending).
+inline Result interrupt_motus_while_plotting(const TempDir& dir, const std::vector<std::string>& args,
+                                             bool ignoring_interrupts = false) {
   const fs::path bin = dir / "bin", out = dir / "stdout.txt", err = dir / "stderr.txt";
   fs::create_directories(bin);
-  write_file(bin / "gnuplot", "#!/bin/sh\ntouch \"$PWD/plotting-started\"\nexec sleep 30\n");
+  write_file(bin / "gnuplot", std::string("#!/bin/sh\n") + (ignoring_interrupts ? "trap '' INT\n" : "") +
+                                  "touch \"$PWD/plotting-started\"\nexec sleep 30\n");
   fs::permissions(bin / "gnuplot", fs::perms::owner_all);
   posix_spawnattr_t attributes;
   posix_spawnattr_init(&attributes);

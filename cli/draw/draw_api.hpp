@@ -18,7 +18,12 @@
 
 namespace motus::draw {
 
-constexpr int kApiVersion = 5;
+constexpr int kApiVersion = 6;
+// What a call returns, exactly, when memory ran out (std::bad_alloc in the module, FreeType's
+// Out_Of_Memory): the caller fails the run as out of memory (exit 1), never "pictures skipped"
+// nor a bad font or a bad option.
+constexpr const char* kOutOfMemory = "out of memory";
+inline bool out_of_memory(const std::string& error) { return error == kOutOfMemory; }
 // The function the module exports (extern "C", so dlsym finds it by this name).
 constexpr const char* kEntryPoint = "motus_draw_api";
 
@@ -84,6 +89,9 @@ struct Api {
   // SIGKILL to the programs the module is waiting for (ffmpeg): async-signal-safe, for motus
   // stopping at once (the module has its own copy of motus::process, and so its own list of them).
   void (*kill_running_programs)() noexcept;
+  // SIGTERM to them, and SIGKILL after a short grace (process::stop_running_programs): for the first
+  // interrupt, so that motus does not wait for an ffmpeg that caught the same Ctrl-C. Async-signal-safe.
+  void (*stop_running_programs)() noexcept;
 };
 
 }  // namespace motus::draw

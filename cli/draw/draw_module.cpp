@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <exception>
 #include <filesystem>
+#include <new>
 
 #include "draw_api.hpp"
 #include "motus/process/run_program.hpp"
@@ -28,12 +29,14 @@ render::Recording recording_of(const Frames& frames) {
   return recording;
 }
 
-// Runs `work`, turning any exception into its one-line message.
+// Runs `work`, turning any exception into its one-line message (kOutOfMemory when memory ran out).
 template <class Work>
 std::string guarded(Work&& work) {
   try {
     work();
     return "";
+  } catch (const std::bad_alloc&) {
+    return kOutOfMemory;
   } catch (const std::exception& e) {
     return e.what();
   }
@@ -157,6 +160,8 @@ std::string draw_comparison(const ComparisonJob& job, ComparisonPictures& pictur
         render::encode_video(frames_folder + "/frame_%05d.png", job.fps, job.folder + "/comparison.mp4",
                              render::VideoFormat::mp4);
         pictures.video = "comparison.mp4";
+      } catch (const std::bad_alloc&) {
+        throw;  // (out of memory fails the run, as anywhere else)
       } catch (const std::exception& e) {
         pictures.warning = std::string("video skipped: ") + e.what();
       }
@@ -170,6 +175,7 @@ std::string draw_comparison(const ComparisonJob& job, ComparisonPictures& pictur
 extern "C" __attribute__((visibility("default"))) const motus::draw::Api* motus_draw_api() {
   static const motus::draw::Api api{motus::draw::kApiVersion,       motus::draw::check,
                                     motus::draw::render_frames,       motus::draw::encode_video,
-                                    motus::draw::draw_comparison,     motus::process::kill_running_programs};
+                                    motus::draw::draw_comparison,     motus::process::kill_running_programs,
+                                    motus::process::stop_running_programs};
   return &api;
 }

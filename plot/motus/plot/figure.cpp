@@ -273,6 +273,9 @@ std::string draw(const std::vector<Figure>& figures, const std::string& folder) 
   if (gnuplot.empty()) return "plots skipped: gnuplot not found on PATH (apt-get install gnuplot-nox)";
   const process::Outcome run = process::run_program({gnuplot, "figures.gp"}, folder, folder + "/figures.log");
   // (Named within the report: `folder` is often a partial one, renamed once the report is whole.)
+  // Ended by an interrupt (process::stop_running_programs): the run stops here, and its caller's
+  // partial folder goes with it (not a report whose plots "failed").
+  if (!run.ok() && process::stopping()) throw std::runtime_error("interrupted while gnuplot drew the plots");
   if (!run.ok()) {
     // What gnuplot had drawn when it failed is no picture to show: every figure's files go, and
     // the page and the terminal say the plots failed.

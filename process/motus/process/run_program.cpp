@@ -10,6 +10,7 @@
 
 #include <cerrno>
 #include <cstdlib>
+#include <ctime>
 #include <filesystem>
 #include <sstream>
 
@@ -55,6 +56,36 @@ struct Running {
 };
 }  // namespace
 
+namespace {
+std::atomic<bool> g_stopping{false};
+static_assert(std::atomic<bool>::is_always_lock_free);
+
+// Waits for `pid` once stop_running_programs was called: kTerminateGraceMs for it to end (it has had
+// SIGTERM), then SIGKILL.
+bool reap_stopped(pid_t pid, int& raw) {
+  ::kill(pid, SIGTERM);  // (again: it may have started after the handler's)
+  for (int waited = 0; waited < kTerminateGraceMs; waited += 10) {
+    const pid_t ended = ::waitpid(pid, &raw, WNOHANG);
+    if (ended == pid) return true;
+    if (ended < 0 && errno != EINTR) return false;
+    const timespec pause{0, 10'000'000};
+    ::nanosleep(&pause, nullptr);
+  }
+  ::kill(pid, SIGKILL);
+  while (::waitpid(pid, &raw, 0) < 0)
+    if (errno != EINTR) return false;
+  return true;
+}
+}  // namespace
+
+void stop_running_programs() noexcept {
+  g_stopping.store(true);
+  for (auto& running : g_running)
+    if (const pid_t pid = running.load(); pid > 0) ::kill(pid, SIGTERM);
+}
+
+bool stopping() noexcept { return g_stopping.load(); }
+
 void kill_running_programs() noexcept {
   for (auto& running : g_running)
     if (const pid_t pid = running.load(); pid > 0) ::kill(pid, SIGKILL);
@@ -92,8 +123,18 @@ Outcome run_program(const std::vector<std::string>& argv_in, const std::string& 
   outcome.started = true;
   const Running running(pid);
   int raw = 0;
-  while (::waitpid(pid, &raw, 0) < 0) {
-    if (errno != EINTR) return outcome;
+  // (Once stopping, a program is not waited for to finish: also one started after the interrupt,
+  // or whose registration the handler's SIGTERM missed — g_stopping is read after registering.)
+  if (g_stopping.load()) {
+    if (!reap_stopped(pid, raw)) return outcome;
+  } else {
+    while (::waitpid(pid, &raw, 0) < 0) {
+      if (errno != EINTR) return outcome;
+      if (g_stopping.load()) {  // (the interrupt's EINTR: the handler has sent it SIGTERM)
+        if (!reap_stopped(pid, raw)) return outcome;
+        break;
+      }
+    }
   }
   if (WIFEXITED(raw)) outcome.status = WEXITSTATUS(raw);
   if (WIFSIGNALED(raw)) outcome.signal = WTERMSIG(raw);

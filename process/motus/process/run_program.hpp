@@ -21,6 +21,15 @@ struct Outcome {
 // `log` ("" : inherit) receives its standard output and error.
 Outcome run_program(const std::vector<std::string>& argv, const std::string& folder = "", const std::string& log = "");
 
+// An interrupt came (Ctrl-C, SIGTERM, SIGHUP): sends SIGTERM to every program run_program is waiting
+// for, and from now on run_program no longer waits for one to finish its work — it gives it
+// kTerminateGraceMs to end, then sends SIGKILL (a gnuplot that caught the same Ctrl-C and hung kept
+// motus waiting for 30 s, and then its partial report was left). Async-signal-safe: for a handler.
+void stop_running_programs() noexcept;
+// Whether stop_running_programs was called.
+bool stopping() noexcept;
+constexpr int kTerminateGraceMs = 1000;
+
 // Sends SIGKILL to every program run_program is waiting for. Async-signal-safe: for a process that
 // stops at once from a signal handler (a second Ctrl-C), so that an ffmpeg it started does not go
 // on writing after it.

@@ -1,6 +1,7 @@
 #include "motus/render/canvas.hpp"
 
 #include <GL/osmesa.h>
+#include <sys/resource.h>
 
 #include <algorithm>
 #include <cstdlib>
@@ -31,6 +32,13 @@ Canvas::Canvas(int width, int height, int supersample) : width_(width), height_(
   // Mesa would keep a cache of compiled shaders in ~/.cache/mesa_shader_cache: a write outside
   // the folder the user gave, for shaders that take no time to compile. (Unless the user set it.)
   ::setenv("MESA_SHADER_CACHE_DISABLE", "true", 0);
+  // Under a limit on the address space (`ulimit -v`), llvmpipe's rasterizer threads — one per core,
+  // each with its stack and bins — did not check their allocations, and motus died of SIGSEGV in
+  // OSMesa while drawing the report's first frame (a ball gas within 450 MB). With that limit,
+  // llvmpipe rasterizes in this thread (unless the user chose LP_NUM_THREADS); what then runs out is
+  // motus's to report (out of memory, exit 1).
+  if (rlimit limit{}; ::getrlimit(RLIMIT_AS, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY)
+    ::setenv("LP_NUM_THREADS", "0", 0);
   OSMesaContext context = failure_requested() ? nullptr : OSMesaCreateContextExt(OSMESA_RGBA, 24, 0, 0, nullptr);
   if (!context)
     throw RenderError("OSMesa could not create an offscreen OpenGL context (install the Debian package libosmesa6)");

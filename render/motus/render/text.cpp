@@ -1,12 +1,14 @@
 #include "motus/render/text.hpp"
 
 #include <ft2build.h>
+#include <sys/mman.h>
 #include FT_FREETYPE_H
 
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <mutex>
+#include <new>
 
 namespace motus::render {
 
@@ -23,13 +25,38 @@ struct Font::Impl {
   }
 };
 
+namespace {
+
+// Whether memory ran out when FreeType failed: its own Out_Of_Memory, or — FreeType tries each of
+// its font drivers in turn, and one that could not allocate may leave "unknown file format" as the
+// answer (found under `ulimit -v`: DejaVuSans.ttf "could not be read") — when 64 MB cannot be had.
+bool memory_ran_out(FT_Error error) {
+  if (error == FT_Err_Out_Of_Memory) return true;
+  constexpr size_t kProbe = size_t{64} << 20;
+  void* probe = ::mmap(nullptr, kProbe, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS | MAP_NORESERVE, -1, 0);
+  if (probe == MAP_FAILED) return true;
+  ::munmap(probe, kProbe);
+  return false;
+}
+
+}  // namespace
+
 Font::Font(const std::string& path) : path_(path), impl_(std::make_unique<Impl>()) {
   if (!std::filesystem::exists(path))
     throw RenderError("font file " + path +
                       " not found: install the Debian package fonts-dejavu-core, or set MOTUS_FONT to a .ttf file");
-  if (FT_Init_FreeType(&impl_->library) != 0) throw RenderError("FreeType could not be initialised");
-  if (FT_New_Face(impl_->library, path.c_str(), 0, &impl_->face) != 0) {
+  // Memory running out (a limit such as `ulimit -v`) is not a bad font: std::bad_alloc, as every
+  // other allocation that fails (the run fails, saying so).
+  if (const FT_Error error = FT_Init_FreeType(&impl_->library); error != 0) {
+    impl_->library = nullptr;
+    if (memory_ran_out(error)) throw std::bad_alloc();
+    throw RenderError("FreeType could not be initialised");
+  }
+  if (const FT_Error error = FT_New_Face(impl_->library, path.c_str(), 0, &impl_->face); error != 0) {
     FT_Done_FreeType(impl_->library);
+    impl_->library = nullptr;
+    impl_->face = nullptr;
+    if (memory_ran_out(error)) throw std::bad_alloc();
     throw RenderError("font file " + path + " could not be read by FreeType (is it a TrueType/OpenType font?)");
   }
 }

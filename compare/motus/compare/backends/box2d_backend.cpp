@@ -7,11 +7,24 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <deque>
+#include <new>
 #include <string>
 
 #include "motus/compare/backends/peer_forces.hpp"
 #include "motus/compare/backends/starting_outside.hpp"
+
+// Box2D does not check its allocations either (b2BlockAllocator writes into the chunk b2Alloc gave
+// it): with malloc refusing (a memory limit, `ulimit -v`) it would write through a null pointer.
+// Debian's libbox2d calls b2Alloc_Default through its PLT, so this definition — exported, as
+// b2_settings.h declares it — takes its place (in the motus-peers.so that links this file, and in
+// a program linking it), and throws std::bad_alloc where malloc returns nothing: the run then ends
+// as any other that ran out of memory. (b2Free_Default is Box2D's own: free.)
+__attribute__((visibility("default"))) void* b2Alloc_Default(int32 size) {
+  if (void* p = std::malloc(size > 0 ? static_cast<size_t>(size) : 1)) return p;
+  throw std::bad_alloc();
+}
 
 namespace motus::compare {
 namespace {

@@ -1,11 +1,15 @@
 #include "motus/compare/backends/bullet_backend.hpp"
 
 #include <btBulletDynamicsCommon.h>
+#include <LinearMath/btAlignedAllocator.h>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdlib>
 #include <map>
+#include <mutex>
+#include <new>
 #include <optional>
 #include <string>
 #include <utility>
@@ -73,6 +77,23 @@ public:
 private:
   btScalar length_;
 };
+
+// Bullet does not check its allocations: with malloc refusing (a memory limit, `ulimit -v`) it wrote
+// through the null pointer (memset in btCollisionDispatcher::getNewManifold) and motus died of
+// SIGSEGV, leaving its partial report. Every Bullet allocation goes through btAlignedAllocSetCustom's
+// function (its aligned allocator too, by default, adds its padding to a call of it), which here throws
+// std::bad_alloc where malloc returns nothing: the run then ends as any other that ran out of memory.
+void* allocate_or_throw(size_t size) {
+  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
+  throw std::bad_alloc();
+}
+
+void release(void* p) { std::free(p); }
+
+void use_allocator_that_throws() {
+  static std::once_flag once;
+  std::call_once(once, [] { btAlignedAllocSetCustom(allocate_or_throw, release); });
+}
 
 double norm3(const std::array<double, 3>& a, int d) {
   double s = 0;
@@ -145,7 +166,7 @@ struct BulletBackend::World {
   }
 };
 
-BulletBackend::BulletBackend() = default;
+BulletBackend::BulletBackend() { use_allocator_that_throws(); }
 BulletBackend::~BulletBackend() = default;
 
 std::string BulletBackend::version() const { return "Bullet 3.24, double"; }
