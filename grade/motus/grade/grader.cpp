@@ -196,8 +196,16 @@ GradeResult grade_submission(const Assignment& a, const std::string& submission,
     const fs::path inputs = work.path() / "motus";
     auto reachable = [&](const std::string& host, const fs::path& copy) -> std::string {
       if (host.empty() || unreachable_for(user.uid(), host).empty()) return host;
-      fs::create_directories(copy.parent_path());
-      fs::copy(host, copy, fs::copy_options::recursive);  // (links followed: a copy of what they lead to)
+      std::error_code error;
+      fs::create_directories(copy.parent_path(), error);
+      if (!error) fs::copy(host, copy, fs::copy_options::recursive, error);  // (links followed: a copy of what they lead to)
+      if (error)
+        throw std::runtime_error(
+            host + ": the sandbox's user cannot reach it where it is, and a copy in " + work.path().string() +
+            " could not be made (" + error.message() + ")" +
+            (error == std::errc::no_space_on_device || disk_nearly_full(work.path())  // (libstdc++'s copy may say EIO)
+                 ? ": the grading stopped for want of disk space on this machine, not the submission's fault; free some space (or set TMPDIR) and grade again"
+                 : ""));
       for (fs::path p = copy.parent_path(); p != work.path(); p = p.parent_path()) ::chmod(p.c_str(), 0755);
       auto open_to_all = [](const fs::path& p) {  // readable by all; runnable by all if it was by its owner
         const bool runnable = fs::is_directory(p) || (fs::status(p).permissions() & fs::perms::owner_exec) != fs::perms::none;
