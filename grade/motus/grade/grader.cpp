@@ -194,15 +194,18 @@ GradeResult grade_submission(const Assignment& a, const std::string& submission,
   std::vector<std::string> modules = o.modules;
   if (::geteuid() == 0) {
     const fs::path inputs = work.path() / "motus";
-    auto reachable = [&](const std::string& host, const fs::path& copy) -> std::string {
-      if (host.empty() || unreachable_for(user.uid(), host).empty()) return host;
+    auto out_of_reach = [&](const std::vector<std::string>& hosts) {
+      return std::any_of(hosts.begin(), hosts.end(), [&](const std::string& h) { return !h.empty() && !unreachable_for(user.uid(), h).empty(); });
+    };
+    auto copy_in = [&](const std::string& host, const fs::path& copy) -> std::string {
+      if (host.empty()) return host;
       std::error_code error;
       fs::create_directories(copy.parent_path(), error);
       if (!error) fs::copy(host, copy, fs::copy_options::recursive, error);  // (links followed: a copy of what they lead to)
       if (error)
         throw std::runtime_error(
-            host + ": the sandbox's user cannot reach it where it is, and a copy in " + work.path().string() +
-            " could not be made (" + error.message() + ")" +
+            host + ": a copy in " + work.path().string() + " for the sandbox's user (who cannot reach it, or a file of its group, "
+            "where it is) could not be made (" + error.message() + ")" +
             (error == std::errc::no_space_on_device || disk_nearly_full(work.path())  // (libstdc++'s copy may say EIO)
                  ? ": the grading stopped for want of disk space on this machine, not the submission's fault; free some space (or set TMPDIR) and grade again"
                  : ""));
@@ -216,19 +219,26 @@ GradeResult grade_submission(const Assignment& a, const std::string& submission,
         for (const auto& e : fs::recursive_directory_iterator(copy)) open_to_all(e.path());
       return copy.string();
     };
-    // (The headers keep their two levels, INCLUDE/motus/NAME: the build without the sandbox
-    // includes them from INCLUDE.)
-    headers.student = reachable(o.headers.student, inputs / "api/motus/student");
-    headers.plugin = reachable(o.headers.plugin, inputs / "api/motus/plugin");
-    headers.external = reachable(o.headers.external, inputs / "engine-api/motus/external");
-    bool provided_reachable = true;
-    for (const auto& f : a.provided) provided_reachable = provided_reachable && unreachable_for(user.uid(), (fs::path(a.folder) / f).string()).empty();
-    if (!provided_reachable) {
-      provided = (inputs / "assignment").string();
-      for (const auto& f : a.provided) reachable((fs::path(a.folder) / f).string(), inputs / "assignment" / f);
+    // Each group is copied whole when any of it is out of reach: the build without the sandbox
+    // includes the headers from one folder (INCLUDE/motus/NAME, two levels kept) and the provided
+    // files from another, and finds in them only what was copied.
+    if (out_of_reach({o.headers.student, o.headers.plugin, o.headers.external})) {
+      headers.student = copy_in(o.headers.student, inputs / "api/motus/student");
+      headers.plugin = copy_in(o.headers.plugin, inputs / "api/motus/plugin");
+      headers.external = copy_in(o.headers.external, inputs / "engine-api/motus/external");
     }
-    motus = reachable(o.motus, inputs / "bin" / fs::path(o.motus).filename());
-    for (auto& m : modules) m = reachable(m, inputs / "bin" / fs::path(m).filename());
+    std::vector<std::string> provided_files;
+    for (const auto& f : a.provided) provided_files.push_back((fs::path(a.folder) / f).string());
+    if (out_of_reach(provided_files)) {
+      provided = (inputs / "assignment").string();
+      for (const auto& f : a.provided) copy_in((fs::path(a.folder) / f).string(), inputs / "assignment" / f);
+    }
+    std::vector<std::string> programs = modules;  // motus and its modules, mounted side by side
+    programs.push_back(o.motus);
+    if (out_of_reach(programs)) {
+      motus = copy_in(o.motus, inputs / "bin" / fs::path(o.motus).filename());
+      for (auto& m : modules) m = copy_in(m, inputs / "bin" / fs::path(m).filename());
+    }
     std::vector<std::string> used = {staged.string(), out.string(), headers.student, headers.plugin, headers.external, motus};
     for (const auto& f : a.provided) used.push_back((fs::path(provided) / f).string());
     used.insert(used.end(), modules.begin(), modules.end());
