@@ -264,7 +264,8 @@ int compare_command(const CompareOptions& o) {
     // A picture that could not be written (a full disk) is a failed run: the report would link a
     // truncated PNG. Named where the report was to be (the partial folder goes with the failure).
     if (!error.empty() && pictures.write_failed) {
-      if (error.rfind(work, 0) == 0) error = folder + error.substr(work.size());
+      for (size_t at = error.find(work); at != std::string::npos; at = error.find(work, at + folder.size()))
+        error.replace(at, work.size(), folder);
       throw std::runtime_error(error);
     }
     if (error.empty()) {

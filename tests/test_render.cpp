@@ -395,6 +395,25 @@ TEST(RenderCommand, AnErrorFfmpegReportsFailsTheRunEvenAtExitZero) {
   EXPECT_EQ(r.out.find("video"), std::string::npos) << r.out;
 }
 
+// The same in compare --render: the video it asked for could not be made, and the report said
+// "video skipped" on its page and exit 0, as if ffmpeg were only missing. Now it is a failed run,
+// as a picture that cannot be written is: one line naming the video, exit 1, no report folder.
+TEST(RenderCommand, ACompareWhoseVideoFfmpegCannotMakeFailsTheRun) {
+  TempDir dir;
+  fs::create_directories(dir / "bin");
+  write_file(dir / "bin/ffmpeg", "#!/bin/sh\necho 'Error writing trailer of out.mp4: No space left on device' >&2\nexit 0\n");
+  fs::permissions(dir / "bin/ffmpeg", fs::perms::owner_all);
+  const auto r = run_motus(dir, {"compare", "head_on", "--render", "--engines", "motus", "--duration", "0.3", "--fps",
+                                 "10", "--size", "64x48", "--repeats", "1", "--out", (dir / "report").string()},
+                           {"PATH=" + (dir / "bin").string() + ":/usr/bin:/bin"});
+  EXPECT_EQ(r.status, 1) << r.err;
+  EXPECT_EQ(count_lines(r.err), 1) << r.err;
+  EXPECT_NE(r.err.find("the video could not be made"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find((dir / "report/comparison.mp4").string()), std::string::npos) << r.err;  // (not the partial name)
+  EXPECT_NE(r.err.find("No space left on device"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir / "report"));
+}
+
 TEST(RenderCommand, GifThroughFfmpeg) {
   TempDir dir;
   const auto r = run_motus(dir, {"render", "newtons_cradle", "--out", (dir / "frames").string(), "--size",

@@ -72,8 +72,9 @@ struct ComparisonPictures {
   std::string first_and_last;  // file name in the folder: the first and the last instant (always drawn)
   std::string contact_sheet;   // file name in the folder: three instants (not when first_and_last_only), or ""
   std::string warning;        // one line for the user, or ""
-  // Set when the error returned is a picture that could not be written (a full disk): the report
-  // is not whole, and the run fails — not a "pictures skipped" warning over a truncated PNG.
+  // Set when the error returned is a picture that could not be written (a full disk), or a video
+  // ffmpeg failed to make: the report is not whole, and the run fails — not a "pictures skipped"
+  // warning over a truncated PNG, nor "video skipped" over a video --render asked for.
   bool write_failed = false;
 };
 

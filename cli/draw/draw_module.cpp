@@ -155,7 +155,10 @@ std::string draw_comparison(const ComparisonJob& job, ComparisonPictures& pictur
     if (process::find_program("ffmpeg").empty()) {
       pictures.warning = "video skipped: ffmpeg not found on PATH (install the Debian package ffmpeg)";
     } else {
-      // A video that fails costs the video only: the frames and the sheets are drawn and still shown.
+      // A video ffmpeg fails to make (a full disk, its error at exit 0) fails the run, as a picture
+      // that cannot be written does and as `motus render --video` does: --render asked for it, and
+      // a report without it, exit 0, would pass for whole. (Without ffmpeg at all, the video is
+      // skipped with a warning, above: the frames and the sheet are what most come for.)
       try {
         render::encode_video(frames_folder + "/frame_%05d.png", job.fps, job.folder + "/comparison.mp4",
                              render::VideoFormat::mp4);
@@ -163,7 +166,8 @@ std::string draw_comparison(const ComparisonJob& job, ComparisonPictures& pictur
       } catch (const std::bad_alloc&) {
         throw;  // (out of memory fails the run, as anywhere else)
       } catch (const std::exception& e) {
-        pictures.warning = std::string("video skipped: ") + e.what();
+        pictures.write_failed = true;
+        throw std::runtime_error(std::string("the video could not be made: ") + e.what());
       }
     }
   });
