@@ -307,16 +307,11 @@ void check_time_resolution(double start_time, double duration, double dt, const 
   throw InputError(step_what + ": " + coarse + " (a larger dt or a shorter duration)");
 }
 
-namespace {
-// "out/" names the folder "out": its parent is the parent of out, not out itself (which
-// parent_path() of "out/" would give, and the report would be made inside the folder it is
-// to become).
 fs::path without_trailing_separators(const std::string& path) {
   fs::path target(path);
   while (!target.has_filename() && target.has_relative_path()) target = target.parent_path();
   return target;
 }
-}  // namespace
 
 std::vector<std::string> module_candidates(const char* env_var, const std::string& name, const std::string& installed) {
   if (const char* env = std::getenv(env_var); env && *env) return {env};
@@ -340,6 +335,13 @@ std::vector<std::string> folders_not_there_yet(const std::string& folder) {
     if (above == above.parent_path()) break;
   }
   return missing;
+}
+
+std::string said_as_final(std::string message, const std::string& partial, const std::string& final) {
+  if (partial.empty()) return message;
+  for (size_t at = message.find(partial); at != std::string::npos; at = message.find(partial, at + final.size()))
+    message.replace(at, partial.size(), final);
+  return message;
 }
 
 void remove_if_empty(const std::vector<std::string>& folders) {

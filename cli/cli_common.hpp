@@ -3,6 +3,7 @@
 // error for input that cannot be used.
 #include <algorithm>
 #include <cstdio>
+#include <filesystem>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -195,6 +196,10 @@ std::vector<std::string> module_candidates(const char* env_var, const std::strin
 // both get a folder).
 std::string default_run_folder(const std::string& kind, const std::string& scene_name);
 
+// "out/" names the folder "out": its parent is the parent of out, not out itself (which
+// parent_path() of "out/" would give, and a report would be made inside the folder it is to become).
+std::filesystem::path without_trailing_separators(const std::string& path);
+
 // The folders above a path that are not there yet (`folder` and its parents up to the first that
 // exists), deepest first: the ones a create_directories(folder) will make, and that a run which fails
 // or is stopped removes again (remove_if_empty) — an interrupted run said "nothing half-written was
@@ -203,6 +208,10 @@ std::vector<std::string> folders_not_there_yet(const std::string& folder);
 // Removes each of `folders` (deepest first) while it is empty or already gone; stops at the first that
 // is not (nothing with anything in it is ever removed).
 void remove_if_empty(const std::vector<std::string>& folders);
+
+// `message` with every mention of a run's temporary folder (`partial`) said as the folder it was to
+// become (`final`): a failure removes the temporary one, and a message naming it named a path gone.
+std::string said_as_final(std::string message, const std::string& partial, const std::string& final);
 
 // A folder written under a temporary name and renamed to `final_path` only when complete()
 // is called; otherwise the destructor removes it and everything in it. Throws InputError

@@ -264,9 +264,7 @@ int compare_command(const CompareOptions& o) {
     // A picture that could not be written (a full disk) is a failed run: the report would link a
     // truncated PNG. Named where the report was to be (the partial folder goes with the failure).
     if (!error.empty() && pictures.write_failed) {
-      for (size_t at = error.find(work); at != std::string::npos; at = error.find(work, at + folder.size()))
-        error.replace(at, work.size(), folder);
-      throw std::runtime_error(error);
+      throw std::runtime_error(said_as_final(error, work, folder));
     }
     if (error.empty()) {
       context.first_and_last = pictures.first_and_last;

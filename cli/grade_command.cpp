@@ -308,10 +308,10 @@ int grade_batch(const GradeCommandOptions& o, const std::string& folder) {
     throw std::runtime_error(one_line(e.what()) + "; the " + std::to_string(done.load()) + " submissions' results are kept in " +
                              keep_what_was_graded() + "/ (no scores.csv)");
   }
-  folder_of_results.complete();
+  const std::string results_folder = folder_of_results.complete();  // (as named: "out/" is out)
   fmt::print("{}", csv);
   tell("motus: graded {} submissions of {} in {:.1f} s with {} job{}; results in {}/\n", submissions.size(),
-             assignment.name, wall, jobs, jobs == 1 ? "" : "s", out);
+             assignment.name, wall, jobs, jobs == 1 ? "" : "s", results_folder);
   for (const auto& f : failures) {
     std::string line = grade::terminal_safe(f);  // (a student's folder name and an error: one line)
     std::replace(line.begin(), line.end(), '\n', ' ');

@@ -94,7 +94,9 @@ void check_folder(const std::string& out, bool overwrite, const std::vector<std:
 // --out itself if it made it.
 class RenderInProgress {
 public:
-  RenderInProgress(std::string out, bool make_folder) : out_(std::move(out)) {
+  // (out "frames/" is the folder frames: made as its own parent's child, it was made, then found
+  // "already there", exit 2, and left behind)
+  RenderInProgress(const std::string& out, bool make_folder) : out_(without_trailing_separators(out).string()) {
     std::error_code error;
     if (make_folder) {
       // Made here or refused: another render started beside this one may have made it since it was
@@ -335,7 +337,8 @@ int render_command(const RenderOptions& o) {
   if (const std::string error = drawing.render_frames(job); !error.empty()) {
     stop_if_interrupted();  // (a Ctrl-C that stopped the drawing is exit 130, not a failure)
     if (draw::out_of_memory(error)) throw std::bad_alloc();
-    throw std::runtime_error(error);  // everything the user could get wrong was refused before the run
+    // (everything the user could get wrong was refused before the run)
+    throw std::runtime_error(said_as_final(error, rendering.folder(), fs::path(rendering.folder()).parent_path().string()));
   }
   progress.finish();
   if (!o.video.empty()) {
@@ -345,13 +348,13 @@ int render_command(const RenderOptions& o) {
     progress.finish();
     stop_if_interrupted();
     if (draw::out_of_memory(error)) throw std::bad_alloc();
-    if (!error.empty()) throw std::runtime_error(error);
+    if (!error.empty()) throw std::runtime_error(said_as_final(error, rendering.folder(), fs::path(rendering.folder()).parent_path().string()));
   }
   stop_if_interrupted();
   rendering.move_into_place(names);
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count();
   fmt::print("{} frame{} of {}x{} at {:g} per simulated {} ({:g} {} of {}) in {}/ ({:.1f} s)\n", frames, frames == 1 ? "" : "s", width, height,
-             o.fps, time_unit_of(scene) == "years" ? "year" : "second", duration, time_unit_of(scene), scene.name, o.out,
+             o.fps, time_unit_of(scene) == "years" ? "year" : "second", duration, time_unit_of(scene), scene.name, without_trailing_separators(o.out).string(),
              wall);
   if (!plugin_parts.empty()) fmt::print("passes       {}\n", plugin_parts);
   if (o.trails && scene.is_mechanical() && scene.mechanical->bodies.size() > 64)
