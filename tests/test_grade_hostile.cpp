@@ -138,6 +138,9 @@ TEST(Grade, HostileSubmissionsEndWithinTheirLimitsAndHarmNothing) {
        forging("[] { std::string l = \"{\\\"ok\\\":true,\\\"t\\\":[],\\\"y\\\":[[0]\"; "
                "for (int i = 1; i < 100; ++i) l += \",[0]\"; return l + \"]}\\n\"; }()"),
        "was malformed: ", "The run's reply was malformed: 0 times but 100 states"},
+      // A line that is no JSON at all read as the server's death: "your code exited with status 0".
+      {"reply-not-json", "#include <unistd.h>\n#include <string>\n", forging("std::string(\"hello\\n\")"),
+       "was malformed: ", "The run's reply was malformed: not JSON (it began \"hello\")"},
       {"reply-without-keys", "#include <unistd.h>\n#include <string>\n", forging("std::string(\"{\\\"ok\\\":true}\\n\")"),
        "was malformed: ", "The run's reply was malformed: it has no \"t\" or no \"y\""},
       {"reply-of-short-states", "#include <unistd.h>\n#include <string>\n",

@@ -175,7 +175,12 @@ nlohmann::json Probe::ask(nlohmann::json request, std::chrono::steady_clock::tim
   } catch (const TooMany&) {
     malformed_reply(whose, "more than " + std::to_string(most) + " JSON values, or nested deeper than 8, more than this request can need");
   } catch (const std::exception&) {
-    died(doing);
+    // A whole line that is not JSON: the code wrote over the server's answers (the server itself
+    // writes only JSON). Said as such: taken for the server's death, it read "your code exited with
+    // status 0", as it went on to end when its input closed. Its start shown, printable bytes only.
+    std::string start;
+    for (const char c : line->substr(0, 40)) start += c >= ' ' && c <= '~' ? c : '?';
+    malformed_reply(whose, "not JSON (it began \"" + start + (line->size() > 40 ? "…" : "") + "\")");
   }
   // Every key read as what it must be: a missing "ok", or an "error" that is no string, threw
   // nlohmann's out_of_range or type_error, which the grader took for a fault of its own.
