@@ -14,6 +14,7 @@
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
+#include <mutex>
 #include <optional>
 #include <fstream>
 
@@ -22,6 +23,7 @@
 #include <ctime>
 
 #include "motus/plot/write_failure.hpp"
+#include "motus/scene_file/printable_text.hpp"
 #include "motus/simulation.hpp"
 
 namespace fs = std::filesystem;
@@ -244,17 +246,7 @@ std::string safe_file_name(const std::string& name) {
   return safe.empty() ? "scene" : safe;
 }
 
-std::string one_line(const std::string& text, size_t limit) {
-  std::string line = text;
-  for (char& c : line)
-    if (c == '\n' || c == '\r') c = ' ';
-  if (line.size() <= limit) return line;
-  auto boundary = [&](size_t i) {  // not inside a UTF-8 sequence
-    while (i > 0 && i < line.size() && (static_cast<unsigned char>(line[i]) & 0xC0) == 0x80) --i;
-    return i;
-  };
-  return line.substr(0, boundary(limit / 2)) + "…" + line.substr(boundary(line.size() - limit / 2 + 3));
-}
+std::string one_line(const std::string& text, size_t limit) { return one_printable_line(text, limit); }
 
 long checked_step_count(double duration, double dt, const std::string& what) {
   const double steps = duration / dt;
@@ -344,8 +336,47 @@ std::string said_as_final(std::string message, const std::string& partial, const
   return message;
 }
 
+namespace {
+struct SaidAsFinal {
+  std::mutex lock;  // (grade --batch writes its results from several threads)
+  std::vector<std::pair<std::string, std::string>> names;  // partial, final
+};
+SaidAsFinal& said_as_final_names() {
+  static SaidAsFinal names;
+  return names;
+}
+}  // namespace
+
+void say_as_final(const std::string& partial, const std::string& final) {
+  SaidAsFinal& said = said_as_final_names();
+  const std::lock_guard<std::mutex> hold(said.lock);
+  for (auto& [from, to] : said.names)
+    if (from == partial) {
+      to = final;
+      return;
+    }
+  said.names.emplace_back(partial, final);
+}
+
+void say_as_it_is(const std::string& partial) {
+  SaidAsFinal& said = said_as_final_names();
+  const std::lock_guard<std::mutex> hold(said.lock);
+  std::erase_if(said.names, [&](const auto& name) { return name.first == partial; });
+}
+
+std::string named_as_final(std::string message) {
+  SaidAsFinal& said = said_as_final_names();
+  const std::lock_guard<std::mutex> hold(said.lock);
+  // (the latest first: a file's own temporary folder inside a run's, "r.partial-X/.f.partial-Y/f")
+  for (auto name = said.names.rbegin(); name != said.names.rend(); ++name)
+    message = said_as_final(std::move(message), name->first, name->second);
+  return message;
+}
+
 void remove_if_empty(const std::vector<std::string>& folders) {
   for (const auto& folder : folders) {
+    // ("x/./y" and "a/b/../c" list x/. and a/b/..: no folders of their own, and no reason to stop)
+    if (const fs::path name = fs::path(folder).filename(); name == "." || name == "..") continue;
     std::error_code error;
     fs::remove(folder, error);  // (one already gone counts as removed: render's --out, taken with its frames)
     if (error) return;          // not empty: it and the folders above it stay
@@ -371,6 +402,7 @@ PartialFolder::PartialFolder(const std::string& final_path, bool numbered)
   ::umask(umask);
   ::chmod(pattern.c_str(), 0777 & ~umask);
   partial_ = pattern;
+  say_as_final(partial_, final_);
 }
 
 PartialFolder::~PartialFolder() {
@@ -403,11 +435,13 @@ const std::string& PartialFolder::complete() {
   for (int n = 2; !rename_without_replacing(partial_, final_); ++n) {
     if (!numbered_ || n > 100000) {
       done_ = true;  // (kept where the message says it is)
+      say_as_it_is(partial_);
       throw std::runtime_error(final_ + ": appeared while the report was written; it is in " + partial_);
     }
     final_ = name + "-" + std::to_string(n);
   }
   done_ = true;
+  say_as_final(partial_, final_);  // (numbered: where it is now)
   return final_;
 }
 
@@ -417,6 +451,7 @@ PartialFile::PartialFile(const std::string& final_path) : final_(final_path) {
     throw InputError(final_ + ": cannot be written (" + std::string(std::strerror(errno)) + ")");
   folder_ = pattern;
   file_ = (fs::path(folder_) / fs::path(final_path).filename()).string();
+  say_as_final(file_, final_);
 }
 
 PartialFile::~PartialFile() {
@@ -432,6 +467,7 @@ void PartialFile::complete(bool overwrite) {
     if (error) throw std::runtime_error(final_ + ": could not be written (" + error.message() + ")");
   } else if (!rename_without_replacing(file_, final_)) {
     done_ = true;  // (kept: it is the only copy of the work)
+    say_as_it_is(file_);
     throw std::runtime_error(final_ + ": appeared while it was written, and is left as it is (no --overwrite); what was "
                                       "written is in " + file_);
   }
@@ -465,7 +501,8 @@ bool output_exists(const std::string& path) {
     return !e || e == std::errc::no_such_file_or_directory || e == std::errc::not_a_directory;
   };
   std::error_code error;
-  const auto status = fs::symlink_status(path, error);  // (fails through a loop of links on the way, too)
+  // ("f/" is f: a file or a dangling link there is f's, though "f/" itself names nothing)
+  const auto status = fs::symlink_status(without_trailing_separators(path), error);  // (fails through a loop of links on the way, too)
   if (!absent(error)) throw InputError(path + ": " + error.message());
   return fs::exists(status);
 }

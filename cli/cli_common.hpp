@@ -165,8 +165,9 @@ std::string time_unit_of(const SceneDescription& scene);
 // left. A scene named "../victim" writes "victim", inside the folder it was given.
 std::string safe_file_name(const std::string& name);
 
-// An error message as one line of at most `limit` bytes (shortened in the middle): messages
-// echo what the user gave, which may be long or have line breaks.
+// An error message as one line of at most `limit` bytes (shortened in the middle, bytes that are
+// not UTF-8 as '?'): messages echo what the user gave, which may be long, have line breaks or be a
+// file name of raw bytes.
 std::string one_line(const std::string& text, size_t limit = 400);
 
 // The most fixed steps a run may take: beyond this a step count is not a number to count in
@@ -212,6 +213,13 @@ void remove_if_empty(const std::vector<std::string>& folders);
 // `message` with every mention of a run's temporary folder (`partial`) said as the folder it was to
 // become (`final`): a failure removes the temporary one, and a message naming it named a path gone.
 std::string said_as_final(std::string message, const std::string& partial, const std::string& final);
+// The same for every temporary folder or file this process has made (PartialFolder, PartialFile,
+// render's folder), each said as what it was to become: main's one-line errors go through it, so
+// that "a/.r.partial-Xb3/summary.json: could not be written" reads "a/r/summary.json: …". One that
+// is kept (a name taken meanwhile: the message says where the work is) is said as it is.
+void say_as_final(const std::string& partial, const std::string& final);
+void say_as_it_is(const std::string& partial);
+std::string named_as_final(std::string message);
 
 // A folder written under a temporary name and renamed to `final_path` only when complete()
 // is called; otherwise the destructor removes it and everything in it. Throws InputError

@@ -263,9 +263,7 @@ int compare_command(const CompareOptions& o) {
     if (draw::out_of_memory(error)) throw std::bad_alloc();
     // A picture that could not be written (a full disk) is a failed run: the report would link a
     // truncated PNG. Named where the report was to be (the partial folder goes with the failure).
-    if (!error.empty() && pictures.write_failed) {
-      throw std::runtime_error(said_as_final(error, work, folder));
-    }
+    if (!error.empty() && pictures.write_failed) throw std::runtime_error(error);
     if (error.empty()) {
       context.first_and_last = pictures.first_and_last;
       context.video = pictures.video;

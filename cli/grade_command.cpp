@@ -313,7 +313,7 @@ int grade_batch(const GradeCommandOptions& o, const std::string& folder) {
   tell("motus: graded {} submissions of {} in {:.1f} s with {} job{}; results in {}/\n", submissions.size(),
              assignment.name, wall, jobs, jobs == 1 ? "" : "s", results_folder);
   for (const auto& f : failures) {
-    std::string line = grade::terminal_safe(f);  // (a student's folder name and an error: one line)
+    std::string line = grade::terminal_safe(named_as_final(f));  // (a student's folder name and an error: one line)
     std::replace(line.begin(), line.end(), '\n', ' ');
     tell("motus: the grader failed on {}\n", line);
   }

@@ -136,7 +136,7 @@ int motus_main(int argc, char** argv) {
     tell("motus: error: {}\n", one_line(scene + ": " + (e.field().empty() ? "" : e.field() + ": ") + e.what()));
     return kExitBadInput;
   } catch (const InputError& e) {
-    tell("motus: error: {}\n", one_line(e.what()));
+    tell("motus: error: {}\n", one_line(named_as_final(e.what())));
     return kExitBadInput;
   } catch (const motus::ExternalError& e) {
     // A plug-in's function failed (it threw): the plug-in is bad input, not motus.
@@ -170,7 +170,7 @@ int motus_main(int argc, char** argv) {
                  system ? system->code().message() : one_line(e.what()));
       return kExitFailure;
     }
-    tell("motus: the run failed: {}\n", one_line(e.what()));
+    tell("motus: the run failed: {}\n", one_line(named_as_final(e.what())));  // (a temporary folder is gone)
     return kExitFailure;
   }
 }

@@ -124,6 +124,7 @@ public:
       throw InputError(out_ + ": cannot be written in (" + std::strerror(e) + ")");
     }
     partial_ = name;
+    say_as_final(partial_, out_);  // (a frame that cannot be written is named where it was to be)
   }
   RenderInProgress(const RenderInProgress&) = delete;
   RenderInProgress& operator=(const RenderInProgress&) = delete;
@@ -338,7 +339,7 @@ int render_command(const RenderOptions& o) {
     stop_if_interrupted();  // (a Ctrl-C that stopped the drawing is exit 130, not a failure)
     if (draw::out_of_memory(error)) throw std::bad_alloc();
     // (everything the user could get wrong was refused before the run)
-    throw std::runtime_error(said_as_final(error, rendering.folder(), fs::path(rendering.folder()).parent_path().string()));
+    throw std::runtime_error(error);
   }
   progress.finish();
   if (!o.video.empty()) {
@@ -348,7 +349,7 @@ int render_command(const RenderOptions& o) {
     progress.finish();
     stop_if_interrupted();
     if (draw::out_of_memory(error)) throw std::bad_alloc();
-    if (!error.empty()) throw std::runtime_error(said_as_final(error, rendering.folder(), fs::path(rendering.folder()).parent_path().string()));
+    if (!error.empty()) throw std::runtime_error(error);
   }
   stop_if_interrupted();
   rendering.move_into_place(names);
@@ -360,7 +361,7 @@ int render_command(const RenderOptions& o) {
   if (o.trails && scene.is_mechanical() && scene.mechanical->bodies.size() > 64)
     fmt::print("trails       none drawn: --trails draws scenes of at most 64 bodies, and this one has {}\n",
                scene.mechanical->bodies.size());
-  if (!o.video.empty()) fmt::print("video        {}\n", (fs::path(o.out) / video_name).string());
+  if (!o.video.empty()) fmt::print("video        {}\n", (without_trailing_separators(o.out) / video_name).string());
   // An unstable run is drawn as it went (the frames show it), but it is not a run that went well.
   for (size_t k = 0; k < recording.states.size(); ++k)
     if (!std::all_of(recording.states[k].begin(), recording.states[k].end(), [](double y) { return std::isfinite(y); })) {

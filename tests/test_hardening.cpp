@@ -1365,3 +1365,69 @@ TEST(Hardening, AFolderNamedLikeAShippedSceneDoesNotHideIt) {
 }
 
 }  // namespace
+
+namespace {
+
+// 22. The spellings of a folder --out (from an audit of paths). "f/" where f is a file or a
+//     dangling link was taken for a new folder: the whole run went, then "f: appeared while the
+//     report was written; it is in ./.f.partial-…", exit 1, that folder left. It is f's: exit 2.
+TEST(Hardening, AFolderOutWithATrailingSlashIsRefusedWhenAFileIsThere) {
+  TempDir dir;
+  write_file(dir / "f", "mine");
+  fs::create_symlink("nowhere", dir / "dl");
+  for (const std::string out : {"f/", "dl/"}) {
+    for (const std::vector<std::string>& command :
+         {std::vector<std::string>{"compare", "head_on", "--engines", "motus", "--duration", "0.1", "--repeats", "1"},
+          std::vector<std::string>{"stress", "spring"}}) {
+      std::vector<std::string> args = command;
+      args.insert(args.end(), {"--out", (dir / out).string()});
+      const Result r = run_motus(dir, args);
+      EXPECT_EQ(r.status, 2) << command[0] << " --out " << out << ": " << r.err;
+      EXPECT_EQ(count_lines(r.err), 1) << r.err;
+      EXPECT_NE(r.err.find("already exists"), std::string::npos) << r.err;
+    }
+  }
+  EXPECT_EQ(read_file(dir / "f"), "mine");
+  for (const auto& e : fs::directory_iterator(dir.path()))
+    EXPECT_EQ(e.path().filename().string().find(".partial-"), std::string::npos) << "left: " << e.path();
+}
+
+// A run that fills the disk names the file where it was to be, not inside its removed temporary
+// folder ("./.s.partial-9lkoIO/stability_trials.csv"), nor with the slash doubled ("c//…"); and
+// the folders of a path spelt with "." or ".." that it made go again (x/./y left x: the removal
+// stopped at "x/.", which is no folder of its own). On a 100 kB file system of its own, in a
+// private mount namespace, as root.
+TEST(Hardening, ARunThatFillsTheDiskNamesItsFilesWhereTheyWereToBe) {
+  TempDir dir;
+  fs::create_directories(dir / "small");
+  const std::string script =
+      "mount -t tmpfs -o size=100k tmpfs \"$1\" && cd \"$1\" || exit 99; "
+      "\"$2\" stress spring --out x/./y; echo \"status $?\" >&2; "
+      "\"$2\" compare head_on --engines motus --duration 0.1 --repeats 1 --out a/b/../c/; echo \"status $?\" >&2; "
+      "ls -A";
+  const auto r = run_program(dir, "/usr/bin/unshare",
+                             {"--mount", "--propagation", "private", "/bin/sh", "-c", script, "sh",
+                              (dir / "small").string(), kMotus});
+  if (r.status == 99 || r.err.find("mount") != std::string::npos) GTEST_SKIP() << "no private mounts here: " << r.err;
+  EXPECT_EQ(count_lines(r.err), 4) << r.err;
+  EXPECT_NE(r.err.find("motus: the run failed: x/./y/"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("status 1\n"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("status 0"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find(".partial-"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("//"), std::string::npos) << r.err;
+  EXPECT_EQ(r.out, "") << "left on the full disk: " << r.out;
+}
+
+// Bytes that are not UTF-8 in a path show as '?' in the one line (docs/cli.md), as in a scene
+// file's errors; the raw byte went to the terminal.
+TEST(Hardening, APathThatIsNotUtf8ShowsAsQuestionMarksInTheMessage) {
+  TempDir dir;
+  const std::string name = std::string("r") + static_cast<char>(0xFF) + "d";
+  fs::create_directories(dir / name);
+  const Result r = run_motus(dir, {"render", "spring", "--size", "64x48", "--duration", "0.1", "--out", (dir / name).string()});
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_NE(r.err.find((dir / "r?d").string() + ": already exists"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find(static_cast<char>(0xFF)), std::string::npos) << r.err;
+}
+
+}  // namespace

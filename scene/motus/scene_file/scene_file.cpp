@@ -16,6 +16,7 @@
 #include "motus/integrator_name.hpp"
 #include "motus/scene_error.hpp"
 #include "motus/systems/system_catalog.hpp"
+#include "motus/scene_file/printable_text.hpp"
 #include "motus/scene_file/scene_overrides.hpp"
 #include "motus/scene_file/strict_json.hpp"
 #include "motus/scene_file/equations_system.hpp"
@@ -601,30 +602,8 @@ private:
 
 namespace {
 
-// At most `limit` bytes of `text`, shortened in its middle (and never inside a UTF-8 sequence),
-// one line: an error echoes what the user wrote, and a 50 MB string is no message.
-std::string clip(const std::string& text, size_t limit) {
-  // Bytes that are not UTF-8 (a --set value, say) are shown as '?', line breaks as spaces.
-  std::string line;
-  for (size_t i = 0; i < text.size();) {
-    const auto c = static_cast<unsigned char>(text[i]);
-    const size_t length = c < 0x80 ? 1 : (c >> 5) == 0x6 ? 2 : (c >> 4) == 0xE ? 3 : (c >> 3) == 0x1E ? 4 : 0;
-    if (length > 1 && i + length <= text.size() && valid_utf8(text.substr(i, length))) {
-      line.append(text, i, length);
-      i += length;
-    } else {
-      line += length == 1 ? (c == '\n' || c == '\r' ? ' ' : text[i]) : '?';
-      ++i;
-    }
-  }
-  if (line.size() <= limit) return line;
-  auto boundary = [&](size_t i) {
-    while (i > 0 && i < line.size() && (static_cast<unsigned char>(line[i]) & 0xC0) == 0x80) --i;
-    return i;
-  };
-  const size_t head = boundary(limit / 2), tail = boundary(line.size() - limit / 2 + 3);
-  return line.substr(0, head) + "…" + line.substr(tail);
-}
+// (an error echoes what the user wrote: printable_text.hpp)
+std::string clip(const std::string& text, size_t limit) { return one_printable_line(text, limit); }
 
 }  // namespace
 
