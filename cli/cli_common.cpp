@@ -12,6 +12,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <climits>
 #include <cstring>
 #include <filesystem>
 #include <mutex>
@@ -391,7 +392,7 @@ PartialFolder::PartialFolder(const std::string& final_path, bool numbered)
   made_parents_ = folders_not_there_yet(parent.string());  // (made now; removed again if the work never gets there)
   fs::create_directories(parent, error);
   if (error) throw InputError(final_ + ": cannot be created (" + error.message() + ")");
-  std::string pattern = (parent / ("." + target.filename().string() + ".partial-XXXXXX")).string();
+  std::string pattern = (parent / partial_name_for(target.filename().string())).string();
   if (!::mkdtemp(pattern.data())) {
     const std::string why = std::strerror(errno);
     remove_if_empty(made_parents_);
@@ -495,6 +496,14 @@ void write_whole_file(const std::string& path, const std::string& text, bool ove
   if (partial) partial->complete(overwrite);
 }
 
+fs::file_status looked_at(const std::string& path, const std::string& option) {
+  std::error_code error;
+  const auto status = fs::status(path, error);
+  if (error && error != std::errc::no_such_file_or_directory && error != std::errc::not_a_directory)
+    throw InputError(path + ": " + (option.empty() ? "" : option + ": ") + error.message());
+  return status;
+}
+
 bool output_exists(const std::string& path) {
   // (Nothing there, or a part of the way that is a file, is for the folder's making to report.)
   auto absent = [](const std::error_code& e) {
@@ -527,8 +536,14 @@ void check_can_write(const std::string& path, bool overwrite) {
     throw InputError(path + ": already exists; choose another name or pass --overwrite");
   if (fs::is_directory(status)) throw InputError(path + ": is a folder, not a file");
   const fs::path parent = fs::path(path).parent_path();
-  if (!parent.empty() && !fs::is_directory(parent, error))
-    throw InputError(path + ": folder " + parent.string() + (fs::exists(parent, error) ? " is a file" : " does not exist"));
+  if (!parent.empty()) {
+    // (a loop of links or a name too long on the way: what the system says, not "does not exist")
+    const auto folder = fs::status(parent, error);
+    if (error && error != std::errc::no_such_file_or_directory && error != std::errc::not_a_directory)
+      throw InputError(path + ": " + error.message());
+    if (!fs::is_directory(folder))
+      throw InputError(path + ": folder " + parent.string() + (fs::exists(folder) ? " is a file" : " does not exist"));
+  }
   // A file beside it, made and removed at once: a folder that takes no new file (/proc, a
   // read-only disk) or a name too long is bad input now, not a failure after the work. (A FIFO
   // or a device is written as it is, and needs no new file.)
@@ -536,19 +551,26 @@ void check_can_write(const std::string& path, bool overwrite) {
   const fs::path folder = parent.empty() ? fs::path(".") : parent;
   // (The file itself is written in a folder with a longer name, a PartialFile's, then moved.)
   const long name_max = ::pathconf(folder.c_str(), _PC_NAME_MAX);
-  const long longer = static_cast<long>(fs::path(partial_folder_pattern_for(path)).filename().string().size() -
-                                        fs::path(path).filename().string().size());
-  if (name_max > 0 && static_cast<long>(fs::path(path).filename().string().size()) + longer > name_max)
-    throw InputError(path + ": the file name is too long (at most " + std::to_string(name_max - longer) + " bytes here)");
+  const std::string name = fs::path(path).filename().string();
+  if (name_max > 0 && (static_cast<long>(name.size()) > name_max ||
+                       static_cast<long>(partial_name_for(name).size()) > name_max))
+    throw InputError(path + ": the file name is too long (at most " + std::to_string(std::min<long>(name_max, NAME_MAX)) +
+                     " bytes here)");
   const std::string probe = (folder / (".motus-probe-" + std::to_string(::getpid()))).string();
   const int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL, 0600);
   if (fd < 0 && errno != EEXIST) throw InputError(path + ": cannot be written there (" + std::strerror(errno) + ")");
   if (fd >= 0) ::close(fd), ::unlink(probe.c_str());
 }
 
+// (A legal name of 240–255 bytes was refused as "File name too long", or failed after its work.)
+std::string partial_name_for(const std::string& name) {
+  const std::string named = "." + name + ".partial-XXXXXX";
+  return named.size() <= NAME_MAX ? named : std::string(".partial-XXXXXX");
+}
+
 std::string partial_folder_pattern_for(const std::string& path) {
   const fs::path target(path);
-  return (target.parent_path() / ("." + target.filename().string() + ".partial-XXXXXX")).string();
+  return (target.parent_path() / partial_name_for(target.filename().string())).string();
 }
 
 void check_can_replace(const std::string& path, bool overwrite) {

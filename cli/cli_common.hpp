@@ -273,12 +273,21 @@ void check_can_write(const std::string& path, bool overwrite);
 void write_whole_file(const std::string& path, const std::string& text, bool overwrite);
 // Whether `path` is written as it is rather than through a PartialFile: a FIFO or a device.
 bool written_in_place(const std::string& path);
-// The folder a PartialFile for `path` is written in, with mkdtemp's XXXXXX: .NAME.partial-XXXXXX.
+// The temporary name of a file or folder named `name`, with mkdtemp's XXXXXX: .NAME.partial-XXXXXX,
+// or .partial-XXXXXX when that would be longer than a file name may be.
+std::string partial_name_for(const std::string& name);
+// The folder a PartialFile for `path` is written in: partial_name_for its name, beside it.
 std::string partial_folder_pattern_for(const std::string& path);
 // The same for a file written whole under another name and then renamed over `path`: the
 // rename would put a regular file where a device or a FIFO was, so only a regular file (or a
 // link, which the rename replaces and does not follow) may be overwritten.
 void check_can_replace(const std::string& path, bool overwrite);
+
+// What is at `path` (links followed), for an input the user named: a path that cannot be looked at
+// (a loop of links, a name too long, a folder not to be entered) is bad input, one line naming it
+// and `option` ("--batch"; "" for an argument), where std::filesystem's throwing calls made it
+// "the run failed: filesystem error: status: …", exit 1. Nothing there is a status of not_found.
+std::filesystem::file_status looked_at(const std::string& path, const std::string& option = "");
 
 // Whether something is at `path`, a folder an output would go to. A path that cannot be looked
 // at (a name too long, a loop of links, a folder not to be entered) is bad input naming it.

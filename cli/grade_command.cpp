@@ -24,16 +24,19 @@ namespace {
 
 // ASSIGNMENT: a folder with an assignment.json, or the name of one under the assignments folder.
 std::string assignment_folder(const std::string& argument) {
-  if (fs::is_regular_file(fs::path(argument) / "assignment.json")) return argument;
+  // ("…/integrators/" is the folder integrators: its name names the results and the runs/ folder)
+  if (fs::is_regular_file(looked_at((fs::path(argument) / "assignment.json").string())))
+    return without_trailing_separators(argument).string();
   if (argument.find('/') == std::string::npos) {
     const fs::path shipped = fs::path(assignments_directory()) / argument;
-    if (fs::is_regular_file(shipped / "assignment.json")) return shipped.string();
+    if (fs::is_regular_file(looked_at((shipped / "assignment.json").string()))) return shipped.string();
   }
   std::string known;
   std::error_code error;
   std::vector<std::string> names;
   for (const auto& e : fs::directory_iterator(assignments_directory(), error))
-    if (fs::is_regular_file(e.path() / "assignment.json")) names.push_back(e.path().filename().string());
+    if (std::error_code ignored; fs::is_regular_file(e.path() / "assignment.json", ignored))
+      names.push_back(e.path().filename().string());
   std::sort(names.begin(), names.end());
   for (const auto& n : names) known += (known.empty() ? "" : ", ") + n;
   if (known.empty())
@@ -80,7 +83,11 @@ void check_hidden_out_of_sight(const std::string& hidden) {
 }
 
 grade::Assignment load(const GradeCommandOptions& o, const std::string& folder) {
-  if (o.hidden && !fs::is_directory(*o.hidden)) throw InputError(*o.hidden + ": --hidden: no such folder");
+  if (o.hidden) {
+    const auto hidden = looked_at(*o.hidden, "--hidden");
+    if (fs::exists(hidden) && !fs::is_directory(hidden)) throw InputError(*o.hidden + ": --hidden: is a file, not a folder");
+    if (!fs::is_directory(hidden)) throw InputError(*o.hidden + ": --hidden: no such folder");
+  }
   // (Not for --package: the zip takes a copy, which Gradescope keeps in the autograder's own folder.)
   if (o.hidden && o.package.empty()) check_hidden_out_of_sight(*o.hidden);
   grade::SceneSource scenes;
@@ -113,7 +120,7 @@ std::string new_folder(const std::string& prefix) {
   char stamp[32];
   std::strftime(stamp, sizeof stamp, "%Y%m%d-%H%M%S", std::localtime(&now));
   std::string path = fmt::format("runs/{}-{}", prefix, stamp);
-  for (int i = 2; fs::exists(path); ++i) path = fmt::format("runs/{}-{}-{}", prefix, stamp, i);
+  for (int i = 2; output_exists(path); ++i) path = fmt::format("runs/{}-{}-{}", prefix, stamp, i);
   return path;
 }
 
@@ -123,9 +130,10 @@ std::string new_folder(const std::string& prefix) {
 // where bubblewrap cannot make a sandbox, is the likely cause there).
 grade::Assignment ready_to_grade(const GradeCommandOptions& o, const std::string& folder) {
   try {
-    if (fs::is_regular_file(o.submission))
+    const auto submission = looked_at(o.submission);
+    if (fs::is_regular_file(submission))
       throw InputError(o.submission + ": is a file; a submission is the folder of the handout's files (unpack it first)");
-    if (!fs::is_directory(o.submission)) throw InputError(o.submission + ": no such submission folder");
+    if (!fs::is_directory(submission)) throw InputError(o.submission + ": no such submission folder");
     grade::Assignment assignment = load(o, folder);
     check_limits(o);
     return assignment;
@@ -210,7 +218,9 @@ std::string csv_field(const std::string& name) {
 }
 
 int grade_batch(const GradeCommandOptions& o, const std::string& folder) {
-  if (!fs::is_directory(o.batch)) throw InputError(o.batch + ": --batch: no such folder");
+  const auto batch = looked_at(o.batch, "--batch");
+  if (fs::exists(batch) && !fs::is_directory(batch)) throw InputError(o.batch + ": --batch: is a file, not a folder of submissions");
+  if (!fs::is_directory(batch)) throw InputError(o.batch + ": --batch: no such folder");
   const std::string out = o.out.empty() ? new_folder("grade-" + safe_file_name(fs::path(folder).filename().string())) : o.out;
   if (output_exists(out)) throw InputError(out + ": --out: already exists; grading never writes over earlier results");
   const grade::Assignment assignment = load(o, folder);
@@ -222,8 +232,10 @@ int grade_batch(const GradeCommandOptions& o, const std::string& folder) {
     tell("motus: warning: --jobs {} is more than this machine's {} core{}: tests will wait for a core, and take longer\n",
          *o.jobs, cores, cores == 1 ? "" : "s");
   std::vector<fs::path> submissions;
-  for (const auto& e : fs::directory_iterator(o.batch))
-    if (e.is_directory()) submissions.push_back(e.path());
+  std::error_code listing;
+  for (fs::directory_iterator e(o.batch, listing), end; !listing && e != end; e.increment(listing))
+    if (fs::is_directory(looked_at(e->path().string(), "--batch"))) submissions.push_back(e->path());
+  if (listing) throw InputError(o.batch + ": --batch: " + listing.message());
   std::sort(submissions.begin(), submissions.end());
   if (submissions.empty()) throw InputError(o.batch + ": --batch: has no submission folders");
   // Written as .OUT.partial-XXXXXX and renamed when whole: Ctrl-C or a failure leaves no folder

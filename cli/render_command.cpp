@@ -70,8 +70,13 @@ std::vector<std::string> render_names(long frames, const std::string& video_name
 // the render failed), as is a link or anything but a regular file (writing it would write where
 // the link leads, outside the folder). Nothing is removed here: see RenderInProgress.
 void check_folder(const std::string& out, bool overwrite, const std::vector<std::string>& names) {
-  if (!fs::exists(out)) return;
-  if (!fs::is_directory(out)) throw InputError(out + ": exists and is not a folder; choose another --out");
+  // (Looked at without throwing: a loop of links was "the run failed: filesystem error", exit 1. "f/"
+  // is f: a file there "could not be created (File exists)".)
+  const std::string folder = without_trailing_separators(out).string();
+  if (!output_exists(folder)) return;
+  const auto status = looked_at(folder, "--out");
+  if (!fs::exists(status)) throw InputError(out + ": is a link to nothing; choose another --out");
+  if (!fs::is_directory(status)) throw InputError(out + ": exists and is not a folder; choose another --out");
   if (!overwrite) throw InputError(out + ": already exists; choose another --out or pass --overwrite");
   const std::vector<std::string> ours = listed_names(out);
   for (const auto& name : names) {

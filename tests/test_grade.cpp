@@ -1852,3 +1852,36 @@ TEST(Grade, HiddenTestsWhereTheSandboxShowsThemAreRefused) {
 }
 
 }  // namespace
+
+namespace {
+
+// An ASSIGNMENT spelt with a trailing slash (shell completion adds one) named nothing: the batch's
+// folder was runs/grade-scene-…, not runs/grade-integrators-…; and a submission folder with a legal
+// name of 240 bytes failed after its grading ("File name too long": its results file's temporary
+// .NAME.json.partial-XXXXXX was longer than a name may be), 0 points, "grader failed", exit 1.
+TEST(Grade, AnAssignmentWithATrailingSlashAndALongSubmissionNameAreGradedAsNamed) {
+  NEEDS_SANDBOX();
+  TempDir dir;
+  const std::string long_name(240, 'n');
+  copy_solution(dir, "integrators", "batch/" + long_name);
+  // (in dir, for its runs/: env -C, no shell)
+  const auto r = run_program(dir, "/usr/bin/env", {"-C", dir.path().string(), kMotus, "grade",
+                                                   (fs::path(kAssignments) / "integrators").string() + "/", "--batch",
+                                                   (dir / "batch").string()});
+  ASSERT_EQ(r.status, 0) << r.err;
+  std::string folder;
+  for (const auto& e : fs::directory_iterator(dir / "runs")) folder = e.path().filename().string();
+  EXPECT_EQ(folder.rfind("grade-integrators-", 0), 0u) << folder;
+  // The reference solution, whole marks: its results file there, and its row score = max_score.
+  const json result = read_json(dir / "runs" / folder / (long_name + ".json"));
+  double max_score = 0;
+  for (const auto& t : result["tests"]) max_score += t["max_score"].get<double>();
+  EXPECT_GT(max_score, 0);
+  EXPECT_EQ(result["score"].get<double>(), max_score);
+  std::ostringstream row;
+  row << long_name << "," << max_score << "," << max_score << ",";
+  EXPECT_NE(read_file(dir / "runs" / folder / "scores.csv").find(row.str()), std::string::npos)
+      << read_file(dir / "runs" / folder / "scores.csv");
+}
+
+}  // namespace

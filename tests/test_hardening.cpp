@@ -1431,3 +1431,38 @@ TEST(Hardening, APathThatIsNotUtf8ShowsAsQuestionMarksInTheMessage) {
 }
 
 }  // namespace
+
+namespace {
+
+// 23. Paths that cannot be looked at (a loop of links) were "the run failed: filesystem error:
+//     status: Too many levels of symbolic links [loop]", exit 1, in render and grade; a --batch
+//     that is a file was "no such folder"; a --trajectory folder through a loop "does not exist";
+//     a plug-in through one "no such file". Each is bad input, one line, in the system's words.
+//     And a legal name of 240–255 bytes (its temporary .NAME.partial-XXXXXX too long) was refused.
+TEST(Hardening, PathsThatCannotBeLookedAtAreBadInputInOneLine) {
+  TempDir dir;
+  fs::create_symlink("loop", dir / "loop");
+  write_file(dir / "file", "mine");
+  const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
+      {{"render", "spring", "--size", "64x48", "--duration", "0.1", "--out", (dir / "loop").string()},
+       "Too many levels of symbolic links"},
+      {{"grade", "integrators", (dir / "loop").string()}, "Too many levels of symbolic links"},
+      {{"grade", "integrators", "--batch", (dir / "loop").string()}, "Too many levels of symbolic links"},
+      {{"grade", "integrators", "--batch", (dir / "file").string()}, "--batch: is a file"},
+      {{"run", "spring", "--duration", "0.1", "--trajectory", (dir / "loop/t.csv").string()}, "Too many levels of symbolic links"},
+      {{"run", "spring", "--duration", "0.1", "--plugin", (dir / "loop").string()}, "Too many levels of symbolic links"},
+  };
+  for (const auto& [args, said] : cases) {
+    const Result r = run_motus(dir, args);
+    EXPECT_EQ(r.status, 2) << args[0] << " " << args.back() << ": " << r.err;
+    EXPECT_EQ(count_lines(r.err), 1) << r.err;
+    EXPECT_NE(r.err.find(said), std::string::npos) << r.err;
+    EXPECT_EQ(r.err.find("filesystem error"), std::string::npos) << r.err;
+  }
+  const std::string long_name(245, 's');
+  const Result r = run_motus(dir, {"stress", "spring", "--out", (dir / long_name).string()});
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_TRUE(fs::exists(dir / long_name / "index.html")) << r.err;
+}
+
+}  // namespace

@@ -72,6 +72,9 @@ PluginSet::~PluginSet() = default;  // the libraries stay loaded: their code may
 void PluginSet::load(const std::string& file) {
   std::error_code error;
   const auto status = std::filesystem::status(file, error);
+  // (a loop of links, a name too long, "p.so/": what the system says, not "no such file")
+  if (error && error != std::errc::no_such_file_or_directory)
+    throw PluginError(file + ": --plugin: " + error.message() + " (a plug-in is a shared library, FILE.so)");
   if (!std::filesystem::exists(status))
     throw PluginError(file + ": --plugin: no such file (a plug-in is a shared library, FILE.so)");
   if (!std::filesystem::is_regular_file(status))
