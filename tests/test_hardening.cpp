@@ -1146,6 +1146,32 @@ TEST(Hardening, OutOfMemoryWhileDrawingFailsTheRun) {
             "--engines", "motus", "--out", out.string()}, 300'000 * 1024);
   expect_out_of_memory(dir, status, out);
 }
+
+// Mesa does not check its allocations while it makes a context: with a few MB of address space
+// left, motus died of SIGSEGV inside OSMesaCreateContextExt (render and compare, at `ulimit -v`
+// 200000 here), its partial folder left. Whatever the limit, a run now either draws or says that
+// memory ran out: every limit from 150 to 300 MB in steps of 5 MB, where both happen.
+TEST(Hardening, NoMemoryLimitMakesTheDrawingCrash) {
+  TempDir dir;
+  int drew = 0, ran_out = 0;
+  for (rlim_t mb = 150; mb <= 300; mb += 5) {
+    std::string name = "r";  // (built by +=: GCC 12 warns, wrongly, of overlapping copies in "r" + …)
+    name += std::to_string(mb);
+    const fs::path out = dir / name;
+    const int status = run_motus_with_memory_limit(
+        dir, {"render", "spring", "--size", "64x48", "--duration", "0.1", "--out", out.string()}, mb * 1024 * 1024);
+    ASSERT_TRUE(status == 0 || status == 1) << "render at " << mb << " MB: status " << status << ": " << read_file(dir / "err.txt");
+    if (status == 1) {
+      expect_out_of_memory(dir, status, out);
+      ++ran_out;
+    } else {
+      EXPECT_TRUE(fs::exists(out / "frame_00000.png")) << mb;
+      ++drew;
+    }
+  }
+  EXPECT_GT(drew, 0);  // (the limits span both: otherwise the test would show nothing)
+  EXPECT_GT(ran_out, 0);
+}
 #endif
 
 // 17. Sizes that would be allowed but unusable are refused with the limit named (docs: at most

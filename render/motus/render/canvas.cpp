@@ -1,10 +1,12 @@
 #include "motus/render/canvas.hpp"
 
 #include <GL/osmesa.h>
+#include <sys/mman.h>
 #include <sys/resource.h>
 
 #include <algorithm>
 #include <cstdlib>
+#include <new>
 #include <string>
 
 namespace motus::render {
@@ -12,6 +14,23 @@ namespace motus::render {
 namespace {
 
 constexpr long kMaxBufferBytes = 1L << 30;  // refuse before allocating more than 1 GiB
+
+// What OSMesa needs of the address space to make a context and draw its first frames, with room:
+// it makes them within about 12 MB on Debian 12's Mesa 22 (measured: a render with 7 MB of room
+// under `ulimit -v` died, with 12 MB it drew every frame).
+constexpr size_t kContextRoomBytes = 32UL << 20;
+
+// Whether the address space (under a limit such as `ulimit -v`) has that room now. Mesa does not
+// check its allocations while it makes a context: without the room, motus died of SIGSEGV inside
+// OSMesaCreateContextExt, its partial folders left, instead of saying that memory ran out.
+bool room_for_a_context() {
+  rlimit limit{};
+  if (::getrlimit(RLIMIT_AS, &limit) != 0 || limit.rlim_cur == RLIM_INFINITY) return true;
+  void* room = ::mmap(nullptr, kContextRoomBytes, PROT_NONE, MAP_PRIVATE | MAP_ANONYMOUS | MAP_NORESERVE, -1, 0);
+  if (room == MAP_FAILED) return false;  // (a mapping of no pages still counts against RLIMIT_AS)
+  ::munmap(room, kContextRoomBytes);
+  return true;
+}
 
 bool failure_requested() {
   const char* env = std::getenv("MOTUS_RENDER_FAIL_CONTEXT");
@@ -39,6 +58,7 @@ Canvas::Canvas(int width, int height, int supersample) : width_(width), height_(
   // motus's to report (out of memory, exit 1).
   if (rlimit limit{}; ::getrlimit(RLIMIT_AS, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY)
     ::setenv("LP_NUM_THREADS", "0", 0);
+  if (!room_for_a_context()) throw std::bad_alloc();  // (out of memory, exit 1: as any allocation motus makes)
   OSMesaContext context = failure_requested() ? nullptr : OSMesaCreateContextExt(OSMESA_RGBA, 24, 0, 0, nullptr);
   if (!context)
     throw RenderError("OSMesa could not create an offscreen OpenGL context (install the Debian package libosmesa6)");
