@@ -330,6 +330,7 @@ std::vector<std::string> folders_not_there_yet(const std::string& folder) {
   return missing;
 }
 
+namespace {
 std::string said_as_final(std::string message, const std::string& partial, const std::string& final) {
   if (partial.empty()) return message;
   for (size_t at = message.find(partial); at != std::string::npos; at = message.find(partial, at + final.size()))
@@ -337,7 +338,6 @@ std::string said_as_final(std::string message, const std::string& partial, const
   return message;
 }
 
-namespace {
 struct SaidAsFinal {
   std::mutex lock;  // (grade --batch writes its results from several threads)
   std::vector<std::pair<std::string, std::string>> names;  // partial, final

@@ -210,13 +210,11 @@ std::vector<std::string> folders_not_there_yet(const std::string& folder);
 // is not (nothing with anything in it is ever removed).
 void remove_if_empty(const std::vector<std::string>& folders);
 
-// `message` with every mention of a run's temporary folder (`partial`) said as the folder it was to
-// become (`final`): a failure removes the temporary one, and a message naming it named a path gone.
-std::string said_as_final(std::string message, const std::string& partial, const std::string& final);
-// The same for every temporary folder or file this process has made (PartialFolder, PartialFile,
-// render's folder), each said as what it was to become: main's one-line errors go through it, so
-// that "a/.r.partial-Xb3/summary.json: could not be written" reads "a/r/summary.json: …". One that
-// is kept (a name taken meanwhile: the message says where the work is) is said as it is.
+// A message with every temporary folder or file this process has made (PartialFolder, PartialFile,
+// render's folder) said as what it was to become: a failure removes the temporary one, and a
+// message naming it named a path gone. main's one-line errors go through it, so that
+// "a/.r.partial-Xb3/summary.json: could not be written" reads "a/r/summary.json: …". One that is
+// kept (a name taken meanwhile: the message says where the work is) is said as it is.
 void say_as_final(const std::string& partial, const std::string& final);
 void say_as_it_is(const std::string& partial);
 std::string named_as_final(std::string message);
