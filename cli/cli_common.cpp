@@ -588,17 +588,16 @@ const CLI::Validator& non_empty_path() {
   return validator;
 }
 
-const CLI::Validator& folder_path() {
-  static const CLI::Validator validator(
-      [](const std::string& path) {
-        if (path.empty()) return std::string("an empty path names no folder");
+CLI::Validator folder_path(const std::string& what) {
+  return CLI::Validator(
+      [what](const std::string& path) {
+        if (path.empty()) return "an empty path names no " + what;
         const std::string last = without_trailing_separators(path).filename().string();
         if (last == "." || last == "..")
-          return "ends in \"" + last + "\": name the new folder itself, by its own name";
+          return "ends in \"" + last + "\": name the new " + what + " itself, by its own name";
         return std::string();
       },
       "PATH");
-  return validator;
 }
 
 CLI::Validator whole_number_in(long low, long high) {

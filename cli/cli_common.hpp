@@ -295,7 +295,7 @@ bool output_exists(const std::string& path);
 // "not given" (which would write nothing, or somewhere else, and say nothing).
 // A folder to be made: not empty, and not ending in "." or ".." ("new/." ran the whole job, then
 // failed to move the finished folder into place and left it under a hidden name).
-const CLI::Validator& folder_path();
+CLI::Validator folder_path(const std::string& what = "folder");
 const CLI::Validator& non_empty_path();
 
 // For the options that count (steps, repeats, samples, levels): a whole number from `low` to `high`,

@@ -353,7 +353,7 @@ CLI::App* add_grade_command(CLI::App& app, GradeCommandOptions& o) {
   g->add_flag("--overwrite", o.overwrite, "Allow --results and --plugin-out to replace existing files");
   g->add_option("--batch", o.batch, "Grade every subfolder of this folder, one submission each");
   g->add_option("--jobs", o.jobs, "With --batch: submissions graded at once (default 1)");
-  g->add_option("--out", o.out, "With --batch: the results folder (default: a new folder under runs/); with --package: the zip")->check(folder_path());
+  g->add_option("--out", o.out, "With --batch: the results folder (default: a new folder under runs/); with --package: the zip")->check(folder_path("folder (--batch) or zip (--package)"));
   g->add_option("--package", o.package, "Write the autograder zip for this platform instead of grading")
       ->check(CLI::IsMember({"gradescope"}));
   return g;

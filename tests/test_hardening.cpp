@@ -1483,6 +1483,8 @@ TEST(Hardening, PathsThatCannotBeLookedAtAreBadInputInOneLine) {
       {{"grade", "integrators", "--batch", (dir / "file").string()}, "--batch: is a file"},
       {{"run", "spring", "--duration", "0.1", "--trajectory", (dir / "loop/t.csv").string()}, "Too many levels of symbolic links"},
       {{"run", "spring", "--duration", "0.1", "--plugin", (dir / "loop").string()}, "Too many levels of symbolic links"},
+      // (grade's --out is a zip with --package: "name the new folder itself" was said of it)
+      {{"grade", "integrators", "--package", "gradescope", "--out", (dir / "x.zip/.").string()}, "or zip (--package) itself"},
   };
   for (const auto& [args, said] : cases) {
     const Result r = run_motus(dir, args);
