@@ -634,7 +634,7 @@ TEST(Grade, BadInputIsOneLineAndExitTwo) {
       // ending in "." ran every submission, then failed to move the finished folder into place.
       {{"grade", "integrators", solution, "--results", "-"}, "--results -: standard output is the summary's"},
       {{"grade", "integrators", "--batch", (dir / "empty").string(), "--out", (dir / "new/.").string()},
-       "--out: ends in \".\": name the new folder itself"},
+       "--out: ends in \".\": name the new folder (--batch) or zip (--package) itself"},
   };
   for (const auto& [args, says] : cases) {
     const auto r = run_motus(dir, args);
