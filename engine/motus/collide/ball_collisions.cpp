@@ -6,6 +6,7 @@
 #include <functional>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 
 #include "motus/collide/impulse.hpp"
 #include "motus/collide/sort_by_time.hpp"
@@ -33,6 +34,15 @@ constexpr double kSettled = 1e-14;
 // spent, the contacts go one at a time, perfectly inelastic, as before. (The bouncing balls with
 // every e = 0.3 took at most 106,000 in a step: 41 times their limit of 2,600 events.)
 constexpr long kClusterWorkPerEvent = 200;
+
+// The rows of grid cells (three cells side by side along x) that a ball's pairs are listed from,
+// besides its own: the forward half of the 3^(D−1) rows around it (build_grid), 1 in 2-D, 4 in 3-D.
+template <int D>
+constexpr int kForwardRows = ([] {
+  int rows = 1;
+  for (int k = 1; k < D; ++k) rows *= 3;
+  return (rows - 1) / 2;
+})();
 
 // Overlap smaller than this fraction of the contact distance is rounding, not overlap.
 constexpr double kOverlapSlack = kRoundingOverlap;  // (time_of_impact.hpp: the same rounding)
@@ -525,6 +535,7 @@ void BallCollisions<D>::build_grid() {
     }
     if (leading > 0 && code % 3 == 1) forward_rows_.push_back(offset);  // the middle cell of a row above
   }
+  if (forward_rows_.size() != static_cast<size_t>(kForwardRows<D>)) throw std::logic_error("the grid's forward rows");
   max_forward_ = forward_rows_.empty() ? 0 : *std::max_element(forward_rows_.begin(), forward_rows_.end());
 
   // Counting sort by cell. Big grids in two levels, so that the cells' array is written once and
@@ -747,14 +758,13 @@ void BallCollisions<D>::list_pairs(int until) {
   // then keep those within reach.
   const int* sorted = sorted_.data();
   const int* cell_start = cell_start_.data();
-  const int rows = static_cast<int>(forward_rows_.size());
   const int* forward_rows = forward_rows_.data();
   const double* x = x_;
   const double* radius = radius_.data();
   const bool uniform = uniform_radius_;
   const double margin = skin_ + kNudge * cell_size_;  // (rounding in positions must not cut a pair)
   // A batch's list has room for kBatch pairs and one more ball's ranges at kWindow each.
-  const size_t room = static_cast<size_t>(kBatch + (rows + 1) * kWindow);
+  const size_t room = static_cast<size_t>(kBatch + (kForwardRows<D> + 1) * kWindow);
   if (candidate_i_.size() < room) candidate_i_.resize(room), candidate_k_.resize(room);
   int* ci = candidate_i_.data();
   int* ck = candidate_k_.data();
@@ -785,12 +795,22 @@ void BallCollisions<D>::list_pairs(int until) {
     int* pk = pair_k_.data() + kept;
     double* pd = pair_d2_.data() + kept;
     int m = 0;
-    for (int q = 0; q < n; ++q) {
-      const int i = ci[q], k = ck[q];
-      const double reach = (uniform ? max_radius_ + max_radius_ : radius[i] + radius[k]) + margin;
-      const double d2 = (Eigen::Map<const Point>(x + D * k) - Eigen::Map<const Point>(x + D * i)).squaredNorm();
-      pi[m] = i, pk[m] = k, pd[m] = d2;
-      m += d2 < reach * reach;
+    if (uniform) {
+      const double reach = max_radius_ + max_radius_ + margin, reach2 = reach * reach;
+      for (int q = 0; q < n; ++q) {
+        const int i = ci[q], k = ck[q];
+        const double d2 = (Eigen::Map<const Point>(x + D * k) - Eigen::Map<const Point>(x + D * i)).squaredNorm();
+        pi[m] = i, pk[m] = k, pd[m] = d2;
+        m += d2 < reach2;
+      }
+    } else {
+      for (int q = 0; q < n; ++q) {
+        const int i = ci[q], k = ck[q];
+        const double reach = radius[i] + radius[k] + margin;
+        const double d2 = (Eigen::Map<const Point>(x + D * k) - Eigen::Map<const Point>(x + D * i)).squaredNorm();
+        pi[m] = i, pk[m] = k, pd[m] = d2;
+        m += d2 < reach * reach;
+      }
     }
     kept += static_cast<size_t>(m);
   };
@@ -800,14 +820,14 @@ void BallCollisions<D>::list_pairs(int until) {
       const int i = sorted[s];
       const int c = ball_cell_[i];
       list(i, s + 1, cell_start[c + 2]);
-      for (int r = 0; r < rows; ++r) {
+      for (int r = 0; r < kForwardRows<D>; ++r) {  // (a constant: the loop unrolls)
         const int m = c + forward_rows[r];
         list(i, cell_start[m - 1], cell_start[m + 2]);  // a row: three cells side by side
       }
     }
     keep_within_reach();
   }
-  counters_.cell_queries += static_cast<long>(until - listed_) * (rows + 1);
+  counters_.cell_queries += static_cast<long>(until - listed_) * (kForwardRows<D> + 1);
   listed_ = until;
   pair_count_ = static_cast<int>(kept);
   sort_by_gap(false);
@@ -862,17 +882,20 @@ void BallCollisions<D>::find_initial_events() {
   int* hits = hits_.data();
   // Pass 1 over pairs [from, to): those left for pass 2, in order. The pairs tested after them
   // start at `next` (the next batch's): the pairs are known ahead, and their balls fetched ahead.
-  auto filter = [&](int from, int to, int next) {
+  // (Compiled twice, with and without the fetches: below kPrefetchFrom even the test for them costs.)
+  auto filter = [&](int from, int to, int next, auto fetching) {
     int left = 0;
     for (int q = from; q < to; ++q) {
-      const int ahead = q + kPairPrefetch < to ? q + kPairPrefetch : q + kPairPrefetch - to + next;
-      if (prefetch && ahead < pairs) {
-        for (const int b : {ci[ahead], ck[ahead]}) {
-          __builtin_prefetch(x + D * b), __builtin_prefetch(v + D * b);
-          // (and the other end in 3-D, where a ball's 24 bytes straddle two cache lines three times
-          // in eight. In 2-D its 16 bytes are in one line when the array is 16-byte aligned, as an
-          // Eigen vector's storage is; a Ref to an odd offset would only lose a prefetch in four.)
-          if constexpr (D == 3) __builtin_prefetch(x + D * b + (D - 1)), __builtin_prefetch(v + D * b + (D - 1));
+      if constexpr (fetching) {
+        const int ahead = q + kPairPrefetch < to ? q + kPairPrefetch : q + kPairPrefetch - to + next;
+        if (ahead < pairs) {
+          for (const int b : {ci[ahead], ck[ahead]}) {
+            __builtin_prefetch(x + D * b), __builtin_prefetch(v + D * b);
+            // (and the other end in 3-D, where a ball's 24 bytes straddle two cache lines three times
+            // in eight. In 2-D its 16 bytes are in one line when the array is 16-byte aligned, as an
+            // Eigen vector's storage is; a Ref to an odd offset would only lose a prefetch in four.)
+            if constexpr (D == 3) __builtin_prefetch(x + D * b + (D - 1)), __builtin_prefetch(v + D * b + (D - 1));
+          }
         }
       }
       const int i = ci[q], k = ck[q];
@@ -938,7 +961,8 @@ void BallCollisions<D>::find_initial_events() {
     const int end = class_start_[static_cast<size_t>(batch / kBatch) * (kGapClasses + 1) + classes];
     tested += end - batch;
     for (int from = batch; from < end;) {
-      const int left = filter(from, end, batch + kBatch);
+      const int left = prefetch ? filter(from, end, batch + kBatch, std::true_type{})
+                                : filter(from, end, batch + kBatch, std::false_type{});
       from = end;
       for (int j = 0; j < left; ++j)
         if (exact(hits[j])) {
