@@ -19,6 +19,7 @@
 #include "motus/precision/precision_report.hpp"
 #include "motus/precision/targets.hpp"
 #include "motus/scene_file/scene_file.hpp"
+#include "motus/scene_file/spelling.hpp"
 #include "motus/simulation.hpp"
 #include "progress_bar.hpp"
 
@@ -43,22 +44,24 @@ CLI::App* add_bench_precision_command(CLI::App& bench, BenchPrecisionOptions& o)
   p->add_option("scene", o.scene, "A scene with an exact or reference solution (spring, oscillator, kepler, pendulum, lorenz, ...)")
       ->required();
   add_list_option(p, "--integrators", o.integrators,
-                  "Comma-separated integrators (default: every one that can run the scene)");
+                  "Comma-separated integrators (default: every one; those that cannot run the scene are listed as such)");
   add_list_option(p, "--peers", o.peers,
                   "Comma-separated peers on the same problem: odeint (Boost.Odeint's steppers on the "
-                  "same right-hand side), box2d, bullet (mechanical scenes, dt = 1/30 ... 1/960)");
-  p->add_option("--levels", o.levels, "Fixed-step methods: h = dt / 2^k for k = 0 ... N-1")->check(whole_number_in(1, 20));
+                  "same right-hand side), box2d, bullet (mechanical scenes, dt = 1/30 ... 1/960); default: none");
+  p->add_option("--levels", o.levels, "Fixed-step methods: h = dt / 2^k for k = 0 ... N-1")->check(whole_number_in(1, 20))->capture_default_str();
   p->add_option("--per-decade", o.per_decade, "Adaptive methods: tolerances 1e-3 ... 1e-13, this many per decade")
-      ->check(whole_number_in(1, 10));
+      ->check(whole_number_in(1, 10))
+      ->capture_default_str();
   p->add_option("--repeats", o.repeats, "Timed runs per point, after one untimed run; the fastest counts")
-      ->check(whole_number_in(1, 100));
+      ->check(whole_number_in(1, 100))
+      ->capture_default_str();
   add_list_option(p, "--targets", o.targets,
                   "Comma-separated target errors to read every curve at (default 1e-4 ... 1e-10)");
   p->add_option("--duration", o.duration, "End time (default: the scene's; for reference states, the last one within it)");
   p->add_option("--set", o.sets, "Override a scene field (repeatable)")->type_name("PATH=VALUE");
   p->add_option("--out", o.out, "The run folder (default: a new folder under runs/); must not exist yet")->check(folder_path());
-  p->add_option("--csv", o.csv, "Also write the table (precision.csv) here")->check(non_empty_path());
-  p->add_flag("--overwrite", o.overwrite, "Allow --csv to replace an existing file");
+  CLI::Option* csv = p->add_option("--csv", o.csv, "Also write the table (precision.csv) here")->check(non_empty_path());
+  p->add_flag("--overwrite", o.overwrite, "Allow --csv to replace an existing file")->needs(csv);
   add_plugin_option(p, o.plugins);
   return p;
 }
@@ -100,7 +103,9 @@ int bench_precision_command(const BenchPrecisionOptions& o) {
       std::optional<Method> method;
       if (const auto id = integrator_from_name(name)) method.emplace(*id);
       else if (const auto m = plugins().integrator(name)) method = *m;
-      else throw InputError("--integrators: unknown integrator \"" + name + "\" (known: " + known_integrators() + ")");
+      else
+        throw InputError("--integrators: unknown integrator \"" + name + "\"" +
+                         did_you_mean(name, words_of_list(known_integrators())) + " (known: " + known_integrators() + ")");
       // (each once, as stress takes them: rk4,rk4 is one curve)
       if (std::none_of(chosen.begin(), chosen.end(), [&](const Method& m) { return m.name() == method->name(); }))
         chosen.push_back(*method);

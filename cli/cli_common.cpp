@@ -25,6 +25,7 @@
 
 #include "motus/plot/write_failure.hpp"
 #include "motus/scene_file/printable_text.hpp"
+#include "motus/scene_file/spelling.hpp"
 #include "motus/simulation.hpp"
 
 namespace fs = std::filesystem;
@@ -69,7 +70,18 @@ std::string scenes_directory() {
   return MOTUS_SOURCE_SCENES_DIR;  // set by CMake
 }
 
-std::string resolve_scene_path(const std::string& argument) {
+std::string shipped_scene_guess(const std::string& name) {
+  if (name.find('/') != std::string::npos) return "";
+  std::error_code error;
+  std::vector<std::string> names;
+  for (const auto& entry : fs::directory_iterator(scenes_directory(), error))
+    if (entry.path().extension() == ".json") names.push_back(entry.path().stem().string());
+  std::sort(names.begin(), names.end());
+  const std::string stem = fs::path(name).extension() == ".json" ? fs::path(name).stem().string() : name;
+  return did_you_mean(stem, names);
+}
+
+std::string find_scene_path(const std::string& argument) {
   std::error_code error;  // (a link that loops is the loader's to report, in one line)
   const auto status = fs::symlink_status(argument, error);
   const bool plain_name = argument.find('/') == std::string::npos;
@@ -89,6 +101,17 @@ std::string resolve_scene_path(const std::string& argument) {
                        " (motus list shows the scenes)");
   }
   return argument;  // the loader says "no such file"
+}
+
+std::string resolve_scene_path(const std::string& argument) {
+  const std::string path = find_scene_path(argument);
+  // A shipped scene's name, misspelt ("sprng"): the name it most likely is.
+  std::error_code error;
+  if (path == argument && !fs::exists(fs::symlink_status(argument, error)))
+    if (const std::string guess = shipped_scene_guess(argument); !guess.empty())
+      throw InputError(argument + ": no such file, nor a shipped scene of that name" + guess +
+                       " (motus list shows the scenes)");
+  return path;
 }
 
 std::string non_finite_suspect(const Simulation& sim, const Method& method, const std::string& smaller_step) {
@@ -216,7 +239,8 @@ Method method_for(const std::string& path, const SceneDescription& scene, const 
   else method = plugins().integrator(name);
   if (!method) {
     const bool looks_like_plugin = name.find(':') != std::string::npos;
-    throw InputError(path + ": --integrator: unknown integrator \"" + name + "\" (known: " + known_integrators() + ")" +
+    throw InputError(path + ": --integrator: unknown integrator \"" + name + "\"" +
+                     did_you_mean(name, words_of_list(known_integrators())) + " (known: " + known_integrators() + ")" +
                      (looks_like_plugin && plugins().empty() ? "; load its plug-in with --plugin FILE.so" : ""));
   }
   if (method->needs_mechanical() && !scene.is_mechanical()) {  // the file's own integrator was checked by the loader

@@ -60,8 +60,13 @@ std::string source_directory();
 // installed beside it (PREFIX/share/motus/scenes); else the source tree's scenes/.
 std::string scenes_directory();
 // A scene argument as given: a path to a file, or the name of a shipped scene
-// ("spring" or "spring.json").
+// ("spring" or "spring.json"). A name that is neither is returned as it is (the loader says "no
+// such file"), unless it is a slip away from a shipped scene's: then InputError says which.
 std::string resolve_scene_path(const std::string& argument);
+// As resolve_scene_path, without the guess.
+std::string find_scene_path(const std::string& argument);
+// ", did you mean spring?" for a name a slip away from a shipped scene's ("sprng"), else "".
+std::string shipped_scene_guess(const std::string& name);
 // Every shipped scene file, sorted.
 std::vector<std::string> shipped_scenes();
 

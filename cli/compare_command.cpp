@@ -60,7 +60,7 @@ CLI::App* add_compare_command(CLI::App& app, CompareOptions& o) {
   c->add_option("--duration", o.duration, "Time to run, s (default: the scene's)");
   c->add_option("--set", o.sets, "Override a scene field (repeatable), e.g. --set lattice.count=10000")->type_name("PATH=VALUE");
   c->add_option("--out", o.out, "Report folder (default: a new folder under runs/); must not exist yet")->check(folder_path());
-  c->add_option("--samples", o.samples, "Metric samples over the run")->check(whole_number_in(2, 100000));
+  c->add_option("--samples", o.samples, "Metric samples over the run")->check(whole_number_in(2, 100000))->capture_default_str();
   c->add_option("--repeats", o.repeats,
                 "Timing rounds: every engine runs the scene again this many times, taking turns; the time per step "
                 "is the fastest round's CPU time, with the median and the spread beside it (default: 5, or as many "
@@ -70,7 +70,7 @@ CLI::App* add_compare_command(CLI::App& app, CompareOptions& o) {
   CLI::Option* render = c->add_flag("--render", o.render,
               "Also draw the same instants of every engine side by side: PNG frames, an MP4 (ffmpeg) and a contact "
               "sheet, embedded in the report");
-  c->add_option("--size", o.size, "The size of each engine's panel in the pictures (the report's first and last frames; every frame with --render), WxH")->capture_default_str();
+  c->add_option("--size", o.size, "The size of each engine's panel in the pictures (the report's first and last frames; every frame with --render)")->capture_default_str()->type_name("WxH");
   // (Without --render no frame is drawn: an --fps alone would be ignored without a word.)
   c->add_option("--fps", o.fps, "With --render: frames per second of simulated time")->capture_default_str()->needs(render);
   return c;

@@ -20,6 +20,7 @@
 #include "bench_precision_command.hpp"
 #include "compare_command.hpp"
 #include "cli_common.hpp"
+#include "command_line_errors.hpp"
 #include "list_command.hpp"
 #include "render_command.hpp"
 #include "motus/scene_error.hpp"
@@ -71,18 +72,23 @@ int motus_main(int argc, char** argv) {
     }
     return status;
   };
-  // A word that is no command: CLI11 would say "A subcommand is required", as if none were given.
-  const auto commands_listed = app.get_subcommands([](const CLI::App* s) { return !s->get_group().empty(); });
-  const auto all_commands = app.get_subcommands({});
-  if (argc > 1 && argv[1][0] != '-' &&
-      std::none_of(all_commands.begin(), all_commands.end(), [&](const CLI::App* c) { return c->get_name() == argv[1]; })) {
-    std::string commands;
-    for (const auto* c : commands_listed) commands += (commands.empty() ? "" : ", ") + c->get_name();
-    tell("motus: error: unknown command \"{}\" (the commands: {}; run `motus --help`)\n", one_line(argv[1], 80), commands);
+  // `motus help [COMMAND...]` is `motus [COMMAND...] --help`.
+  std::vector<std::string> args(argv + 1, argv + argc);
+  if (!args.empty() && args.front() == "help") args.erase(args.begin()), args.push_back("--help");
+  // Nothing at all: what there is to do, and a failure (nothing was done).
+  if (args.empty()) {
+    tell("{}\nmotus: error: a command is needed (motus COMMAND --help tells about one)\n", app.help());
+    return kExitBadInput;
+  }
+  // A word that is no command, or an option before any command: CLI11 would say "A subcommand
+  // is required", as if nothing had been given.
+  if (const auto wrong = misplaced_word(app, args)) {
+    tell("motus: error: {}\n", *wrong);
     return kExitBadInput;
   }
   try {
-    app.parse(argc, argv);
+    std::reverse(args.begin(), args.end());  // (CLI11 takes the arguments last first)
+    app.parse(args);
   } catch (const CLI::CallForHelp& e) {
     return printed(app.exit(e));
   } catch (const CLI::CallForAllHelp& e) {
@@ -90,7 +96,7 @@ int motus_main(int argc, char** argv) {
   } catch (const CLI::CallForVersion& e) {
     return printed(app.exit(e));
   } catch (const CLI::ParseError& e) {
-    tell("motus: error: {} (run `motus --help` or `motus SUBCOMMAND --help`)\n", one_line(e.what()));
+    tell("motus: error: {}\n", parse_error_line(app, e));
     return kExitBadInput;
   }
 
@@ -129,10 +135,10 @@ int motus_main(int argc, char** argv) {
     return kExitBadInput;
   } catch (const motus::SceneError& e) {
     // Raised while building the run (e.g. a symplectic integrator on a first-order system).
-    const std::string scene = resolve_scene_path(run->parsed()       ? run_options.scene
-                                                 : compare->parsed() ? compare_options.scene
-                                                 : stress->parsed()  ? stress_options.scene
-                                                                     : precision_options.scene);
+    const std::string scene = find_scene_path(run->parsed()       ? run_options.scene
+                                              : compare->parsed() ? compare_options.scene
+                                              : stress->parsed()  ? stress_options.scene
+                                                                  : precision_options.scene);
     tell("motus: error: {}\n", one_line(scene + ": " + (e.field().empty() ? "" : e.field() + ": ") + e.what()));
     return kExitBadInput;
   } catch (const InputError& e) {

@@ -233,12 +233,13 @@ CLI::App* add_run_command(CLI::App& app, RunOptions& o) {
   run->add_option("--atol", o.atol, "Absolute tolerance of rk45, dop853 and rk4-doubling (default: the scene's)");
   run->add_option("--set", o.sets, "Override a scene field, e.g. --set bodies[0].mass=2 (repeatable)")
       ->type_name("PATH=VALUE");
-  run->add_option("--trajectory", o.trajectory, "Write t, state and energies per output time to this CSV file (- or /dev/stdout: standard output)")
+  CLI::Option* trajectory = run->add_option("--trajectory", o.trajectory, "Write t, state and energies per output time to this CSV file (- or /dev/stdout: standard output)")
       ->check(non_empty_path())
       ->transform([](std::string path) {  // (/dev/stdout is -: not a link to write a file through)
         return path == "/dev/stdout" || path == "/dev/fd/1" || path == "/proc/self/fd/1" ? std::string("-") : path;
       });
-  run->add_flag("--overwrite", o.overwrite, "Allow --trajectory to replace an existing file");
+  // (Without a file to replace it would be taken and do nothing.)
+  run->add_flag("--overwrite", o.overwrite, "Allow --trajectory to replace an existing file")->needs(trajectory);
   run->add_flag("--json", o.json, "Print one JSON object instead of the summary (see docs/cli.md)");
   run->add_option("--repeats", o.repeats,
                   "Run the scene this many times from its start; the time per step is the fastest run's CPU time, "
@@ -273,6 +274,10 @@ int run_command(const RunOptions& o) {
   const Tolerance tolerance{o.atol.value_or(scene.atol), o.rtol.value_or(scene.rtol)};
   if (!(tolerance.atol > 0) || !(tolerance.rtol > 0) || !std::isfinite(tolerance.atol) || !std::isfinite(tolerance.rtol))
     throw InputError("--atol/--rtol: must be finite and > 0");
+  // (A fixed step would take them and change nothing: a user comparing tolerances would compare one run.)
+  if ((o.atol || o.rtol) && !method.adaptive())
+    throw InputError(std::string(o.rtol ? "--rtol" : "--atol") + ": " + integrator_name +
+                     " takes fixed steps and no tolerance (rk45, dop853 and rk4-doubling take one)");
 
   Simulation sim(scene, method, plugins().parts());  // SceneError: e.g. a symplectic integrator on a first-order system
   const auto energy0 = sim.energy();

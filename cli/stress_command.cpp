@@ -10,6 +10,7 @@
 #include "interrupt.hpp"
 #include "motus/scene_error.hpp"
 #include "motus/scene_file/scene_file.hpp"
+#include "motus/scene_file/spelling.hpp"
 #include "motus/simulation.hpp"
 #include "progress_bar.hpp"
 #include "stress_page.hpp"
@@ -141,7 +142,9 @@ int stress_command(const StressOptions& o) {
   } else {
     for (const auto& n : o.integrators) {
       const auto id = integrator_from_name(n);
-      if (!id) throw InputError("--integrators: unknown integrator \"" + n + "\" (known: " + integrator_names() + ")");
+      if (!id)
+        throw InputError("--integrators: unknown integrator \"" + n + "\"" + did_you_mean(n, words_of_list(integrator_names())) +
+                         " (known: " + integrator_names() + ")");
       if (std::find(asked.begin(), asked.end(), *id) == asked.end()) asked.push_back(*id);
     }
   }

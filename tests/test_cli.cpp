@@ -19,6 +19,7 @@
 namespace fs = std::filesystem;
 
 #include "cli_harness.hpp"
+#include "motus/scene_file/spelling.hpp"
 
 namespace {
 
@@ -53,14 +54,14 @@ const std::vector<BadInput> kBadInputs = {
     {"nan_literal_in_file", two_bodies(R"({"mass": NaN, "position": [1]})"), {}, "bodies[1].mass",
      "malformed JSON at line 1"},
     {"unknown_body_field", two_bodies(R"({"mass": 2, "position": [1], "velocty": [0]})"), {}, "bodies[1].velocty",
-     "unknown field (expected one of: mass, position, velocity, radius, restitution)"},
+     "unknown field, did you mean velocity? (expected one of: mass, position, velocity, radius, restitution)"},
     {"unknown_top_level_field", two_bodies(kGoodBody, R"(, "exat": "harmonic")"), {}, "exat", "unknown field"},
     {"unknown_force_field", R"({"dimensions": 1, "bodies": [{"mass": 1, "position": [1]}],
         "forces": [{"type": "spring", "a": 0, "anchor": [0], "stiffness": 1, "k": 1}], "dt": 1, "duration": 1})",
      {}, "forces[0].k", "unknown field"},
     {"unknown_parameter", R"({"system": {"type": "lorenz", "parameters": {"sigmaa": 10}, "initial": [1, 1, 1]},
         "dt": 0.01, "duration": 1})",
-     {}, "system.parameters.sigmaa", "unknown field (expected one of: sigma, rho, beta)"},
+     {}, "system.parameters.sigmaa", "unknown field, did you mean sigma? (expected one of: sigma, rho, beta)"},
     {"equations_unknown_variable", R"({"system": {"type": "equations", "variables": ["x", "v"],
         "equations": {"x": "v", "v": "-k*x"}, "initial": [1, 0]}, "dt": 0.1, "duration": 1})",
      {}, "system.equations.v", "unknown variable \"k\" at column 2"},
@@ -266,10 +267,84 @@ TEST(CliErrors, BadOptionValueIsOneLineExitTwo) {
   EXPECT_FALSE(fs::exists(dir / "frames"));
   // A word that is no command was "A subcommand is required", as if none had been given.
   EXPECT_EQ(run_motus(dir, {"rnu", scene("spring")}).err,
-            "motus: error: unknown command \"rnu\" (the commands: run, compare, list, bench, render, grade, stress; run "
-            "`motus --help`)\n");
+            "motus: error: unknown command \"rnu\", did you mean run? (the commands: run, compare, list, bench, render, "
+            "grade, stress; motus --help)\n");
   EXPECT_EQ(run_motus(dir, {"run", scene("spring"), "--dt", "1e308", "--steps", "2"}).err,
             "motus: error: --steps: 2 steps of 1e+308 s is more time than a double holds\n");
+}
+
+// The known word a misspelt one most likely is: one slip of the fingers (a letter added, dropped, changed, or
+// two neighbours swapped) in a short word, more in a longer one; nothing when none is that close.
+TEST(Spelling, TheClosestKnownWordIsASlipAwayOrNothing) {
+  const std::vector<std::string> integrators = {"euler", "midpoint", "rk4", "rk45", "symplectic-euler", "verlet"};
+  EXPECT_EQ(motus::closest_known("eular", integrators), "euler");           // one letter changed
+  EXPECT_EQ(motus::closest_known("eluer", integrators), "euler");           // two neighbours swapped: one slip
+  EXPECT_EQ(motus::closest_known("Euler", integrators), "euler");           // the case alone
+  EXPECT_EQ(motus::closest_known("rk44", integrators), "rk4");              // rk4 and rk45 one away: the first
+  EXPECT_EQ(motus::closest_known("symplectc-eulr", integrators), "symplectic-euler");  // two in a long word
+  EXPECT_EQ(motus::closest_known("euler", integrators), std::nullopt);      // known
+  EXPECT_EQ(motus::closest_known("leapfrog", integrators), std::nullopt);   // no slip of any
+  EXPECT_EQ(motus::closest_known("rk", integrators), "rk4");                // one dropped from a short word
+  EXPECT_EQ(motus::closest_known("k", integrators), std::nullopt);          // one letter: no guess
+  EXPECT_EQ(motus::closest_known("--dtt", {"--dt", "--duration"}), "--dt");  // the dashes are not the name
+  EXPECT_EQ(motus::closest_known("-v", {"-h", "--help", "--version"}), std::nullopt);
+  EXPECT_EQ(motus::closest_known(std::string(100, 'e'), integrators), std::nullopt);  // no slip, and no work on it
+  EXPECT_EQ(motus::did_you_mean("vrlet", integrators), ", did you mean verlet?");
+  EXPECT_EQ(motus::did_you_mean("zzz", integrators), "");
+  EXPECT_EQ(motus::words_of_list("euler, midpoint,rk4"), (std::vector<std::string>{"euler", "midpoint", "rk4"}));
+}
+
+// The command line's mistakes, in motus's words: the option or command named as given, the word most likely
+// meant, and the help to read. (They were CLI11's: "The following arguments were not expected: 1 --dtt" — the
+// value blamed, the order reversed — "A subcommand is required" for `motus --hlep` or `motus bench precison`,
+// "Could not convert: --dt = abc", "--dt: At Most 1 required but received 2", "--OUT is required" of a
+// misspelt --out.)
+TEST(CliErrors, TheCommandLinesMistakesAreNamedWithTheWordMostLikelyMeant) {
+  TempDir dir;
+  const std::string spring = scene("spring");
+  const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
+      {{"run", spring, "--dtt", "1"}, "unknown option --dtt, did you mean --dt? (motus run --help)"},
+      {{"run", spring, "--dtt=1"}, "unknown option --dtt, did you mean --dt? (motus run --help)"},
+      {{"render", spring, "--ot", "x"}, "unknown option --ot, did you mean --out? (motus render --help)"},
+      {{"stress", spring, "--repeats", "2"}, "unknown option --repeats (motus stress --help)"},
+      {{"--hlep"}, "unknown option --hlep, did you mean --help? (a command's options come after it: motus COMMAND --help)"},
+      {{"-v"}, "unknown option -v (a command's options come after it: motus COMMAND --help)"},
+      {{"bench", "precison", spring},
+       "bench: unknown command \"precison\", did you mean precision? (the commands: precision; motus bench --help)"},
+      {{"bench"}, "bench: a command is needed (the commands: precision; motus bench --help)"},
+      {{"run", spring, "--dt", "abc"}, "--dt: \"abc\" is not a number (motus run --help)"},
+      {{"run", spring, "--dt", "1", "--dt", "2"}, "--dt: given more than once (motus run --help)"},
+      {{"run", spring, "--steps", "3", "--duration", "2"}, "--duration and --steps cannot be given together (motus run --help)"},
+      {{"compare", spring, "--fps", "10"}, "--fps: only with --render (motus compare --help)"},
+      {{"run"}, "SCENE is missing (motus run --help)"},
+      {{"run", spring, "extra"}, "unexpected argument \"extra\" (motus run --help)"},
+      // options that would be taken and change nothing
+      {{"run", spring, "--overwrite"}, "--overwrite: only with --trajectory (motus run --help)"},
+      {{"bench", "precision", spring, "--overwrite"}, "--overwrite: only with --csv (motus bench precision --help)"},
+      {{"run", spring, "--rtol", "1e-3"},
+       "--rtol: euler takes fixed steps and no tolerance (rk45, dop853 and rk4-doubling take one)"},
+      {{"run", "sprng"}, "sprng: no such file, nor a shipped scene of that name, did you mean spring? (motus list shows "
+                         "the scenes)"},
+      {{"stress", spring, "--integrators", "eluer"},
+       "--integrators: unknown integrator \"eluer\", did you mean euler? (known: euler, midpoint, rk4, rk4-doubling, "
+       "rk45, dop853, symplectic-euler, symplectic-euler-x, verlet, velocity-verlet, yoshida4)"},
+  };
+  for (const auto& [args, line] : cases) {
+    const Result r = run_motus(dir, args);
+    EXPECT_EQ(r.status, 2) << args.back();
+    EXPECT_EQ(r.err, "motus: error: " + line + "\n") << args.back();
+    EXPECT_TRUE(r.out.empty()) << r.out;
+  }
+  // `motus help [COMMAND]` is `motus [COMMAND] --help`; `motus` alone shows the commands, and fails (nothing done).
+  const Result help_run = run_motus(dir, {"help", "run"});
+  EXPECT_EQ(help_run.status, 0);
+  EXPECT_EQ(help_run.out, run_motus(dir, {"run", "--help"}).out);
+  EXPECT_NE(help_run.out.find("--dt"), std::string::npos) << help_run.out;
+  const Result bare = run_motus(dir, {});
+  EXPECT_EQ(bare.status, 2);
+  EXPECT_TRUE(bare.out.empty()) << bare.out;
+  EXPECT_NE(bare.err.find("compare"), std::string::npos) << bare.err;
+  EXPECT_NE(bare.err.find("motus: error: a command is needed"), std::string::npos) << bare.err;
 }
 
 // ---------------------------------------------------------------------------------------------------------

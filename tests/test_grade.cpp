@@ -605,7 +605,7 @@ TEST(Grade, BadInputIsOneLineAndExitTwo) {
   const std::string misspelt = integrators_with_tests(dir, "misspelt", json::array({misspelt_scene})).string();
   const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
       {{"grade", "nonsense", solution}, "no such assignment"},
-      {{"grade", misspelt, solution}, "public.json: tests[0].scene: \"sprnig\" is no shipped scene (motus list shows them"},
+      {{"grade", misspelt, solution}, "public.json: tests[0].scene: \"sprnig\" is no shipped scene, did you mean spring? (motus list shows them"},
       {{"grade", "integrators", (dir / "nowhere").string()}, "no such submission folder"},
       {{"grade", "integrators", solution, "--results", (dir / "results.json").string()}, "--overwrite"},
       {{"grade", "integrators", solution, "--hidden", (dir / "nowhere").string()}, "--hidden: no such folder"},
@@ -781,12 +781,12 @@ void expect_each_refused(const std::vector<std::tuple<std::string, std::function
 TEST(Grade, AFieldMisspeltOrMissingInTheRubricOrAssignmentIsNamed) {
   expect_each_refused({
       {"rubric.json", [](json& d) { d["tests"][0]["pionts"] = d["tests"][0]["points"]; d["tests"][0].erase("points"); },
-       "tests[0].pionts: unknown field (expected one of: name, points, visibility)"},
+       "tests[0].pionts: unknown field, did you mean points? (expected one of: name, points, visibility)"},
       {"rubric.json", [](json& d) { d["tests"][3]["visibilty"] = "after_due_date"; d["tests"][3].erase("visibility"); },
        "tests[3].visibilty: unknown field"},
       {"rubric.json", [](json& d) { d["tests"][2].erase("points"); }, "tests[2].points: missing (required)"},
       {"rubric.json", [](json& d) { d["tests"][2].erase("visibility"); }, "tests[2].visibility: missing (required)"},
-      {"rubric.json", [](json& d) { d["test"] = d["tests"]; }, "test: unknown field (expected one of: tests)"},
+      {"rubric.json", [](json& d) { d["test"] = d["tests"]; }, "test: unknown field, did you mean tests? (expected one of: tests)"},
       {"assignment.json", [](json& d) { d["flgs"] = {"-O3"}; }, "flgs: unknown field"},
   });
 }

@@ -140,7 +140,9 @@ CheckScene load_check_scene(JsonFields& f, const json& test, const SceneSource& 
     scene.file = source.shipped(f.string("scene"));
     // (Named as the test's field: "tests/public.json: sprnig: cannot be read" named neither.)
     if (!fs::is_regular_file(scene.file))
-      f.fail("scene", "\"" + f.string("scene") + "\" is no shipped scene (motus list shows them; a file of the tests' own is a scene_file)");
+      f.fail("scene", "\"" + f.string("scene") + "\" is no shipped scene" +
+                          (source.guess ? source.guess(f.string("scene")) : std::string()) +
+                          " (motus list shows them; a file of the tests' own is a scene_file)");
   }
   f.use("set");  // read by hand below
   const std::vector<std::string> sets = read_sets(test, f.path());

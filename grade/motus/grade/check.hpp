@@ -36,6 +36,7 @@ struct CheckResult {
 // Where a test's scene files are: a shipped scene's name, or a path relative to the test file.
 struct SceneSource {
   std::function<std::string(const std::string& name)> shipped;  // name → file
+  std::function<std::string(const std::string& name)> guess;    // a name that is none → ", did you mean X?" or ""
   std::string tests_folder;
 };
 

@@ -1,5 +1,7 @@
 #include "motus/scene_file/json_fields.hpp"
 
+#include "motus/scene_file/spelling.hpp"
+
 #include <cctype>
 #include <cmath>
 #include <limits>
@@ -160,9 +162,11 @@ void JsonFields::reject_unknown() const {
     if (!used_.count(it.key())) {
       std::string known;
       std::set<std::string> seen;
+      std::vector<std::string> names;
       for (const auto& k : asked_)
-        if (seen.insert(k).second) known += (known.empty() ? "" : ", ") + k;
-      fail(it.key(), "unknown field" + (known.empty() ? std::string() : " (expected one of: " + known + ")"));
+        if (seen.insert(k).second) known += (known.empty() ? "" : ", ") + k, names.push_back(k);
+      fail(it.key(), "unknown field" + did_you_mean(it.key(), names) +
+                         (known.empty() ? std::string() : " (expected one of: " + known + ")"));
     }
 }
 

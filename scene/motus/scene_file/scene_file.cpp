@@ -18,6 +18,7 @@
 #include "motus/systems/system_catalog.hpp"
 #include "motus/scene_file/printable_text.hpp"
 #include "motus/scene_file/scene_overrides.hpp"
+#include "motus/scene_file/spelling.hpp"
 #include "motus/scene_file/strict_json.hpp"
 #include "motus/scene_file/equations_system.hpp"
 
@@ -457,7 +458,10 @@ SceneDescription read_scene(const nlohmann::json& document, const std::string& s
 
   scene.integrator = f.string("integrator", "rk4");
   const auto id = integrator_from_name(scene.integrator);
-  if (!id) f.fail("integrator", "unknown integrator \"" + scene.integrator + "\" (known: " + integrator_names() + ")");
+  if (!id)
+    f.fail("integrator", "unknown integrator \"" + scene.integrator + "\"" +
+                             did_you_mean(scene.integrator, words_of_list(integrator_names())) +
+                             " (known: " + integrator_names() + ")");
   if (info(*id).needs_mechanical && !scene.mechanical)
     f.fail("integrator", scene.integrator + " is symplectic and needs a mechanical scene (bodies); use euler, midpoint, rk4, rk4-doubling, rk45 or dop853");
   scene.dt = f.positive("dt");
