@@ -409,17 +409,22 @@ std::vector<std::string> Box2dBackend::notes() const {
                      "farthest a body came), velocities likewise",
                      std::max(w.farthest, 1.0) * 1.2e-7, w.farthest));
   const double cap = b2_maxTranslation;
-  s.push_back(format("b2_maxTranslation (%g m per step): the fastest body moves %.3g m per step at the start "
-                     "(%.3g%% of it%s)",
-                     cap, w.start_fastest, 100 * w.start_fastest / cap,
-                     w.start_fastest > cap ? ": Box2D will slow it to the cap" : ""));
+  // (One line when the run never came near the cap: the start's speed and the run's said together.)
+  if (w.capped == 0 && w.steps > 0) {
+    const double fastest = std::max(w.run_fastest, w.start_fastest);
+    s.push_back(format("b2_maxTranslation not reached in %ld steps (%g m per step; the fastest body moved %.3g m in a "
+                       "step, %.3g%% of it, and %.3g m at the start)",
+                       w.steps, cap, fastest, 100 * fastest / cap, w.start_fastest));
+  } else {
+    s.push_back(format("b2_maxTranslation (%g m per step): the fastest body moves %.3g m per step at the start "
+                       "(%.3g%% of it%s)",
+                       cap, w.start_fastest, 100 * w.start_fastest / cap,
+                       w.start_fastest > cap ? ": Box2D will slow it to the cap" : ""));
+  }
   if (w.capped > 0)
     s.push_back(format("b2_maxTranslation capped %ld body-steps (first at step %ld, t = %.6g s): those bodies moved "
                        "only %g m in a step where the scene says farther",
                        w.capped, w.first_capped_step, w.t0 + static_cast<double>(w.first_capped_step) * w.dt, cap));
-  else if (w.steps > 0)  // (the fastest over the run includes its start: the line above quotes that)
-    s.push_back(format("b2_maxTranslation not reached in %ld steps (fastest %.3g m per step, %.3g%% of it)", w.steps,
-                       std::max(w.run_fastest, w.start_fastest), 100 * std::max(w.run_fastest, w.start_fastest) / cap));
   s.push_back("b2_maxRotation (0.5*pi per step) cannot bite: every body has fixed rotation");
   if (w.has_contacts)
     s.push_back(format("contacts: Box2D finds them at the start of each step (continuous collision within it), lets "
