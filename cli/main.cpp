@@ -21,6 +21,7 @@
 #include "compare_command.hpp"
 #include "cli_common.hpp"
 #include "command_line_errors.hpp"
+#include "help_format.hpp"
 #include "list_command.hpp"
 #include "render_command.hpp"
 #include "motus/scene_error.hpp"
@@ -40,6 +41,8 @@ int motus_main(int argc, char** argv) {
       "It integrates the scenes in scenes/ with the integrators of the course (docs/course.md) and reports\n"
       "energy, momentum and accuracy. Exit status: 0 done, 1 the run failed, 2 bad input.",
       "motus"};
+  // (Before the commands are added: they take the formatter they are given then.)
+  app.formatter(std::make_shared<WrappingFormatter>(help_width()));
   app.require_subcommand(1);
   app.set_version_flag("--version", "motus " MOTUS_VERSION);
 

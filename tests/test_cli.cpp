@@ -347,6 +347,36 @@ TEST(CliErrors, TheCommandLinesMistakesAreNamedWithTheWordMostLikelyMeant) {
   EXPECT_NE(bare.err.find("motus: error: a command is needed"), std::string::npos) << bare.err;
 }
 
+// Help fits a terminal: descriptions wrapped at words under their column (lines ran to 275 characters, which
+// a terminal broke anywhere), to 100 columns when standard output is no terminal, none of their words lost.
+TEST(CliHelp, EveryCommandsHelpFitsInAHundredColumnsWhenPiped) {
+  TempDir dir;
+  auto columns = [](const std::string& line) {
+    return std::count_if(line.begin(), line.end(), [](char c) { return (static_cast<unsigned char>(c) & 0xC0) != 0x80; });
+  };
+  for (const std::vector<std::string>& command :
+       {std::vector<std::string>{}, {"run"}, {"compare"}, {"list"}, {"bench"}, {"bench", "precision"}, {"render"},
+        {"grade"}, {"stress"}}) {
+    std::vector<std::string> args = command;
+    args.push_back("--help");
+    const Result r = run_motus(dir, args);
+    EXPECT_EQ(r.status, 0) << r.err;
+    std::istringstream lines(r.out);
+    int count = 0;
+    for (std::string line; std::getline(lines, line); ++count) EXPECT_LE(columns(line), 100) << line;
+    EXPECT_GT(count, 3) << r.out;
+  }
+  // A long description's words, all there, in order: compare's --size.
+  const Result compare = run_motus(dir, {"compare", "--help"});
+  std::string words;
+  std::istringstream text(compare.out);
+  for (std::string w; text >> w;) words += w + " ";
+  EXPECT_NE(words.find("The size of each engine's panel in the pictures (the report's first and last frames; every "
+                       "frame with --render)"),
+            std::string::npos)
+      << compare.out;
+}
+
 // ---------------------------------------------------------------------------------------------------------
 // Good input.
 
