@@ -78,7 +78,8 @@ int bench_precision_command(const BenchPrecisionOptions& o) {
     if (!(target > 0 && std::isfinite(target))) throw InputError("--targets: every target error must be a finite number > 0");
   for (const auto& peer : o.peers)
     if (std::find(kPeers.begin(), kPeers.end(), peer) == kPeers.end())
-      throw InputError("--peers: unknown peer \"" + peer + "\" (known: odeint, box2d, bullet)");
+      throw InputError("--peers: unknown peer \"" + peer + "\"" + did_you_mean(peer, {"odeint", "box2d", "bullet"}) +
+                       " (known: odeint, box2d, bullet)");
 
   if (o.duration) checked_step_count(*o.duration, scene.dt, "--duration");
   check_time_resolution(scene.start_time, o.duration.value_or(scene.duration), scene.dt, path + ": start_time",

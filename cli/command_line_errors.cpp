@@ -112,6 +112,17 @@ std::string parse_error_line(const CLI::App& app, const CLI::ParseError& e) {
       return name + ": \"" + one_line(value, 80) + "\" is not " + expected + " " + help;
     }
   }
+  // "--video: mp5 not in {mp4,gif}" (a choice among words)
+  if (dynamic_cast<const CLI::ValidationError*>(&e)) {
+    const size_t colon = what.find(": "), not_in = what.find(" not in {");
+    if (colon != std::string::npos && not_in != std::string::npos && not_in > colon && what.back() == '}') {
+      const std::string name = what.substr(0, colon), value = what.substr(colon + 2, not_in - colon - 2);
+      const std::vector<std::string> choices = words_of_list(what.substr(not_in + 9, what.size() - not_in - 10));
+      std::string listed;
+      for (const auto& c : choices) listed += (listed.empty() ? "" : ", ") + c;
+      return name + ": \"" + one_line(value, 80) + "\" is none of " + listed + did_you_mean(value, choices) + " " + help;
+    }
+  }
   // "--dt: At Most 1 required but received 2"
   if (dynamic_cast<const CLI::ArgumentMismatch*>(&e)) {
     const size_t colon = what.find(": At Most 1 required");

@@ -18,6 +18,7 @@
 #include "progress_bar.hpp"
 #include "motus/compare/report.hpp"
 #include "motus/scene_file/scene_file.hpp"
+#include "motus/scene_file/spelling.hpp"
 
 namespace fs = std::filesystem;
 
@@ -95,8 +96,8 @@ int compare_command(const CompareOptions& o) {
   options.engines.clear();
   for (const auto& e : o.engines.empty() ? known : o.engines) {
     if (std::find(known.begin(), known.end(), e) == known.end())
-      throw InputError("--engines: unknown engine \"" + e + "\" (known: " + known_list + ")" +
-                       (plugins().empty() && e != "motus" ? "; a plug-in's column needs --plugin FILE.so" : ""));
+      throw InputError("--engines: unknown engine \"" + e + "\"" + did_you_mean(e, known) + " (known: " + known_list + ")" +
+                       (plugins().empty() && !closest_known(e, known) ? "; a plug-in's column needs --plugin FILE.so" : ""));
     // (Named twice, an engine would be one column, without a word about the other.)
     if (std::find(options.engines.begin(), options.engines.end(), e) != options.engines.end())
       throw InputError("--engines: \"" + e + "\" is named twice");

@@ -318,6 +318,12 @@ TEST(CliErrors, TheCommandLinesMistakesAreNamedWithTheWordMostLikelyMeant) {
       {{"compare", spring, "--fps", "10"}, "--fps: only with --render (motus compare --help)"},
       {{"run"}, "SCENE is missing (motus run --help)"},
       {{"run", spring, "extra"}, "unexpected argument \"extra\" (motus run --help)"},
+      {{"render", spring, "--out", (dir / "frames").string(), "--video", "mp5"},
+       "--video: \"mp5\" is none of mp4, gif, did you mean mp4? (motus render --help)"},
+      {{"compare", spring, "--engines", "motus,box2"},
+       "--engines: unknown engine \"box2\", did you mean box2d? (known: motus, box2d, bullet)"},
+      {{"bench", "precision", spring, "--peers", "odient"},
+       "--peers: unknown peer \"odient\", did you mean odeint? (known: odeint, box2d, bullet)"},
       // options that would be taken and change nothing
       {{"run", spring, "--overwrite"}, "--overwrite: only with --trajectory (motus run --help)"},
       {{"bench", "precision", spring, "--overwrite"}, "--overwrite: only with --csv (motus bench precision --help)"},
