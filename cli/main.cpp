@@ -64,6 +64,8 @@ int motus_main(int argc, char** argv) {
   auto* serve = add_serve_command(app, serve_options);
   StressOptions stress_options;
   auto* stress = add_stress_command(app, stress_options);
+  // (After the commands: a command takes its parent's footer when it is added.)
+  app.footer("motus COMMAND --help (or motus help COMMAND) tells about one command.");
 
   // Help and the version, printed: a standard output that could not take them (a full disk) is
   // a failure, as for every other output.
