@@ -78,8 +78,7 @@ int bench_precision_command(const BenchPrecisionOptions& o) {
     if (!(target > 0 && std::isfinite(target))) throw InputError("--targets: every target error must be a finite number > 0");
   for (const auto& peer : o.peers)
     if (std::find(kPeers.begin(), kPeers.end(), peer) == kPeers.end())
-      throw InputError("--peers: unknown peer \"" + peer + "\"" + did_you_mean(peer, {"odeint", "box2d", "bullet"}) +
-                       " (known: odeint, box2d, bullet)");
+      throw InputError("--peers: " + unknown_one_of("peer", peer, {"odeint", "box2d", "bullet"}));
 
   if (o.duration) checked_step_count(*o.duration, scene.dt, "--duration");
   check_time_resolution(scene.start_time, o.duration.value_or(scene.duration), scene.dt, path + ": start_time",
@@ -105,8 +104,7 @@ int bench_precision_command(const BenchPrecisionOptions& o) {
       if (const auto id = integrator_from_name(name)) method.emplace(*id);
       else if (const auto m = plugins().integrator(name)) method = *m;
       else
-        throw InputError("--integrators: unknown integrator \"" + name + "\"" +
-                         did_you_mean(name, words_of_list(known_integrators())) + " (known: " + known_integrators() + ")");
+        throw InputError("--integrators: " + unknown_one_of("integrator", name, known_integrators()));
       // (each once, as stress takes them: rk4,rk4 is one curve)
       if (std::none_of(chosen.begin(), chosen.end(), [&](const Method& m) { return m.name() == method->name(); }))
         chosen.push_back(*method);

@@ -226,9 +226,9 @@ void load_plugins(const std::vector<std::string>& files, bool data_on_standard_o
   report_plugin_crashes(plugins());
 }
 
-std::string known_integrators() {
-  std::string names = integrator_names();
-  for (const auto& m : plugins().integrators()) names += ", " + m.name();
+std::vector<std::string> known_integrators() {
+  std::vector<std::string> names = integrator_names();
+  for (const auto& m : plugins().integrators()) names.push_back(m.name());
   return names;
 }
 
@@ -239,8 +239,7 @@ Method method_for(const std::string& path, const SceneDescription& scene, const 
   else method = plugins().integrator(name);
   if (!method) {
     const bool looks_like_plugin = name.find(':') != std::string::npos;
-    throw InputError(path + ": --integrator: unknown integrator \"" + name + "\"" +
-                     did_you_mean(name, words_of_list(known_integrators())) + " (known: " + known_integrators() + ")" +
+    throw InputError(path + ": --integrator: " + unknown_one_of("integrator", name, known_integrators()) +
                      (looks_like_plugin && plugins().empty() ? "; load its plug-in with --plugin FILE.so" : ""));
   }
   if (method->needs_mechanical() && !scene.is_mechanical()) {  // the file's own integrator was checked by the loader

@@ -158,8 +158,8 @@ void load_plugins(const std::vector<std::string>& files, bool data_on_standard_o
 // a loaded plug-in), else the scene's; one line naming the file when it is unknown, or
 // symplectic on a first-order scene.
 Method method_for(const std::string& path, const SceneDescription& scene, const std::optional<std::string>& requested);
-// "euler, midpoint, ..., student:euler, ..." for messages.
-std::string known_integrators();
+// {"euler", "midpoint", ..., "student:euler", ...}: the built-in integrators and the plug-ins', for messages.
+std::vector<std::string> known_integrators();
 
 // What the scene's time is counted in, for people: "s", or "years" for World2 (the system
 // catalog's time_unit).

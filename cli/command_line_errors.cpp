@@ -1,7 +1,11 @@
 #include "command_line_errors.hpp"
 
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
 #include <algorithm>
 #include <cctype>
+#include <sstream>
 
 #include "cli_common.hpp"
 #include "motus/scene_file/spelling.hpp"
@@ -15,12 +19,6 @@ std::vector<std::string> command_names(const CLI::App& at, bool hidden_too) {
   for (const CLI::App* c : at.get_subcommands([](const CLI::App*) { return true; }))
     if (hidden_too || !c->get_group().empty()) names.push_back(c->get_name());
   return names;
-}
-
-std::string joined(const std::vector<std::string>& words) {
-  std::string out;
-  for (const auto& w : words) out += (out.empty() ? "" : ", ") + w;
-  return out;
 }
 
 // Every spelling of every option of `at`: "--dt", "-h", ...
@@ -73,7 +71,7 @@ std::optional<std::string> misplaced_word(const CLI::App& app, const std::vector
       if (at->get_require_subcommand_min() == 0) return std::nullopt;  // a command's own argument (a scene)
       const auto shown = command_names(*at, false);
       return (path.empty() ? "" : path + ": ") + "unknown command \"" + one_line(word, 80) + "\"" +
-             did_you_mean(word, shown) + " (the commands: " + joined(shown) + "; " + help_for(path).substr(1);
+             did_you_mean(word, shown) + " (the commands: " + fmt::format("{}", fmt::join(shown, ", ")) + "; " + help_for(path).substr(1);
     }
     at = at->get_subcommand(word);
     path += (path.empty() ? "" : " ") + word;
@@ -117,10 +115,11 @@ std::string parse_error_line(const CLI::App& app, const CLI::ParseError& e) {
     const size_t colon = what.find(": "), not_in = what.find(" not in {");
     if (colon != std::string::npos && not_in != std::string::npos && not_in > colon && what.back() == '}') {
       const std::string name = what.substr(0, colon), value = what.substr(colon + 2, not_in - colon - 2);
-      const std::vector<std::string> choices = words_of_list(what.substr(not_in + 9, what.size() - not_in - 10));
-      std::string listed;
-      for (const auto& c : choices) listed += (listed.empty() ? "" : ", ") + c;
-      return name + ": \"" + one_line(value, 80) + "\" is none of " + listed + did_you_mean(value, choices) + " " + help;
+      std::vector<std::string> choices;  // (CLI11's set, "{mp4,gif}")
+      std::istringstream set(what.substr(not_in + 9, what.size() - not_in - 10));
+      for (std::string choice; std::getline(set, choice, ',');) choices.push_back(choice);
+      return name + ": \"" + one_line(value, 80) + "\" is none of " + fmt::format("{}", fmt::join(choices, ", ")) +
+             did_you_mean(value, choices) + " " + help;
     }
   }
   // "--dt: At Most 1 required but received 2"
@@ -142,7 +141,7 @@ std::string parse_error_line(const CLI::App& app, const CLI::ParseError& e) {
   if (dynamic_cast<const CLI::RequiredError*>(&e)) {
     if (starts_with(what, "A subcommand is required"))
       return (path.empty() ? "" : path + ": ") + "a command is needed (the commands: " +
-             joined(command_names(*at, false)) + "; " + help.substr(1);
+             fmt::format("{}", fmt::join(command_names(*at, false), ", ")) + "; " + help.substr(1);
     const size_t is = what.find(" is required");
     if (is != std::string::npos && what.find(' ') == is) {
       std::string name = what.substr(0, is);

@@ -91,12 +91,10 @@ int compare_command(const CompareOptions& o) {
   const std::string plugin = plugins().empty() ? "" : plugins().parts_owner();
   auto known = compare::backend_names();
   if (!plugin.empty()) known.insert(known.begin() + 1, plugin);
-  std::string known_list;
-  for (const auto& e : known) known_list += (known_list.empty() ? "" : ", ") + e;
   options.engines.clear();
   for (const auto& e : o.engines.empty() ? known : o.engines) {
     if (std::find(known.begin(), known.end(), e) == known.end())
-      throw InputError("--engines: unknown engine \"" + e + "\"" + did_you_mean(e, known) + " (known: " + known_list + ")" +
+      throw InputError("--engines: " + unknown_one_of("engine", e, known) +
                        (plugins().empty() && !closest_known(e, known) ? "; a plug-in's column needs --plugin FILE.so" : ""));
     // (Named twice, an engine would be one column, without a word about the other.)
     if (std::find(options.engines.begin(), options.engines.end(), e) != options.engines.end())

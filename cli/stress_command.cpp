@@ -143,8 +143,7 @@ int stress_command(const StressOptions& o) {
     for (const auto& n : o.integrators) {
       const auto id = integrator_from_name(n);
       if (!id)
-        throw InputError("--integrators: unknown integrator \"" + n + "\"" + did_you_mean(n, words_of_list(integrator_names())) +
-                         " (known: " + integrator_names() + ")");
+        throw InputError("--integrators: " + unknown_one_of("integrator", n, integrator_names()));
       if (std::find(asked.begin(), asked.end(), *id) == asked.end()) asked.push_back(*id);
     }
   }

@@ -291,7 +291,9 @@ TEST(Spelling, TheClosestKnownWordIsASlipAwayOrNothing) {
   EXPECT_EQ(motus::closest_known(std::string(100, 'e'), integrators), std::nullopt);  // no slip, and no work on it
   EXPECT_EQ(motus::did_you_mean("vrlet", integrators), ", did you mean verlet?");
   EXPECT_EQ(motus::did_you_mean("zzz", integrators), "");
-  EXPECT_EQ(motus::words_of_list("euler, midpoint,rk4"), (std::vector<std::string>{"euler", "midpoint", "rk4"}));
+  EXPECT_EQ(motus::unknown_one_of("integrator", "vrlet", {"euler", "verlet"}),
+            "unknown integrator \"vrlet\", did you mean verlet? (known: euler, verlet)");
+  EXPECT_EQ(motus::unknown_one_of("peer", "havok", {"odeint", "box2d"}), "unknown peer \"havok\" (known: odeint, box2d)");
 }
 
 // The command line's mistakes, in motus's words: the option or command named as given, the word most likely

@@ -27,10 +27,10 @@ std::optional<Integrator> integrator_from_name(std::string_view name) {
   return std::nullopt;
 }
 
-std::string integrator_names() {
-  std::string s;
-  for (const auto& i : all_integrators()) s += (s.empty() ? "" : ", ") + std::string(i.name);
-  return s;
+std::vector<std::string> integrator_names() {
+  std::vector<std::string> names;
+  for (const auto& i : all_integrators()) names.emplace_back(i.name);
+  return names;
 }
 
 }  // namespace motus

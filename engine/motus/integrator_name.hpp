@@ -33,7 +33,7 @@ struct IntegratorInfo {
 const std::vector<IntegratorInfo>& all_integrators();
 const IntegratorInfo& info(Integrator id);
 std::optional<Integrator> integrator_from_name(std::string_view name);
-// "euler, midpoint, ..." for error messages.
-std::string integrator_names();
+// {"euler", "midpoint", ...}: the names, in all_integrators()'s order (for error messages).
+std::vector<std::string> integrator_names();
 
 }  // namespace motus

@@ -459,9 +459,7 @@ SceneDescription read_scene(const nlohmann::json& document, const std::string& s
   scene.integrator = f.string("integrator", "rk4");
   const auto id = integrator_from_name(scene.integrator);
   if (!id)
-    f.fail("integrator", "unknown integrator \"" + scene.integrator + "\"" +
-                             did_you_mean(scene.integrator, words_of_list(integrator_names())) +
-                             " (known: " + integrator_names() + ")");
+    f.fail("integrator", unknown_one_of("integrator", scene.integrator, integrator_names()));
   if (info(*id).needs_mechanical && !scene.mechanical)
     f.fail("integrator", scene.integrator + " is symplectic and needs a mechanical scene (bodies); use euler, midpoint, rk4, rk4-doubling, rk45 or dop853");
   scene.dt = f.positive("dt");

@@ -55,17 +55,10 @@ std::string did_you_mean(const std::string& word, const std::vector<std::string>
   return k ? ", did you mean " + *k + "?" : "";
 }
 
-std::vector<std::string> words_of_list(const std::string& comma_separated) {
-  std::vector<std::string> words;
-  size_t from = 0;
-  for (;;) {
-    const size_t comma = comma_separated.find(',', from);
-    std::string w = comma_separated.substr(from, comma == std::string::npos ? std::string::npos : comma - from);
-    w.erase(0, w.find_first_not_of(' '));
-    if (!w.empty()) words.push_back(w);
-    if (comma == std::string::npos) return words;
-    from = comma + 1;
-  }
+std::string unknown_one_of(const std::string& kind, const std::string& word, const std::vector<std::string>& known) {
+  std::string listed;
+  for (const std::string& k : known) listed += (listed.empty() ? "" : ", ") + k;
+  return "unknown " + kind + " \"" + word + "\"" + did_you_mean(word, known) + " (known: " + listed + ")";
 }
 
 }  // namespace motus

@@ -18,7 +18,8 @@ std::optional<std::string> closest_known(const std::string& word, const std::vec
 // error message ("unknown option --dtt, did you mean --dt?").
 std::string did_you_mean(const std::string& word, const std::vector<std::string>& known);
 
-// The words of a list as messages show one ("euler, midpoint, rk4"), to look for the closest in.
-std::vector<std::string> words_of_list(const std::string& comma_separated);
+// `unknown KIND "WORD", did you mean X? (known: A, B, C)` (the guess only when closest_known has
+// one): a word that is none of a list's, as motus's errors say it.
+std::string unknown_one_of(const std::string& kind, const std::string& word, const std::vector<std::string>& known);
 
 }  // namespace motus
