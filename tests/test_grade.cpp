@@ -416,11 +416,14 @@ TEST(Plugins, APluginsBrokenNumbersAreItsOwnFailureNeverAPerfectRun) {
                       "--out", (dir / "c").string(), "--json"});
   ASSERT_EQ(r.status, 0) << r.err;
   const nlohmann::json report = nlohmann::json::parse(r.out);  // (a range-for over parse(...).at(...) reads a dead temporary)
+  int bad_columns = 0;  // (the plug-in's column is there: the checks below ran)
   for (const auto& e : report.at("engines"))
     if (e.at("engine") == "bad") {
+      ++bad_columns;
       for (const char* field : {"max_energy_error", "max_distance_from_exact"})
         EXPECT_FALSE(e.at(field).is_number() && e.at(field).get<double>() == 0) << field << ": " << e.dump();
     }
+  EXPECT_EQ(bad_columns, 1) << report.at("engines").dump();
   // A projection that answers NaN: the run's largest stick and pin errors are not finite (null),
   // not the last finite ones (std::max drops a NaN: an audit read 32.3 and 0 of a NaN rope).
   r = run_motus(dir, {"run", "rope", "--plugin", kPlugins + "/nan_projection.so", "--json"});

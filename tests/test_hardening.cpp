@@ -1015,27 +1015,33 @@ TEST(Hardening, AFileThatAppearsDuringARunIsNotReplaced) {
 // Now two within 50 ms are one: motus stops at its next safe point and leaves nothing. Found by an
 // audit of interruptions.
 TEST(Hardening, OneInterruptDeliveredTwiceIsOneInterrupt) {
-  TempDir dir;
-  const pid_t pid = start_motus(dir, {"run", "cloth", "--repeats", "1", "--duration", "20", "--set", "output_interval=1",
-                                     "--trajectory", (dir / "t.csv").string()});
-  ASSERT_GT(pid, 0);
-  ASSERT_FALSE(wait_for_partial(dir / "t.csv", 1000).empty()) << "the run wrote no trajectory in 20 s";
   // (Two signals sent back to back usually merge into one pending signal; 2 ms apart, the first has
-  // been handled when the second comes, as when timeout's second one comes late.)
-  const auto first = std::chrono::steady_clock::now();
-  ::kill(pid, SIGINT);
-  ::usleep(2000);
-  ::kill(pid, SIGINT);
-  const bool soon = std::chrono::steady_clock::now() - first < std::chrono::milliseconds(40);
-  int raw = 0;
-  ASSERT_TRUE(ended_within(pid, 60, raw));
-  if (!soon) GTEST_SKIP() << "the machine held this test up 40 ms or more between the two signals";
-  EXPECT_TRUE(WIFEXITED(raw) && WEXITSTATUS(raw) == 130) << raw;
-  const std::string err = read_file(dir / "err.txt");
-  EXPECT_EQ(err.find("stopped at once"), std::string::npos) << err;
-  EXPECT_NE(err.find("nothing half-written was left behind"), std::string::npos) << err;
-  for (const auto& e : fs::directory_iterator(dir.path()))
-    EXPECT_TRUE(e.path().filename() == "err.txt" || e.path().filename() == "out.txt") << "left behind: " << e.path();
+  // been handled when the second comes, as when timeout's second one comes late. A busy machine may
+  // hold this test up between the two: then the run is tried again, three times in all, before the
+  // test gives up — skipped, not passed.)
+  for (int attempt = 0; attempt < 3; ++attempt) {
+    TempDir dir;
+    const pid_t pid = start_motus(dir, {"run", "cloth", "--repeats", "1", "--duration", "20", "--set",
+                                       "output_interval=1", "--trajectory", (dir / "t.csv").string()});
+    ASSERT_GT(pid, 0);
+    ASSERT_FALSE(wait_for_partial(dir / "t.csv", 1000).empty()) << "the run wrote no trajectory in 20 s";
+    const auto first = std::chrono::steady_clock::now();
+    ::kill(pid, SIGINT);
+    ::usleep(2000);
+    ::kill(pid, SIGINT);
+    const bool soon = std::chrono::steady_clock::now() - first < std::chrono::milliseconds(40);
+    int raw = 0;
+    ASSERT_TRUE(ended_within(pid, 60, raw));
+    if (!soon) continue;
+    EXPECT_TRUE(WIFEXITED(raw) && WEXITSTATUS(raw) == 130) << raw;
+    const std::string err = read_file(dir / "err.txt");
+    EXPECT_EQ(err.find("stopped at once"), std::string::npos) << err;
+    EXPECT_NE(err.find("nothing half-written was left behind"), std::string::npos) << err;
+    for (const auto& e : fs::directory_iterator(dir.path()))
+      EXPECT_TRUE(e.path().filename() == "err.txt" || e.path().filename() == "out.txt") << "left behind: " << e.path();
+    return;
+  }
+  GTEST_SKIP() << "the machine held this test up 40 ms or more between the two signals, three times";
 }
 
 // A step that takes minutes (mutual gravity over 10⁵ bodies: 10¹⁰ pairs) has no safe point to

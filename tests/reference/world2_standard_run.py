@@ -93,4 +93,4 @@ for n in range(1000):
     k3 = rates(add(y, DT / 2, k2))
     k4 = rates(add(y, DT, k3))
     y = [a + DT / 6 * (b + 2 * c + 2 * d + e) for a, b, c, d, e in zip(y, k1, k2, k3, k4)]
-print(f"classic RK4, dt = 0.2 years: P(2100) = {y[0]:.6e}")
+print(f"classic RK4, dt = 0.2 years: P(2100) = {y[0]:.10e}")
