@@ -110,7 +110,9 @@ inline void World::step(Stepper& stepper, double t, double h, VectorRef x, Vecto
         stepper.step(system_, ts, hs, x, v);
         project(x);
         // The velocity the positions imply, for the step's end, and between substeps for forces
-        // that read it.
+        // that read it: the backward difference, not Verlet's central one (verlet.hpp), whose
+        // ½ h a would give a body resting on a floor or hanging from a pin a velocity of ½ h g
+        // (the projection, not a, holds it). A body in free flight here lags by that much.
         if (s + 1 == substeps_ || velocity_dependent_forces_) v = (x - stepper.previous_positions()) / hs;
         // The acceleration Verlet keeps for its next step was taken before the projection
         // moved x; forces that depend on position must see where the bodies really are.

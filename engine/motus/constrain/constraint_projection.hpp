@@ -11,7 +11,8 @@
 //   then the walls once more (no body ends a step inside a wall), and
 //   each pin:    put the body back on its point (pins go last, so they never move).
 // The sweeps stop early when only chains are left and they are exact. The velocity is then
-// what Verlet always implies: (x_{n+1} − x_n)/Δt.
+// the backward difference the positions imply, (x_{n+1} − x_n)/Δt (not the central one of an
+// unprojected Verlet run: docs/course.md, section 4).
 #include <array>
 #include <utility>
 #include <vector>

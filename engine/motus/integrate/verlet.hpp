@@ -8,7 +8,9 @@
 // Velocities are not part of the method. We report the central difference
 //   v_{n+1} = (p_{n+2} − p_n) / 2Δt = (p_{n+1} − p_n)/Δt + ½ a_{n+1} Δt,
 // using a_{n+1}, which the next step needs anyway: one force evaluation per step.
-// (Velocity-dependent forces such as drag see that reported velocity.)
+// (a_{n+1} is taken before v_{n+1} is known: a velocity-dependent force such as drag sees v_n,
+// a step old. In a scene that projects its positions, World reports (p_{n+1} − p_n)/Δt instead:
+// see world.hpp.)
 #include "motus/systems/mechanical_system.hpp"
 
 namespace motus {
