@@ -72,14 +72,18 @@ int motus_main(int argc, char** argv) {
   auto printed = [](int status) {
     std::cout.flush();
     if (!std::cout || std::fflush(stdout) != 0 || std::ferror(stdout)) {
-      tell("motus: the run failed: standard output could not be written ({})\n", std::strerror(errno));
+      tell("motus: the run failed: standard output: could not be written ({})\n", std::strerror(errno));
       return kExitFailure;
     }
     return status;
   };
-  // `motus help [COMMAND...]` is `motus [COMMAND...] --help`.
+  // `motus help [COMMAND...]` is `motus [COMMAND...] --help` (and `motus help help` is `motus --help`).
   std::vector<std::string> args(argv + 1, argv + argc);
-  if (!args.empty() && args.front() == "help") args.erase(args.begin()), args.push_back("--help");
+  if (!args.empty() && args.front() == "help") {
+    args.erase(args.begin());
+    if (!args.empty() && args.front() == "help") args.erase(args.begin());
+    args.push_back("--help");
+  }
   // Nothing at all: what there is to do, and a failure (nothing was done).
   if (args.empty()) {
     tell("{}\nmotus: error: a command is needed (motus COMMAND --help tells about one)\n", app.help());
@@ -125,7 +129,7 @@ int motus_main(int argc, char** argv) {
     else if (*stress) status = stress_command(stress_options);
     // Whatever went to standard output must have got there (a full disk is a failure, not 0).
     if (std::fflush(stdout) != 0 || std::ferror(stdout) || std::fflush(data_output()) != 0 || std::ferror(data_output())) {
-      tell("motus: the run failed: standard output could not be written ({})\n", std::strerror(errno));
+      tell("motus: the run failed: standard output: could not be written ({})\n", std::strerror(errno));
       return kExitFailure;
     }
     // A Ctrl-C that came once the command had finished changes nothing it wrote: its files are
@@ -177,7 +181,7 @@ int motus_main(int argc, char** argv) {
     const std::string what = e.what();
     if (std::ferror(stdout) && what.rfind("standard output", 0) != 0) {  // fmt's "cannot write to file" is standard output's: named as such
       const auto* system = dynamic_cast<const std::system_error*>(&e);
-      tell("motus: the run failed: standard output could not be written ({})\n",
+      tell("motus: the run failed: standard output: could not be written ({})\n",
                  system ? system->code().message() : one_line(e.what()));
       return kExitFailure;
     }

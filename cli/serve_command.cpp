@@ -247,7 +247,7 @@ int serve_command(const ServeOptions& o) {
   // corrupt an answer. (Code in the plug-in could still write to the answers' descriptor; it
   // gains nothing: serve is never told the expected values.)
   auto failed_write = [] {
-    tell("motus: the run failed: standard output could not be written ({})\n", std::strerror(errno));
+    tell("motus: the run failed: standard output: could not be written ({})\n", std::strerror(errno));
     return kExitFailure;
   };
   std::FILE* out = nullptr;

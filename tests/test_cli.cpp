@@ -348,6 +348,9 @@ TEST(CliErrors, TheCommandLinesMistakesAreNamedWithTheWordMostLikelyMeant) {
   EXPECT_EQ(help_run.status, 0);
   EXPECT_EQ(help_run.out, run_motus(dir, {"run", "--help"}).out);
   EXPECT_NE(help_run.out.find("--dt"), std::string::npos) << help_run.out;
+  const Result help_help = run_motus(dir, {"help", "help"});  // (it said: unknown command "help")
+  EXPECT_EQ(help_help.status, 0) << help_help.err;
+  EXPECT_EQ(help_help.out, run_motus(dir, {"--help"}).out);
   const Result bare = run_motus(dir, {});
   EXPECT_EQ(bare.status, 2);
   EXPECT_TRUE(bare.out.empty()) << bare.out;

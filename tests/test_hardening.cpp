@@ -1361,7 +1361,7 @@ TEST(Hardening, AReaderThatGoesAwayIsAFailedWriteWithOneLine) {
   ASSERT_TRUE(WIFEXITED(raw)) << "ended by signal " << WTERMSIG(raw);
   EXPECT_EQ(WEXITSTATUS(raw), 1);
   EXPECT_EQ(count_lines(err), 1) << err;
-  EXPECT_NE(err.find("standard output could not be written"), std::string::npos) << err;
+  EXPECT_NE(err.find("standard output: could not be written"), std::string::npos) << err;
 }
 
 // A trajectory whose reader went away stops the run at the next row, with the system's reason:
