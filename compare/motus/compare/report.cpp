@@ -309,7 +309,12 @@ nlohmann::json summary_json(const ReportContext& c, const std::vector<EngineRun>
   return j;
 }
 
-std::string write_report(const std::string& folder, const ReportContext& c, const std::vector<EngineRun>& runs) {
+std::string draw_figures(const std::string& folder, const ReportContext& c, const std::vector<EngineRun>& runs) {
+  return plot::draw(figures(c, runs), folder);
+}
+
+void write_report(const std::string& folder, const ReportContext& c, const std::vector<EngineRun>& runs,
+                  const std::string& plots_line) {
   // metrics.csv: every sample of every engine.
   {
     std::ofstream csv(folder + "/metrics.csv");
@@ -338,7 +343,7 @@ std::string write_report(const std::string& folder, const ReportContext& c, cons
   const nlohmann::json summary = summary_json(c, runs);
   // (A scene file's path or name need not be UTF-8: such bytes are written as U+FFFD.)
   write_text(folder + "/summary.json", summary.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
-  const std::string warning = plot::draw(figures(c, runs), folder);
+  const std::string& warning = plots_line;
 
   // index.html
   std::ofstream html(folder + "/index.html");
@@ -500,7 +505,6 @@ std::string write_report(const std::string& folder, const ReportContext& c, cons
           "Fair settings, and how the peers integrate and collide: <code>docs/peers.md</code> in the motus sources.</p>\n"
           "</body></html>\n";
   check_written(html, folder + "/index.html");
-  return warning;
 }
 
 }  // namespace motus::compare

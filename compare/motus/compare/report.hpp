@@ -43,11 +43,16 @@ std::string microseconds_text(double us);
 // The summary of every engine as one JSON object (also what --json prints).
 nlohmann::json summary_json(const ReportContext& context, const std::vector<EngineRun>& runs);
 
-// Writes metrics.csv, summary.json, the figures (energy, and momentum and angular momentum
-// where the scene keeps them: PNG and SVG, drawn by gnuplot, with figures.gp and figures.dat),
-// the replay (replay.js, replay-data.js; when context.scene is set) and index.html into `folder`
-// (which must exist). Returns a line to show the user when the
-// plots could not be made, else an empty string.
-std::string write_report(const std::string& folder, const ReportContext& context, const std::vector<EngineRun>& runs);
+// Draws the report's figures into `folder` (which must exist): energy, and momentum and angular
+// momentum where the scene keeps them, PNG and SVG, by one gnuplot run, with figures.gp and
+// figures.dat. It reads nothing of the pictures (context's first_and_last, video, …), so compare
+// draws them meanwhile. Returns a line to show the user when the plots could not be made, else "".
+std::string draw_figures(const std::string& folder, const ReportContext& context, const std::vector<EngineRun>& runs);
+
+// Writes metrics.csv, summary.json, the replay (replay.js, replay-data.js; when context.scene is
+// set) and index.html into `folder`, the page showing the figures draw_figures drew there, or
+// `plots_line` — draw_figures's answer — where it could not.
+void write_report(const std::string& folder, const ReportContext& context, const std::vector<EngineRun>& runs,
+                  const std::string& plots_line);
 
 }  // namespace motus::compare
