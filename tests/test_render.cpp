@@ -355,6 +355,7 @@ TEST(RenderCommand, FailedContextExits2WithOneLine) {
   EXPECT_EQ(r.status, 2);
   EXPECT_EQ(count_lines(r.err), 1) << r.err;
   EXPECT_NE(r.err.find("OSMesa could not create"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("install the Debian package"), std::string::npos) << r.err;  // (it is installed: it answered)
 }
 
 TEST(RenderCommand, MissingFfmpegExits2WithOneLine) {

@@ -61,7 +61,10 @@ Canvas::Canvas(int width, int height, int supersample) : width_(width), height_(
   if (!room_for_a_context()) throw std::bad_alloc();  // (out of memory, exit 1: as any allocation motus makes)
   OSMesaContext context = failure_requested() ? nullptr : OSMesaCreateContextExt(OSMESA_RGBA, 24, 0, 0, nullptr);
   if (!context)
-    throw RenderError("OSMesa could not create an offscreen OpenGL context (install the Debian package libosmesa6)");
+    // (OSMesa is there — this module is linked to it — and memory was checked above: what is left is
+    // Mesa's own setup. "Install libosmesa6" was the message, for a library that was installed.)
+    throw RenderError("OSMesa could not create an offscreen OpenGL context: Mesa, which is installed, refused (a MESA_ "
+                      "or GALLIUM_ setting in the environment, or a broken Mesa install)");
   context_ = context;
   buffer_.assign(static_cast<size_t>(w * h * 4), 0);
   if (!OSMesaMakeCurrent(context, buffer_.data(), GL_UNSIGNED_BYTE, static_cast<GLsizei>(w), static_cast<GLsizei>(h))) {
