@@ -112,6 +112,12 @@ const std::vector<BadInput> kBadInputs = {
         "forces": [{"type": "pendulum", "length": 1}], "dt": 1, "duration": 1})",
      {}, "forces[0].type", "1-D"},
     {"exact_that_does_not_fit", "@spring", {"--set", "exact=kepler"}, "exact", "\"kepler\" needs"},
+    // The closed forms know forces alone: with a floor, a pin or two balls the "error" was the closed form's
+    // (a projectile bouncing off a floor read 69 m from projectile-drag's answer).
+    {"exact_with_a_floor", "@projectile_drag", {"--set", R"(colliders=[{"type": "plane", "normal": [0, 1]}])"}, "exact",
+     "\"projectile-drag\" solves forces alone, and the scene has colliders"},
+    {"exact_with_a_pin", "@oscillator", {"--set", R"(pins=[{"body": 0}])"}, "exact",
+     "\"harmonic\" solves forces alone, and the scene has pins"},
     {"set_index_out_of_range", "@spring", {"--set", "bodies[3].mass=1"}, "bodies",
      "has 1 entry, so bodies[3].mass cannot be set"},
     {"set_bad_index", "@spring", {"--set", "bodies[x].mass=1"}, "bodies[x].mass", "bad index"},
