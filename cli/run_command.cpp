@@ -467,7 +467,8 @@ int run_command(const RunOptions& o) {
   fmt::print(out, "scene        {}  ({})\n", one_line(scene.name, 600), path);
   if (!scene.description.empty()) fmt::print(out, "             {}\n", one_line(scene.description, 600));
   if (!o.sets.empty())
-    fmt::print(out, "             (the description is the file's; this run changed {})\n", fmt::join(o.sets, ", "));
+    fmt::print(out, "             ({}this run changed {})\n",
+               scene.description.empty() ? "" : "the description is the file's; ", fmt::join(o.sets, ", "));
   fmt::print(out, "integrator   {}{}, dt = {:g}{}\n", integrator_name, adaptive ? " (adaptive)" : "", dt,
              adaptive ? fmt::format(", rtol = {:g}, atol = {:g}", tolerance.rtol, tolerance.atol) : "");
   fmt::print(out, "time         {:.10g} -> {:.10g}{}\n\n", scene.start_time, sim.time(), time_unit(scene));

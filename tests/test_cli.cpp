@@ -124,6 +124,11 @@ const std::vector<BadInput> kBadInputs = {
     {"set_through_a_number", "@spring", {"--set", "dt.x=1"}, "dt", "is not an object"},
     {"set_without_value", "@spring", {"--set", "bodies[0].mass"}, "bodies[0].mass", "needs PATH=VALUE"},
     {"set_unknown_field", "@spring", {"--set", "bodies[0].mas=1"}, "bodies[0].mas", "unknown field"},
+    // (The known fields whole: shortened in the middle at 240 bytes, the list lost the very ones meant.)
+    {"set_unknown_top_level_field", "@spring", {"--set", "walls=[]"}, "walls",
+     "unknown field (expected one of: $schema, name, description, system, bodies, dimensions, lattice, cloth, rope, "
+     "forces, colliders, sticks, pins, constraint_iterations, constraint_substeps, integrator, dt, duration, "
+     "start_time, rtol, atol, output_interval, exact, reference)"},
     // (".dt" and "bodies[0]mass" were taken as dt and bodies[0].mass; 1e309 as the word "1e309".)
     {"set_leading_dot", "@spring", {"--set", ".dt=1"}, ".dt", "empty field name"},
     {"set_name_right_after_index", "@spring", {"--set", "bodies[0]mass=4"}, "bodies[0]mass",

@@ -62,6 +62,11 @@ TEST(FirstHour, AChangedSceneSaysItsDescriptionIsTheFiles) {
   const auto r = run_motus(dir, {"run", "spring", "--set", "bodies[0].mass=2"});
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_NE(r.out.find("(the description is the file's; this run changed bodies[0].mass=2)"), std::string::npos) << r.out;
+  // A scene with no description has none to disown: the change alone (it spoke of a description not shown).
+  const auto bare = run_motus(dir, {"run", "spring", "--set", "description=", "--set", "bodies[0].mass=2"});
+  ASSERT_EQ(bare.status, 0) << bare.err;
+  EXPECT_NE(bare.out.find("             (this run changed description=, bodies[0].mass=2)"), std::string::npos) << bare.out;
+  EXPECT_EQ(bare.out.find("the description is the file's"), std::string::npos) << bare.out;
 }
 
 TEST(FirstHour, TimesReadAsTimes) {

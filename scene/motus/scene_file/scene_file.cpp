@@ -75,7 +75,7 @@ void read_force(JsonFields& f, int d, size_t bodies, ForceSet& forces) {
     g.softening = f.non_negative("softening", 0);
     forces.mutual_gravity.push_back(g);
   } else if (type == "pendulum") {
-    if (d != 1) f.fail("type", "a pendulum force acts on a 1-D body (its angle); this scene has " + std::to_string(d) + " dimensions");
+    if (d != 1) f.fail("type", "a pendulum force acts on a 1-D body (its angle); this scene is " + std::to_string(d) + "-D");
     PendulumTorque p;
     p.body = f.has("body") ? body_index(f, "body", bodies) : 0;
     p.g = f.positive("g", 9.81);
@@ -217,7 +217,7 @@ void read_collider(JsonFields& f, int d, Colliders& colliders) {
     b.restitution = restitution(f, "restitution");
     colliders.boxes.push_back(b);
   } else if (type == "segment") {
-    if (d != 2) f.fail("type", "segments exist in 2-D scenes only; this scene has " + std::to_string(d) + " dimensions");
+    if (d != 2) f.fail("type", "segments exist in 2-D scenes only; this scene is " + std::to_string(d) + "-D");
     SegmentCollider s;
     s.a = padded(f.numbers("a", d));
     s.b = padded(f.numbers("b", d));
@@ -609,8 +609,11 @@ std::string clip(const std::string& text, size_t limit) { return one_printable_l
 
 }  // namespace
 
+// (The message up to 360 bytes: an unknown top-level field's list of the known ones is about 300, and
+// at 240 it lost colliders, sticks and pins from its middle — the fields a user who wrote "walls"
+// needed to see. The whole line stays within the command line's 400, or is shortened there.)
 SceneFileError::SceneFileError(const std::string& file_, const std::string& field_, const std::string& message_)
-    : std::runtime_error(clip(file_, 160) + ": " + (field_.empty() ? "" : clip(field_, 100) + ": ") + clip(message_, 240)),
+    : std::runtime_error(clip(file_, 160) + ": " + (field_.empty() ? "" : clip(field_, 100) + ": ") + clip(message_, 360)),
       file(file_), field(field_), message(message_) {}
 
 nlohmann::json parse_strict_json(const std::string& text, const std::string& file) {
