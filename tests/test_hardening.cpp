@@ -390,6 +390,17 @@ TEST(Hardening, ScenesThatCouldOnlyFailOrMisleadAreRefusedAtTheirField) {
                      "colliders": [{"type": "box", "min": [-0.5, -1], "max": [0.5, 1]}], )" + tail,
           "bodies[0].radius: a ball of radius 0.5 does not fit in the box colliders[0] (its width along x is 1.0; a ball "
           "must be narrower than its box)");
+  // (Between two planes facing each other, as in a box: it failed blaming the restitution, every one of them 1.)
+  refused("slot", R"({"dimensions": 2, "bodies": [{"mass": 1, "radius": 0.3, "position": [0.25, 1], "velocity": [1, 0]}],
+                     "colliders": [{"type": "plane", "normal": [1, 0]}, {"type": "plane", "normal": [-1, 0], "offset": -0.5}], )" +
+                      tail,
+          "bodies[0].radius: a ball of radius 0.3 does not fit between the planes colliders[0] and colliders[1] (0.5 m "
+          "apart; a ball must be narrower than its slot)");
+  refused("apart", R"({"dimensions": 2, "bodies": [{"mass": 1, "position": [0.25, 1]}],
+                      "colliders": [{"type": "plane", "normal": [1, 0], "offset": 1}, {"type": "plane", "normal": [-1, 0]}], )" +
+                       tail,
+          "colliders[1]: its free side and colliders[0]'s do not overlap (a gap of 1.0 m between them): no body can be on "
+          "both");
   refused("jammed", R"({"dimensions": 2, "lattice": {"count": 100, "radius": 1}, )" + tail,
           "lattice.radius: balls of this radius touch or overlap at this spacing");
   refused("tiny", R"({"dimensions": 2, "bodies": [{"mass": 1, "radius": 1e-160, "position": [-3e-160, 0]},

@@ -314,6 +314,39 @@ void check_balls_fit_their_boxes(const MechanicalDescription& m, size_t listed, 
       }
 }
 
+// Two planes that face each other make a slot: a ball as wide as it, or wider, can never be inside
+// (the run failed with "body 0 was touched 1100 times … give the balls more restitution", every
+// restitution 1), and planes whose free sides do not meet leave no room for any body. As for boxes:
+// the listed balls are checked. (plane_paths: the listed planes' paths, the last of m's planes.)
+void check_bodies_fit_between_planes(const MechanicalDescription& m, size_t listed,
+                                     const std::vector<std::string>& plane_paths) {
+  const size_t first = m.colliders.planes.size() - plane_paths.size();
+  for (size_t j = 0; j < plane_paths.size(); ++j)
+    for (size_t l = j + 1; l < plane_paths.size(); ++l) {
+      const auto& a = m.colliders.planes[first + j];
+      const auto& b = m.colliders.planes[first + l];
+      double facing = 0;  // a.normal · b.normal: −1 when they face each other (unit normals)
+      for (int k = 0; k < 3; ++k) facing += a.normal[static_cast<size_t>(k)] * b.normal[static_cast<size_t>(k)];
+      if (facing > -1 + 1e-12) continue;
+      // Free sides n·x ≥ a.offset and −n·x ≥ b.offset: a slot from a.offset to −b.offset along n.
+      const double width = -b.offset - a.offset;
+      if (!(width > 0))
+        throw SceneError(plane_paths[l], "its free side and " + plane_paths[j] + "'s " +
+                                             (width == 0 ? std::string("meet in a plane only")
+                                                         : "do not overlap (a gap of " + nlohmann::json(-width).dump() +
+                                                               " m between them)") +
+                                             ": no body can be on both");
+      for (size_t i = 0; i < listed; ++i) {
+        const double r = m.bodies[i].radius;
+        if (r > 0 && 2 * r >= width)
+          throw SceneError("bodies[" + std::to_string(i) + "].radius",
+                           "a ball of radius " + nlohmann::json(r).dump() + " does not fit between the planes " +
+                               plane_paths[j] + " and " + plane_paths[l] + " (" + nlohmann::json(width).dump() +
+                               " m apart; a ball must be narrower than its slot)");
+      }
+    }
+}
+
 MechanicalDescription read_mechanical(JsonFields& scene) {
   MechanicalDescription m;
   const long d = scene.integer("dimensions");
@@ -357,12 +390,15 @@ MechanicalDescription read_mechanical(JsonFields& scene) {
     if (m.forces.springs.size() > springs) check_spring_has_a_direction(f, m.bodies, m.forces.springs.back());
     if (m.forces.central_gravity.size() > centres) check_no_body_at_the_centre(f, m, m.forces.central_gravity.back());
   }
-  std::vector<std::string> box_paths;  // (for check_balls_fit_their_boxes)
+  std::vector<std::string> box_paths, plane_paths;  // (for the checks below)
+  const size_t planes_generated = m.colliders.planes.size();
   for (auto& c : scene.objects("colliders")) {
     read_collider(c, m.dimensions, m.colliders);
     if (box_paths.size() + boxes_generated < m.colliders.boxes.size()) box_paths.push_back(c.path());
+    if (plane_paths.size() + planes_generated < m.colliders.planes.size()) plane_paths.push_back(c.path());
   }
   check_balls_fit_their_boxes(m, listed, box_paths);
+  check_bodies_fit_between_planes(m, listed, plane_paths);
   for (auto& f : scene.objects("sticks")) {
     StickConstraint stick;
     stick.a = body_index(f, "a", m.bodies.size());
