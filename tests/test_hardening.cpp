@@ -409,6 +409,11 @@ TEST(Hardening, ScenesThatCouldOnlyFailOrMisleadAreRefusedAtTheirField) {
   refused("twice", R"({"dimensions": 2, "bodies": [{"mass": 1, "position": [0, 0]}],
                       "pins": [{"body": 0, "position": [0, 0]}, {"body": 0, "position": [1, 0]}], )" + tail,
           "pins[1].body: body 0 is pinned already, at another point, by pins[0]");
+  // (A generator's pin is named as the generator's field: it was "by pins[0]", the listed pin of another body.)
+  refused("twice_with_a_rope", R"({"dimensions": 2, "bodies": [{"mass": 1, "position": [0, 0]}], "rope": {"segments": 2},
+                                  "pins": [{"body": 0}, {"body": 1, "position": [0, 1]}], "integrator": "verlet",
+                                  "dt": 0.01, "duration": 1})",
+          "pins[1].body: body 1 is pinned already, at another point, by rope.pin_first");
   refused("spring", R"({"dimensions": 2, "bodies": [{"mass": 1, "position": [0, 0]}, {"mass": 1, "position": [0, 0]}],
                        "forces": [{"type": "spring", "a": 0, "b": 1, "stiffness": 10, "rest_length": 1}], )" + tail,
           "forces[0].rest_length: the two bodies start at the same point, where a spring of rest length > 0 has no "

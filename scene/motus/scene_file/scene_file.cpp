@@ -375,7 +375,9 @@ MechanicalDescription read_mechanical(JsonFields& scene) {
   // Generators append their bodies (and walls, sticks, pins) after the listed ones.
   if (scene.has("lattice")) read_lattice(scene.object("lattice"), m);
   if (scene.has("cloth")) read_cloth(scene.object("cloth"), m);
+  const size_t cloth_pins = m.pins.size();  // (the generators' pins come before the listed ones: named by these)
   if (scene.has("rope")) read_rope(scene.object("rope"), m);
+  const size_t generated_pins = m.pins.size();
   const size_t boxes_generated = m.colliders.boxes.size();
   if (m.bodies.empty()) scene.fail("bodies", "needs at least one body (listed, or from a generator such as \"lattice\")");
   if (static_cast<long>(m.bodies.size()) > kMaxBodies)
@@ -417,8 +419,11 @@ MechanicalDescription read_mechanical(JsonFields& scene) {
     // A body has one pin: two at different points cannot both hold (the projection puts it at the last).
     for (size_t other = 0; other < m.pins.size(); ++other)
       if (m.pins[other].body == pin.body && m.pins[other].position != pin.position)
-        f.fail("body", "body " + std::to_string(pin.body) + " is pinned already, at another point, by pins[" +
-                           std::to_string(other) + "]: a body can be held at one point only");
+        f.fail("body", "body " + std::to_string(pin.body) + " is pinned already, at another point, by " +
+                           (other < cloth_pins       ? std::string("cloth.pin")
+                            : other < generated_pins ? std::string("rope.pin_first")
+                                                     : "pins[" + std::to_string(other - generated_pins) + "]") +
+                           ": a body can be held at one point only");
     f.reject_unknown();
     m.pins.push_back(pin);
   }
