@@ -67,6 +67,10 @@ TEST(FirstHour, AChangedSceneSaysItsDescriptionIsTheFiles) {
   ASSERT_EQ(bare.status, 0) << bare.err;
   EXPECT_NE(bare.out.find("             (this run changed description=, bodies[0].mass=2)"), std::string::npos) << bare.out;
   EXPECT_EQ(bare.out.find("the description is the file's"), std::string::npos) << bare.out;
+  // An empty name is the default, the file's name (it printed a blank title).
+  const auto unnamed = run_motus(dir, {"run", "spring", "--set", "name="});
+  ASSERT_EQ(unnamed.status, 0) << unnamed.err;
+  EXPECT_EQ(unnamed.out.rfind("scene        spring  (", 0), 0u) << unnamed.out;
 }
 
 TEST(FirstHour, TimesReadAsTimes) {

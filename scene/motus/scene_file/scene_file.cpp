@@ -467,6 +467,7 @@ SceneDescription read_scene(const nlohmann::json& document, const std::string& s
   SceneDescription scene;
   f.string("$schema", "");  // editors may point at scene/scene.schema.json
   scene.name = f.string("name", stem);
+  if (scene.name.empty()) scene.name = stem;  // (a blank title on every output, and folders named "compare-")
   scene.description = f.string("description", "");
   // A name is a title, drawn on every frame and every figure and printed on every row of a CSV: one
   // of 60 MB loaded, then took minutes a frame to lay out.
