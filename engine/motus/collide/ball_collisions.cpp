@@ -861,13 +861,11 @@ void BallCollisions<D>::find_initial_events() {
     // step: that is told here with two multiplications, before the call that finds the time.
     // A ball a hair inside its face, or a NaN, goes on to the call, which decides as before.)
     const Plane* planes = planes_.data();
-    const double* x = x_;
-    const double* v = v_;
     const bool any_fast = !fast_.empty();
     for (const auto& [i, w] : near_faces_) {
       const Plane& face = planes[w];
-      const double gap = face.sign * x[D * i + face.axis] - face.offset - radius_of(i);
-      if (!(gap < 0) && gap + face.sign * v[D * i + face.axis] * h_ > 0) continue;  // does not reach it this step
+      const double gap = plane_gap(face, position(i), radius_of(i));
+      if (!(gap < 0) && gap + plane_closing(face, velocity(i)) * h_ > 0) continue;  // does not reach it this step
       if (!(any_fast && state_[i].fast)) initial_plane_event(i, w);
     }
   }
@@ -999,14 +997,14 @@ void BallCollisions<D>::initial_plane_event(int i, int w) {
   const Plane& plane = planes_[static_cast<size_t>(w)];
   auto p = position(i);
   const auto u = velocity(i);
-  double gap = (plane.axis >= 0 ? plane.sign * p[plane.axis] : plane.normal.dot(p)) - plane.offset - radius_of(i);
+  double gap = plane_gap(plane, p, radius_of(i));
   if (gap < 0) {  // rounding (or the scene) left it a hair inside the wall
     p -= gap * plane.normal;
     moved_apart(i, -gap);
     gap = 0;
     ++counters_.position_corrections;
   }
-  const double closing = plane.axis >= 0 ? plane.sign * u[plane.axis] : plane.normal.dot(u);
+  const double closing = plane_closing(plane, u);
   if (gap + closing * h_ > 0) return;  // does not reach it this step
   const double toi = rules_ ? outside_plane_impact(p, u, radius_of(i), plane, h_) : sphere_plane_impact(gap, closing, h_, radius_of(i));
   if (toi != kNoImpact) push(toi, i, -1 - w);
@@ -1125,14 +1123,7 @@ void BallCollisions<D>::find_wall_events(int i, double t) {
   double first = horizon;  // (the first contact found, from t)
   for (size_t w = 0; w < planes_.size(); ++w) {
     const Plane& plane = planes_[w];
-    double gap, closing;
-    if (plane.axis >= 0) {
-      gap = plane.sign * p[plane.axis] - plane.offset - r;
-      closing = plane.sign * u[plane.axis];
-    } else {
-      gap = plane.normal.dot(p) - plane.offset - r;
-      closing = plane.normal.dot(u);
-    }
+    const double gap = plane_gap(plane, p, r), closing = plane_closing(plane, u);
     const double toi = rules_ ? outside_plane_impact(p, u, r, plane, horizon) : sphere_plane_impact(gap, closing, horizon, r);
     if (toi != kNoImpact) push(t + toi, i, -1 - static_cast<int>(w)), first = std::min(first, toi);
   }
@@ -1214,8 +1205,7 @@ typename BallCollisions<D>::Point BallCollisions<D>::wall_normal(int i, int wall
 template <int D>
 void BallCollisions<D>::separate_from_walls(int i) {
   for (const Plane& plane : planes_) {  // (rounding can leave a body a hair inside a wall)
-    const double gap = (plane.axis >= 0 ? plane.sign * position(i)[plane.axis] : plane.normal.dot(position(i))) -
-                       plane.offset - radius_of(i);
+    const double gap = plane_gap(plane, position(i), radius_of(i));
     if (gap < 0) {
       position(i) -= gap * plane.normal;
       moved_apart(i, -gap);

@@ -148,6 +148,17 @@ private:
   double segment_impact(const Segment& s, const Point& p, const Point& u, double r, double horizon, Point* normal) const;
   static Point nearest_on(const Segment& s, const Point& p);  // the segment's point nearest p
   Point wall_normal(int i, int wall);
+  // How far a ball of radius r at p is from the plane's surface (below 0: inside it), and how fast a
+  // velocity u closes that gap: for a box face, along an axis, one multiplication each. Every wall
+  // search and correction reads these two, so that they agree to the last bit.
+  template <class P>
+  static double plane_gap(const Plane& plane, const P& p, double r) {
+    return (plane.axis >= 0 ? plane.sign * p[plane.axis] : plane.normal.dot(p)) - plane.offset - r;
+  }
+  template <class U>
+  static double plane_closing(const Plane& plane, const U& u) {
+    return plane.axis >= 0 ? plane.sign * u[plane.axis] : plane.normal.dot(u);
+  }
   void push(double t, int i, int other);
   // (noipa: a prefetch is no side effect to GCC, which then finds the function pure and
   // drops the call.)
