@@ -228,7 +228,8 @@ int compare_command(const CompareOptions& o) {
   context.angular_momentum_conserved = conserved.angular_momentum;
   // The plots are gnuplot's, a program of its own: drawn while the pictures are (OSMesa, here), a
   // small compare's wall time is the longer of the two rather than their sum (on two cores, 0.1 s
-  // of its 0.5). (Its context a copy: the pictures' block below fills in the copy it keeps.)
+  // of its 0.5). The plotting thread gets its own copy of the context, since the pictures' block
+  // below writes the picture fields of this one.
   std::future<std::string> plots =
       std::async(std::launch::async, [&work, &runs, c = context] { return compare::draw_figures(work, c, runs); });
   std::string picture_warning;
