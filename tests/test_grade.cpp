@@ -12,6 +12,8 @@
 
 #include <cmath>
 #include <functional>
+#include <sstream>
+#include <string>
 #include <tuple>
 
 #include "grade_harness.hpp"
@@ -272,6 +274,24 @@ TEST(Plugins, AStudentsCollisionsAreAnEngineColumnInCompare) {
 
 // A scene without contacts runs none of a collisions plug-in's code: its column is motus's own
 // numbers under the plug-in's name, and a note says so.
+// A plug-in's step(x, v) is not symplectic for being one (a student's explicit Euler): what it
+// cannot run is said as what it is, a stepper of bodies, not "symplectic".
+TEST(Plugins, APluginsStepOfBodiesOnAFirstOrderSystemIsNotCalledSymplectic) {
+  TempDir dir;
+  const auto r = run_motus(dir, {"bench", "precision", "lorenz", "--plugin", kAssignmentPlugins + "/integrators-solution.so",
+                                 "--integrators", "student:euler,verlet", "--levels", "1", "--repeats", "1", "--out",
+                                 (dir / "run").string()});
+  ASSERT_EQ(r.status, 0) << r.err;
+  auto line_of = [&](const std::string& method) {
+    std::stringstream lines(r.out);
+    for (std::string line; std::getline(lines, line);)
+      if (line.rfind(method + " ", 0) == 0) return line;
+    return std::string();
+  };
+  EXPECT_NE(line_of("student:euler").find("cannot run this scene: steps bodies (x and v)"), std::string::npos) << r.out;
+  EXPECT_NE(line_of("verlet").find("cannot run this scene: symplectic"), std::string::npos) << r.out;
+}
+
 TEST(Plugins, ACompareColumnInWhichNoneOfThePluginsCodeRunsSaysSo) {
   TempDir dir;
   const auto r = run_motus(dir, {"compare", "spring", "--plugin", kAssignmentPlugins + "/collisions-solution.so", "--json",

@@ -23,7 +23,8 @@ public:
   std::string description() const { return outside_ ? outside_->description : info(builtin_).description; }
   int order() const { return outside_ ? outside_->order : info(builtin_).order; }
   bool adaptive() const { return outside_ ? outside_->kind == kExternalAdaptive : info(builtin_).adaptive; }
-  // Works on x and v apart (the symplectic family), so only on point masses.
+  // Works on x and v apart (the symplectic family, and a plug-in's step(x, v), symplectic or not),
+  // so only on point masses.
   bool needs_mechanical() const {
     return outside_ ? outside_->kind == kExternalMechanical || outside_->kind == kExternalPositionVerlet
                     : info(builtin_).needs_mechanical;

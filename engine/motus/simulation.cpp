@@ -40,8 +40,9 @@ constexpr bool is_adaptive = std::is_same_v<T, Rk4Doubling> || std::is_same_v<T,
 template <class T>
 constexpr bool is_external = std::is_same_v<T, ExternalFixedStep> || std::is_same_v<T, ExternalAdaptiveStep> ||
                               std::is_same_v<T, ExternalMechanicalStep>;
+// The steppers of x and v apart: the symplectic family, and a plug-in's step(x, v) (symplectic or not).
 template <class T>
-constexpr bool is_symplectic = std::is_same_v<T, SymplecticEuler> || std::is_same_v<T, SymplecticEulerX> ||
+constexpr bool steps_x_and_v = std::is_same_v<T, SymplecticEuler> || std::is_same_v<T, SymplecticEulerX> ||
                                std::is_same_v<T, Verlet> || std::is_same_v<T, VelocityVerlet> ||
                                std::is_same_v<T, Yoshida4> || std::is_same_v<T, ExternalMechanicalStep>;
 
@@ -139,7 +140,8 @@ Simulation::Simulation(const SceneDescription& scene, Method method, ExternalPar
 
   if (method_.needs_mechanical() && !world_)
     throw SceneError("integrator", method_.name() +
-                                       " is symplectic: it needs a mechanical scene (bodies), and this scene is the "
+                                       (method_.is_external() ? " steps bodies (x and v)" : " is symplectic") +
+                                       ": it needs a mechanical scene (bodies), and this scene is the "
                                        "first-order system \"" + scene.first_order->type +
                                        "\"; use euler, midpoint, rk4, rk4-doubling, rk45 or dop853");
 
@@ -172,7 +174,7 @@ Simulation::Simulation(const SceneDescription& scene, Method method, ExternalPar
   std::visit(
       [&](auto& s) {
         using S = std::decay_t<decltype(s)>;
-        if constexpr (is_symplectic<S>)
+        if constexpr (steps_x_and_v<S>)
           s.resize(n / 2);
         else
           s.resize(n);
@@ -247,7 +249,7 @@ void Simulation::advance(double end_time, double dt, Tolerance tolerance,
       Eigen::Map<Vector> x(y_.data(), half), v(y_.data() + half, half);
       double t = t_;  // local, so the loop keeps it in a register
       for (long i = 0; i < n; ++i) {
-        if constexpr (!is_symplectic<S>) {
+        if constexpr (!steps_x_and_v<S>) {
           stepper.step(system, t, dt, y_);
         } else {
           world_->step(stepper, t, dt, x, v);
@@ -268,7 +270,7 @@ void Simulation::advance(double end_time, double dt, Tolerance tolerance,
   std::visit(
       [&](auto& stepper) {
         using S = std::decay_t<decltype(stepper)>;
-        if constexpr (is_symplectic<S>) {
+        if constexpr (steps_x_and_v<S>) {
           run(stepper, world_->system());
         } else if constexpr (is_external<S>) {  // plain functions on arrays: nothing to inline
           if (world_) {

@@ -93,7 +93,9 @@ Curve sweep_motus(const SceneDescription& scene, const Method& method, const Swe
   c.description = method.description();
   c.adaptive = method.adaptive();
   if (method.needs_mechanical() && !scene.is_mechanical()) {
-    c.unsupported = "symplectic: needs a mechanical scene (bodies)";
+    // (A plug-in's step(x, v) need not be symplectic: a student's explicit Euler steps bodies too.)
+    c.unsupported = method.is_external() ? "steps bodies (x and v): needs a mechanical scene (bodies)"
+                                         : "symplectic: needs a mechanical scene (bodies)";
     return c;
   }
   try {
