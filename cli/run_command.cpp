@@ -82,7 +82,7 @@ public:
     *out_ << "t";
     for (const auto& n : sim.state_names()) *out_ << ',' << n;
     if (sim.is_mechanical()) *out_ << ",kinetic,potential,total";
-    if (sim.has_constraints()) *out_ << ",constraint_error";
+    if (sim.has_sticks()) *out_ << ",constraint_error";
     if (!sim.is_mechanical()) {
       aux_names_ = sim.first_order_system()->auxiliary_names();
       for (const auto& n : aux_names_) *out_ << ',' << n;
@@ -124,7 +124,7 @@ private:
     *out_ << fmt::format("{:.17g}", sim.time());
     for (double v : sim.state()) *out_ << fmt::format(",{:.17g}", v);
     if (const auto e = sim.energy()) *out_ << fmt::format(",{:.17g},{:.17g},{:.17g}", e->kinetic, e->potential, e->total);
-    if (sim.has_constraints()) *out_ << fmt::format(",{:.17g}", sim.constraint_error());
+    if (sim.has_sticks()) *out_ << fmt::format(",{:.17g}", sim.constraint_error());
     if (!aux_names_.empty()) {
       sim.first_order_system()->auxiliaries(sim.time(), sim.state(), aux_);
       for (double v : aux_) *out_ << fmt::format(",{:.17g}", v);
@@ -346,7 +346,7 @@ int run_command(const RunOptions& o) {
   // stopped being a number read as the last finite one).
   auto worse = [](double worst, double x) { return std::isnan(worst) || std::isnan(x) ? NAN : std::max(worst, x); };
   double worst_constraint_error = sim.constraint_error();
-  const bool constrained = sim.has_constraints();
+  const bool constrained = sim.has_sticks();
   // Pins: motus's projection places them exactly, a plug-in's may not (its bodies then fall away
   // while the sticks between them stay true). After every step, not at the start: a scene may
   // start a body away from its pin, which the first projection puts it on.

@@ -20,12 +20,14 @@ void bounce_off_wall(VectorInOut v, VectorIn n, double e);
 // Two balls move on straight lines: a from p_a with velocity v_a, b from p_b with v_b. Return
 // the first time t ≥ 0 at which they touch, |p_b − p_a + (v_b − v_a) t| = r_a + r_b; if they
 // already touch or overlap and are approaching, 0; if they never touch while approaching,
-// +infinity (std::numeric_limits<double>::infinity()).
+// +infinity (std::numeric_limits<double>::infinity()). Balls moving apart ((p_b − p_a)·(v_b −
+// v_a) ≥ 0) never touch, +infinity, even when they touch or overlap now: ask that first.
 double time_of_impact(VectorIn p_a, VectorIn v_a, double r_a, VectorIn p_b, VectorIn v_b, double r_b);
 
 // A ball of radius r moves from p with velocity v, on the free side of the plane n·x = offset
 // (unit normal n). Return the first t ≥ 0 at which it touches the plane (n·(p + v t) − offset
-// = r); 0 if it already touches and moves into the plane; +infinity if it never reaches it.
+// = r); 0 if it already touches and moves into the plane; +infinity if it never reaches it — and
+// if it moves away from the plane (n·v ≥ 0), even when it touches it now: ask that first.
 double time_of_impact_with_plane(VectorIn p, VectorIn v, double r, VectorIn n, double offset);
 
 }  // namespace student

@@ -12,7 +12,7 @@ const std::vector<IntegratorInfo>& all_integrators() {
       {Integrator::Dop853, "dop853", 8, true, false, "Dormand-Prince 8(5,3), adaptive by atol/rtol: the high-accuracy pair"},
       {Integrator::SymplecticEuler, "symplectic-euler", 1, false, true, "symplectic Euler, velocity first: v += a h; x += v h"},
       {Integrator::SymplecticEulerX, "symplectic-euler-x", 1, false, true, "symplectic Euler, position first: x += v h; v += a(x) h"},
-      {Integrator::Verlet, "verlet", 2, false, true, "velocityless (Stormer) Verlet: x' = 2x - x_prev + a h^2"},
+      {Integrator::Verlet, "verlet", 2, false, true, "velocityless (Stormer) Verlet: x_next = 2x - x_prev + a h^2"},
       {Integrator::VelocityVerlet, "velocity-verlet", 2, false, true, "velocity Verlet: kick, drift, kick"},
       {Integrator::Yoshida4, "yoshida4", 4, false, true, "Yoshida's fourth-order symplectic composition of velocity Verlet"},
   };

@@ -26,7 +26,7 @@ struct MechanicalDescription {
   int dimensions = 2;
   std::vector<BodyDescription> bodies;
   ForceSet forces;
-  Colliders colliders;                 // static walls; none: no collision detection at all
+  Colliders colliders;                 // static walls (balls collide with each other without them)
   std::vector<StickConstraint> sticks; // Verlet distance constraints
   std::vector<PinConstraint> pins;     // bodies held at fixed points
   int constraint_iterations = 10;      // projection sweeps per projection

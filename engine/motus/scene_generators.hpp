@@ -12,7 +12,7 @@ namespace motus {
 // A rows × columns grid of point masses, from `origin` (its top-left corner). In the
 // "xy" plane it hangs: column c, row r sits at origin + (c·spacing, −r·spacing, 0). In
 // the "xz" plane (3-D scenes) it lies flat: origin + (c·spacing, 0, r·spacing), and
-// falls, pinned along its first row, into a drape. Structural
+// falls, held by its pins (`pin`), into a drape. Structural
 // sticks join horizontal and vertical neighbours; shear sticks (both diagonals of every
 // square) keep the squares from folding flat. Every rest length is the initial distance.
 struct ClothGenerator {

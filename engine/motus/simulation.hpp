@@ -62,7 +62,7 @@ public:
   // The world of a mechanical scene (its passes, collision counters, constraint error).
   const World* world() const { return world_.get(); }
   // Whether the scene has sticks (whose error constraint_error() measures).
-  bool has_constraints() const { return world_ && world_->has_sticks(); }
+  bool has_sticks() const { return world_ && world_->has_sticks(); }
   // The largest relative stick-length error now (0 without sticks).
   double constraint_error() const;
   // Whether the scene has pins, and the farthest a pinned body is from its pin now (m).

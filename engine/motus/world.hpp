@@ -7,10 +7,10 @@
 //                (symplectic-euler), or contacts are projected apart (verlet)
 //                                                        — only with walls or two balls
 //   constraints  sticks and pins by projection (verlet)  — only with sticks or pins
-// A scene without colliders does no collision detection at all; one without sticks or
-// contacts never projects; with collisions and no forces, the kick is skipped. (Without
-// any pass the integrator steps the system as it is; an empty force set costs it a
-// zeroed array.)
+// A scene without colliders and with fewer than two balls does no collision detection;
+// one without sticks or contacts never projects; with collisions and no forces, the kick
+// is skipped. (Without any pass the integrator steps the system as it is; an empty force
+// set costs it a zeroed array.)
 #include <memory>
 #include <string>
 #include <type_traits>
@@ -37,8 +37,8 @@ public:
   MechanicalSystem& system() { return system_; }
   const MechanicalSystem& system() const { return system_; }
 
-  bool has_forces() const { return has_forces_; }
   bool has_collisions() const { return !std::holds_alternative<std::monostate>(collisions_); }
+  // Whether it projects positions (sticks, pins, or verlet's contacts): not only with sticks.
   bool has_constraints() const { return constraints_ != nullptr; }
   bool has_sticks() const { return has_sticks_; }
   // The passes this world runs, in order (for summaries and reports).
@@ -71,7 +71,7 @@ private:
   bool external_collisions_ = false;  // a plug-in's collision rules resolve the contacts
   int substeps_ = 1;  // Verlet steps per step with a projection (the scene's constraint_substeps)
   bool position_dependent_forces_ = false;  // anything but uniform gravity and drag
-  bool velocity_dependent_forces_ = false;  // drag, damped springs
+  bool velocity_dependent_forces_ = false;  // drag, springs (any spring: it may be damped)
 
   // A projection from outside (ExternalParts::constraints): the rules and the set they are
   // given, whose arrays live here for the whole run. It moves sticks, pins and walls; motus

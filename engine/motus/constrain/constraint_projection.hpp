@@ -37,7 +37,6 @@ public:
   // Only the contacts between balls, `iterations` sweeps (after a projection from outside,
   // which moves sticks, pins and walls but not balls against each other).
   void push_balls_apart(VectorRef x);
-  bool has_ball_pairs() const { return balls_.size() >= 2; }
 
   // The largest |length − rest length| / rest length over the sticks (0 without sticks).
   double max_relative_stick_error(ConstVectorRef x) const;

@@ -13,7 +13,7 @@
 // This is the answer a collision scene should give — the reference `motus compare` and
 // `motus bench precision` measure every engine against. It stops (no state) where a ball
 // would come to rest on a wall under gravity (the bounces of e < 1 accumulate in finite time)
-// or after kMaxEvents events: the solution is then unknown from that time on.
+// or after kFreeFlightMaxEvents events: the solution is then unknown from that time on.
 #include <optional>
 
 #include "motus/scene.hpp"

@@ -37,9 +37,9 @@ struct PendulumState {
   double theta, omega;
 };
 
-inline PendulumState pendulum_swing(double omega0_start, double g_over_L, double t) {
+inline PendulumState pendulum_swing(double theta_dot_0, double g_over_L, double t) {
   const double w0 = std::sqrt(g_over_L);
-  const double k = omega0_start / (2 * w0);
+  const double k = theta_dot_0 / (2 * w0);  // θ'(0) = 2kω0
   if (!(std::abs(k) < 1)) throw std::invalid_argument("the exact pendulum solution is for swings (|θ'(0)| < 2√(g/L))");
   const SnCn e = jacobi_sn_cn(w0 * t, std::abs(k));
   const double sign = k < 0 ? -1 : 1;

@@ -50,7 +50,8 @@ struct ExternalIntegrator {
   void* self;
   int (*step)(void* self, const ExternalFirstOrder* f, double t, double h, double* y);
   // On success *accepted says whether the step was kept (then y holds the new state); either
-  // way *h becomes the step to try next. The tolerance is atol + rtol·|y|, component by component.
+  // way *h becomes the step to try next. The tolerance is atol + rtol·max(|y_i|, |y_new_i|), component
+  // by component.
   int (*try_step)(void* self, const ExternalFirstOrder* f, double t, double* h, double* y, double atol, double rtol,
                   int* accepted);
   int (*step_mechanical)(void* self, const ExternalMechanical* s, double t, double h, double* x, double* v);

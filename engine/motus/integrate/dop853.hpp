@@ -30,8 +30,6 @@ public:
     have_first_stage_ = false;
   }
   void set_tolerance(Tolerance tol) { tol_ = tol; }
-  // Forget the cached first stage (call after changing y from outside).
-  void reset() { have_first_stage_ = false; }
 
   // One attempt from (t, y) with step h. On success t and y advance; either way h becomes the
   // step to try next. Returns whether the step was accepted.

@@ -20,7 +20,6 @@ public:
     started_ = false;
   }
   void set_tolerance(Tolerance tol) { tol_ = tol; }
-  int kind() const { return integrator_.kind; }
 
   // kExternalFirstOrder
   template <FirstOrder System>

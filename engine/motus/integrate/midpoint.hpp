@@ -1,9 +1,8 @@
 #pragma once
 // The midpoint method (second-order Runge–Kutta), as docs/course.md (section 4) writes it:
-//   k1 = d(x_n) Δt
-//   k2 = d(x_n + ½ k1) Δt
-//   x_{n+1} = x_n + k2
-// Here k_i holds d(...) without the factor Δt, which is applied where k_i is used.
+//   k1 = f(t_n, y_n)
+//   k2 = f(t_n + h/2, y_n + (h/2) k1)
+//   y_{n+1} = y_n + h k2
 #include "motus/integrate/stage_vector.hpp"
 #include "motus/systems/first_order_system.hpp"
 

@@ -1,11 +1,10 @@
 #pragma once
 // Classic fourth-order Runge–Kutta, as docs/course.md (section 4) writes it:
-//   k1 = d(x_n) Δt
-//   k2 = d(x_n + ½ k1) Δt
-//   k3 = d(x_n + ½ k2) Δt
-//   k4 = d(x_n + k3) Δt
-//   x_{n+1} = x_n + k1/6 + k2/3 + k3/3 + k4/6
-// Here k_i holds d(...) without the factor Δt, which is applied where k_i is used.
+//   k1 = f(t_n, y_n)
+//   k2 = f(t_n + h/2, y_n + (h/2) k1)
+//   k3 = f(t_n + h/2, y_n + (h/2) k2)
+//   k4 = f(t_n + h, y_n + h k3)
+//   y_{n+1} = y_n + h (k1/6 + k2/3 + k3/3 + k4/6)
 #include "motus/integrate/stage_vector.hpp"
 #include "motus/systems/first_order_system.hpp"
 

@@ -19,8 +19,6 @@ public:
     have_first_stage_ = false;
   }
   void set_tolerance(Tolerance tol) { tol_ = tol; }
-  // Forget the cached first stage (call after changing y from outside).
-  void reset() { have_first_stage_ = false; }
 
   template <FirstOrder System>
   bool try_step(System& f, double& t, double& h, VectorRef y) {

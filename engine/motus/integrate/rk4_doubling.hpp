@@ -1,11 +1,11 @@
 #pragma once
-// Adaptive RK4 by step doubling — the course's "change Δt as you go along, depending
-// on how much things are changing" (docs/course.md, section 5):
+// Adaptive RK4 by step doubling (docs/course.md, section 5):
 //   take one RK4 step of h, and two of h/2, from the same point;
 //   their difference / 15 estimates the error of the two half steps;
 //   keep the step if that error is within tolerance, and then use the extrapolated
 //   y = y_half + (y_half − y_full)/15, which is fifth order;
-//   grow or shrink h by (1/err)^(1/5).
+//   h ← h · 0.9 · err^(−1/5), within [h/5, 5h], with no growth right after a rejection
+//   (step_size_control.hpp).
 #include "motus/integrate/rk4.hpp"
 #include "motus/integrate/stage_vector.hpp"
 #include "motus/integrate/step_size_control.hpp"

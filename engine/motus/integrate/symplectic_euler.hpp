@@ -2,7 +2,7 @@
 // Symplectic (semi-implicit) Euler, the course's first form — velocity first
 // (docs/course.md, section 4):
 //   v_{n+1} = v_n + a_n Δt
-//   p_{n+1} = p_n + v_{n+1} Δt
+//   x_{n+1} = x_n + v_{n+1} Δt
 // First order, but on x'' = −ω²x it keeps ½(v² + ω²x² − ω²Δt·x·v) exactly, so the
 // energy wobbles and never drifts. Box2D and Bullet integrate this way.
 #include "motus/systems/mechanical_system.hpp"

@@ -1,6 +1,6 @@
 #pragma once
 // Symplectic Euler, the course's second form — position first (docs/course.md, section 4):
-//   p_{n+1} = p_n + v_n Δt
+//   x_{n+1} = x_n + v_n Δt
 //   v_{n+1} = v_n + a_{n+1} Δt
 #include "motus/systems/mechanical_system.hpp"
 

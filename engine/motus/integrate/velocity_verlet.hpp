@@ -1,7 +1,7 @@
 #pragma once
 // Velocity Verlet ("kick, drift, kick"):
 //   v_{n+½} = v_n + ½ a_n Δt
-//   p_{n+1} = p_n + v_{n+½} Δt
+//   x_{n+1} = x_n + v_{n+½} Δt
 //   v_{n+1} = v_{n+½} + ½ a_{n+1} Δt
 // The same positions as velocityless Verlet, with velocities. a_{n+1} is kept for
 // the next step, so one force evaluation per step. Second order; on x'' = −ω²x it
@@ -16,8 +16,6 @@ public:
     a_.resize(n);
     have_acceleration_ = false;
   }
-  // Forget the cached a_n (call after changing x or v from outside).
-  void reset() { have_acceleration_ = false; }
 
   template <Mechanical System>
   void step(System& s, double t, double h, VectorRef x, VectorRef v) {

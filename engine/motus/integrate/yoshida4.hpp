@@ -13,7 +13,6 @@ namespace motus {
 class Yoshida4 {
 public:
   void resize(int n) { verlet_.resize(n); }
-  void reset() { verlet_.reset(); }
 
   template <Mechanical System>
   void step(System& s, double t, double h, VectorRef x, VectorRef v) {

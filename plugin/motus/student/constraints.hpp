@@ -34,6 +34,7 @@ struct Constraints {
 };
 
 // Every body's position (body i's coordinate k at x[i·d + k]), inverse mass 1/m and radius.
+// A pinned body's inverse mass is its own 1/m too: weighing it as immovable (0) is yours to do.
 struct Bodies {
   int dimensions;
   int count;

@@ -5,7 +5,7 @@
 //   #include "motus/student/plugin.hpp"
 //   #include "integrators.hpp"
 //   MOTUS_PLUGIN("student", "the course's integrators, written by a student") {
-//     plugin.first_order("euler", 1, "explicit Euler", student::euler_step);
+//     plugin.first_order("midpoint", 2, "midpoint (RK2)", student::midpoint_step);
 //     plugin.mechanical("symplectic-euler", 1, "v += a h; x += v h", student::symplectic_euler_step);
 //   }
 //

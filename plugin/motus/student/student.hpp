@@ -51,7 +51,8 @@ public:
     return a;
   }
   // a = F(t, x)/m, for a method that keeps no velocities (velocityless Verlet): forces that
-  // depend on velocity (drag) see the velocity motus last reported.
+  // depend on velocity (drag) see the velocity motus last reported. In any other method they
+  // see v = 0 here (no drag, no spring damping): call acceleration(t, x, v) there.
   Vector acceleration(double t, VectorIn x) const {
     Vector a(s_.size);
     const Vector none = Vector::Zero(s_.size);
