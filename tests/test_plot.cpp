@@ -80,4 +80,69 @@ TEST(Figures, EveryLineColourHasAContrastOfThreeOnWhite) {
   for (const auto& c : colours) EXPECT_GE(motus_test::contrast_ratio(c, "#ffffff"), 3.0) << c;
 }
 
+// Found by an audit of the pictures: bench precision's note (what the markers and dashes mean)
+// ran 1,100 px wide in a 1,100 px picture, cut off at both edges. A note longer than the picture
+// is broken into lines that fit (about 6.75 px a character of its 9-point font), between its
+// clauses, and says all of itself.
+TEST(Figures, ALongNoteIsBrokenIntoLinesThatFitThePicture) {
+  TempDir folder;
+  motus::plot::Figure f;
+  f.stem = "note";
+  f.title = "a long note";
+  f.width = 900;
+  std::string note;
+  for (int k = 0; k < 8; ++k) note += (k ? "; " : "") + std::string("clause ") + std::to_string(k) + " says what a reader needs";
+  f.note = note;
+  motus::plot::Series s;
+  s.name = "line";
+  s.x = {0, 1};
+  s.y = {0, 1};
+  f.series.push_back(s);
+  (void)motus::plot::draw({f}, folder.path().string());
+  const std::string script = read_file(folder / "figures.gp");
+  const std::regex label(R"(set label 1\d '([^']*)' at screen 0\.5)");
+  std::string said;
+  int lines = 0;
+  for (auto it = std::sregex_iterator(script.begin(), script.end(), label); it != std::sregex_iterator(); ++it, ++lines) {
+    const std::string line = (*it)[1].str();
+    EXPECT_LE(static_cast<double>(line.size()) * 6.75, f.width - 40.0) << line;
+    said += (said.empty() ? "" : " ") + line;
+  }
+  EXPECT_GE(lines, 2) << script;
+  EXPECT_EQ(said, note) << script;
+}
+
+// Found by an audit of the pictures: on a symlog axis ±threshold is log10(2) of a decade from 0,
+// and over many decades its label printed over 0's ("0" on "1e-16": the runs' common start read
+// as 1e-16). A tic closer to 0 than a label's height is left out; one farther away stays.
+std::string symlog_tics(double threshold, double y_low, double y_high) {
+  TempDir folder;
+  motus::plot::Figure f;
+  f.stem = "symlog";
+  f.title = "symlog";
+  f.y_scale = motus::plot::Scale::symlog;
+  f.symlog_threshold = threshold;
+  motus::plot::Series s;
+  s.name = "line";
+  s.x = {0, 1, 2};
+  s.y = {y_low, 0, y_high};
+  f.series.push_back(s);
+  (void)motus::plot::draw({f}, folder.path().string());
+  const std::string script = read_file(folder / "figures.gp");
+  const size_t at = script.find("set ytics (");
+  return at == std::string::npos ? "" : script.substr(at, script.find('\n', at) - at);
+}
+
+TEST(Figures, SymlogTicsCloserToZeroThanALabelAreLeftOut) {
+  // Six decades each side in a 480 px figure: ±1e-07 would be ~7 px from 0.
+  const std::string many = symlog_tics(1e-7, -0.1, 0.1);
+  EXPECT_NE(many.find("'0' 0,"), std::string::npos) << many;
+  EXPECT_NE(many.find("'1e-01' 0.1"), std::string::npos) << many;
+  EXPECT_EQ(many.find("1e-07'"), std::string::npos) << many;
+  // One decade each side: ±1e-07 is a third of the half axis from 0, and stays.
+  const std::string few = symlog_tics(1e-7, -1e-6, 1e-6);
+  EXPECT_NE(few.find("'1e-07' 1e-07"), std::string::npos) << few;
+  EXPECT_NE(few.find("'-1e-07' -1e-07"), std::string::npos) << few;
+}
+
 }  // namespace

@@ -14,6 +14,7 @@
 #include <regex>
 #include <set>
 #include <sstream>
+#include <string>
 
 #include "accessibility.hpp"
 #include "cli_harness.hpp"
@@ -269,6 +270,41 @@ TEST(BenchPrecisionCommand, MethodsThatCannotRunCollisionsAreReported) {
   // every target, and the figure of evaluations says why it is not drawn there.
   EXPECT_NE(read_file(dir / "run" / "targets.csv").find("1e-10,symplectic-euler,motus,"), std::string::npos);
   EXPECT_NE(read_file(dir / "run" / "figures.gp").find("evaluate no force here: symplectic-euler"), std::string::npos);
+}
+
+// Found by an audit of the pictures: a line's colour went by its place among the curves drawn, so
+// Bullet's was motus's blue (and euler's, in the same diagram) with Box2D, Bullet and Odeint as
+// peers, dark red with Box2D and Bullet alone. Box2D and Bullet now have compare's colours
+// (report.cpp: orange and green), each method the same line whoever else ran, no two alike.
+TEST(BenchPrecisionCommand, EachMethodKeepsItsLineWhoeverElseRan) {
+  TempDir dir;
+  std::map<std::string, std::string> first_run;
+  for (const char* peers : {"box2d,bullet,odeint", "bullet"}) {
+    const fs::path out = dir / (std::string("run-") + peers);
+    const auto r = run_motus(dir, {"bench", "precision", "free_fall", "--peers", peers, "--levels", "1", "--repeats", "1",
+                                   "--out", out.string()});
+    ASSERT_EQ(r.status, 0) << r.err;
+    const std::string gp = read_file(out / "figures.gp");
+    const std::string first = gp.substr(0, gp.find("set terminal svg"));  // the first figure's plot line
+    const std::regex entry(R"(lc rgb '(#[0-9a-f]{6})'((?: dt (?:\d|\([0-9,]+\)))?) title '([^']+)')");
+    std::map<std::string, std::string> line_of;
+    std::set<std::string> looks;
+    for (auto it = std::sregex_iterator(first.begin(), first.end(), entry); it != std::sregex_iterator(); ++it) {
+      line_of[(*it)[3].str()] = (*it)[1].str() + (*it)[2].str();
+      looks.insert((*it)[1].str() + (*it)[2].str());
+    }
+    ASSERT_TRUE(line_of.count("bullet") && line_of.count("euler")) << gp;
+    EXPECT_EQ(line_of["bullet"].substr(0, 7), "#43a360") << peers;
+    if (line_of.count("box2d")) {
+      EXPECT_EQ(line_of["box2d"].substr(0, 7), "#df7430") << peers;
+    }
+    EXPECT_EQ(looks.size(), line_of.size()) << "two lines look alike:\n" << first;
+    if (first_run.empty()) {
+      first_run = line_of;
+    } else {
+      for (const auto& [method, line] : line_of) EXPECT_EQ(line, first_run[method]) << method;
+    }
+  }
 }
 
 TEST(BenchPrecisionCommand, BadPeersAndFlagsAreOneLineExitTwo) {

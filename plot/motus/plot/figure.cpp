@@ -69,6 +69,37 @@ void axis(std::ostream& gp, const char* name, Scale scale, double threshold) {
   if (scale == Scale::linear) gp << "set format " << name << " '%g'\n";
 }
 
+// The note under the title, in lines that fit across the picture (its 9-point font: about 6.75 px a
+// character, 9/10 of the legend's 7.5): one long line was cut off at both edges. Broken after "; "
+// where it can be (the note's clauses), else at a space; at most kMostNoteLines lines.
+constexpr int kNoteLabel = 10, kMostNoteLines = 4;  // (labels 10 to 13; 1 to 3 are the figure's others)
+constexpr double kNoteLinePixels = 13;
+std::vector<std::string> wrap_note(const std::string& note, int width) {
+  std::vector<std::string> lines;
+  const size_t fits = static_cast<size_t>(std::max(40.0, (width - 40) / 6.75));
+  std::string rest = note;
+  while (!rest.empty() && static_cast<int>(lines.size()) < kMostNoteLines - 1 && rest.size() > fits) {
+    size_t cut = rest.rfind("; ", fits);
+    size_t skip = 2;
+    if (cut == std::string::npos || cut < fits / 2) cut = rest.rfind(' ', fits), skip = 1;
+    if (cut == std::string::npos || cut == 0) break;
+    lines.push_back(rest.substr(0, cut + (skip == 2 ? 1 : 0)));  // (the ";" stays at the line's end)
+    rest = rest.substr(cut + skip);
+  }
+  if (!rest.empty()) lines.push_back(rest);
+  return lines;
+}
+
+// About how tall the plot's axes are in the picture: the height less the margins, in lines of
+// about 14 px (the title and the note's lines above; the tics, the x label and a legend's rows below).
+constexpr double kLinePixels = 14;
+double plot_pixels(const Figure& f, int legend_rows, size_t note_line_count) {
+  return std::max(100.0, f.height - kLinePixels * (3 + static_cast<double>(note_line_count) + 4 + legend_rows));
+}
+
+// A tic label's height and a little: tics closer than this print their labels over each other.
+constexpr double kTicLabelPixels = 14;
+
 bool plottable(double v, Scale scale) { return std::isfinite(v) && (scale != Scale::log || v > 0); }
 
 // "t = 1500 s" on a time axis, else "x = 1500".
@@ -108,11 +139,15 @@ std::string legend_tail(const Figure& f, const Series& s) {
 // A symlog axis's range and tics: out to the next whole decade beyond the data on each side (so
 // that no line runs along the frame and the end tics are labelled), 0, and the decades from the
 // threshold up, every one of them or every second, third, ... so that each side has at most five.
-void symlog_range(std::ostream& gp, const char* name, double low, double high, double threshold) {
+// `axis_pixels`: about how tall the axis is in the picture, for the tics' spacing.
+void symlog_range(std::ostream& gp, const char* name, double low, double high, double threshold, double axis_pixels) {
   auto decade_above = [&](double v) { return std::max(threshold, std::pow(10.0, std::ceil(std::log10(v) - 1e-9))); };
   const double top = high > 0 ? decade_above(high) : 0, bottom = low < 0 ? -decade_above(-low) : 0;
-  gp << "set " << name << "range [" << number(bottom == 0 && top == 0 ? -threshold : bottom) << ":"
-     << number(top == 0 && bottom == 0 ? threshold : top) << "]\n";
+  const double range_low = bottom == 0 && top == 0 ? -threshold : bottom, range_high = top == 0 && bottom == 0 ? threshold : top;
+  gp << "set " << name << "range [" << number(range_low) << ":" << number(range_high) << "]\n";
+  // (On the axis's own scale, as the nonlinear mapping above: sgn(y)·log10(1 + |y|/threshold).)
+  const auto mapped = [&](double y) { return std::copysign(std::log10(1 + std::abs(y) / threshold), y); };
+  const double pixels_per_unit = axis_pixels / (mapped(range_high) - mapped(range_low));
   const int lowest = static_cast<int>(std::lround(std::log10(threshold)));
   std::string tics = "'0' 0";
   for (const bool above : {true, false}) {
@@ -121,6 +156,9 @@ void symlog_range(std::ostream& gp, const char* name, double low, double high, d
     const int highest = static_cast<int>(std::lround(std::log10(end)));
     const int stride = std::max(1, (highest - lowest + 5) / 5);
     for (int k = highest; k >= lowest; k -= stride) {
+      // A tic closer to 0 than a label's height would print its label over 0's (±threshold is only
+      // log10(2) of a decade from 0): 0 is the one to keep, where the runs start.
+      if (k != highest && mapped(std::pow(10.0, k)) * pixels_per_unit < kTicLabelPixels) continue;
       char label[32];
       std::snprintf(label, sizeof label, "%.0e", std::pow(10.0, k));
       const std::string sign = above ? "" : "-";
@@ -202,6 +240,7 @@ std::string draw(const std::vector<Figure>& figures, const std::string& folder) 
     // columns were counted where gnuplot drew one, its third row over the x axis's label): the
     // plot keeps the picture's width whatever the entries say.
     const bool below = f.key.empty();
+    const std::vector<std::string> note_lines = wrap_note(f.note, f.width);
     size_t longest = 0;
     for (const auto& s : f.series) longest = std::max(longest, s.name.size() + legend_tail(f, s).size());
     const int columns = std::clamp((f.width - 80) / (15 * static_cast<int>(longest) / 2 + 70), 1, 4);
@@ -236,7 +275,8 @@ std::string draw(const std::vector<Figure>& figures, const std::string& folder) 
     } else {
       axis(gp, "x", f.x_scale, f.symlog_threshold);
       axis(gp, "y", f.y_scale, f.symlog_threshold);
-      if (f.y_scale == Scale::symlog && points > 0) symlog_range(gp, "y", y_low, y_high, f.symlog_threshold);
+      if (f.y_scale == Scale::symlog && points > 0)
+        symlog_range(gp, "y", y_low, y_high, f.symlog_threshold, plot_pixels(f, below ? rows : 0, note_lines.size()));
     }
     // Plain text throughout (no "enhanced" markup: a scene called ball_gas keeps its underscore).
     // The title and the note under it (the legend may be below the plot) are labels centred on the
@@ -244,12 +284,12 @@ std::string draw(const std::vector<Figure>& figures, const std::string& folder) 
     // off the picture's left edge); the top margin keeps their lines. The bottom margin holds the
     // tics, the x label and, below them, a legend of one entry a line.
     const auto from_top = [&](double pixels) { return number(1 - pixels / f.height); };
-    gp << "unset title\nset label 3 " << quoted(f.title) << " at screen 0.5, screen " << from_top(16) << " center\n"
-       << "unset label 1\n";
-    if (!f.note.empty())
-      gp << "set label 1 " << quoted(f.note) << " at screen 0.5, screen " << from_top(32)
-         << " center font ',9' tc rgb '#555555'\n";
-    gp << "set tmargin " << (f.note.empty() ? 3 : 4) << "\nset xlabel " << quoted(f.x_label) << "\nset ylabel "
+    gp << "unset title\nset label 3 " << quoted(f.title) << " at screen 0.5, screen " << from_top(16) << " center\n";
+    for (int line = 0; line < kMostNoteLines; ++line) gp << "unset label " << kNoteLabel + line << "\n";
+    for (size_t line = 0; line < note_lines.size(); ++line)
+      gp << "set label " << kNoteLabel + static_cast<int>(line) << " " << quoted(note_lines[line]) << " at screen 0.5, screen "
+         << from_top(32 + kNoteLinePixels * static_cast<double>(line)) << " center font ',9' tc rgb '#555555'\n";
+    gp << "set tmargin " << 3 + note_lines.size() << "\nset xlabel " << quoted(f.x_label) << "\nset ylabel "
        << quoted(f.y_label) << "\nset bmargin " << (below ? 4 + rows : 4) << "\n";
     for (const char* format : {"png", "svg"}) {
       if (std::string(format) == "png")

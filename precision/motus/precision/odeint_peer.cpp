@@ -221,7 +221,7 @@ std::vector<Curve> sweep_odeint(const SceneDescription& scene, const Sweep& swee
     built.emplace(scene, Integrator::Rk4);
   } catch (const SceneError& e) {  // collisions or constraints: a Runge–Kutta method cannot run them
     std::vector<Curve> curves;
-    for (const char* name : {"runge_kutta4", "runge_kutta_dopri5", "runge_kutta_fehlberg78", "symplectic_rkn_sb3a_mclachlan"}) {
+    for (const char* name : kOdeintMethods) {
       Curve c = curve(name, "", false);
       c.unsupported = std::string("the scene's collisions or constraints: ") + e.what();
       curves.push_back(std::move(c));

@@ -19,6 +19,10 @@
 
 namespace motus::precision {
 
+// Odeint's methods, in the order their curves come (and of their lines in the diagrams).
+inline constexpr const char* kOdeintMethods[] = {"runge_kutta4", "runge_kutta_dopri5", "runge_kutta_fehlberg78",
+                                                 "symplectic_rkn_sb3a_mclachlan"};
+
 // One curve per Odeint method: fixed-step ones at Sweep::fixed_steps, controlled ones at
 // Sweep::tolerances (first step dt). A method that cannot run the scene comes back with
 // `unsupported` set.

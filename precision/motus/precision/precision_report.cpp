@@ -7,9 +7,13 @@
 #include <cmath>
 #include <optional>
 #include <fstream>
+#include <iterator>
+#include <string>
 #include <stdexcept>
 
+#include "motus/integrator_name.hpp"
 #include "motus/plot/figure.hpp"
+#include "motus/precision/odeint_peer.hpp"
 #include "motus/precision/targets.hpp"
 #include "motus/plot/html.hpp"
 #include "motus/plot/write_failure.hpp"
@@ -37,6 +41,31 @@ void write_file(const std::string& path, const std::string& text) {
 std::string micro(const std::optional<AtTarget>& at) {
   if (!at) return "not reached";
   return fmt::format("{}{:.3g} ({:.3g})", at->upper_bound ? "≤ " : "", 1e6 * at->seconds, 1e6 * at->median_seconds);
+}
+
+// A method's line (its place in the plots' palette, figure.cpp), the same in every diagram whoever
+// else ran: Box2D and Bullet the colours compare gives them (1 and 2), motus's methods the other
+// first sixteen in `motus list`'s order, Odeint's after them, a plug-in's methods after those. By its
+// place among the curves drawn, Bullet's took motus's blue in one diagram and dark red in another.
+int line_of(const Curve& curve, const std::vector<Curve>& curves) {
+  if (curve.engine == "box2d") return 1;
+  if (curve.engine == "bullet") return 2;
+  const auto& builtin = all_integrators();
+  const int motus_methods = static_cast<int>(builtin.size());
+  const auto at = [&](int place) { return place == 0 ? 0 : place + 2; };  // (skipping 1 and 2)
+  if (curve.engine == "motus")
+    for (int m = 0; m < motus_methods; ++m)
+      if (curve.method == builtin[static_cast<size_t>(m)].name) return at(m);
+  const int odeint_from = at(motus_methods - 1) + 1;
+  if (curve.engine == "odeint")
+    for (int m = 0; m < static_cast<int>(std::size(kOdeintMethods)); ++m)
+      if (curve.method == std::string("odeint:") + kOdeintMethods[m]) return odeint_from + m;
+  int others = 0;  // a plug-in's methods, in their order
+  for (const Curve& o : curves) {
+    if (&o == &curve) break;
+    others += o.engine != "motus" && o.engine != "odeint" && o.engine != "box2d" && o.engine != "bullet";
+  }
+  return odeint_from + static_cast<int>(std::size(kOdeintMethods)) + others;
 }
 
 std::vector<plot::Figure> diagrams(const ReportContext& c, const std::vector<Curve>& curves) {
@@ -76,6 +105,7 @@ std::vector<plot::Figure> diagrams(const ReportContext& c, const std::vector<Cur
     s.style = "linespoints";
     s.dashed = peer;
     s.point_type = peer ? kPeerPoints[peer_index++ % 4] : plugin ? 6 : 7;
+    s.colour = line_of(curve, curves);
     plot::Series e = s;
     for (const Point& p : curve.points) {
       if (!p.failed.empty()) continue;
@@ -97,11 +127,16 @@ std::vector<plot::Figure> diagrams(const ReportContext& c, const std::vector<Cur
   if (plugin_drawn)
     for (plot::Figure* f : {&time, &work}) f->note += "; open circles: the plug-in's";
   if (!peers_drawn.empty()) {
+    // (Box2D and Bullet said once, together when both are drawn.)
+    const bool box2d = std::find(peers_drawn.begin(), peers_drawn.end(), "box2d") != peers_drawn.end();
+    const bool bullet = std::find(peers_drawn.begin(), peers_drawn.end(), "bullet") != peers_drawn.end();
     std::string who;
-    for (const auto& p : peers_drawn)
-      who += (who.empty() ? "" : ", ") + std::string(p == "odeint"  ? "Odeint on the same right-hand side"
-                                                     : p == "box2d" ? "Box2D with semi-implicit Euler"
-                                                                    : "Bullet with semi-implicit Euler");
+    for (const auto& p : peers_drawn) {
+      if (p == "odeint") who += (who.empty() ? "" : ", ") + std::string("Odeint on the same right-hand side");
+      if (p == "box2d" || (p == "bullet" && !box2d))
+        who += (who.empty() ? "" : ", ") + std::string(box2d && bullet ? "Box2D and Bullet" : box2d ? "Box2D" : "Bullet") +
+               " with semi-implicit Euler";
+    }
     for (plot::Figure* f : {&time, &work}) f->note += "; squares, triangles and diamonds on dashed lines: the peers (" + who + ")";
   }
   if (!no_evaluations.empty())
