@@ -186,6 +186,7 @@ int stress_command(const StressOptions& o) {
   const bool dissipative =
       std::any_of(m.forces.drag.begin(), m.forces.drag.end(), [](const LinearDrag& d) { return d.coefficient != 0; }) ||
       std::any_of(m.forces.springs.begin(), m.forces.springs.end(), [](const Spring& s) { return s.damping != 0; });
+  report.loses_energy_by_design = dissipative;
   if (!contacts && !sticks) {
     report.sections = {"stability"};
     if (dissipative)

@@ -19,6 +19,8 @@ struct Report {
   Settings settings;
   std::optional<double> omega;  // an undamped harmonic oscillator's ω, where theory applies
   std::string stiffness_knob;
+  // A damper or drag takes energy out by design: the energy's change is then not all error.
+  bool loses_energy_by_design = false;
   std::vector<std::string> sections;                            // measured, in order
   std::vector<std::pair<std::string, std::string>> not_applied;  // section, why not
   std::vector<std::pair<std::string, std::string>> cannot_run;   // integrator, why not

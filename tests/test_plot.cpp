@@ -3,6 +3,7 @@
 // told apart by their looks, and not only by the order of the legend.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <regex>
 #include <set>
 #include <string>
@@ -143,6 +144,37 @@ TEST(Figures, SymlogTicsCloserToZeroThanALabelAreLeftOut) {
   const std::string few = symlog_tics(1e-7, -1e-6, 1e-6);
   EXPECT_NE(few.find("'1e-07' 1e-07"), std::string::npos) << few;
   EXPECT_NE(few.find("'-1e-07' -1e-07"), std::string::npos) << few;
+}
+
+// Found by an audit of the pictures: on `motus stress ball_gas` a line that failed from 1000 radii
+// per step said "no value from x = 1000" on an axis of radii per step, in a legend entry wider than
+// the picture, cut off at its right edge. The entry says where in the axis's words, and the
+// picture is as wide as its widest entry (about 7.5 px a character of the legend's font).
+TEST(Figures, ALineThatStopsSaysWhereInTheAxissWordsAndItsEntryFits) {
+  TempDir folder;
+  motus::plot::Figure f;
+  f.stem = "gaps";
+  f.title = "gaps";
+  f.x_label = "radii per step";
+  f.x_scale = f.y_scale = motus::plot::Scale::log;
+  f.gap_from = "no value from", f.gap_means = "failed: see the table";
+  motus::plot::Series s;
+  s.name = "symplectic-euler: deepest overlap / contact distance, a name long enough to need a wider picture";
+  s.x = {1, 10, 100, 1000};
+  s.y = {1e-3, 1e-2, 1e-1, NAN};
+  f.series.push_back(s);
+  (void)motus::plot::draw({f}, folder.path().string());
+  const std::string script = read_file(folder / "figures.gp");
+  const std::string entry = s.name + ": no value from radii per step = 1000 (failed: see the table)";
+  EXPECT_NE(script.find("title '" + entry + "'"), std::string::npos) << script;
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(script, m, std::regex(R"(set terminal pngcairo size (\d+),)"))) << script;
+  EXPECT_GE(std::stod(m[1].str()), 7.5 * static_cast<double>(entry.size()) + 70) << script;
+  // A time axis keeps its "t = … s".
+  f.x_label = "t [s]";
+  f.x_scale = motus::plot::Scale::linear;
+  (void)motus::plot::draw({f}, folder.path().string());
+  EXPECT_NE(read_file(folder / "figures.gp").find("no value from t = 1000 s (failed"), std::string::npos);
 }
 
 }  // namespace

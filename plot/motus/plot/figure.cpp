@@ -102,9 +102,17 @@ constexpr double kTicLabelPixels = 14;
 
 bool plottable(double v, Scale scale) { return std::isfinite(v) && (scale != Scale::log || v > 0); }
 
-// "t = 1500 s" on a time axis, else "x = 1500".
+// Where on the x axis, in the axis's own words: "t = 1500 s" (its label "t [s]"), "h = 0.1 s" ("h [s]"),
+// "radii per step = 1000" ("radii per step"); "x = 1500" for an axis with no label. (It said
+// "x = 1000" on an axis of radii per step.)
 std::string at_x(const Figure& f, double x) {
-  return f.x_label.rfind("t [s]", 0) == 0 ? "t = " + number(x) + " s" : "x = " + number(x);
+  const std::string& label = f.x_label;
+  const size_t open = label.find(" ["), close = label.find(']', open);
+  if (open != std::string::npos && close != std::string::npos)
+    return label.substr(0, open) + " = " + number(x) + " " + label.substr(open + 2, close - open - 2);
+  const size_t remark = label.rfind(" (");  // (without a remark in brackets at its end)
+  const std::string name = !label.empty() && label.back() == ')' && remark != std::string::npos ? label.substr(0, remark) : label;
+  return (name.empty() ? "x" : name) + " = " + number(x);
 }
 
 // What a series' legend entry adds to its name: why it has no line, where it stops being finite
@@ -240,10 +248,13 @@ std::string draw(const std::vector<Figure>& figures, const std::string& folder) 
     // columns were counted where gnuplot drew one, its third row over the x axis's label): the
     // plot keeps the picture's width whatever the entries say.
     const bool below = f.key.empty();
-    const std::vector<std::string> note_lines = wrap_note(f.note, f.width);
     size_t longest = 0;
     for (const auto& s : f.series) longest = std::max(longest, s.name.size() + legend_tail(f, s).size());
-    const int columns = std::clamp((f.width - 80) / (15 * static_cast<int>(longest) / 2 + 70), 1, 4);
+    // A legend entry wider than the picture (a line that failed says where and why) widens it: one
+    // was cut off at the picture's right edge.
+    const int width = below ? std::max(f.width, 15 * static_cast<int>(longest) / 2 + 190) : f.width;
+    const std::vector<std::string> note_lines = wrap_note(f.note, width);
+    const int columns = std::clamp((width - 80) / (15 * static_cast<int>(longest) / 2 + 70), 1, 4);
     const int rows = (static_cast<int>(f.series.size()) + columns - 1) / columns;
     const std::string key = !below ? f.key + " Left reverse box opaque"
                                    : "below Left reverse box maxrows " + std::to_string(std::max(rows, 1));
@@ -293,9 +304,9 @@ std::string draw(const std::vector<Figure>& figures, const std::string& folder) 
        << quoted(f.y_label) << "\nset bmargin " << (below ? 4 + rows : 4) << "\n";
     for (const char* format : {"png", "svg"}) {
       if (std::string(format) == "png")
-        gp << "set terminal pngcairo size " << f.width << "," << f.height << " font 'DejaVu Sans,10' noenhanced\n";
+        gp << "set terminal pngcairo size " << width << "," << f.height << " font 'DejaVu Sans,10' noenhanced\n";
       else
-        gp << "set terminal svg size " << f.width << "," << f.height << " font 'DejaVu Sans,10' noenhanced background '#ffffff'\n";
+        gp << "set terminal svg size " << width << "," << f.height << " font 'DejaVu Sans,10' noenhanced background '#ffffff'\n";
       gp << "set output " << quoted(f.stem + "." + format) << "\n" << plot_line << "\n";
     }
   }
