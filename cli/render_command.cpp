@@ -46,6 +46,10 @@ std::pair<int, int> parse_size(const std::string& text) {
 // (never a file of the user's that happens to be there).
 constexpr const char* kManifest = ".motus-render";
 
+// With --trails, the states a body's trail goes through between two frames, at most: every step
+// at a scene's usual dt (a few steps a frame), and no more than this for a small dt.
+constexpr double kTrailPointsPerFrame = 16;
+
 // The names an earlier render listed in FOLDER/.motus-render (only plain names: no folder, no
 // hidden file).
 std::vector<std::string> listed_names(const fs::path& folder) {
@@ -290,7 +294,8 @@ int render_command(const RenderOptions& o) {
   RenderInProgress rendering(o.out, made_folder);
 
   // Simulate: mechanical scenes keep one state per frame; first-order ones every step
-  // too (an attractor's curve is drawn through all of them).
+  // too (an attractor's curve is drawn through all of them), and so do bodies drawn with trails
+  // (up to kTrailPointsPerFrame a frame): a trail through the frames alone cut across every bounce.
   const double t0 = sim.time(), dt = scene.dt;
   const Tolerance tolerance{scene.atol, scene.rtol};
   draw::Frames recording;
@@ -300,8 +305,11 @@ int render_command(const RenderOptions& o) {
     recording.states.emplace_back(s.state().data(), s.state().data() + s.state().size());
     if (const auto e = s.energy()) recording.energies.push_back(e->total);
   };
-  const bool every_step = !scene.is_mechanical();
-  const double min_gap = scene.output_interval > 0 ? scene.output_interval * 0.999 : 0;
+  const bool trails_drawn = o.trails && scene.is_mechanical() && scene.mechanical->bodies.size() <= 64;
+  const bool every_step = !scene.is_mechanical() || trails_drawn;
+  const double min_gap = scene.is_mechanical()       ? 0.999 / (o.fps * kTrailPointsPerFrame)
+                         : scene.output_interval > 0 ? scene.output_interval * 0.999
+                                                     : 0;
   ProgressBar progress(0, static_cast<double>(frames), scene.name, 1);
   progress.phase("simulating", 0, static_cast<double>(frames));
   const auto began = std::chrono::steady_clock::now();

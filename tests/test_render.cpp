@@ -82,6 +82,33 @@ TEST(RenderPixels, BallLandsWhereTheOrthographicFormulaSays) {
   EXPECT_NE(image.pixel(140, 60 + 16), options.background);
 }
 
+// Found by an audit of the pictures: a trail joined the frames' positions with straight lines, so at
+// a low --fps it cut across every bounce. motus render now records the steps between frames for
+// trails, and a trail spans trail_frames frames' time, whatever the states recorded in it: here a
+// ball at x = t m, recorded ten times a frame (frames 1 s apart), drawn at t = 3 s with a trail of
+// two frames, trails from x = 1 m. (By count, the last two states, it reached back to x = 2.8 m only.)
+// Orthographic, center (2, 0), 40 px/m on 200 × 160: x = 1.5 m is pixel 100 + (1.5 − 2)·40 = 80, y = 0 is row 80.
+TEST(RenderPixels, ATrailSpansItsFramesTimeThroughEveryStateRecorded) {
+  Canvas canvas(200, 160, 2);
+  const SceneDescription scene = one_ball(2, {0.0, 0.0}, 0.05);
+  Recording rec;
+  for (int k = 0; k <= 30; ++k) {
+    const double t = k / 10.0;
+    const std::vector<double> state{t, 0.0, 1.0, 0.0};
+    rec.add(t, state);
+  }
+  DrawOptions options;
+  options.trails = true;
+  options.trail_frames = 2;
+  options.frame_interval = 1;
+  options.overlay = false;
+  const Camera camera = Camera::orthographic(2, 0, 40);
+  draw_frame(canvas, canvas.full(), scene, rec, 30, camera, options, "");
+  const Image image = canvas.image();
+  EXPECT_NE(image.pixel(80, 80), options.background) << "the trail at x = 1.5 m";
+  EXPECT_EQ(image.pixel(30, 80), options.background) << "nothing before x = 1 m (x = 0.25 m)";
+}
+
 // A first-order scene's chart: each variable over its largest size. One that goes below 0 is
 // drawn on a −1 … 1 axis: its line stays inside the plot (whose bottom is 40 px above the
 // frame's), never below it and off the picture.

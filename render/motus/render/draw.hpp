@@ -37,7 +37,7 @@ struct DrawOptions {
   bool velocity_arrows = false;
   double arrow_seconds = 0.25;  // an arrow points to where the body would be this much later
   bool trails = false;
-  int trail_frames = 90;        // how many earlier recorded states a trail shows
+  int trail_frames = 90;        // a trail shows the recorded states of this many frames' time (frame_interval)
   bool ground_grid = true;      // 3-D scenes
   // Where the 3-D ground grid lies (centre x, height y, centre z) and its half width; by
   // default from the frame's own bodies (fit_ground gives one for a whole run, which does

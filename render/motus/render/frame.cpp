@@ -175,7 +175,15 @@ void draw_frame(Canvas& canvas, const Viewport& v, const SceneDescription& scene
     const size_t half = state.size() / 2;
     MechanicalFrame frame{std::span<const double>(state).first(half), std::span<const double>(state).subspan(half), {}};
     if (options.trails) {
-      const size_t first = index > static_cast<size_t>(options.trail_frames) ? index - static_cast<size_t>(options.trail_frames) : 0;
+      // The states of the last trail_frames frames' time: the recording may hold the steps between
+      // the frames too (motus render records them for trails), so the trail follows the path that
+      // was simulated, bounces included, not straight lines from frame to frame.
+      size_t first = index > static_cast<size_t>(options.trail_frames) ? index - static_cast<size_t>(options.trail_frames) : 0;
+      if (options.frame_interval > 0) {
+        const double from = rec.times[index] - options.trail_frames * options.frame_interval * (1 + 1e-9);
+        first = static_cast<size_t>(std::lower_bound(rec.times.begin(), rec.times.begin() + static_cast<long>(index), from) -
+                                    rec.times.begin());
+      }
       for (size_t i = first; i <= index; ++i) frame.trail.push_back(std::span<const double>(rec.states[i]).first(half));
     }
     draw_mechanical(canvas, v, scene, frame, camera, options);
