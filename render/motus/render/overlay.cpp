@@ -24,7 +24,7 @@ void draw_overlay(Canvas& canvas, const Viewport& v, const Overlay& o) {
   // The note (integrator, --set overrides) whenever it fits across the frame: a rule of 400 px wide
   // frames left a 320 px GIF's "velocity-verlet dt=0.02" out, and the picture said nothing of it.
   const TextStyle note_style{0.8 * size, {70, 74, 84, 255}};
-  const bool note_shown = !o.note.empty() && x + text_width(o.note, note_style) + 0.6 * size <= v.width;
+  const bool note_shown = !o.note.empty() && (x - v.x) + text_width(o.note, note_style) + 0.6 * size <= v.width;
   const int lines = 1 + (o.energy_drift ? 1 : 0) + (note_shown ? 1 : 0);
   // Two decimals of a second (none of a year), or as many as tell two frames apart.
   int decimals = o.time_unit == "year" ? 0 : 2;
