@@ -1,8 +1,9 @@
 // bench_plugin: what it costs to run a student's integrator through a plug-in. The same code —
 // the integrators assignment's reference solution — once built into this program and once
 // loaded as a plug-in (dlopen, --plugin), each stepping one Kepler orbit at h = 0.01 (629
-// steps) through motus::Simulation; and motus's own RK4 beside them, for scale (the student's
-// code allocates its stages, motus's does not). Ratios in one run (RatioReporter).
+// steps) through motus::Simulation; and motus's own beside them, for scale (the student's code
+// allocates its stages, motus's does not): RK4, and velocity Verlet three ways. Ratios in one run
+// (RatioReporter).
 #include <benchmark/benchmark.h>
 
 #include <cmath>

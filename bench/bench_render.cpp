@@ -1,7 +1,7 @@
 // Frames per second of the renderer at 640 × 480 (2× supersampled, so 1280 × 960 rasterised), on one
 // core: llvmpipe is told to use no rasteriser threads (LP_NUM_THREADS=0, set before the first context).
 //   BM_DrawFrame  draw_frame + Canvas::image (what a frame costs before it is written)
-//   BM_DrawAndPng the same plus write_png (zlib level 3) to a file: what `motus render` pays per frame
+//   BM_DrawAndPng the same plus write_png (zlib level 1, its default) to a file: what `motus render` pays per frame
 // on the ball gas with 1,000 balls (scenes/ball_gas.json with lattice.count=1000, as --set does) and on
 // the cloth (scenes/cloth.json, 400 particles, 1,482 sticks drawn as shaded triangles). The states are a
 // recorded run of 30 frames, cycled; the simulation itself is not timed. Target: 30 fps or more.

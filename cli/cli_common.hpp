@@ -181,17 +181,17 @@ constexpr double kMaxSteps = 1e15;
 // The number of fixed steps of dt that `duration` takes; InputError naming `what` when it is
 // not a number of steps one could count.
 long checked_step_count(double duration, double dt, const std::string& what);
-// Refuses a run whose times cannot be told apart at its step (exit 2), naming start_what when
-// start_time is what takes the run far from 0, else step_what (dt, the duration or the option).
 // Refuses a mechanical scene so far from the origin that its positions cannot take its moves (exit 2,
 // naming the farthest body): at 1e17 m doubles are 16 m apart, and a ball at 1 m/s with dt = 0.01
 // never moved, exit 0. The moves are the fastest body's speed times dt; they must be at least a
 // thousand of the positions' spacing there.
 void check_position_resolution(const SceneDescription& scene, double dt, const std::string& path);
+// Refuses a run whose times cannot be told apart at its step (exit 2), naming start_what when
+// start_time is what takes the run far from 0, else step_what (dt, the duration or the option).
 void check_time_resolution(double start_time, double duration, double dt, const std::string& start_what,
                            const std::string& step_what);
 
-// Where a module of the `motus` command may be (motus-draw.so, motus-peers.so): at $ENV_VAR when
+// Where a module of the `motus` command may be (motus-draw.so, motus-peers.so, motus-expressions.so): at $ENV_VAR when
 // that is set and not empty (and only there), else next to the executable (the build tree), else
 // at `installed`, relative to the executable (where `cmake --install` puts it).
 std::vector<std::string> module_candidates(const char* env_var, const std::string& name, const std::string& installed);

@@ -4,6 +4,9 @@
 //   motus bench precision SCENE ...   run time against error
 //   motus render SCENE --out DIR ...  PNG frames (and a video) of a scene
 //   motus stress SCENE ...            the stability stress test: tables and a page
+//   motus compare SCENE ...           the scene in motus, Box2D and Bullet: tables, plots, a report
+//   motus grade ASSIGNMENT DIR ...    a student's code graded in a sandbox (Gradescope's results)
+//   motus serve --plugin FILE.so      (not for users) grade's server inside the sandbox
 #include <fmt/format.h>
 
 #include <algorithm>

@@ -1,5 +1,5 @@
 #pragma once
-// Loading one of the `motus` command's modules (motus-draw.so, motus-peers.so) when a command
+// Loading one of the `motus` command's modules (motus-draw.so, motus-peers.so, motus-expressions.so) when a command
 // first needs it: its versioned table of functions, from its extern "C" entry point.
 #include <dlfcn.h>
 #include <sys/mman.h>

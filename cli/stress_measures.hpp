@@ -65,7 +65,7 @@ struct DriftResult {
   long steps = 0;                    // steps run (fewer than asked when it blew up)
   double first_hundredth_max = 0, last_tenth_max = 0;  // the largest error over the first 1 % and the last 10 % of the run
   std::string blown;                 // "" or "not finite at t = …", "escaped (E >= 0) at t = …"
-  std::string verdict;               // "bounded", "grows ×…", or the blow-up
+  std::string verdict;               // "bounded", "grows ×…", "lost its energy (…)", or the blow-up
 };
 DriftResult measure_drift(const SceneDescription& scene, Integrator integrator, const Settings& settings, const Tick& tick);
 

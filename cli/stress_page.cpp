@@ -407,7 +407,7 @@ std::string write_page(const std::string& folder, const Report& r) {
         << (s.first_blowup == 0 ? " (no blow-up found)" : "") << "</td>";
       if (r.omega) h << "<td>" << (s.limit > 0 ? fmt::format("{:.6f}", z) : "–") << "</td>";
       h << "<td>" << html_escape(s.theory.text) << "</td><td>"
-        << (s.theory.z > 0 && s.limit > 0 ? fmt::format("{:.5f}", z / s.theory.z) : "–") << "</td></tr>\n";
+        << (s.theory.z > 0 && s.limit > 0 ? fmt::format("{:.6f}", z / s.theory.z) : "–") << "</td></tr>\n";  // (as the terminal's)
     }
     h << "</table>\n";
     figure("stability", r.loses_energy_by_design ? "the energy change of each trial against its step (a damper's loss included)"

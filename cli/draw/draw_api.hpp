@@ -1,10 +1,11 @@
 #pragma once
 // The boundary between `motus` and its drawing module, motus-draw.so.
 //
-// Drawing needs OpenGL, and OSMesa brings LLVM, libz3, ICU and libxml2 with it: ~35 ms of
-// dynamic loading before main(). Only `motus render` and `motus compare --render` draw, so
-// everything that touches OpenGL lives in a module that `motus` loads (dlopen) only for
-// them, and every other command starts without it (see docs/architecture.md).
+// Drawing needs OpenGL, and OSMesa brings LLVM, libz3, ICU and libxml2 with it: tens of ms of
+// dynamic loading before main() (docs/architecture.md has the figure). Only `motus render` and
+// `motus compare` draw (compare its report's first_and_last.png on every run, every frame with
+// --render), so everything that touches OpenGL lives in a module that `motus` loads (dlopen)
+// only for them, and every other command starts without it.
 //
 // The boundary is plain data, and no exception crosses it: each call returns "" when it
 // worked, else one line saying what went wrong. The module is built from this tree with the
@@ -46,7 +47,7 @@ struct RenderJob {
   std::function<void(long)> frame_done;  // after each frame is written (progress)
 };
 
-// `motus compare --render`: one panel per engine.
+// `motus compare`: one panel per engine (first_and_last.png; with --render every frame too).
 struct Panel {
   std::string engine;                    // "motus", "box2d", ... (the panel's overlay)
   std::string label;                     // above the panel ("Box2D 2.4.1, float")

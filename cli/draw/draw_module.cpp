@@ -1,4 +1,4 @@
-// motus-draw.so: the drawing half of `motus render` and `motus compare --render`, loaded at
+// motus-draw.so: the drawing half of `motus render` and `motus compare`, loaded at
 // run time (see draw_api.hpp). It turns recorded states into PNG frames, videos and contact
 // sheets with render/ (OSMesa, libpng, FreeType, ffmpeg).
 #include <fmt/format.h>

@@ -1,7 +1,7 @@
 #pragma once
 // The boundary between `motus` and its peers module, motus-peers.so.
 //
-// Box2D and Bullet are three shared libraries (~2 MB) that only `motus compare` and `motus bench
+// Box2D and Bullet are four shared libraries (Box2D's one, Bullet's three; ~2 MB) that only `motus compare` and `motus bench
 // precision --peers` use, so they live in a module that `motus` loads (dlopen) when a command
 // first asks for a peer, and every other command starts without them (see docs/architecture.md).
 //

@@ -18,7 +18,7 @@ struct EngineRun {
   std::vector<std::string> unsupported;  // "not supported by box2d: 3-D scenes", ...
   std::vector<std::string> settings, notes;
   std::vector<MetricsRow> rows;          // at t0 and every sample time
-  std::vector<Snapshot> frames;          // at t0 and every frame_every steps (for --render)
+  std::vector<Snapshot> frames;          // at t0 and every frame_every steps (the pictures and the replay)
   std::vector<double> frame_energies;    // total energy of each frame
   Snapshot last;                         // the state at the end of the run
   long steps = 0;

@@ -16,6 +16,7 @@
 //   scene       a scene run with the student's parts: velocities, energy, momentum, no
 //               tunnelling, stick lengths, pins, bounce heights
 //   project     the student's constraint projection on given positions
+//   step        one step of the student's integrator on y' = c0 + c1 t + ..., against given values
 #include <functional>
 #include <memory>
 #include <nlohmann/json.hpp>

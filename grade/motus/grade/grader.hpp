@@ -6,7 +6,6 @@
 #include <functional>
 #include <string>
 #include <vector>
-#include <vector>
 
 #include "motus/grade/assignment.hpp"
 #include "motus/grade/build.hpp"

@@ -66,8 +66,6 @@ public:
   // One request and its reply, a JSON object whose "ok" is true; throws ProbeFailure (a reply
   // larger than `size` allows, or not such an object, is malformed_reply's). The deadline is the check's.
   nlohmann::json ask(nlohmann::json request, std::chrono::steady_clock::time_point deadline, ReplySize size = {});
-  // The CPU the current check may take (its wall clock is wall_backstop of it).
-  double seconds_per_check() const { return setup_.limits.cpu_seconds; }
   // Stops the server (and everything it started), its output read to the end: what the student's
   // code printed in it is kept for printed().
   void stop();

@@ -5,7 +5,7 @@
 // server sends back raw outputs only (states, velocities, times). Every comparison with an
 // expected value is made by the grader, outside the sandbox: no expected value ever enters it.
 //
-//   {"op": "run", "scene": TEXT, "integrator": NAME, "dt": H,
+//   {"op": "run", "scene": TEXT, "file": NAME, "integrator": NAME, "dt": H,
 //    "steps": N | "until": T, "every": K, "atol": A, "rtol": R}
 //     → {"ok": true, "t": [...], "y": [[...], ...], "steps": S, "rejected": R, "evaluations": E}
 //       (y = [x; v] for bodies; a row at the start, every K steps, and at the end. TEXT is the
@@ -17,6 +17,10 @@
 //   {"op": "plane_impact", "p", "v", "r", "n", "offset"}               → {"ok": true, "t"}
 //   {"op": "project", "dimensions", "inverse_mass", "radius", "sticks": [[a, b, L]...],
 //    "pins": [[body, [x...]]...], "walls": [[[n...], offset]...], "iterations", "x"} → {"ok": true, "x"}
+//   {"op": "step", "integrator", "of_time": [c0, c1, ...], "t", "h", "y" (with "atol", "rtol")
+//    | "x", "v"}  → one step of the student's integrator on y' (or x'') = c0 + c1 t + ...:
+//       {"ok": true, "y"} (first order), {"ok": true, "y", "accepted", "h"} (adaptive),
+//       {"ok": true, "x", "v"} (bodies), {"ok": true, "x_start", "x", "x_previous"} (velocityless Verlet)
 //   anything that fails → {"ok": false, "error": "one line"}
 // Numbers that are not finite travel as the strings "inf", "-inf" and "nan".
 #include <cmath>

@@ -293,7 +293,7 @@ std::string draw(const std::vector<Figure>& figures, const std::string& folder) 
     // The title and the note under it (the legend may be below the plot) are labels centred on the
     // picture, not on the plot (gnuplot's title is, and a legend at the right pushed a long note
     // off the picture's left edge); the top margin keeps their lines. The bottom margin holds the
-    // tics, the x label and, below them, a legend of one entry a line.
+    // tics, the x label and, below them, the legend's rows.
     const auto from_top = [&](double pixels) { return number(1 - pixels / f.height); };
     gp << "unset title\nset label 3 " << quoted(f.title) << " at screen 0.5, screen " << from_top(16) << " center\n";
     for (int line = 0; line < kMostNoteLines; ++line) gp << "unset label " << kNoteLabel + line << "\n";

@@ -40,10 +40,10 @@ struct Figure {
   double symlog_threshold = 1e-16;  // where a symlog axis turns linear
   std::vector<Series> series;
   std::string note;  // a line under the title (what to look at), or ""
-  // Where the legend goes (gnuplot's words: "top left", "outside right top"), or "" for outside
-  // the plot: below it, one entry a line, for up to four series (an entry can be long: "bullet: not
-  // finite from t = 900 s (blew up)"), at the right for more. Never inside by default: a box there
-  // hides the lines that pass under it.
+  // Where the legend goes (gnuplot's words: "top left", "outside right top"), or "" for below the
+  // plot, in as many columns (up to four) as its longest entry lets fit across the picture, which
+  // widens for an entry longer than it (one can be long: "bullet: not finite from t = 900 s (blew
+  // up)"). Never inside by default: a box there hides the lines that pass under it.
   std::string key = "";
   double x_from = NAN;  // where a linear x axis starts (NaN: at the data's lowest x)
   // What a value that is not finite stands for, in the legend: "<gap_from> t = 50 s (<gap_means>)".

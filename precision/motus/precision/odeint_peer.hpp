@@ -28,7 +28,7 @@ inline constexpr const char* kOdeintMethods[] = {"runge_kutta4", "runge_kutta_do
 // `unsupported` set.
 std::vector<Curve> sweep_odeint(const SceneDescription& scene, const Sweep& sweep);
 
-// "Boost.Odeint 1.74 (Boost 1.74.0)".
+// "Boost.Odeint, Boost 1.74.0".
 std::string odeint_version();
 
 }  // namespace motus::precision

@@ -1,5 +1,5 @@
 #pragma once
-// Starting another program — ffmpeg, python3, zip — directly, with an argument vector: never
+// Starting another program — ffmpeg, gnuplot, zip — directly, with an argument vector: never
 // through a shell, so no name, folder or scene field can be read as a command. Standard input
 // is /dev/null; standard output and error go to a log file, or stay where motus's are.
 #include <string>

@@ -72,14 +72,15 @@ void fit_ground(const SceneDescription& scene, const Recording& recording, DrawO
 void draw_mechanical(Canvas& canvas, const Viewport& viewport, const SceneDescription& scene,
                      const MechanicalFrame& frame, const Camera& camera, const DrawOptions& options = {});
 
-// An attractor's trajectory from recording[0] to recording[upto], coloured from dark
-// blue (start) to yellow (now), with a dot at the current state.
 // What a first-order scene's variables are called and mean, and what its time counts.
 struct SeriesLabels {
   std::vector<std::string> names;     // one per variable
   std::vector<std::string> meanings;  // empty, or one per variable ("population (people)")
   std::string time_unit = "s";        // "s", or "year" for World2's calendar years
 };
+
+// An attractor's trajectory from recording[0] to recording[upto], coloured from dark purple
+// (start) to yellow (now), viridis's ends, with a dot at the current state.
 void draw_trajectory_3d(Canvas& canvas, const Viewport& viewport, const Recording& recording, size_t upto,
                         const Camera& camera, const SeriesLabels& labels, const DrawOptions& options = {});
 

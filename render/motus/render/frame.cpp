@@ -110,7 +110,7 @@ Camera fit_camera(const SceneDescription& scene, const Recording& rec, const Vie
       if (s.b < 0) b.add(s.anchor[0], 0);
     if (b.empty()) b.add(0, 0, 1);
     const double span = std::max(b.x1 - b.x0, 1e-9);
-    // The middle 80% of the width (a zero-length spring's wall stands at the left edge), below the overlay.
+    // 76% of the width, moved right by 4% of it (a zero-length spring's wall stands at the left edge), below the overlay.
     const double scale = v.width * 0.76 / span;
     return Camera::orthographic((b.x0 + b.x1) / 2 - 0.04 * v.width / scale, overlay_height(v) / 2 / scale, scale);
   }

@@ -41,8 +41,8 @@ struct Image {
 };
 
 // Writes an 8-bit RGBA PNG. Deterministic: the same image gives the same bytes (no
-// time stamp). zlib level 0..9 with the "sub" filter only: level 1 measured as fast as
-// any and no larger than 3 on frames (bench/bench_render).
+// time stamp). zlib level 0..9 with the "sub" filter only: level 1 was as fast as any and no
+// larger than 3 on frames when it was chosen (bench/bench_render times this default only).
 void write_png(const std::string& path, const Image& image, int compression_level = 1);
 // Reads an 8-bit PNG (any colour type libpng can expand to RGBA), for tests and tools.
 Image read_png(const std::string& path);

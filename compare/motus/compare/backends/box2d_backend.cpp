@@ -436,8 +436,9 @@ std::vector<std::string> Box2dBackend::notes() const {
                        "from them (planes and box faces are moved back by the skin)",
                        static_cast<double>(b2_polygonRadius), static_cast<double>(b2_polygonRadius)));
   if (w.has_sticks) {
-    s.push_back("sticks are b2DistanceJoints solved by sequential impulses (8 velocity, 3 position iterations), "
-                "not projected as in motus: their lengths err as far as that solver leaves them");
+    s.push_back(format("sticks are b2DistanceJoints solved by sequential impulses (%d velocity, %d position iterations), "
+                       "not projected as in motus: their lengths err as far as that solver leaves them",
+                       kVelocityIterations, kPositionIterations));
     if (w.steps > 0)
       s.push_back(format("sticks: the worst length error so far is %.3g%% of the rest length (after step %ld; "
                          "every step, as the table's constraint column; metrics.csv has its samples only)",

@@ -5,8 +5,8 @@
 // applyCentralForce each step (motus's formulas, PeerForces), sticks as one-row rigid
 // distance constraints solved by Bullet's own sequential-impulse solver, pins as static
 // bodies. 2-D scenes live in the z = 0 plane, 1-D scenes on the x axis (linear factors).
-// Bullet's headers stay in the .cpp: only the motus_backends target is compiled with
-// BT_USE_DOUBLE_PRECISION, and a btScalar of the wrong width would break the ABI.
+// Bullet's headers stay in the .cpp: only the motus_compare target is compiled with
+// BT_USE_DOUBLE_PRECISION (through pkg-config's bullet-float64), and a btScalar of the wrong width would break the ABI.
 #include <memory>
 
 #include "motus/compare/backends/backend.hpp"

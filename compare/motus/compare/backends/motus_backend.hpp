@@ -23,8 +23,6 @@ public:
   std::vector<std::string> settings() const override;
   std::vector<std::string> notes() const override;
 
-  const Simulation& simulation() const { return *sim_; }
-
 private:
   std::string name_ = "motus", version_;
   ExternalParts parts_;

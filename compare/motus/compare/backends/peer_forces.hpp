@@ -17,7 +17,7 @@ public:
   bool empty() const { return forces_.empty(); }
   // F (N·d numbers) at positions x and velocities v (N·d numbers each).
   void compute(double t, const std::vector<double>& x, const std::vector<double>& v, std::vector<double>& F) const;
-  // Uniform gravity, summed (the peers' world gravity), and whether there is any.
+  // Uniform gravity, summed (the peers' world gravity).
   const std::array<double, 3>& gravity() const { return gravity_; }
 
 private:
