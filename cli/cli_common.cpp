@@ -245,7 +245,7 @@ Method method_for(const std::string& path, const SceneDescription& scene, const 
   if (method->needs_mechanical() && !scene.is_mechanical()) {  // the file's own integrator was checked by the loader
     // A plug-in's step(x, v) need not be symplectic (a student's explicit Euler): it steps bodies.
     // What can run this scene: the built-in first-order methods, and the plug-ins' own.
-    std::string first_order = "euler, midpoint, rk4, rk4-doubling, rk45 or dop853";
+    std::string first_order = first_order_integrator_names();
     for (const auto& m : plugins().integrators())
       if (!m.needs_mechanical()) first_order += ", " + m.name();
     throw InputError(path + ": --integrator: " + name +

@@ -33,4 +33,13 @@ std::vector<std::string> integrator_names() {
   return names;
 }
 
+std::string first_order_integrator_names() {
+  std::vector<std::string> names;
+  for (const auto& i : all_integrators())
+    if (!i.needs_mechanical) names.emplace_back(i.name);
+  std::string list;
+  for (size_t k = 0; k < names.size(); ++k) list += (k == 0 ? "" : k + 1 == names.size() ? " or " : ", ") + names[k];
+  return list;
+}
+
 }  // namespace motus

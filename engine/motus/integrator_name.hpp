@@ -35,5 +35,8 @@ const IntegratorInfo& info(Integrator id);
 std::optional<Integrator> integrator_from_name(std::string_view name);
 // {"euler", "midpoint", ...}: the names, in all_integrators()'s order (for error messages).
 std::vector<std::string> integrator_names();
+// "euler, midpoint, rk4, rk4-doubling, rk45 or dop853": the built-in methods that can step a
+// first-order system (for the errors that send a symplectic method away from one).
+std::string first_order_integrator_names();
 
 }  // namespace motus

@@ -143,7 +143,7 @@ Simulation::Simulation(const SceneDescription& scene, Method method, ExternalPar
                                        (method_.is_external() ? " steps bodies (x and v)" : " is symplectic") +
                                        ": it needs a mechanical scene (bodies), and this scene is the "
                                        "first-order system \"" + scene.first_order->type +
-                                       "\"; use euler, midpoint, rk4, rk4-doubling, rk45 or dop853");
+                                       "\"; use " + first_order_integrator_names());
 
   auto& any = stepper_->any;
   if (method_.is_external()) {

@@ -503,7 +503,7 @@ SceneDescription read_scene(const nlohmann::json& document, const std::string& s
   if (!id)
     f.fail("integrator", unknown_one_of("integrator", scene.integrator, integrator_names()));
   if (info(*id).needs_mechanical && !scene.mechanical)
-    f.fail("integrator", scene.integrator + " is symplectic and needs a mechanical scene (bodies); use euler, midpoint, rk4, rk4-doubling, rk45 or dop853");
+    f.fail("integrator", scene.integrator + " is symplectic and needs a mechanical scene (bodies); use " + first_order_integrator_names());
   scene.dt = f.positive("dt");
   scene.duration = f.positive("duration");
   scene.start_time = f.number("start_time", 0);
