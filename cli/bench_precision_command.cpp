@@ -48,12 +48,12 @@ CLI::App* add_bench_precision_command(CLI::App& bench, BenchPrecisionOptions& o)
   add_list_option(p, "--peers", o.peers,
                   "Comma-separated peers on the same problem: odeint (Boost.Odeint's steppers on the "
                   "same right-hand side), box2d, bullet (mechanical scenes, dt = 1/30 ... 1/960); default: none");
-  p->add_option("--levels", o.levels, "Fixed-step methods: h = dt / 2^k for k = 0 ... N-1")->check(whole_number_in(1, 20))->capture_default_str();
+  p->add_option("--levels", o.levels, "Fixed-step methods: h = dt / 2^k for k = 0 ... N-1")->transform(whole_number_in(1, 20))->capture_default_str();
   p->add_option("--per-decade", o.per_decade, "Adaptive methods: tolerances 1e-3 ... 1e-13, this many per decade")
-      ->check(whole_number_in(1, 10))
+      ->transform(whole_number_in(1, 10))
       ->capture_default_str();
   p->add_option("--repeats", o.repeats, "Timed runs per point, after one untimed run; the fastest counts")
-      ->check(whole_number_in(1, 100))
+      ->transform(whole_number_in(1, 100))
       ->capture_default_str();
   add_list_option(p, "--targets", o.targets,
                   "Comma-separated target errors to read every curve at (default 1e-4 ... 1e-10)");

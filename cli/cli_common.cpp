@@ -625,13 +625,27 @@ CLI::Validator folder_path(const std::string& what) {
 
 CLI::Validator whole_number_in(long low, long high) {
   return CLI::Validator(
-      [low, high](const std::string& text) {
+      [low, high](std::string& text) {
         long value = 0;
         const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
-        if (error == std::errc() && end == text.data() + text.size() && value >= low && value <= high) return std::string();
+        if (error == std::errc() && end == text.data() + text.size() && value >= low && value <= high) {
+          text = std::to_string(value);  // (as read: CLI11 would read "010" as octal, 8)
+          return std::string();
+        }
         return fmt::format("must be a whole number from {} to {} (got {})", low, high, one_line(text, 40));
       },
       fmt::format("INT in [{} - {}]", low, high));
+}
+
+CLI::Validator decimal() {
+  return CLI::Validator(
+      [](std::string& text) {
+        long value = 0;
+        const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+        if (error == std::errc() && end == text.data() + text.size()) text = std::to_string(value);
+        return std::string();  // (anything else: CLI11's own conversion refuses it)
+      },
+      "");
 }
 
 std::string time_unit_of(const SceneDescription& scene) {

@@ -306,7 +306,11 @@ const CLI::Validator& non_empty_path();
 // For the options that count (steps, repeats, samples, levels): a whole number from `low` to `high`,
 // as written. CLI11's Range said "Value 1e4 not in range 100 to 10000000" of a number inside the
 // range that is not whole; this says what is wrong: "must be a whole number from 100 to 10000000
-// (got 1e4)".
+// (got 1e4)". Added with ->transform(): it passes the number on in plain decimal, as it read it
+// (CLI11 reads a leading 0 as octal: --steps 010 ran 8 steps).
 CLI::Validator whole_number_in(long low, long high);
+// For a whole-number option checked after parsing (--memory-limit, --jobs): a leading 0 read as
+// decimal, not octal; anything else left for CLI11's conversion to refuse. With ->transform().
+CLI::Validator decimal();
 
 }  // namespace motus::cli

@@ -62,12 +62,12 @@ CLI::App* add_compare_command(CLI::App& app, CompareOptions& o) {
   c->add_option("--duration", o.duration, "Time to run, s (default: the scene's)");
   c->add_option("--set", o.sets, "Override a scene field (repeatable), e.g. --set lattice.count=10000")->type_name("PATH=VALUE");
   c->add_option("--out", o.out, "Report folder (default: a new folder under runs/); must not exist yet")->check(folder_path());
-  c->add_option("--samples", o.samples, "Metric samples over the run")->check(whole_number_in(2, 100000))->capture_default_str();
+  c->add_option("--samples", o.samples, "Metric samples over the run")->transform(whole_number_in(2, 100000))->capture_default_str();
   c->add_option("--repeats", o.repeats,
                 "Timing rounds: every engine runs the scene again this many times, taking turns; the time per step "
                 "is the fastest round's CPU time, with the median and the spread beside it (default: 5, or as many "
                 "as fit in about 3 s when one round takes longer)")
-      ->check(whole_number_in(1, 100));
+      ->transform(whole_number_in(1, 100));
   c->add_flag("--json", o.json, "Print the summary as one JSON object instead of the table");
   CLI::Option* render = c->add_flag("--render", o.render,
               "Also draw the same instants of every engine side by side: PNG frames, an MP4 (ffmpeg) and a contact "

@@ -218,7 +218,7 @@ CLI::App* add_render_command(CLI::App& app, RenderOptions& o) {
   render->add_flag("--arrows", o.arrows, "Draw velocity arrows (where each body will be in 0.25 s)");
   add_plugin_option(render, o.plugins);
   render->add_option("--supersample", o.supersample, "Anti-aliasing: render N times larger and average (1-4)")
-      ->check(whole_number_in(1, 4))
+      ->transform(whole_number_in(1, 4))
       ->capture_default_str();
   return render;
 }

@@ -227,7 +227,7 @@ CLI::App* add_run_command(CLI::App& app, RunOptions& o) {
   run->add_option("--dt", o.dt, "Step size, s (World2: years; the first step for adaptive integrators; default: the scene's)");
   auto* duration = run->add_option("--duration", o.duration, "Time to integrate, s (World2: years; default: the scene's)");
   run->add_option("--steps", o.steps, "Number of steps of dt instead of a duration (1 to 10^15)")
-      ->check(whole_number_in(1, 1'000'000'000'000'000))  // (checked as written: a number past a long is not taken for the largest)
+      ->transform(whole_number_in(1, 1'000'000'000'000'000))  // (checked as written: a number past a long is not taken for the largest)
       ->excludes(duration);
   run->add_option("--rtol", o.rtol, "Relative tolerance of rk45, dop853 and rk4-doubling (default: the scene's)");
   run->add_option("--atol", o.atol, "Absolute tolerance of rk45, dop853 and rk4-doubling (default: the scene's)");
@@ -245,7 +245,7 @@ CLI::App* add_run_command(CLI::App& app, RunOptions& o) {
                   "Run the scene this many times from its start; the time per step is the fastest run's CPU time, "
                   "with the median beside it (the first run is the one reported; default: 5, or as many as fit in "
                   "about 1 s when one run takes longer)")
-      ->check(whole_number_in(1, 100));
+      ->transform(whole_number_in(1, 100));
   add_plugin_option(run, o.plugins);
   return run;
 }

@@ -111,9 +111,9 @@ CLI::App* add_stress_command(CLI::App& app, StressOptions& o) {
                   "Comma-separated integrators (default: every one that can run the scene)");
   c->add_option("--set", o.sets, "Override a scene field (repeatable), e.g. --set forces[0].stiffness=4")->type_name("PATH=VALUE");
   c->add_option("--out", o.out, "The page's folder (default: a new folder under runs/); must not exist yet")->check(folder_path());
-  c->add_option("--steps", o.steps, "Steps of each stability and stiffness trial")->check(whole_number_in(100, 10000000))->capture_default_str();
+  c->add_option("--steps", o.steps, "Steps of each stability and stiffness trial")->transform(whole_number_in(100, 10000000))->capture_default_str();
   c->add_option("--drift-steps", o.drift_steps, "Steps of the long run, 100 to 10^8 (10^7 takes about a second per integrator on one body)")
-      ->check(whole_number_in(100, 100000000))
+      ->transform(whole_number_in(100, 100000000))
       ->capture_default_str();
   c->add_option("--energy-factor", o.energy_factor, "Blown up: |E - E0| beyond this many times |E0|")->capture_default_str();
   c->add_option("--duration", o.duration, "Simulated seconds of each mass-ratio and sticks run (at most the scene's)")->capture_default_str();

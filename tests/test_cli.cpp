@@ -510,6 +510,17 @@ TEST(CliRun, StepsThreeEndsAtThreeOnTheNotesTable) {
   EXPECT_EQ(j.at("state").at("v")[0][0].get<double>(), -25.0);
 }
 
+// Found by fuzzing the options: a count written with a leading zero was read as octal — `--steps
+// 010` ran 8 steps, exit 0, and `--repeats 08` was refused as not a whole number. A count is decimal.
+TEST(CliRun, ACountWithALeadingZeroIsDecimal) {
+  TempDir dir;
+  const Result r = run_motus(dir, {"run", scene("spring"), "--steps", "010", "--repeats", "08", "--json"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j.at("steps").get<long>(), 10);
+  EXPECT_EQ(j.at("t").get<double>(), 10.0);
+}
+
 // The step-by-step table parts every two numbers by a space, however long: the stick pendulum's
 // bob has vx = -0.00083536552 at its second step, which at 8 digits fills a column's 14.
 TEST(CliRun, TheStepTableKeepsItsColumnsApart) {
