@@ -344,8 +344,8 @@ std::string draw(const std::vector<Figure>& figures, const std::string& folder) 
       std::string bytes((std::istreambuf_iterator<char>(picture)), std::istreambuf_iterator<char>());
       while (!bytes.empty() && std::isspace(static_cast<unsigned char>(bytes.back()))) bytes.pop_back();
       if (bytes.size() < ending.size() || bytes.compare(bytes.size() - ending.size(), ending.size(), ending) != 0)
-        throw std::runtime_error("the plot " + name + " could not be written whole (gnuplot's picture ends short: a full "
-                                 "disk or a file-size limit)");
+        throw std::runtime_error(folder + "/" + name + ": could not be written whole (gnuplot's picture ends short: a "
+                                 "full disk or a file-size limit)");
     }
   return "";
 }
