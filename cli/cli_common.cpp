@@ -637,6 +637,11 @@ CLI::Validator whole_number_in(long low, long high) {
       fmt::format("INT in [{} - {}]", low, high));
 }
 
+CLI::Validator a_number() {
+  return CLI::Validator([](const std::string& text) { return text.empty() ? std::string("\"\" is not a number") : std::string(); },
+                        "");
+}
+
 CLI::Validator decimal() {
   return CLI::Validator(
       [](std::string& text) {

@@ -207,7 +207,7 @@ CLI::App* add_render_command(CLI::App& app, RenderOptions& o) {
   render->add_option("--out", o.out, "Folder for frame_00000.png, ... (must not exist unless --overwrite)")->required()->check(folder_path());
   render->add_option("--size", o.size, "Frame size in pixels")->type_name("WxH")->capture_default_str();
   render->add_option("--fps", o.fps, "Frames per second of simulated time (World2: per simulated year)")->capture_default_str();
-  render->add_option("--duration", o.duration, "Simulated time to draw, s (World2: years; default: the scene's)");
+  render->add_option("--duration", o.duration, "Simulated time to draw, s (World2: years; default: the scene's)")->check(a_number());
   render->add_option("--integrator", o.integrator, "Integrator (default: the scene's); see `motus list`");
   render->add_option("--set", o.sets, "Override a scene field, e.g. --set lattice.count=1000 (repeatable)")
       ->type_name("PATH=VALUE");

@@ -282,6 +282,18 @@ TEST(CliErrors, BadOptionValueIsOneLineExitTwo) {
             "grade, stress; motus --help)\n");
   EXPECT_EQ(run_motus(dir, {"run", scene("spring"), "--dt", "1e308", "--steps", "2"}).err,
             "motus: error: --steps: 2 steps of 1e+308 s is more time than a double holds\n");
+  // An empty number ran with the scene's own, exit 0 (found by fuzzing the options).
+  for (const auto& [command, option] : std::vector<std::pair<std::string, std::string>>{
+           {"run", "--dt"}, {"run", "--duration"}, {"run", "--rtol"}, {"run", "--atol"}, {"compare", "--dt"},
+           {"compare", "--duration"}, {"render", "--duration"}, {"bench", "--duration"}}) {
+    std::vector<std::string> args = {command, scene("oscillator"), option, "", "--out", (dir / "empty").string()};
+    if (command == "run") args.resize(4);
+    if (command == "bench") args.insert(args.begin() + 1, "precision");
+    const Result r = run_motus(dir, args);
+    EXPECT_EQ(r.status, 2) << command << " " << option << ": " << r.err;
+    EXPECT_EQ(r.err.rfind("motus: error: " + option + ": \"\" is not a number", 0), 0u) << r.err;
+  }
+  EXPECT_FALSE(fs::exists(dir / "empty"));
 }
 
 // The known word a misspelt one most likely is: one slip of the fingers (a letter added, dropped, changed, or
