@@ -320,6 +320,9 @@ void check_time_resolution(double start_time, double duration, double dt, const 
   const std::string coarse = "at t = " + fmt::format("{:g}", at) + " times are " + fmt::format("{:g}", spacing) +
                              " apart, too coarse for steps of " + fmt::format("{:g}", dt);
   if (std::abs(start_time) > duration) throw InputError(start_what + ": " + coarse + " (start nearer t = 0)");
+  // (With --steps, dt scales the times and their spacing alike: only the count can change. From
+  // t = 0, a time's spacing is at most 2^-52 of it, so about 1e-6 · 2^52 steps are told apart.)
+  if (step_what == "--steps") throw InputError(step_what + ": " + coarse + " (fewer steps: from t = 0, about 4.5e9 at most)");
   throw InputError(step_what + ": " + coarse + " (a larger dt or a shorter duration)");
 }
 
