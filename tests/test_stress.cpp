@@ -388,6 +388,8 @@ TEST(StressErrors, BadInputIsOneLineAndExitTwo) {
       {"stress", "oscillator", "--integrators", "rk45", "--out", (dir / "g").string()},
       // (at t = 1e17 times are 16 apart: steps of 0.1 never moved the clock, and stress hung)
       {"stress", "oscillator", "--set", "start_time=1e17", "--integrators", "verlet", "--out", (dir / "f").string()},
+      // (a duration shorter than a step: its mass-ratio runs took none, exit 0; found by fuzzing)
+      {"stress", "head_on", "--duration", "1e-300", "--out", (dir / "h").string()},
   };
   for (const auto& args : cases) {
     const Result r = run_motus(dir, args);
