@@ -374,6 +374,12 @@ int render_command(const RenderOptions& o) {
   if (o.trails && scene.is_mechanical() && scene.mechanical->bodies.size() > 64)
     fmt::print("trails       none drawn: --trails draws scenes of at most 64 bodies, and this one has {}\n",
                scene.mechanical->bodies.size());
+  // (A first-order system is drawn as its curve, or its variables against time: no bodies to trail
+  // or to give arrows. Both were taken without a word.)
+  if ((o.trails || o.arrows) && !scene.is_mechanical())
+    fmt::print("{:<12} none drawn: {} bodies; a first-order system is drawn as its curve or its variables against time\n",
+               o.trails && o.arrows ? "trails/arrows" : o.trails ? "trails" : "arrows",
+               o.trails && o.arrows ? "--trails and --arrows draw" : o.trails ? "--trails draws" : "--arrows draws");
   if (!o.video.empty()) fmt::print("video        {}\n", (without_trailing_separators(o.out) / video_name).string());
   // An unstable run is drawn as it went (the frames show it), but it is not a run that went well.
   for (size_t k = 0; k < recording.states.size(); ++k)

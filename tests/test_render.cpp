@@ -313,6 +313,16 @@ TEST(RenderCommand, WritesFramesAtTheRateAskedOfTheSizeAsked) {
   EXPECT_FALSE(fs::exists(dir / "frames/frame_00005.png"));
 }
 
+// Found by fuzzing the options: --trails and --arrows on a first-order system drew nothing and
+// said nothing (the frames were those of a render without them). They are said not to be drawn.
+TEST(RenderCommand, TrailsAndArrowsOnAFirstOrderSystemAreSaidNotDrawn) {
+  TempDir dir;
+  const auto r = run_motus(dir, {"render", "lorenz", "--out", (dir / "frames").string(), "--size", "64x48", "--fps", "4",
+                                 "--duration", "0.5", "--trails", "--arrows"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("trails/arrows none drawn: --trails and --arrows draw bodies"), std::string::npos) << r.out;
+}
+
 TEST(RenderCommand, NeverOverwritesAFolderUnlessAsked) {
   TempDir dir;
   fs::create_directories(dir / "frames");
