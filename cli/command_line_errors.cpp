@@ -54,6 +54,23 @@ bool starts_with(const std::string& s, const std::string& prefix) { return s.rfi
 
 }  // namespace
 
+std::optional<std::string> word_after_help(const CLI::App& app, const std::vector<std::string>& words) {
+  const CLI::App* at = &app;
+  std::string path;
+  for (const std::string& word : words) {
+    const auto names = command_names(*at, true);
+    if (std::find(names.begin(), names.end(), word) == names.end()) {
+      // (Not a command where one belongs — motus help rnu, motus help bench precison: misplaced_word
+      // says which one was meant.)
+      if (at->get_require_subcommand_min() > 0) return std::nullopt;
+      return "help: \"" + one_line(word, 80) + "\" is not a command of motus " + path + " (motus help " + path + ")";
+    }
+    at = at->get_subcommand(word);
+    path += (path.empty() ? "" : " ") + word;
+  }
+  return std::nullopt;
+}
+
 std::optional<std::string> misplaced_word(const CLI::App& app, const std::vector<std::string>& args) {
   const CLI::App* at = &app;
   std::string path;

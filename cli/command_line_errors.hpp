@@ -16,6 +16,9 @@ namespace motus::cli {
 // line (without "motus: error: "), or nothing. (CLI11 says "A subcommand is required" of both, as
 // if nothing had been given.)
 std::optional<std::string> misplaced_word(const CLI::App& app, const std::vector<std::string>& args);
+// `motus help WORDS`: a word after the command it asks about (`motus help run extra`), which its
+// --help would pass over in silence. An unknown first word is misplaced_word's to name.
+std::optional<std::string> word_after_help(const CLI::App& app, const std::vector<std::string>& words);
 
 // After a failed parse: the error as one line (without "motus: error: "), ending with the help to
 // read, `(motus run --help)`.

@@ -85,7 +85,16 @@ int motus_main(int argc, char** argv) {
   if (!args.empty() && args.front() == "help") {
     args.erase(args.begin());
     if (!args.empty() && args.front() == "help") args.erase(args.begin());
+    if (const auto extra = word_after_help(app, args)) {
+      tell("motus: error: {}\n", *extra);
+      return kExitBadInput;
+    }
     args.push_back("--help");
+  }
+  // (CLI11 prints the version and stops before it sees what follows.)
+  if (args.size() > 1 && args.front() == "--version") {
+    tell("motus: error: --version: takes nothing after it (got \"{}\")\n", one_line(args[1], 80));
+    return kExitBadInput;
   }
   // Nothing at all: what there is to do, and a failure (nothing was done).
   if (args.empty()) {

@@ -34,7 +34,9 @@ namespace motus::cli {
 namespace {
 
 std::pair<int, int> parse_size(const std::string& text) {
-  static const std::regex pattern(R"((\d{1,6})[xX](\d{1,6}))");
+  // (Nine digits at most, so that stoi cannot overflow; a side past what OSMesa draws is said as
+  // that by the canvas, not as a WIDTHxHEIGHT written wrong.)
+  static const std::regex pattern(R"((\d{1,9})[xX](\d{1,9}))");
   std::smatch m;
   if (!std::regex_match(text, m, pattern)) throw InputError("--size: expected WIDTHxHEIGHT, e.g. 640x480 (got \"" + text + "\")");
   const int w = std::stoi(m[1]), h = std::stoi(m[2]);

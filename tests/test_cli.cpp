@@ -380,6 +380,16 @@ TEST(CliErrors, TheCommandLinesMistakesAreNamedWithTheWordMostLikelyMeant) {
   const Result help_help = run_motus(dir, {"help", "help"});  // (it said: unknown command "help")
   EXPECT_EQ(help_help.status, 0) << help_help.err;
   EXPECT_EQ(help_help.out, run_motus(dir, {"--help"}).out);
+  // A word after the command asked about, or after --version, was passed over in silence, exit 0
+  // (found by fuzzing the options); a command spelt wrong is still told what was meant.
+  EXPECT_EQ(run_motus(dir, {"help", "run", "extra"}).err,
+            "motus: error: help: \"extra\" is not a command of motus run (motus help run)\n");
+  EXPECT_EQ(run_motus(dir, {"help", "bench", "precision", "extra"}).status, 2);
+  EXPECT_NE(run_motus(dir, {"help", "bench", "precison"}).err.find("did you mean precision?"), std::string::npos);
+  const Result version = run_motus(dir, {"--version", "bogus"});
+  EXPECT_EQ(version.status, 2);
+  EXPECT_EQ(version.err, "motus: error: --version: takes nothing after it (got \"bogus\")\n");
+  EXPECT_TRUE(version.out.empty()) << version.out;
   const Result bare = run_motus(dir, {});
   EXPECT_EQ(bare.status, 2);
   EXPECT_TRUE(bare.out.empty()) << bare.out;

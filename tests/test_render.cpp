@@ -383,6 +383,15 @@ TEST(RenderCommand, ImpossibleSizeExits2WithOneLine) {
   EXPECT_NE(big.err.find("motus: error: --size: 100000x100000 pixels at --supersample 2 needs an offscreen buffer over 1 GiB"),
             std::string::npos)
       << big.err;
+  // Found by fuzzing the options: sides of more than six digits were "expected WIDTHxHEIGHT", and at
+  // 999999999 a side the buffer's size overflowed a long and the run failed "out of memory", exit 1.
+  for (const std::string size : {"99999999x99999999", "999999999x999999999"}) {
+    const auto huge = run_motus(dir, {"render", "spring", "--out", (dir / "frames").string(), "--size", size});
+    EXPECT_EQ(huge.status, 2) << huge.err;
+    EXPECT_NE(huge.err.find("motus: error: --size: " + size + " pixels at --supersample 2 needs an offscreen buffer over 1 GiB"),
+              std::string::npos)
+        << huge.err;
+  }
   EXPECT_FALSE(fs::exists(dir / "frames"));  // nothing made before the failure
 }
 

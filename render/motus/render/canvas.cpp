@@ -43,7 +43,7 @@ Canvas::Canvas(int width, int height, int supersample) : width_(width), height_(
   if (width < 1 || height < 1) throw RenderError("canvas size must be at least 1 x 1 pixels");
   if (supersample < 1 || supersample > 8) throw RenderError("supersampling must be from 1 to 8");
   const long w = static_cast<long>(width) * supersample, h = static_cast<long>(height) * supersample;
-  if (w * h * 4 > kMaxBufferBytes)
+  if (static_cast<double>(w) * static_cast<double>(h) * 4 > static_cast<double>(kMaxBufferBytes))  // (a long overflows at 2e9 a side)
     // (Named as the option, as every other bad option is: the size is the user's, not OSMesa's.)
     throw RenderError("--size: " + std::to_string(width) + "x" + std::to_string(height) + " pixels" +
                       (supersample > 1 ? " at --supersample " + std::to_string(supersample) : std::string()) +
