@@ -372,6 +372,20 @@ TEST(StressPages, WhatWasNotMeasuredSaysSoAndTheTheoryHoldsAtItsLimit) {
   EXPECT_NE(fall.out.find("(no blow-up found: the largest h tried)"), std::string::npos) << fall.out;
 }
 
+// Found by fuzzing the options: a --duration longer than the scene's was cut to the scene's without
+// a word (summary.json said 4 s where 1000 was asked). The runs still take at most the scene's, and
+// the terminal says so.
+TEST(StressPages, ADurationLongerThanTheScenesIsSaid) {
+  TempDir dir;
+  const fs::path out = dir / "page";
+  const Result r = run_motus(dir, {"stress", "head_on", "--duration", "1000", "--steps", "100", "--integrators",
+                                   "symplectic-euler", "--out", out.string()});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("--duration 1000 s is more than the scene's 4 s: its runs took 4 s"), std::string::npos) << r.out;
+  const auto summary = nlohmann::json::parse(read_file(out / "summary.json"));
+  EXPECT_EQ(summary.at("settings").at("duration").get<double>(), 4.0) << summary.dump();
+}
+
 // ---- bad input -------------------------------------------------------------------------------
 
 TEST(StressErrors, BadInputIsOneLineAndExitTwo) {
