@@ -626,13 +626,23 @@ CLI::Validator folder_path(const std::string& what) {
       "PATH");
 }
 
+namespace {
+
+// The whole number `text` is in decimal, all of it, or nothing.
+std::optional<long> decimal_whole_number(const std::string& text) {
+  long value = 0;
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (error != std::errc() || end != text.data() + text.size()) return std::nullopt;
+  return value;
+}
+
+}  // namespace
+
 CLI::Validator whole_number_in(long low, long high) {
   return CLI::Validator(
       [low, high](std::string& text) {
-        long value = 0;
-        const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
-        if (error == std::errc() && end == text.data() + text.size() && value >= low && value <= high) {
-          text = std::to_string(value);  // (as read: CLI11 would read "010" as octal, 8)
+        if (const auto value = decimal_whole_number(text); value && *value >= low && *value <= high) {
+          text = std::to_string(*value);  // (as read: CLI11 would read "010" as octal, 8)
           return std::string();
         }
         return fmt::format("must be a whole number from {} to {} (got {})", low, high, one_line(text, 40));
@@ -645,12 +655,10 @@ CLI::Validator a_number() {
                         "");
 }
 
-CLI::Validator decimal() {
+CLI::Validator read_as_decimal() {
   return CLI::Validator(
       [](std::string& text) {
-        long value = 0;
-        const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
-        if (error == std::errc() && end == text.data() + text.size()) text = std::to_string(value);
+        if (const auto value = decimal_whole_number(text)) text = std::to_string(*value);
         return std::string();  // (anything else: CLI11's own conversion refuses it)
       },
       "");

@@ -311,7 +311,7 @@ const CLI::Validator& non_empty_path();
 CLI::Validator whole_number_in(long low, long high);
 // For a whole-number option checked after parsing (--memory-limit, --jobs): a leading 0 read as
 // decimal, not octal; anything else left for CLI11's conversion to refuse. With ->transform().
-CLI::Validator decimal();
+CLI::Validator read_as_decimal();
 // For a number option with no default (--dt, --duration, --rtol, --atol): an empty value is
 // refused. CLI11 reads "" into an empty std::optional, and `--dt ''` ran at the scene's dt, exit 0.
 CLI::Validator a_number();

@@ -347,13 +347,13 @@ CLI::App* add_grade_command(CLI::App& app, GradeCommandOptions& o) {
       ->check(CLI::IsMember({"text", "gradescope"}));
   g->add_option("--hidden", o.hidden, "The folder of hidden tests (the instructor's; not given: only the public tests run)");
   g->add_option("--time-limit", o.time_limit, "Seconds of CPU each test may take, 0.5 to 600 (whole seconds, rounded up; its wall clock is a backstop: 2 x this + 5 s)")->capture_default_str();
-  g->add_option("--memory-limit", o.memory_limit, "Megabytes of address space the student's code may use, 64 to 65536 (its server can start no other process)")->transform(decimal())->capture_default_str();
+  g->add_option("--memory-limit", o.memory_limit, "Megabytes of address space the student's code may use, 64 to 65536 (its server can start no other process)")->transform(read_as_decimal())->capture_default_str();
   g->add_flag("--no-sandbox", o.no_sandbox,
               "Grade without bubblewrap (limits and another user only): for machines without user namespaces, knowingly");
   g->add_option("--plugin-out", o.plugin_out, "Also keep the plug-in built from the submission here (for motus run --plugin)")->check(non_empty_path());
   g->add_flag("--overwrite", o.overwrite, "Allow --results and --plugin-out to replace existing files");
   g->add_option("--batch", o.batch, "Grade every subfolder of this folder, one submission each");
-  g->add_option("--jobs", o.jobs, "With --batch: submissions graded at once, 1 to 64 (default 1)")->transform(decimal());
+  g->add_option("--jobs", o.jobs, "With --batch: submissions graded at once, 1 to 64 (default 1)")->transform(read_as_decimal());
   g->add_option("--out", o.out, "With --batch: the results folder (default: a new folder under runs/); with --package: the zip")->check(folder_path("folder (--batch) or zip (--package)"));
   g->add_option("--package", o.package, "Write the autograder zip for this platform instead of grading")
       ->check(CLI::IsMember({"gradescope"}));

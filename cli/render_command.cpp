@@ -373,7 +373,7 @@ int render_command(const RenderOptions& o) {
              o.fps, time_unit_of(scene) == "years" ? "year" : "second", duration, time_unit_of(scene), scene.name, without_trailing_separators(o.out).string(),
              wall);
   if (!plugin_parts.empty()) fmt::print("passes       {}\n", plugin_parts);
-  if (o.trails && scene.is_mechanical() && scene.mechanical->bodies.size() > 64)
+  if (o.trails && scene.is_mechanical() && !trails_drawn)
     fmt::print("trails       none drawn: --trails draws scenes of at most 64 bodies, and this one has {}\n",
                scene.mechanical->bodies.size());
   // (A first-order system is drawn as its curve, or its variables against time: no bodies to trail

@@ -223,12 +223,14 @@ DriftResult measure_drift(const SceneDescription& scene, Integrator integrator, 
   } else {
     const double growth =
         r.first_hundredth_max > 0 ? r.last_tenth_max / r.first_hundredth_max : (r.last_tenth_max > 0 ? kInf : 1);
-    r.verdict = growth <= 1.5 ? "bounded" : "grows ×" + format_g(growth);
     // An error that is already most of E0 in the first hundredth and stays there is not a bounded
     // wobble: the energy is gone (rk4 on the spring at ωh = 0.71 loses 80 % of it in the first
     // hundredth, and its error can grow no further than 1). A wobble comes back up to E0 and over.
-    if (growth <= 1.5 && r.last_tenth_max >= 0.5 && last_tenth_largest_e < 0.5 * std::abs(e0))
-      r.verdict = "lost its energy (|E| at most " + format_g(last_tenth_largest_e / std::abs(e0)) + " |E0| in the last tenth)";
+    const bool lost = r.last_tenth_max >= 0.5 && last_tenth_largest_e < 0.5 * std::abs(e0);
+    r.verdict = growth > 1.5 ? "grows ×" + format_g(growth)
+                : lost       ? "lost its energy (|E| at most " + format_g(last_tenth_largest_e / std::abs(e0)) +
+                             " |E0| in the last tenth)"
+                             : "bounded";
   }
   return r;
 }

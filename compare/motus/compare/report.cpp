@@ -44,15 +44,15 @@ void write_text(const std::string& path, const std::string& text) {
 // An engine's colour in every figure, whoever else ran: motus, Box2D and Bullet their own, a
 // plug-in's column the next ones.
 int colour_of(const std::vector<EngineRun>& runs, const EngineRun& r) {
-  if (r.engine == "motus") return 0;
-  if (r.engine == "box2d") return 1;
-  if (r.engine == "bullet") return 2;
+  if (r.engine == "motus") return plot::kEngineColour::motus;
+  if (r.engine == "box2d") return plot::kEngineColour::box2d;
+  if (r.engine == "bullet") return plot::kEngineColour::bullet;
   int others = 0;
   for (const auto& o : runs) {
     if (&o == &r) break;
     others += o.engine != "motus" && o.engine != "box2d" && o.engine != "bullet";
   }
-  return 3 + others;
+  return plot::kEngineColour::first_free + others;
 }
 
 // An engine's line: its colour, and a dash by its place among the runs: the first (motus) solid,

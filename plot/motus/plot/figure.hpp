@@ -27,11 +27,17 @@ struct Series {
   double line_width = 1.8;
   int point_type = 7;           // gnuplot's point type for "linespoints" and "points" (7: a disc)
   // Its colour: the palette's entry (figure.cpp), so that one engine keeps its colour in every
-  // figure whoever else ran; −1: by its place among the series.
+  // figure whoever else ran (kEngineColour); −1: by its place among the series.
   int colour = -1;
   // A series with no points at all, for the legend only: why it has none ("not supported: …").
   std::string none_because = "";
 };
+
+// The engines' places in the palette, the same in compare's figures and bench precision's.
+namespace kEngineColour {
+constexpr int motus = 0, box2d = 1, bullet = 2;
+constexpr int first_free = 3;  // (the places after them)
+}  // namespace kEngineColour
 
 struct Figure {
   std::string stem;  // the files: FOLDER/stem.png and FOLDER/stem.svg

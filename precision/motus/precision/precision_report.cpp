@@ -44,15 +44,17 @@ std::string micro(const std::optional<AtTarget>& at) {
 }
 
 // A method's line (its place in the plots' palette, figure.cpp), the same in every diagram whoever
-// else ran: Box2D and Bullet the colours compare gives them (1 and 2), motus's methods the other
-// first sixteen in `motus list`'s order, Odeint's after them, a plug-in's methods after those. By its
-// place among the curves drawn, Bullet's took motus's blue in one diagram and dark red in another.
+// else ran: Box2D and Bullet the colours compare gives them, motus's methods the other first sixteen
+// in `motus list`'s order (the first in motus's own), Odeint's after them, a plug-in's methods after
+// those. By its place among the curves drawn, Bullet's took motus's blue in one diagram and dark red
+// in another.
 int line_of(const Curve& curve, const std::vector<Curve>& curves) {
-  if (curve.engine == "box2d") return 1;
-  if (curve.engine == "bullet") return 2;
+  if (curve.engine == "box2d") return plot::kEngineColour::box2d;
+  if (curve.engine == "bullet") return plot::kEngineColour::bullet;
   const auto& builtin = all_integrators();
   const int motus_methods = static_cast<int>(builtin.size());
-  const auto at = [&](int place) { return place == 0 ? 0 : place + 2; };  // (skipping 1 and 2)
+  // (The first at motus's own place, the others after Box2D's and Bullet's.)
+  const auto at = [&](int place) { return place == 0 ? plot::kEngineColour::motus : place - 1 + plot::kEngineColour::first_free; };
   if (curve.engine == "motus")
     for (int m = 0; m < motus_methods; ++m)
       if (curve.method == builtin[static_cast<size_t>(m)].name) return at(m);
