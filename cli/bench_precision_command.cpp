@@ -58,7 +58,7 @@ CLI::App* add_bench_precision_command(CLI::App& bench, BenchPrecisionOptions& o)
   add_list_option(p, "--targets", o.targets,
                   "Comma-separated target errors to read every curve at (default 1e-4 ... 1e-10)");
   p->add_option("--duration", o.duration, "End time (default: the scene's; for reference states, the last one within it)")
-      ->check(a_number());
+      ->transform(a_number());
   p->add_option("--set", o.sets, "Override a scene field (repeatable)")->type_name("PATH=VALUE");
   p->add_option("--out", o.out, "The run folder (default: a new folder under runs/); must not exist yet")->check(folder_path());
   CLI::Option* csv = p->add_option("--csv", o.csv, "Also write the table (precision.csv) here")->check(non_empty_path());

@@ -11,6 +11,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <cctype>
 #include <cerrno>
 #include <climits>
 #include <cstring>
@@ -356,6 +357,18 @@ std::vector<std::string> folders_not_there_yet(const std::string& folder) {
   return missing;
 }
 
+std::string why_not_created(const std::string& folder, const std::error_code& error) {
+  // A link to nothing on the way ("runs" left pointing at a folder since removed): create_directories
+  // says only "File exists", which sends the reader looking for a file that is not there.
+  std::error_code ignored;
+  for (fs::path above = folder; !above.empty(); above = above.parent_path()) {
+    if (fs::is_symlink(fs::symlink_status(above, ignored)) && !fs::exists(fs::status(above, ignored)))
+      return above.string() + " is a link to " + fs::read_symlink(above, ignored).string() + ", which does not exist";
+    if (above == above.parent_path()) break;
+  }
+  return error.message();
+}
+
 namespace {
 std::string said_as_final(std::string message, const std::string& partial, const std::string& final) {
   if (partial.empty()) return message;
@@ -417,7 +430,7 @@ PartialFolder::PartialFolder(const std::string& final_path, bool numbered)
   std::error_code error;
   made_parents_ = folders_not_there_yet(parent.string());  // (made now; removed again if the work never gets there)
   fs::create_directories(parent, error);
-  if (error) throw InputError(final_ + ": cannot be created (" + error.message() + ")");
+  if (error) throw InputError(final_ + ": cannot be created (" + why_not_created(parent.string(), error) + ")");
   std::string pattern = (parent / partial_name_for(target.filename().string())).string();
   if (!::mkdtemp(pattern.data())) {
     const std::string why = std::strerror(errno);
@@ -651,8 +664,15 @@ CLI::Validator whole_number_in(long low, long high) {
 }
 
 CLI::Validator a_number() {
-  return CLI::Validator([](const std::string& text) { return text.empty() ? std::string("\"\" is not a number") : std::string(); },
-                        "");
+  return CLI::Validator(
+      [](std::string& text) {
+        // Blanks around a number are dropped on both sides alike (C's reading took " 1" and refused "1 ").
+        const auto blank = [](unsigned char c) { return std::isspace(c) != 0; };
+        while (!text.empty() && blank(text.back())) text.pop_back();
+        text.erase(text.begin(), std::find_if_not(text.begin(), text.end(), blank));
+        return text.empty() ? std::string("\"\" is not a number") : std::string();
+      },
+      "");
 }
 
 CLI::Validator read_as_decimal() {

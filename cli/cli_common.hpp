@@ -211,6 +211,9 @@ std::filesystem::path without_trailing_separators(const std::string& path);
 // or is stopped removes again (remove_if_empty) — an interrupted run said "nothing half-written was
 // left behind" and left the empty folders of its --out's path.
 std::vector<std::string> folders_not_there_yet(const std::string& folder);
+// Why `folder` could not be made, for "cannot be created (...)": a link to nothing on its way named
+// as such, or else `error`'s own words.
+std::string why_not_created(const std::string& folder, const std::error_code& error);
 // Removes each of `folders` (deepest first) while it is empty or already gone; stops at the first that
 // is not (nothing with anything in it is ever removed).
 void remove_if_empty(const std::vector<std::string>& folders);
@@ -312,8 +315,9 @@ CLI::Validator whole_number_in(long low, long high);
 // For a whole-number option checked after parsing (--memory-limit, --jobs): a leading 0 read as
 // decimal, not octal; anything else left for CLI11's conversion to refuse. With ->transform().
 CLI::Validator read_as_decimal();
-// For a number option with no default (--dt, --duration, --rtol, --atol): an empty value is
-// refused. CLI11 reads "" into an empty std::optional, and `--dt ''` ran at the scene's dt, exit 0.
+// For a number option with no default (--dt, --duration, --rtol, --atol), with ->transform(): the
+// blanks around it dropped, and an empty value refused. CLI11 reads "" into an empty
+// std::optional, and `--dt ''` ran at the scene's dt, exit 0.
 CLI::Validator a_number();
 
 }  // namespace motus::cli

@@ -105,12 +105,21 @@ std::string parse_error_line(const CLI::App& app, const CLI::ParseError& e) {
 
   // An option the command does not have (or a word more than it takes) is named first: it is
   // often why something else seems missing ("render spring --ot x": --out is required).
+  // Every word after "--" is an argument however it is spelt ("motus run -- -odd-name.json"): one
+  // left over there is a word too many, not an option ("run -- x.json --repeats 1").
   const std::vector<std::string> extras = app.remaining(true);
-  for (const std::string& word : extras)
+  for (const std::string& word : extras) {
+    if (word == "--") {
+      const auto next = std::find(extras.begin(), extras.end(), word) + 1;
+      if (next == extras.end()) break;
+      return "unexpected argument \"" + one_line(*next, 80) + "\" after --, where every word is an argument (options go before --) " +
+             help;
+    }
     if (starts_with(word, "-") && word.size() > 1) {
       const std::string name = word.substr(0, word.find('='));
       return "unknown option " + one_line(name, 80) + did_you_mean(name, option_names(*at)) + " " + help;
     }
+  }
   if (dynamic_cast<const CLI::ExtrasError*>(&e) && !extras.empty())
     return "unexpected argument \"" + one_line(extras.front(), 80) + "\" " + help;
   // "Could not convert: --dt = abc"

@@ -58,8 +58,8 @@ CLI::App* add_compare_command(CLI::App& app, CompareOptions& o) {
                   "plug-in, box2d, bullet)");
   add_plugin_option(c, o.plugins);
   c->add_option("--integrator", o.integrator, "motus's integrator (default: the scene's); the peers integrate their own way");
-  c->add_option("--dt", o.dt, "Step size, s (default: the scene's)")->check(a_number());
-  c->add_option("--duration", o.duration, "Time to run, s (default: the scene's)")->check(a_number());
+  c->add_option("--dt", o.dt, "Step size, s (default: the scene's)")->transform(a_number());
+  c->add_option("--duration", o.duration, "Time to run, s (default: the scene's)")->transform(a_number());
   c->add_option("--set", o.sets, "Override a scene field (repeatable), e.g. --set lattice.count=10000")->type_name("PATH=VALUE");
   c->add_option("--out", o.out, "Report folder (default: a new folder under runs/); must not exist yet")->check(folder_path());
   c->add_option("--samples", o.samples, "Metric samples over the run")->transform(whole_number_in(2, 100000))->capture_default_str();

@@ -118,7 +118,7 @@ public:
       if (!error && !fs::create_directory(out_, error) && !error)
         throw InputError(out_ + ": already exists (made meanwhile, by another run?); choose another --out or pass --overwrite");
     }
-    if (error) throw InputError(out_ + ": cannot be created (" + error.message() + ")");
+    if (error) throw InputError(out_ + ": cannot be created (" + why_not_created(out_, error) + ")");
     // One render at a time in a folder: two at once moved their frames in turn into it, a mix of both.
     lock_ = ::open(out_.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
     if (lock_ < 0 || ::flock(lock_, LOCK_EX | LOCK_NB) != 0) {
@@ -209,7 +209,7 @@ CLI::App* add_render_command(CLI::App& app, RenderOptions& o) {
   render->add_option("--out", o.out, "Folder for frame_00000.png, ... (must not exist unless --overwrite)")->required()->check(folder_path());
   render->add_option("--size", o.size, "Frame size in pixels")->type_name("WxH")->capture_default_str();
   render->add_option("--fps", o.fps, "Frames per second of simulated time (World2: per simulated year)")->capture_default_str();
-  render->add_option("--duration", o.duration, "Simulated time to draw, s (World2: years; default: the scene's)")->check(a_number());
+  render->add_option("--duration", o.duration, "Simulated time to draw, s (World2: years; default: the scene's)")->transform(a_number());
   render->add_option("--integrator", o.integrator, "Integrator (default: the scene's); see `motus list`");
   render->add_option("--set", o.sets, "Override a scene field, e.g. --set lattice.count=1000 (repeatable)")
       ->type_name("PATH=VALUE");

@@ -225,14 +225,14 @@ CLI::App* add_run_command(CLI::App& app, RunOptions& o) {
   run->add_option("scene", o.scene, "Scene file, or the name of a shipped scene (see `motus list`)")->required();
   run->add_option("--integrator", o.integrator, "Integrator (default: the scene's); see `motus list`");
   run->add_option("--dt", o.dt, "Step size, s (World2: years; the first step for adaptive integrators; default: the scene's)")
-      ->check(a_number());
+      ->transform(a_number());
   auto* duration = run->add_option("--duration", o.duration, "Time to integrate, s (World2: years; default: the scene's)")
-                       ->check(a_number());
+                       ->transform(a_number());
   run->add_option("--steps", o.steps, "Number of steps of dt instead of a duration (1 to 10^15)")
       ->transform(whole_number_in(1, 1'000'000'000'000'000))  // (checked as written: a number past a long is not taken for the largest)
       ->excludes(duration);
-  run->add_option("--rtol", o.rtol, "Relative tolerance of rk45, dop853 and rk4-doubling (default: the scene's)")->check(a_number());
-  run->add_option("--atol", o.atol, "Absolute tolerance of rk45, dop853 and rk4-doubling (default: the scene's)")->check(a_number());
+  run->add_option("--rtol", o.rtol, "Relative tolerance of rk45, dop853 and rk4-doubling (default: the scene's)")->transform(a_number());
+  run->add_option("--atol", o.atol, "Absolute tolerance of rk45, dop853 and rk4-doubling (default: the scene's)")->transform(a_number());
   run->add_option("--set", o.sets, "Override a scene field, e.g. --set bodies[0].mass=2 (repeatable)")
       ->type_name("PATH=VALUE");
   CLI::Option* trajectory = run->add_option("--trajectory", o.trajectory, "Write t, state and energies per output time to this CSV file (- or /dev/stdout: standard output)")

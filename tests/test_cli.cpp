@@ -300,6 +300,12 @@ TEST(CliErrors, BadOptionValueIsOneLineExitTwo) {
     EXPECT_EQ(r.err.rfind("motus: error: " + option + ": \"\" is not a number", 0), 0u) << r.err;
   }
   EXPECT_FALSE(fs::exists(dir / "empty"));
+  // Blanks around a number are dropped on both sides alike: " 0.5" was read and "0.5 " refused.
+  for (const std::string dt : {" 0.5", "0.5 ", " 0.5\t"}) {
+    const Result r = run_motus(dir, {"run", scene("spring"), "--dt", dt, "--duration", "1", "--json"});
+    ASSERT_EQ(r.status, 0) << "\"" << dt << "\": " << r.err;
+    EXPECT_EQ(nlohmann::json::parse(r.out).at("steps").get<long>(), 2) << "\"" << dt << "\"";
+  }
 }
 
 // The known word a misspelt one most likely is: one slip of the fingers (a letter added, dropped, changed, or
@@ -349,6 +355,9 @@ TEST(CliErrors, TheCommandLinesMistakesAreNamedWithTheWordMostLikelyMeant) {
       {{"compare", spring, "--fps", "10"}, "--fps: only with --render (motus compare --help)"},
       {{"run"}, "SCENE is missing (motus run --help)"},
       {{"run", spring, "extra"}, "unexpected argument \"extra\" (motus run --help)"},
+      // after "--" every word is an argument: an option there is a word too many (it said "unknown option --")
+      {{"run", "--", spring, "--repeats", "1"},
+       "unexpected argument \"--repeats\" after --, where every word is an argument (options go before --) (motus run --help)"},
       {{"render", spring, "--out", (dir / "frames").string(), "--video", "mp5"},
        "--video: \"mp5\" is none of mp4, gif, did you mean mp4? (motus render --help)"},
       {{"compare", spring, "--engines", "motus,box2"},

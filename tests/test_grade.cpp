@@ -361,7 +361,8 @@ TEST(Plugins, AStudentsIntegratorRunsInBenchPrecisionAndRender) {
   TempDir dir;
   const std::string plugin = kAssignmentPlugins + "/integrators-solution.so";
   auto r = run_motus(dir, {"bench", "precision", "kepler", "--plugin", plugin, "--integrators", "rk4,student:rk4",
-                           "--levels", "2", "--repeats", "1", "--csv", (dir / "p.csv").string()});
+                           "--levels", "2", "--repeats", "1", "--csv", (dir / "p.csv").string(), "--out",
+                           (dir / "sweep").string()});  // (its page in the test's folder, not the build's runs/)
   ASSERT_EQ(r.status, 0) << r.err;
   // The same method in both: the same errors, digit for digit in the table's 4 digits.
   const std::string csv = read_file(dir / "p.csv");

@@ -1547,4 +1547,29 @@ TEST(Hardening, PathsThatCannotBeLookedAtAreBadInputInOneLine) {
   EXPECT_TRUE(fs::exists(dir / long_name / "index.html")) << r.err;
 }
 
+// A link to nothing on the way to the output (runs/ left pointing at a folder since removed) is named
+// as such; it said "cannot be created (File exists)", of a file that is not there.
+TEST(Hardening, ALinkToNothingOnTheWayOutIsNamed) {
+  TempDir dir;
+  fs::create_symlink(dir / "removed", dir / "runs");
+  fs::create_directory(dir / "d");
+  fs::create_symlink("gone", dir / "d" / "out");
+  const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
+      {{"compare", "head_on", "--out", (dir / "runs/head_on").string()},
+       (dir / "runs").string() + " is a link to " + (dir / "removed").string() + ", which does not exist"},
+      {{"stress", "spring", "--out", (dir / "runs/spring").string()},
+       (dir / "runs").string() + " is a link to " + (dir / "removed").string() + ", which does not exist"},
+      {{"render", "spring", "--size", "64x48", "--duration", "0.1", "--out", (dir / "d/out/frames").string()},
+       (dir / "d/out").string() + " is a link to gone, which does not exist"},
+  };
+  for (const auto& [args, said] : cases) {
+    const Result r = run_motus(dir, args);
+    EXPECT_EQ(r.status, 2) << args[0] << ": " << r.err;
+    EXPECT_EQ(count_lines(r.err), 1) << r.err;
+    EXPECT_NE(r.err.find(said), std::string::npos) << r.err;
+  }
+  EXPECT_FALSE(fs::exists(dir / "removed"));
+  EXPECT_FALSE(fs::exists(dir / "d" / "gone"));
+}
+
 }  // namespace

@@ -4,7 +4,7 @@
 
 namespace motus::compare {
 
-std::string MotusBackend::version() const { return version_.empty() ? "motus 0.1.0, double" : version_; }
+std::string MotusBackend::version() const { return version_.empty() ? "motus " MOTUS_VERSION ", double" : version_; }
 
 void MotusBackend::build(const SceneDescription& scene, const Method& method, double dt) {
   if (!scene.mechanical) throw Unsupported(name_, {"first-order systems (compare runs point masses)"});
