@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <fcntl.h>
 #include <stdio.h>  // renameat2, RENAME_NOREPLACE
@@ -201,6 +202,10 @@ std::FILE* keep_data_apart_from_standard_output() {
   if (!kept || ::dup2(STDERR_FILENO, STDOUT_FILENO) < 0)
     throw std::runtime_error(std::string("standard output could not be kept apart from the plug-in's (") +
                              std::strerror(errno) + ")");
+  // What the plug-in prints goes out as it is printed, as standard error's own does: held in a
+  // buffer (standard output to a pipe or file is), a student's printf just before a crash was lost
+  // with the process, the one time they print to find out where it went wrong.
+  std::setvbuf(stdout, nullptr, _IONBF, 0);
   return kept_data_output = kept;
 }
 

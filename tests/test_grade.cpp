@@ -1162,17 +1162,45 @@ TEST(Grade, AFloodOfPrintsInAFailedTestIsCutAsACrashsOutputIs) {
   // From a whole character: the 1,200 bytes' first one falls inside a dash, which is not shown in part.
   EXPECT_TRUE(shown.starts_with("—")) << shown;
   EXPECT_EQ(shown.size(), 1200u - 2) << shown;
-  // The crash's the same way, to about the same length: the end of the flood (what std::cout had
-  // flushed of it), and after it the server's own last words on the signal.
+  // The crash's the same way, to about the same length: the end of the flood, all of it (the
+  // student's prints are not held in a buffer that a crash throws away), and after it the server's
+  // own last words on the signal.
   ASSERT_TRUE(crash_shows.starts_with(cut)) << crash;
   EXPECT_LE(crash_shows.size(), cut.size() + 1200) << crash;
   EXPECT_GE(crash_shows.size(), cut.size() + 1200 - 3) << crash;  // (at most a character's continuation bytes less)
   EXPECT_NE(static_cast<unsigned char>(crash_shows[cut.size()]) & 0xC0, 0x80) << crash;
-  EXPECT_NE(crash_shows.find("\nflood line "), std::string::npos) << crash;
-  EXPECT_NE(crash_shows.find("SIGABRT"), std::string::npos) << crash;
+  const size_t flood_end = crash_shows.find("—!\n");
+  ASSERT_NE(flood_end, std::string::npos) << crash;
+  EXPECT_NE(crash_shows.find("SIGABRT", flood_end), std::string::npos) << crash;
   // Bounded as it was read: the whole results.json is smaller than the 64 KB the sandbox keeps of
   // one test's prints (Limits::output_bytes), which is far less than the megabyte printed.
   EXPECT_LT(fs::file_size(dir / "results.json"), 64u * 1024);
+}
+
+// Found by a student audit: a printf just before a crash was not shown, though the handout says a
+// failed test shows what the code printed. Standard output to a pipe is held in a buffer, and
+// SIGABRT threw it away with the process (std::cerr, unbuffered, was shown).
+TEST(Grade, APrintfJustBeforeACrashIsShown) {
+  NEEDS_SANDBOX();
+  TempDir dir;
+  const auto defs = definitions("integrators");
+  ASSERT_LT(defs.at("euler.order")["dt"].get<double>(), 0.5);
+  const fs::path assignment = integrators_with_tests(dir, "printf", json::array({defs.at("euler.order")}));
+  const fs::path submission = dir / "printing";
+  fs::create_directories(submission);
+  write_file(submission / "integrators.cpp",
+             "#include <cstdio>\n#include <cstdlib>\n" +
+                 solution_with({}, {{"euler_step", R"(std::printf("euler_step at h = %g\n", h); if (h < 0.5) std::abort();)"}}));
+  const auto r = run_motus(dir, {"grade", assignment.string(), submission.string(), "--results", (dir / "results.json").string()});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const json result = read_json(dir / "results.json");
+  const json* order = test_named(result, "euler.order");
+  ASSERT_TRUE(order);
+  EXPECT_EQ((*order)["status"], "failed");
+  const std::string crash = (*order)["output"].get<std::string>();
+  const size_t printed = crash.find("euler_step at h = ");
+  ASSERT_NE(printed, std::string::npos) << crash;
+  EXPECT_NE(crash.find("SIGABRT", printed), std::string::npos) << crash;
 }
 
 // A step-size control turned upside down shrinks the step without end: the run records states
