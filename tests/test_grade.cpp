@@ -13,6 +13,7 @@
 #include <cmath>
 #include <functional>
 #include <sstream>
+#include <regex>
 #include <string>
 #include <tuple>
 
@@ -591,6 +592,59 @@ TEST(Plugins, AContactWithAWallForABallMovingAwayStopsTheRun) {
             std::string::npos)
       << r.err;
   EXPECT_NE(r.err.find(" m/s along its normal): it never reaches it, +infinity"), std::string::npos) << r.err;
+}
+
+// Found by a student audit: a time of impact with a plane that leaves the radius out of the gap
+// (the time the centre reaches the plane) sank the ball into the floor of `drop`, where the run
+// went on removing overlaps, gaining energy, and the grader's bounce test said only "0 tops".
+// A time within the step must be one at which the bodies touch; so must two balls' (the later root
+// is the time they would part again). motus stops the run at that call, naming the numbers.
+TEST(Plugins, ATimeOfImpactWhenTheBodiesDoNotTouchStopsTheRun) {
+  TempDir dir;
+  const std::string centre = kPlugins + "/centre_to_plane.so", later = kPlugins + "/later_root.so";
+  // drop (r = 0.5, dt = 1 ms): the centre's time is past the step in which the ball reaches the floor.
+  Result r = run_motus(dir, {"run", "drop", "--plugin", centre});
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_EQ(count_lines(r.err), 1) << r.err;
+  EXPECT_NE(r.err.find(centre + ": returned "), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find(" m from a plane and moving into it at "), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find(" m/s: it reaches the plane within the 0.001 s left of the step"), std::string::npos) << r.err;
+  // A small fast ball (r = 0.01 at 10 m/s, 0.05 m above the floor, dt = 0.01 s): the centre's time,
+  // 0.005 s, is within the first step, when the ball would be its radius into the floor.
+  write_file(dir / "fast_drop.json", R"({"name": "fast_drop", "dimensions": 2,
+    "bodies": [{"mass": 1, "radius": 0.01, "position": [0, 0.05], "velocity": [0, -10]}],
+    "colliders": [{"type": "plane", "normal": [0, 1], "offset": 0}],
+    "integrator": "symplectic-euler", "dt": 0.01, "duration": 0.1})");
+  r = run_motus(dir, {"run", (dir / "fast_drop.json").string(), "--plugin", centre});
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_NE(r.err.find(": returned 0.005 as the time of impact of a ball 0.04 m from a plane: then it would be 0.01 m into "
+                       "the plane, not touching it (the gap between them is n.p - offset - r)"),
+            std::string::npos)
+      << r.err;
+  // The later root: oblique's balls meet within a step, and the later root is past it.
+  r = run_motus(dir, {"run", "oblique", "--plugin", later});
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_EQ(count_lines(r.err), 1) << r.err;
+  EXPECT_NE(r.err.find(later + ": returned "), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find(" m apart and approaching: they meet within the "), std::string::npos) << r.err;
+  // Two small balls head-on at 20 m/s (r = 0.01, dt = 0.02 s): they would pass through each other
+  // within one step, so both roots are in it (0.049 and 0.05 s), and the later one is refused as such.
+  write_file(dir / "fast_pair.json", R"({"name": "fast_pair", "dimensions": 2,
+    "bodies": [{"mass": 1, "radius": 0.01, "position": [-0.5, 0], "velocity": [10, 0]},
+               {"mass": 1, "radius": 0.01, "position": [0.5, 0], "velocity": [-10, 0]}],
+    "integrator": "symplectic-euler", "dt": 0.02, "duration": 0.1})");
+  r = run_motus(dir, {"run", (dir / "fast_pair.json").string(), "--plugin", later});
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_NE(r.err.find("then they touch moving apart, having passed through each other (the later root); they meet at the "
+                       "earlier one"),
+            std::string::npos)
+      << r.err;
+  // The right times (each plug-in's own for the other kind of body) run the scenes to their end.
+  for (const auto& [scene_name, plugin] : std::vector<std::pair<std::string, std::string>>{
+           {"drop", later}, {"oblique", centre}, {(dir / "fast_pair.json").string(), centre}}) {
+    r = run_motus(dir, {"run", scene_name, "--plugin", plugin});
+    EXPECT_EQ(r.status, 0) << scene_name << ": " << r.err;
+  }
 }
 
 TEST(Plugins, AnExceptionWhileLoadingNamesThePlugin) {
@@ -1201,6 +1255,40 @@ TEST(Grade, APrintfJustBeforeACrashIsShown) {
   const size_t printed = crash.find("euler_step at h = ");
   ASSERT_NE(printed, std::string::npos) << crash;
   EXPECT_NE(crash.find("SIGABRT", printed), std::string::npos) << crash;
+}
+
+// Found by a student audit: step doubling without the extrapolation ends Kepler within the test's
+// 1e-5 but not within twice motus's own error, and the failure said "larger than allowed",
+// beside an Expected line whose 1e-5 the error met. It names the bound it missed.
+TEST(Grade, AnAdaptiveTestNamesTheBoundItsErrorMissed) {
+  NEEDS_SANDBOX();
+  TempDir dir;
+  const auto defs = definitions("integrators");
+  const json kepler = defs.at("rk4-doubling.kepler");
+  ASSERT_EQ(kepler["compare_with"], "rk4-doubling");
+  ASSERT_EQ(kepler["factor"], 2);
+  const double max_error = kepler["max_error"].get<double>();
+  const fs::path assignment = integrators_with_tests(dir, "adaptive", json::array({kepler}));
+  const fs::path submission = dir / "no-extrapolation";
+  fs::create_directories(submission);
+  write_file(submission / "integrators.cpp", solution_with({"doubling-no-extrapolation"}, {}));
+  const auto r = run_motus(dir, {"grade", assignment.string(), submission.string(), "--results", (dir / "results.json").string()});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const json result = read_json(dir / "results.json");
+  const json* test = test_named(result, "rk4-doubling.kepler");
+  ASSERT_TRUE(test);
+  EXPECT_EQ((*test)["status"], "failed");
+  const std::string output = (*test)["output"].get<std::string>();
+  // Its error (measured: "error E at t = 5") is within the test's own bound, so it missed motus's.
+  const std::smatch error = [&] {
+    std::smatch m;
+    std::regex_search(output, m, std::regex("error ([0-9.e+-]+) at t = 5"));
+    return m;
+  }();
+  ASSERT_FALSE(error.empty()) << output;
+  EXPECT_LE(std::stod(error[1].str()), max_error) << output;
+  EXPECT_NE(output.find("The error at the end is larger than 2 × motus's rk4-doubling ("), std::string::npos) << output;
+  EXPECT_EQ(output.find("larger than allowed"), std::string::npos) << output;
 }
 
 // A step-size control turned upside down shrinks the step without end: the run records states

@@ -49,6 +49,12 @@ constexpr double kOverlapSlack = kRoundingOverlap;  // (time_of_impact.hpp: the 
 // Bodies whose gap is at most this fraction of their contact distance touch, for a plug-in's
 // time of impact (its rounding and the engine's differ by a few units in the last place).
 constexpr double kTouching = 1e-9;
+// How far from touching a plug-in's time of impact may leave two bodies, as a fraction of their
+// contact distance, plus the rounding of their positions' size: a root computed in any sensible
+// way (a quadratic's, with its cancellation) is far closer; a wrong one (the radius left out, the
+// later root) is off by the radius or more.
+constexpr double kAtContact = 1e-6;
+constexpr double kPositionRounding = 1e-12;
 
 // Up to this many grid cells (half a megabyte of starts: in L2) the grid is counting-sorted
 // in one level; beyond it, in two (see build_grid).
@@ -1397,6 +1403,41 @@ double BallCollisions<D>::outside_balls_impact(const Point& p_a, const Point& v_
     throw ExternalError("returned " + figure(t) + " as the time of impact of two balls moving apart (the gap between "
                         "their surfaces grows at " + figure(opening / distance) +
                         " m/s): balls moving apart never touch, +infinity");
+  // A time within the step must be one at which they touch, approaching: the later root (where
+  // they would part again, having passed through each other) and a time for balls that already
+  // touch are not contacts. Without this the run went on with them inside each other, and it
+  // showed only as overlaps.
+  const double R = r_a + r_b, slack = kAtContact * R + kPositionRounding * (p_a.norm() + p_b.norm());
+  if (!(t >= 0 && t <= horizon) && gap > kTouching * R && opening < 0) {
+    // They clearly meet within the step when the quadratic's earlier root is in it (a grazing pass,
+    // whose two roots are as one, is left to the plug-in's rounding).
+    const double a = dv.dot(dv), c = (distance - R) * (distance + R), discriminant = opening * opening - a * c;
+    if (discriminant > kAtContact * opening * opening &&
+        c / (-opening + std::sqrt(discriminant)) < horizon * (1 - kAtContact))
+      throw ExternalError("returned " + (t > horizon ? figure(t) : std::string("none")) +
+                          " as the time of impact of two balls whose surfaces are " + figure(gap) +
+                          " m apart and approaching: they meet within the " + figure(horizon) + " s left of the step");
+  }
+  if (t >= 0 && t <= horizon) {
+    if (gap <= kTouching * R) {
+      if (opening < 0 && t * (-opening / distance) > slack)
+        throw ExternalError("returned " + figure(t) + " as the time of impact of two balls whose surfaces are " +
+                            figure(gap) + " m apart and approaching, where they already touch" +
+                            (gap < 0 ? " (overlap)" : "") + ": that is a contact now, t = 0");
+    } else {
+      const Point apart_then = dp + t * dv;
+      const double gap_then = apart_then.norm() - R;
+      if (std::abs(gap_then) > slack)
+        throw ExternalError("returned " + figure(t) + " as the time of impact of two balls whose surfaces are " +
+                            figure(gap) + " m apart: then they would be " + figure(std::abs(gap_then)) +
+                            (gap_then < 0 ? " m into each other" : " m apart") +
+                            ", not touching (they touch where |p_b + t v_b - p_a - t v_a| = r_a + r_b)");
+      if (apart_then.dot(dv) > kAtContact * R * dv.norm())
+        throw ExternalError("returned " + figure(t) + " as the time of impact of two balls whose surfaces are " +
+                            figure(gap) + " m apart: then they touch moving apart, having passed through each " +
+                            "other (the later root); they meet at the earlier one");
+    }
+  }
   return t >= 0 && t <= horizon ? t : kNoImpact;  // (negative: none, as +infinity)
 }
 
@@ -1417,6 +1458,27 @@ double BallCollisions<D>::outside_plane_impact(const Point& p, const Point& v, d
   if (t >= 0 && t <= horizon && away > kTouching * v.norm())
     throw ExternalError("returned " + figure(t) + " as the time of impact of a ball moving away from a plane (at " +
                         figure(away) + " m/s along its normal): it never reaches it, +infinity");
+  // As for two balls: a time within the step is one at which the ball touches the plane, and a ball
+  // that clearly reaches it within the step has a time in it (the radius left out of the gap gave
+  // the time its centre reaches the plane: beyond the step, or with the ball r deep in the plane).
+  const double slack = kAtContact * r + kPositionRounding * (std::abs(plane.normal.dot(p)) + std::abs(plane.offset));
+  if (!(t >= 0 && t <= horizon) && gap > kTouching * std::max(r, 1e-300) && gap + away * horizon < -slack)
+    throw ExternalError("returned " + (t > horizon ? figure(t) : std::string("none")) + " as the time of impact of a ball " +
+                        figure(gap) + " m from a plane and moving into it at " + figure(-away) +
+                        " m/s: it reaches the plane within the " + figure(horizon) + " s left of the step");
+  if (t >= 0 && t <= horizon) {
+    if (gap <= kTouching * std::max(r, 1e-300)) {
+      if (away < 0 && t * -away > slack)
+        throw ExternalError("returned " + figure(t) + " as the time of impact of a ball " + figure(gap) +
+                            " m from a plane and moving into it, where it already touches" +
+                            (gap < 0 ? " (it is into the plane)" : "") + ": that is a contact now, t = 0");
+    } else if (const double gap_then = gap + away * t; std::abs(gap_then) > slack) {
+      throw ExternalError("returned " + figure(t) + " as the time of impact of a ball " + figure(gap) +
+                          " m from a plane: then it would be " + figure(std::abs(gap_then)) +
+                          (gap_then < 0 ? " m into the plane" : " m from it") +
+                          ", not touching it (the gap between them is n.p - offset - r)");
+    }
+  }
   return t >= 0 && t <= horizon ? t : kNoImpact;
 }
 
