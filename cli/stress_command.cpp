@@ -28,7 +28,7 @@ std::string number(double x) {
 void print_tables(const stress::Report& r) {
   using namespace stress;
   fmt::print("{}: {} {}, {}-D, dt = {:g} s; sections: {}\n", r.scene_name, r.bodies, r.bodies == 1 ? "body" : "bodies", r.dimensions, r.dt,
-             fmt::join(r.sections, ", "));
+             r.sections.empty() ? std::string("none") : fmt::format("{}", fmt::join(r.sections, ", ")));
   for (const auto& [section, why] : r.not_applied) fmt::print("  not measured: {}: {}\n", section, why);
   for (const auto& [integrator, why] : r.cannot_run) fmt::print("  cannot run it: {}: {}\n", integrator, why);
   const auto blown = fmt::format("blown up: not finite, |E - E0| > {:g} |E0|, or a bound orbit escaping or swing going over the top",
@@ -71,31 +71,63 @@ void print_tables(const stress::Report& r) {
                  r.omega ? fmt::format("   theory {}", t > 0 ? fmt::format("{:g}", t) : "none") : "");
     }
   }
+  // (A failure is "failed (k)" in its cell and note k below the table, as on the page.)
+  auto print_notes = [](const FailureNotes& notes) {
+    for (size_t k = 0; k < notes.notes().size(); ++k) fmt::print("  ({}) {}\n", k + 1, notes.notes()[k]);
+  };
   if (!r.mass_ratio.empty()) {
-    fmt::print("\nmass ratio 1:R: a head-on pair against the formula, and the scene with every second body R times heavier\n");
-    fmt::print("  {:<18}{:>8}{:>14}{:>14}{:>14}{:>16}\n", "integrator", "R", "pair |dv|/u", "pair energy", "pair momentum", "scene |dE|/E0");
-    for (const auto& m : r.mass_ratio)
-      fmt::print("  {:<18}{:>8g}{:>14}{:>14}{:>14}{:>16}\n", info(m.integrator).name, m.ratio,
-                 m.pair.failed.empty() ? number(m.pair.velocity_error) : "failed", number(m.pair.energy_error),
-                 number(m.pair.momentum_error), m.gas_failed.empty() ? number(m.gas_energy_error) : "failed");
+    FailureNotes notes;
+    fmt::print("\nmass ratio 1:R: a head-on pair against the formula{}\n",
+               r.mass_ratio_scene ? ", and the scene with every second body R times heavier (its ball-ball contacts)" : "");
+    fmt::print("  {:<18}{:>8}{:>14}{:>14}{:>14}", "integrator", "R", "pair |dv|/u", "pair energy", "pair momentum");
+    if (r.mass_ratio_scene) fmt::print("{:>16}  {}", "scene contacts", "scene |dE|/E0");
+    fmt::print("\n");
+    for (const auto& m : r.mass_ratio) {
+      const bool pair = m.pair.failed.empty();
+      fmt::print("  {:<18}{:>8g}{:>14}{:>14}{:>14}", info(m.integrator).name, m.ratio,
+                 pair ? number(m.pair.velocity_error) : notes.cell(m.pair.failed), pair ? number(m.pair.energy_error) : "-",
+                 pair ? number(m.pair.momentum_error) : "-");
+      if (r.mass_ratio_scene) {
+        // (A run in which no balls met measured no collision: a 0 there looked perfect.)
+        const std::string energy = !m.gas_failed.empty()    ? notes.cell(m.gas_failed)
+                                   : m.gas_collisions == 0 ? "no contact in the run"
+                                                           : number(m.gas_energy_error);
+        fmt::print("{:>16}  {}", m.gas_collisions, energy);
+      }
+      fmt::print("\n");
+    }
+    print_notes(notes);
   }
   if (!r.speed.empty()) {
-    fmt::print("\nspeed: radii per step; the pair must never pass through each other; the scene's balls must stay in their box\n");
-    fmt::print("  {:<18}{:>8}{:>12}{:>10}{:>10}{:>10}{:>14}\n", "integrator", "radii", "pair order", "in box", "outside",
-               "overlap", "scene |dE|/E0");
+    FailureNotes notes;
+    fmt::print("\nspeed: radii per step; the pair must never pass through each other{}\n",
+               !r.speed_scene         ? ""
+               : r.speed_container ? "; the scene's balls must stay in their box"
+                                   : "; the scene's balls (no container)");
+    fmt::print("  {:<18}{:>8}{:>12}{:>10}", "integrator", "radii", "pair order", "pair box");
+    if (r.speed_scene) fmt::print("{}{:>10}{:>14}", r.speed_container ? fmt::format("{:>10}", "outside") : "", "overlap", "scene |dE|/E0");
+    fmt::print("\n");
     for (const auto& s : r.speed) {
+      const bool pair = s.pair_failed.empty();
       fmt::print("  {:<18}{:>8g}{:>12}{:>10}", info(s.integrator).name, s.radii_per_step,
-                 !s.pair_failed.empty() ? "failed" : s.pair_order_kept ? "kept" : "TUNNELLED", s.pair_inside ? "yes" : "NO");
-      if (s.gas_failed.empty())
-        fmt::print("{:>10}{:>10}{:>14}\n", s.gas_outside, number(s.gas_max_overlap), number(s.gas_energy_error));
-      else
-        fmt::print("  {}\n", one_line(s.gas_failed, 100));
+                 !pair ? notes.cell(s.pair_failed) : s.pair_order_kept ? "kept" : "TUNNELLED", !pair ? "-" : s.pair_inside ? "yes" : "NO");
+      if (r.speed_scene) {
+        if (s.gas_failed.empty())
+          fmt::print("{}{:>10}{:>14}", r.speed_container ? fmt::format("{:>10}", s.gas_outside) : "", number(s.gas_max_overlap),
+                     number(s.gas_energy_error));
+        else
+          fmt::print("  {}", notes.cell(s.gas_failed));
+      }
+      fmt::print("\n");
     }
+    print_notes(notes);
   }
   if (!r.sticks.empty()) {
     fmt::print("\nsticks between masses 1 and R (verlet): the largest stick error over {:g} s\n", r.settings.duration);
+    FailureNotes notes;
     for (const auto& s : r.sticks)
-      fmt::print("  {:<20}{:>8g}{:>12}\n", s.variant, s.ratio, s.failed.empty() ? number(s.max_error) : "failed: " + s.failed);
+      fmt::print("  {:<20}{:>8g}{:>12}\n", s.variant, s.ratio, s.failed.empty() ? number(s.max_error) : notes.cell(s.failed));
+    print_notes(notes);
   }
 }
 
@@ -116,7 +148,10 @@ CLI::App* add_stress_command(CLI::App& app, StressOptions& o) {
       ->transform(whole_number_in(100, 100000000))
       ->capture_default_str();
   c->add_option("--energy-factor", o.energy_factor, "Blown up: |E - E0| beyond this many times |E0|")->capture_default_str();
-  c->add_option("--duration", o.duration, "Simulated seconds of each mass-ratio and sticks run (at most the scene's)")->capture_default_str();
+  c->add_option("--duration", o.duration,
+                "Simulated seconds of each mass-ratio and sticks run (at most the scene's); a mass-ratio run whose balls "
+                "have not met by then runs on until this long after they do")
+      ->capture_default_str();
   return c;
 }
 
@@ -130,9 +165,9 @@ int stress_command(const StressOptions& o) {
   if (!(o.energy_factor > 1) || !std::isfinite(o.energy_factor)) throw InputError("--energy-factor: must be a finite number > 1");
   if (!(o.duration > 0) || !std::isfinite(o.duration)) throw InputError("--duration: must be a finite number > 0");
   checked_step_count(static_cast<double>(o.drift_steps) * scene.dt, scene.dt, "--drift-steps");
-  // (--duration is at most the scene's: the runs take no more, and a larger one is no fault of dt.)
-  const double longest =
-      std::max(static_cast<double>(std::max(o.steps, o.drift_steps)) * scene.dt, std::min(o.duration, scene.duration));
+  // (--duration is at most the scene's: the runs take no more, and a larger one is no fault of dt. A
+  // mass-ratio run whose balls meet late may take the scene's whole duration.)
+  const double longest = std::max(static_cast<double>(std::max(o.steps, o.drift_steps)) * scene.dt, scene.duration);
   check_time_resolution(scene.start_time, longest, scene.dt, path + ": start_time", path + ": dt");
   check_position_resolution(scene, scene.dt, path);
 
@@ -187,8 +222,18 @@ int stress_command(const StressOptions& o) {
       std::any_of(m.forces.drag.begin(), m.forces.drag.end(), [](const LinearDrag& d) { return d.coefficient != 0; }) ||
       std::any_of(m.forces.springs.begin(), m.forces.springs.end(), [](const Spring& s) { return s.damping != 0; });
   report.loses_energy_by_design = dissipative;
+  // Without a frequency (what stiffness raises) the motion has no bound, and its energy grows with
+  // the run whatever the step: where --steps steps first pass the factor is then no stability limit.
+  // (free_fall's explicit Euler: 10.6 s in 10⁴ steps, 33.7 s in 10³; projectile_drag, whose drag
+  // bounds the speed but not the fall: 20.0 s in 10⁴ steps, 4.2 s in 10⁵.)
+  const bool frequency = !report.stiffness_knob.empty();
   if (!contacts && !sticks) {
-    report.sections = {"stability"};
+    if (frequency)
+      report.sections = {"stability"};
+    else
+      report.not_applied.emplace_back("stability", "the motion has no frequency and no bound (uniform gravity has no "
+                                                   "frequency): its energy grows with the run whatever the step, so where "
+                                                   "--steps steps first pass the factor is no stability limit");
     if (dissipative)
       report.not_applied.emplace_back("drift", "the scene loses energy by design (a damper or drag): its energy's change "
                                                "is the physics, not the integrator's");
@@ -207,6 +252,22 @@ int stress_command(const StressOptions& o) {
     if (contacts && !sticks) {
       report.sections = {"mass_ratio", "speed"};
       report.not_applied.emplace_back("sticks", "the scene has no sticks");
+      // Parts of these sections that would measure nothing are listed, not printed as numbers.
+      if (balls < 2) {
+        report.mass_ratio_scene = false;
+        report.not_applied.emplace_back("mass_ratio (the scene)", std::string(m.bodies.size() == 1 ? "one body" : "fewer than two balls") +
+                                                                      ": a mass ratio needs two bodies that can meet (the pair still measures it)");
+      }
+      if (std::all_of(m.bodies.begin(), m.bodies.end(), [](const BodyDescription& b) {
+            return std::all_of(b.velocity.begin(), b.velocity.end(), [](double v) { return v == 0; });
+          })) {
+        report.speed_scene = false;
+        report.not_applied.emplace_back("speed (the scene)", "no body moves at the start: there is no speed to scale "
+                                                             "(the pair still measures tunnelling)");
+      } else if (m.colliders.boxes.empty()) {
+        report.speed_container = false;
+        report.not_applied.emplace_back("speed (balls outside their container)", "no container: the scene has no box");
+      }
     } else {
       report.sections = {"sticks"};
       report.not_applied.emplace_back("mass_ratio", "covered by the sticks section: its sticks join masses 1 and R");
@@ -215,15 +276,34 @@ int stress_command(const StressOptions& o) {
   }
   const auto contact_integrators = among({Integrator::SymplecticEuler, Integrator::Verlet});
   const bool verlet = !among({Integrator::Verlet}).empty();
-  if (report.sections.front() == "sticks" && !verlet) {
-    report.not_applied.emplace_back("sticks", "needs verlet, which --integrators leaves out");
-    report.sections.clear();
-  }
   // (An adaptive method chooses its own steps: the force sections, which vary the step, measure none.)
   const bool fixed_step = std::any_of(runs.begin(), runs.end(), [](Integrator i) { return !info(i).adaptive; });
-  if (report.sections.empty() || (contacts && !sticks && contact_integrators.empty()) || (!contacts && !sticks && !fixed_step))
+  if ((sticks && !verlet) || (contacts && !sticks && contact_integrators.empty()) || (!contacts && !sticks && !fixed_step))
     throw InputError(path + ": none of the integrators asked for can run the measurements that apply to this scene" +
                      (report.cannot_run.empty() ? "" : " (" + report.cannot_run.front().first + ": " + report.cannot_run.front().second + ")"));
+  // A variant of the sticks section that would make no stick join masses 1 and R, or the same
+  // bodies heavier as another, is listed, not run: stick_pendulum's bob is the one free body, its
+  // pivot pinned, and every row read 2.2e-16, its two variants the same bob.
+  if (sticks) {
+    std::vector<std::pair<std::string, std::string>> skipped;
+    std::vector<std::string> earlier;
+    for (const auto& variant : stress::stick_variants()) {
+      const std::string why = stress::stick_variant_not_measured(scene, variant, earlier);
+      earlier.push_back(variant);
+      if (why.empty())
+        report.stick_variants_measured.push_back(variant);
+      else
+        skipped.emplace_back(variant, why);
+    }
+    if (report.stick_variants_measured.empty()) {
+      report.sections.clear();
+      std::string why;
+      for (const auto& [variant, reason] : skipped) why += (why.empty() ? "" : "; ") + variant + ": " + reason;
+      report.not_applied.emplace_back("sticks", why);
+    } else {
+      for (const auto& [variant, why] : skipped) report.not_applied.emplace_back("sticks (" + variant + ")", why);
+    }
+  }
   // The sections whose runs last --duration (at most the scene's).
   const bool timed_runs = std::find_if(report.sections.begin(), report.sections.end(), [](const std::string& s) {
                             return s == "mass_ratio" || s == "sticks";
@@ -243,7 +323,7 @@ int stress_command(const StressOptions& o) {
   for (const auto& s : report.sections)
     units += s == "mass_ratio" ? static_cast<double>(contact_integrators.size() * stress::mass_ratios().size())
              : s == "speed"    ? static_cast<double>(contact_integrators.size() * stress::speeds().size())
-             : s == "sticks"   ? static_cast<double>(stress::stick_variants().size() * stress::mass_ratios().size())
+             : s == "sticks"   ? static_cast<double>(report.stick_variants_measured.size() * stress::mass_ratios().size())
                                : static_cast<double>(runs.size());
   ProgressBar progress(0, units, "stress " + scene.name, 256);
   double done = 0;
@@ -261,12 +341,13 @@ int stress_command(const StressOptions& o) {
       for (Integrator i : runs) report.stiffness.push_back(stress::measure_stiffness(scene, i, settings, tick)), unit_done();
     if (section == "mass_ratio")
       for (Integrator i : contact_integrators)
-        for (double ratio : stress::mass_ratios()) report.mass_ratio.push_back(stress::measure_mass_ratio(scene, i, ratio, settings, tick)), unit_done();
+        for (double ratio : stress::mass_ratios())
+          report.mass_ratio.push_back(stress::measure_mass_ratio(scene, i, ratio, settings, report.mass_ratio_scene, tick)), unit_done();
     if (section == "speed")
       for (Integrator i : contact_integrators)
-        for (double s : stress::speeds()) report.speed.push_back(stress::measure_speed(scene, i, s, tick)), unit_done();
+        for (double s : stress::speeds()) report.speed.push_back(stress::measure_speed(scene, i, s, report.speed_scene, tick)), unit_done();
     if (section == "sticks")
-      for (const auto& variant : stress::stick_variants())
+      for (const auto& variant : report.stick_variants_measured)
         for (double ratio : stress::mass_ratios()) report.sticks.push_back(stress::measure_sticks(scene, variant, ratio, settings, tick)), unit_done();
   }
   progress.finish();

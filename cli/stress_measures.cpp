@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <limits>
 #include <numbers>
 
@@ -191,16 +192,21 @@ DriftResult measure_drift(const SceneDescription& scene, Integrator integrator, 
   long next_sample = 1;
   int sample_index = 0;
   double window = 0, last_tenth_largest_e = 0;  // (the largest |E| over the last tenth)
+  double rounding = 0;                           // the rounding floor so far: see drift_rounding_scale
   std::string failure;
   run_steps(sim, n, scene.dt,
             [&](const Simulation& s) {
               const long step = s.steps();
-              const double e = s.energy()->total;
+              const Energy energy = *s.energy();
+              const double e = energy.total;
               const double error = std::isfinite(e) ? relative(e, e0) : kInf;
+              rounding += drift_rounding_scale(s, integrator, scene.dt);
               window = std::max(window, error);
               if (step <= hundredth) r.first_hundredth_max = std::max(r.first_hundredth_max, error);
               if (step > n - tenth) {
                 r.last_tenth_max = std::max(r.last_tenth_max, error);
+                r.last_tenth_max_abs = std::max(r.last_tenth_max_abs, std::isfinite(e) ? std::abs(e - e0) : kInf);
+                r.energy_scale = std::max(r.energy_scale, std::abs(energy.kinetic) + std::abs(energy.potential));
                 last_tenth_largest_e = std::max(last_tenth_largest_e, std::abs(e));
               }
               r.steps = step;
@@ -218,8 +224,16 @@ DriftResult measure_drift(const SceneDescription& scene, Integrator integrator, 
             },
             tick, failure);
   if (!failure.empty()) r.blown = "the run failed: " + failure;
+  r.rounding_floor = rounding;
   if (!r.blown.empty()) {
     r.verdict = r.blown;
+  } else if (r.last_tenth_max_abs <= r.rounding_floor) {
+    // Judged against the energies' own scale first: what rounding alone can do is no drift, however
+    // large against E0. (Free fall: verlet's 4 J, rk4's 6e-5 J after 1000 s, on |KE| + |PE| = 1e8 J,
+    // were "grows ×1.6e8" and "×8e5" against E0 = 54.5 J; explicit Euler's 481 J, n·m g² h²/2, is
+    // far above its floor, 3e-3 J, and still grows.)
+    r.verdict = "rounding (|E - E0| at most " + format_g(r.energy_scale > 0 ? r.last_tenth_max_abs / r.energy_scale : 0) +
+                " of |KE| + |PE|)";
   } else {
     const double growth =
         r.first_hundredth_max > 0 ? r.last_tenth_max / r.first_hundredth_max : (r.last_tenth_max > 0 ? kInf : 1);
@@ -233,6 +247,21 @@ DriftResult measure_drift(const SceneDescription& scene, Integrator integrator, 
                              : "bounded";
   }
   return r;
+}
+
+double drift_rounding_scale(const Simulation& sim, Integrator integrator, double h) {
+  constexpr double kRoundings = 4 * std::numeric_limits<double>::epsilon();
+  const Energy e = *sim.energy();
+  double scale = std::abs(e.kinetic) + std::abs(e.potential);
+  if (integrator == Integrator::Verlet) {
+    const auto& bodies = sim.scene().mechanical->bodies;
+    const auto& y = sim.state();
+    const Eigen::Index n = y.size() / 2;
+    const int d = sim.scene().mechanical->dimensions;
+    for (Eigen::Index k = 0; k < n && static_cast<size_t>(k / d) < bodies.size(); ++k)
+      scale += bodies[static_cast<size_t>(k / d)].mass * std::abs(y[n + k]) * std::abs(y[k]) / h;
+  }
+  return kRoundings * (std::isfinite(scale) ? scale : 0);
 }
 
 std::string stiffness_knob(const SceneDescription& scene) {
@@ -312,6 +341,30 @@ double deepest_overlap(const Simulation& s) {
   return deepest;
 }
 
+// The pairs of balls touching or overlapping now (within a relative 1e-9 of their contact
+// distance: verlet's projection leaves a pair it parted at that distance, to rounding), sorted.
+std::vector<std::pair<int, int>> touching_pairs(const Simulation& s) {
+  const auto& m = *s.scene().mechanical;
+  const int d = m.dimensions;
+  const auto& x = s.state();
+  std::vector<int> balls;
+  double r_max = 0;
+  for (size_t i = 0; i < m.bodies.size(); ++i)
+    if (m.bodies[i].radius > 0) balls.push_back(static_cast<int>(i)), r_max = std::max(r_max, m.bodies[i].radius);
+  std::sort(balls.begin(), balls.end(), [&](int a, int b) { return x[a * d] < x[b * d]; });
+  std::vector<std::pair<int, int>> pairs;
+  for (size_t i = 0; i < balls.size(); ++i)
+    for (size_t j = i + 1; j < balls.size() && x[balls[j] * d] - x[balls[i] * d] <= 2 * r_max * (1 + 1e-9); ++j) {
+      const int a = balls[i], b = balls[j];
+      double d2 = 0;
+      for (int k = 0; k < d; ++k) d2 += (x[a * d + k] - x[b * d + k]) * (x[a * d + k] - x[b * d + k]);
+      const double contact = (m.bodies[static_cast<size_t>(a)].radius + m.bodies[static_cast<size_t>(b)].radius) * (1 + 1e-9);
+      if (d2 <= contact * contact) pairs.emplace_back(std::min(a, b), std::max(a, b));
+    }
+  std::sort(pairs.begin(), pairs.end());
+  return pairs;
+}
+
 // Bodies outside every box of the scene (by more than 1e-9 of the box's size).
 long outside_boxes(const Simulation& s) {
   const auto& m = *s.scene().mechanical;
@@ -369,6 +422,22 @@ SceneDescription bodies_only(const SceneDescription& like, Integrator integrator
 
 }  // namespace
 
+void ContactCount::start(const Simulation& sim) {
+  if (integrator_ == Integrator::Verlet) touching_ = touching_pairs(sim);
+}
+
+void ContactCount::after_step(const Simulation& sim) {
+  if (integrator_ != Integrator::Verlet) {
+    count_ = sim.world() ? sim.world()->collision_counters().ball_collisions : 0;
+    return;
+  }
+  auto now = touching_pairs(sim);
+  std::vector<std::pair<int, int>> begun;
+  std::set_difference(now.begin(), now.end(), touching_.begin(), touching_.end(), std::back_inserter(begun));
+  count_ += static_cast<long>(begun.size());
+  touching_ = std::move(now);
+}
+
 std::vector<double> mass_ratios() {
   std::vector<double> r;
   for (int k = 0; k <= 6; ++k) r.push_back(std::pow(10.0, k));
@@ -376,7 +445,7 @@ std::vector<double> mass_ratios() {
 }
 
 MassRatioRow measure_mass_ratio(const SceneDescription& scene, Integrator integrator, double ratio, const Settings& settings,
-                                const Tick& tick) {
+                                bool with_scene, const Tick& tick) {
   MassRatioRow row;
   row.integrator = integrator;
   row.ratio = ratio;
@@ -397,8 +466,10 @@ MassRatioRow measure_mass_ratio(const SceneDescription& scene, Integrator integr
     try {
       Simulation sim(s, integrator);
       const double ke0 = kinetic(sim);
+      ContactCount contacts(integrator);
+      contacts.start(sim);
       std::string failure;
-      run_steps(sim, 8, dt, [](const Simulation&) { return true; }, tick, failure);
+      run_steps(sim, 8, dt, [&](const Simulation& x) { return contacts.after_step(x), true; }, tick, failure);
       if (!failure.empty()) throw std::runtime_error(failure);
       const double va = ((ma - e * mb) * u + (1 + e) * mb * -u) / (ma + mb);
       const double vb = ((mb - e * ma) * -u + (1 + e) * ma * u) / (ma + mb);
@@ -409,7 +480,7 @@ MassRatioRow measure_mass_ratio(const SceneDescription& scene, Integrator integr
       row.pair.energy_error = std::abs(kinetic(sim) - ke_formula) / ke0;
       const double p0 = ma * u - mb * u, p = ma * got_a + mb * got_b;
       row.pair.momentum_error = std::abs(p - p0) / (ma * u + mb * u);
-      row.pair.collisions = sim.world()->collision_counters().ball_collisions;
+      row.pair.collisions = contacts.count();
     } catch (const Interrupted&) {
       throw;
     } catch (const std::exception& e) {
@@ -417,19 +488,31 @@ MassRatioRow measure_mass_ratio(const SceneDescription& scene, Integrator integr
     }
   }
 
-  // The scene itself, with every second body ratio times heavier.
-  {
+  // The scene itself, with every second body ratio times heavier, for --duration; when its balls
+  // have not met by then, on until --duration after they first do, and never past the scene's
+  // duration. (For 1 s, head_on's balls, which meet at t = 1.5 s, never met: every ratio read 0.)
+  if (with_scene) {
+    row.gas_measured = true;
     SceneDescription s = scene;
     for (size_t i = 1; i < s.mechanical->bodies.size(); i += 2) s.mechanical->bodies[i].mass *= ratio;
     try {
       Simulation sim(s, integrator);
       const double e0 = sim.energy()->total;
-      const long steps = std::max(1L, std::lround(std::min(settings.duration, scene.duration) / dt));
+      const long least = std::max(1L, std::lround(std::min(settings.duration, scene.duration) / dt));
+      const long most = std::max(least, std::lround(scene.duration / dt));
+      long seen = 0, first_contact = 0;  // (the step after which the first contact was counted; 0: none yet)
+      ContactCount contacts(integrator);
+      contacts.start(sim);
       std::string failure;
-      row.gas_steps = run_steps(sim, steps, dt,
+      row.gas_steps = run_steps(sim, most, dt,
                                 [&](const Simulation& x) {
+                                  ++seen;
                                   row.gas_energy_error = std::max(row.gas_energy_error, relative(x.energy()->total, e0));
-                                  return true;
+                                  contacts.after_step(x);
+                                  row.gas_collisions = contacts.count();
+                                  if (first_contact == 0 && row.gas_collisions > 0) first_contact = seen;
+                                  if (seen < least || first_contact == 0) return true;
+                                  return first_contact <= least ? false : seen < first_contact + least;
                                 },
                                 tick, failure);
       if (!failure.empty()) row.gas_failed = failure;
@@ -444,7 +527,8 @@ MassRatioRow measure_mass_ratio(const SceneDescription& scene, Integrator integr
 
 std::vector<double> speeds() { return {1, 10, 100, 1000, 10000}; }
 
-SpeedRow measure_speed(const SceneDescription& scene, Integrator integrator, double radii_per_step, const Tick& tick) {
+SpeedRow measure_speed(const SceneDescription& scene, Integrator integrator, double radii_per_step, bool with_scene,
+                       const Tick& tick) {
   SpeedRow row;
   row.integrator = integrator;
   row.radii_per_step = radii_per_step;
@@ -489,8 +573,9 @@ SpeedRow measure_speed(const SceneDescription& scene, Integrator integrator, dou
   }
 
   // The scene's balls, every velocity scaled so that the fastest ball moves radii_per_step radii
-  // a step, for about three crossings of their container (at least 3 steps, at most 300).
-  {
+  // a step, for about three crossings of their container (at least 3 steps, at most 300). (Not
+  // when no body moves: there is no speed to scale; the command lists that as not measured.)
+  if (with_scene) {
     SceneDescription s = scene;
     auto& m = *s.mechanical;
     double fastest = 0;
@@ -499,10 +584,8 @@ SpeedRow measure_speed(const SceneDescription& scene, Integrator integrator, dou
       for (double v : b.velocity) v2 += v * v;
       fastest = std::max(fastest, std::sqrt(v2));
     }
-    if (fastest == 0) {
-      row.gas_failed = "no body moves";
-      return row;
-    }
+    if (fastest == 0) return row;
+    row.gas_measured = true;
     const double scale = radii_per_step * r / dt / fastest;
     for (auto& b : m.bodies)
       for (double& v : b.velocity) v *= scale;
@@ -540,17 +623,49 @@ SpeedRow measure_speed(const SceneDescription& scene, Integrator integrator, dou
 
 std::vector<std::string> stick_variants() { return {"every second body", "the last body"}; }
 
+std::vector<size_t> stick_variant_bodies(const SceneDescription& scene, const std::string& variant) {
+  const size_t n = scene.mechanical->bodies.size();
+  std::vector<size_t> heavier;
+  if (variant == "the last body") {
+    if (n > 0) heavier.push_back(n - 1);
+  } else {
+    for (size_t i = 1; i < n; i += 2) heavier.push_back(i);
+  }
+  return heavier;
+}
+
+std::string stick_variant_not_measured(const SceneDescription& scene, const std::string& variant,
+                                       const std::vector<std::string>& earlier) {
+  const auto& m = *scene.mechanical;
+  std::vector<bool> pinned(m.bodies.size(), false);
+  for (const auto& p : m.pins) pinned[static_cast<size_t>(p.body)] = true;
+  // The free bodies a variant makes heavier: a pinned one's mass changes nothing (the projection
+  // holds it as if infinitely heavy).
+  auto heavier_free = [&](const std::string& v) {
+    std::vector<bool> heavier(m.bodies.size(), false);
+    for (size_t i : stick_variant_bodies(scene, v)) heavier[i] = !pinned[i];
+    return heavier;
+  };
+  const auto heavier = heavier_free(variant);
+  for (const auto& before : earlier)
+    if (heavier_free(before) == heavier) return "the same free bodies made heavier as by \"" + before + "\"";
+  const bool joins = std::any_of(m.sticks.begin(), m.sticks.end(), [&](const StickConstraint& s) {
+    const auto a = static_cast<size_t>(s.a), b = static_cast<size_t>(s.b);
+    return !pinned[a] && !pinned[b] && heavier[a] != heavier[b];
+  });
+  if (!joins)
+    return "no stick joins masses 1 and R: every stick from a body it makes heavier ends at a pinned body (a pin "
+           "holds its body as if infinitely heavy) or at one made as heavy";
+  return "";
+}
+
 StickRow measure_sticks(const SceneDescription& scene, const std::string& variant, double ratio, const Settings& settings,
                         const Tick& tick) {
   StickRow row;
   row.variant = variant;
   row.ratio = ratio;
   SceneDescription s = scene;
-  auto& bodies = s.mechanical->bodies;
-  if (variant == "the last body")
-    bodies.back().mass *= ratio;
-  else
-    for (size_t i = 1; i < bodies.size(); i += 2) bodies[i].mass *= ratio;
+  for (size_t i : stick_variant_bodies(scene, variant)) s.mechanical->bodies[i].mass *= ratio;
   try {
     Simulation sim(s, Integrator::Verlet);
     row.max_error = sim.constraint_error();

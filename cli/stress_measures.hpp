@@ -6,10 +6,15 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "motus/integrator_name.hpp"
 #include "motus/scene.hpp"
+
+namespace motus {
+class Simulation;
+}
 
 namespace motus::cli::stress {
 
@@ -17,7 +22,9 @@ struct Settings {
   long steps = 10000;          // steps of one stability or stiffness trial
   long drift_steps = 100000;   // steps of the long run
   double energy_factor = 1e6;  // blown up: |E − E0| > energy_factor·|E0|
-  double duration = 1;         // simulated seconds of a mass-ratio or sticks run (at most the scene's)
+  double duration = 1;         // simulated seconds of a mass-ratio or sticks run (at most the scene's); a
+                               // mass-ratio scene run whose balls have not met by then runs on until this
+                               // long after they first do (at most the scene's duration)
 };
 
 // Called every step or so: the progress bar, which is also where Ctrl-C is honoured.
@@ -65,8 +72,17 @@ struct DriftResult {
   long steps = 0;                    // steps run (fewer than asked when it blew up)
   double first_hundredth_max = 0, last_tenth_max = 0;  // the largest error over the first 1 % and the last 10 % of the run
   std::string blown;                 // "" or "not finite at t = …", "escaped (E >= 0) at t = …"
-  std::string verdict;               // "bounded", "grows ×…", "lost its energy (…)", or the blow-up
+  // The energies' own scale, |KE| + |PE|, largest over the last tenth, and the rounding floor: what
+  // rounding the state each step can do to the energy, summed over the run (drift_rounding_scale).
+  // A last tenth's |E − E0| within that floor is rounding, whatever E0: free fall's E0 is 54.5 J
+  // while its KE and PE pass 5e7 J each, and |E − E0|/|E0| is then cancellation.
+  double energy_scale = 0, rounding_floor = 0, last_tenth_max_abs = 0;
+  std::string verdict;  // "rounding (…)", "bounded", "grows ×…", "lost its energy (…)", or the blow-up
 };
+// The energy change that rounding the state once can make, after one step: a few roundings (4 ε)
+// of |KE| + |PE|; for verlet, which carries a velocity as the difference of two positions over h,
+// also each coordinate's rounding ε|x| as a velocity error ε|x|/h, m|v|·4ε|x|/h.
+double drift_rounding_scale(const Simulation& sim, Integrator integrator, double h);
 DriftResult measure_drift(const SceneDescription& scene, Integrator integrator, const Settings& settings, const Tick& tick);
 
 // ---- stiffness: the force constant raised by decades at a fixed dt ------------------------
@@ -94,20 +110,40 @@ struct PairOutcome {
   double velocity_error = 0;  // max |v − v_formula| / u over both balls
   double energy_error = 0;    // |KE − KE_formula| / KE0
   double momentum_error = 0;  // |p − p0| / (m_a u + m_b u)
-  long collisions = 0;        // ball–ball collisions counted (impulses; 0 for verlet's projection)
+  long collisions = 0;        // ball–ball contacts (impulses, or contacts verlet's projection began)
   std::string failed;
 };
 struct MassRatioRow {
   Integrator integrator{};
   double ratio = 1;
   PairOutcome pair;          // a head-on pair of masses 1 and ratio, against the textbook formula
-  double gas_energy_error = 0;  // the scene with every second body's mass × ratio: max |E − E0|/|E0|
+  // The scene with every second body's mass × ratio: max |E − E0|/|E0|, and its ball–ball contacts.
+  // A run in which no balls met measured nothing: gas_collisions is then 0 and the page says so.
+  bool gas_measured = false;  // false: not run (the scene has fewer than two balls)
+  double gas_energy_error = 0;
   long gas_steps = 0;
+  long gas_collisions = 0;
   std::string gas_failed;
 };
 std::vector<double> mass_ratios();  // 1, 10, …, 10⁶
+// with_scene: also run the scene's own rows (it has two balls or more to meet).
 MassRatioRow measure_mass_ratio(const SceneDescription& scene, Integrator integrator, double ratio,
-                                const Settings& settings, const Tick& tick);
+                                const Settings& settings, bool with_scene, const Tick& tick);
+// Ball–ball contacts after a step: an impulse's count (symplectic Euler's, from the engine's
+// counters) or, for verlet, whose projection keeps no count, pairs that touch after a step and did
+// not after the step before. Call after every step.
+class ContactCount {
+public:
+  explicit ContactCount(Integrator integrator) : integrator_(integrator) {}
+  void start(const Simulation& sim);  // the pairs touching at the start are not new contacts
+  void after_step(const Simulation& sim);
+  long count() const { return count_; }
+
+private:
+  Integrator integrator_;
+  std::vector<std::pair<int, int>> touching_;
+  long count_ = 0;
+};
 
 // ---- speed: balls that move many radii per step ------------------------------------------
 struct SpeedRow {
@@ -127,9 +163,11 @@ struct SpeedRow {
   double gas_energy_error = 0;
   long gas_collisions = 0;
   std::string gas_failed;
+  bool gas_measured = false;     // false: not run (no body of the scene moves: no speed to scale)
 };
 std::vector<double> speeds();  // 1, 10, …, 10⁴ radii per step
-SpeedRow measure_speed(const SceneDescription& scene, Integrator integrator, double radii_per_step, const Tick& tick);
+SpeedRow measure_speed(const SceneDescription& scene, Integrator integrator, double radii_per_step, bool with_scene,
+                       const Tick& tick);
 
 // ---- sticks: sticks between masses of very different size ---------------------------------
 struct StickRow {
@@ -141,7 +179,13 @@ struct StickRow {
   std::string failed;
 };
 std::vector<std::string> stick_variants();
-StickRow measure_sticks(const SceneDescription& scene, const std::string& variant, double ratio, const Settings& settings,
+// The bodies a variant makes R times heavier.
+std::vector<size_t> stick_variant_bodies(const SceneDescription& scene, const std::string& variant);
+// Why a variant measures nothing new ("" when it does): it makes the same free bodies heavier as a
+// variant in `earlier`, or no stick joins a body it makes heavier to a free body it does not (a
+// pinned end is as if infinitely heavy, whatever its mass).
+std::string stick_variant_not_measured(const SceneDescription& scene, const std::string& variant,
+                                       const std::vector<std::string>& earlier);StickRow measure_sticks(const SceneDescription& scene, const std::string& variant, double ratio, const Settings& settings,
                         const Tick& tick);
 
 }  // namespace motus::cli::stress

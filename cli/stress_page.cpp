@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <stdexcept>
@@ -44,6 +45,13 @@ private:
   std::ofstream out_;
 };
 
+// What a mass-ratio row's scene run says in place of its energy error, or "" when it has one to show.
+std::string scene_run_says(const MassRatioRow& m, FailureNotes& notes) {
+  if (!m.gas_failed.empty()) return notes.cell(m.gas_failed);
+  if (m.gas_collisions == 0) return "no contact in the run";
+  return "";
+}
+
 bool has(const Report& r, const std::string& section) {
   return std::find(r.sections.begin(), r.sections.end(), section) != r.sections.end();
 }
@@ -83,22 +91,33 @@ void write_csvs(const std::string& folder, const Report& r) {
   }
   if (has(r, "mass_ratio")) {
     File f(folder + "/mass_ratio.csv");
+    // (The scene's cells are empty where it was not run, and its energy error where its balls never met.)
     f << "integrator,ratio,pair_velocity_error,pair_energy_error,pair_momentum_error,pair_collisions,pair_failed,"
-         "gas_steps,gas_max_energy_error,gas_failed\n";
-    for (const auto& m : r.mass_ratio)
+         "gas_steps,gas_collisions,gas_max_energy_error,gas_failed\n";
+    for (const auto& m : r.mass_ratio) {
       f << name(m.integrator) << ',' << csv(m.ratio) << ',' << csv(m.pair.velocity_error) << ',' << csv(m.pair.energy_error) << ','
-        << csv(m.pair.momentum_error) << ',' << m.pair.collisions << ",\"" << m.pair.failed << "\"," << m.gas_steps << ','
-        << csv(m.gas_energy_error) << ",\"" << m.gas_failed << "\"\n";
+        << csv(m.pair.momentum_error) << ',' << m.pair.collisions << ",\"" << m.pair.failed << "\",";
+      if (m.gas_measured)
+        f << m.gas_steps << ',' << m.gas_collisions << ',' << (m.gas_collisions > 0 ? csv(m.gas_energy_error) : "") << ",\""
+          << m.gas_failed << "\"\n";
+      else
+        f << ",,,\"\"\n";
+    }
   }
   if (has(r, "speed")) {
     File f(folder + "/speed.csv");
     f << "integrator,radii_per_step,pair_steps,pair_order_kept,pair_inside,pair_ball_collisions,pair_max_energy_error,"
          "pair_failed,gas_steps,gas_outside,gas_max_overlap,gas_max_energy_error,gas_collisions,gas_failed\n";
-    for (const auto& s : r.speed)
+    for (const auto& s : r.speed) {
       f << name(s.integrator) << ',' << csv(s.radii_per_step) << ',' << s.pair_steps << ',' << (s.pair_order_kept ? "true" : "false")
         << ',' << (s.pair_inside ? "true" : "false") << ',' << s.pair_ball_collisions << ',' << csv(s.pair_energy_error) << ",\""
-        << s.pair_failed << "\"," << s.gas_steps << ',' << s.gas_outside << ',' << csv(s.gas_max_overlap) << ','
-        << csv(s.gas_energy_error) << ',' << s.gas_collisions << ",\"" << s.gas_failed << "\"\n";
+        << s.pair_failed << "\",";
+      if (s.gas_measured)
+        f << s.gas_steps << ',' << (r.speed_container ? std::to_string(s.gas_outside) : "") << ',' << csv(s.gas_max_overlap) << ','
+          << csv(s.gas_energy_error) << ',' << s.gas_collisions << ",\"" << s.gas_failed << "\"\n";
+      else
+        f << ",,,,,\"\"\n";
+    }
   }
   if (has(r, "sticks")) {
     File f(folder + "/sticks.csv");
@@ -189,15 +208,16 @@ std::vector<plot::Figure> figures(const Report& r) {
       for (const auto& m : r.mass_ratio)
         if (m.integrator == i) {
           pair.x.push_back(m.ratio), pair.y.push_back(m.pair.failed.empty() ? m.pair.velocity_error : NAN);
-          gas.x.push_back(m.ratio), gas.y.push_back(m.gas_failed.empty() ? m.gas_energy_error : NAN);
+          gas.x.push_back(m.ratio), gas.y.push_back(m.gas_failed.empty() && m.gas_collisions > 0 ? m.gas_energy_error : NAN);
         }
-      if (!pair.x.empty()) f.series.push_back(std::move(pair)), f.series.push_back(std::move(gas));
+      if (!pair.x.empty()) f.series.push_back(std::move(pair));
+      if (!pair.x.empty() && r.mass_ratio_scene) f.series.push_back(std::move(gas));
     }
     f.note = "a point missing from a line is exactly 0 (a log axis has no 0)";
-    f.gap_from = "no value from", f.gap_means = "the run failed: see the table";
+    f.gap_from = "no value from", f.gap_means = "the run failed, or its balls never met: see the table";
     all.push_back(std::move(f));
   }
-  if (has(r, "speed")) {
+  if (has(r, "speed") && r.speed_scene) {  // (the figure is the scene's: the pair's outcome is a yes or no)
     plot::Figure f;
     f.stem = "speed";
     f.title = who + "balls moving many radii per step";
@@ -212,7 +232,7 @@ std::vector<plot::Figure> figures(const Report& r) {
           overlap.x.push_back(s.radii_per_step), overlap.y.push_back(s.gas_failed.empty() ? s.gas_max_overlap : NAN);
           energy.x.push_back(s.radii_per_step), energy.y.push_back(s.gas_failed.empty() ? s.gas_energy_error : NAN);
         }
-      if (!overlap.x.empty()) f.series.push_back(std::move(overlap)), f.series.push_back(std::move(energy));
+      if (!overlap.x.empty() && r.speed_scene) f.series.push_back(std::move(overlap)), f.series.push_back(std::move(energy));
     }
     f.note = "the scene's balls with their velocities scaled; tunnelling is in the table";
     f.gap_from = "no value from", f.gap_means = "failed: see the table";
@@ -225,7 +245,7 @@ std::vector<plot::Figure> figures(const Report& r) {
     f.x_label = "mass ratio R";
     f.y_label = "largest |length - rest| / rest over the run";
     f.x_scale = f.y_scale = plot::Scale::log;
-    for (const auto& variant : stick_variants()) {
+    for (const auto& variant : r.stick_variants_measured) {
       plot::Series line{variant + " × R", {}, {}, "linespoints"};
       for (const auto& s : r.sticks)
         if (s.variant == variant) line.x.push_back(s.ratio), line.y.push_back(s.failed.empty() ? s.max_error : NAN);
@@ -239,6 +259,12 @@ std::vector<plot::Figure> figures(const Report& r) {
 }
 
 }  // namespace
+
+std::string FailureNotes::cell(const std::string& message) {
+  auto at = std::find(notes_.begin(), notes_.end(), message);
+  if (at == notes_.end()) at = notes_.insert(notes_.end(), message);
+  return fmt::format("failed ({})", at - notes_.begin() + 1);
+}
 
 double theory_first_failure(const Report& r, Integrator integrator) {
   if (!r.omega) return 0;
@@ -264,7 +290,7 @@ nlohmann::json summary_json(const Report& r) {
                    {"energy_factor", r.settings.energy_factor},
                    {"duration", r.settings.duration}};
   j["omega"] = r.omega ? nlohmann::json(*r.omega) : nlohmann::json(nullptr);
-  j["sections"] = r.sections;
+  j["sections"] = r.sections.empty() ? nlohmann::json::array() : nlohmann::json(r.sections);
   j["not_applied"] = nlohmann::json::object();
   for (const auto& [section, why] : r.not_applied) j["not_applied"][section] = why;
   j["cannot_run"] = nlohmann::json::object();
@@ -294,6 +320,10 @@ nlohmann::json summary_json(const Report& r) {
                             {"last_tenth_max", d.skipped.empty() && d.blown.empty() ? number_or_null(d.last_tenth_max)
                                                                                     : nlohmann::json(nullptr)},
                             {"blown", d.blown},
+                            {"energy_scale", number_or_null(d.energy_scale)},
+                            {"last_tenth_max_abs", d.skipped.empty() && d.blown.empty() ? number_or_null(d.last_tenth_max_abs)
+                                                                                        : nlohmann::json(nullptr)},
+                            {"rounding_floor", number_or_null(d.rounding_floor)},
                             {"verdict", d.verdict}});
   }
   if (has(r, "stiffness")) {
@@ -315,8 +345,14 @@ nlohmann::json summary_json(const Report& r) {
                                  {"pair_velocity_error", m.pair.velocity_error},
                                  {"pair_energy_error", m.pair.energy_error},
                                  {"pair_momentum_error", m.pair.momentum_error},
+                                 {"pair_collisions", m.pair.collisions},
                                  {"pair_failed", m.pair.failed},
-                                 {"gas_max_energy_error", number_or_null(m.gas_energy_error)},
+                                 // (null where the scene was not run, or its balls never met: nothing measured)
+                                 {"gas_measured", m.gas_measured},
+                                 {"gas_steps", m.gas_steps},
+                                 {"gas_collisions", m.gas_collisions},
+                                 {"gas_max_energy_error", m.gas_measured && m.gas_collisions > 0 ? number_or_null(m.gas_energy_error)
+                                                                                                 : nlohmann::json(nullptr)},
                                  {"gas_failed", m.gas_failed}});
   }
   if (has(r, "speed")) {
@@ -328,9 +364,10 @@ nlohmann::json summary_json(const Report& r) {
                             {"pair_inside", s.pair_inside},
                             {"pair_ball_collisions", s.pair_ball_collisions},
                             {"pair_failed", s.pair_failed},
-                            {"gas_outside", s.gas_outside},
-                            {"gas_max_overlap", s.gas_max_overlap},
-                            {"gas_max_energy_error", number_or_null(s.gas_energy_error)},
+                            {"gas_measured", s.gas_measured},
+                            {"gas_outside", s.gas_measured && r.speed_container ? nlohmann::json(s.gas_outside) : nlohmann::json(nullptr)},
+                            {"gas_max_overlap", s.gas_measured ? nlohmann::json(s.gas_max_overlap) : nlohmann::json(nullptr)},
+                            {"gas_max_energy_error", s.gas_measured ? number_or_null(s.gas_energy_error) : nlohmann::json(nullptr)},
                             {"gas_failed", s.gas_failed}});
   }
   if (has(r, "sticks")) {
@@ -364,7 +401,7 @@ std::string write_page(const std::string& folder, const Report& r) {
                    "<code>motus::Simulation</code> on the scene or on a variant of it; the CSV files hold every run. "
                    "Sections: {}.</p>\n",
                    r.bodies, r.bodies == 1 ? "body" : "bodies", r.dimensions, r.dimensions == 1 ? "" : "s", r.dt,
-                   html_escape(fmt::format("{}", fmt::join(r.sections, ", "))));
+                   r.sections.empty() ? std::string("none") : html_escape(fmt::format("{}", fmt::join(r.sections, ", "))));
   if (!r.not_applied.empty()) {
     h << "<p>Not measured on this scene:</p><ul>\n";
     for (const auto& [section, why] : r.not_applied) h << "<li><b>" << html_escape(section) << "</b>: " << html_escape(why) << "</li>\n";
@@ -378,6 +415,11 @@ std::string write_page(const std::string& folder, const Report& r) {
   auto figure = [&](const std::string& stem, const std::string& alt) {
     if (warning.empty())
       h << "<p><a href=\"" << stem << ".png\"><img src=\"" << stem << ".svg\" alt=\"" << html_escape(alt) << "\"></a></p>\n";
+  };
+  // A table's failures, as notes below it (the cells say "failed (k)", as the terminal's).
+  auto write_notes = [&](const FailureNotes& notes) {
+    for (size_t k = 0; k < notes.notes().size(); ++k)
+      h << "<p class=\"no\">(" << k + 1 << ") " << html_escape(notes.notes()[k]) << "</p>\n";
   };
   const std::string blown_rule = fmt::format("the energy is not finite, or |E − E₀| &gt; {:g}·|E₀|, or an orbit that was bound "
                                              "(E₀ &lt; 0) escapes (E ≥ 0), or a pendulum's swing goes over the top "
@@ -418,7 +460,11 @@ std::string write_page(const std::string& folder, const Report& r) {
   if (has(r, "drift")) {
     h << "<h2 id=\"drift-heading\">Long-run drift</h2>\n<p>" << r.settings.drift_steps << " steps of the scene's dt = " << fmt::format("{:g}", r.dt)
       << " s; the energy error is recorded about 20 times a decade of steps, each point the largest since the one before. "
-         "Bounded: the largest error over the last tenth of the run is at most 1.5 times that over its first hundredth.</p>\n";
+         "Rounding: the largest |E − E₀| over the last tenth is within what rounding the state can do, 4ε of the energies' "
+         "own scale |KE| + |PE| each step (for <code>verlet</code>, whose velocity is a difference of positions, also "
+         "4ε·m|v||x|/h), added up over the run: judged so before anything else, since |E − E₀|/|E₀| is cancellation where "
+         "the energies dwarf E₀. Bounded: the largest error over the last tenth of the run is at most 1.5 times that over "
+         "its first hundredth.</p>\n";
     h << "<table aria-labelledby=\"drift-heading\"><tr><th scope=\"col\">integrator</th><th scope=\"col\">max, first hundredth</th><th scope=\"col\">max, last tenth</th><th scope=\"col\">verdict</th></tr>\n";
     for (const auto& d : r.drift) {
       if (!d.skipped.empty()) {
@@ -426,7 +472,8 @@ std::string write_page(const std::string& folder, const Report& r) {
         continue;
       }
       h << "<tr><th scope=\"row\">" << name(d.integrator) << "</th><td>" << short_number(d.first_hundredth_max) << "</td><td>"
-        << (d.blown.empty() ? short_number(d.last_tenth_max) : "–") << "</td><td class=\"" << (d.verdict == "bounded" ? "ok" : "no")
+        << (d.blown.empty() ? short_number(d.last_tenth_max) : "–") << "</td><td class=\""
+        << (d.verdict == "bounded" || d.verdict.rfind("rounding", 0) == 0 ? "ok" : "no")
         << "\">" << html_escape(d.verdict) << "</td></tr>\n";
     }
     h << "</table>\n";
@@ -461,17 +508,34 @@ std::string write_page(const std::string& folder, const Report& r) {
     h << "<h2 id=\"mass_ratio-heading\">Mass ratio</h2>\n<p>Two ways, for masses 1 and R from 1:1 to 1:10⁶. <b>The pair</b>: two balls of the scene's radius "
          "meeting head-on at ±1 m/s, against the course's one-dimensional collision formula (<code>docs/course.md</code>, "
          "section 9) with the scene's restitution for <code>symplectic-euler</code>'s impulses, and with e = 0 for "
-         "<code>verlet</code>, whose projected contacts are perfectly inelastic. <b>The scene</b>: every second body R times "
-         "heavier, run for "
-      << fmt::format("{:g}", r.settings.duration) << " s (at most the scene's duration); with e = 1 its energy is kept by the impulses.</p>\n";
+         "<code>verlet</code>, whose projected contacts are perfectly inelastic.";
+    if (r.mass_ratio_scene)
+      h << " <b>The scene</b>: every second body R times heavier, run for "
+        << fmt::format("{:g}", r.settings.duration)
+        << " s, or, when its balls have not met by then, until that long after they first do (at most the scene's "
+           "duration); its ball–ball contacts are counted (impulses, or for <code>verlet</code> the contacts its "
+           "projection begins), and a run in which none happened measured nothing and says so. With e = 1 its energy "
+           "is kept by the impulses.";
+    h << "</p>\n";
     h << "<table aria-labelledby=\"mass_ratio-heading\"><tr><th scope=\"col\">integrator</th><th scope=\"col\">R</th><th scope=\"col\">pair |v − v_formula|/u</th><th scope=\"col\">pair energy</th><th scope=\"col\">pair momentum</th>"
-         "<th scope=\"col\">scene max |ΔE|/E₀</th></tr>\n";
-    for (const auto& m : r.mass_ratio)
-      h << "<tr><th scope=\"row\">" << name(m.integrator) << "</th><td>" << fmt::format("{:g}", m.ratio) << "</td><td>"
-        << (m.pair.failed.empty() ? short_number(m.pair.velocity_error) : html_escape(m.pair.failed)) << "</td><td>"
-        << short_number(m.pair.energy_error) << "</td><td>" << short_number(m.pair.momentum_error) << "</td><td>"
-        << (m.gas_failed.empty() ? short_number(m.gas_energy_error) : html_escape(m.gas_failed)) << "</td></tr>\n";
+      << (r.mass_ratio_scene ? "<th scope=\"col\">scene contacts</th><th scope=\"col\">scene max |ΔE|/E₀</th>" : "") << "</tr>\n";
+    FailureNotes notes;
+    for (const auto& m : r.mass_ratio) {
+      h << "<tr><th scope=\"row\">" << name(m.integrator) << "</th><td>" << fmt::format("{:g}", m.ratio) << "</td>";
+      if (m.pair.failed.empty())
+        h << "<td>" << short_number(m.pair.velocity_error) << "</td><td>" << short_number(m.pair.energy_error) << "</td><td>"
+          << short_number(m.pair.momentum_error) << "</td>";
+      else
+        h << "<td colspan=\"3\" class=\"no\">" << notes.cell(m.pair.failed) << "</td>";
+      if (r.mass_ratio_scene) {
+        const std::string says = scene_run_says(m, notes);
+        h << "<td>" << m.gas_collisions << "</td>"
+          << (says.empty() ? "<td>" + short_number(m.gas_energy_error) : "<td class=\"no\">" + html_escape(says)) << "</td>";
+      }
+      h << "</tr>\n";
+    }
     h << "</table>\n";
+    write_notes(notes);
     figure("mass_ratio", "errors against the mass ratio");
     h << "<p>Data: <a href=\"mass_ratio.csv\">mass_ratio.csv</a>.</p>\n";
   }
@@ -481,37 +545,48 @@ std::string write_page(const std::string& folder, const Report& r) {
          "went through it. <b>The scene</b>: its balls with every velocity scaled so that the fastest moves that many radii a "
          "step, for about three crossings of the container (3 to 300 steps): balls found outside the container, the deepest "
          "overlap of two balls after a step, and the energy.</p>\n";
+    // (Only the columns that measure something: a scene at rest has no scene rows, and one with no
+    // box no balls outside it; both are listed under "not measured".)
+    const bool outside = r.speed_scene && r.speed_container;
     h << "<table aria-labelledby=\"speed-heading\"><tr><th scope=\"col\">integrator</th><th scope=\"col\">radii/step</th><th scope=\"col\">pair: order kept</th><th scope=\"col\">pair: in the box</th>"
-         "<th scope=\"col\">pair: collisions</th><th scope=\"col\">scene: outside</th><th scope=\"col\">scene: deepest overlap</th><th scope=\"col\">scene: max |ΔE|/E₀</th></tr>\n";
+         "<th scope=\"col\">pair: collisions</th>"
+      << (outside ? "<th scope=\"col\">scene: outside</th>" : "")
+      << (r.speed_scene ? "<th scope=\"col\">scene: deepest overlap</th><th scope=\"col\">scene: max |ΔE|/E₀</th>" : "") << "</tr>\n";
+    FailureNotes notes;
     for (const auto& s : r.speed) {
       h << "<tr><th scope=\"row\">" << name(s.integrator) << "</th><td>" << fmt::format("{:g}", s.radii_per_step) << "</td>";
       if (!s.pair_failed.empty())
-        h << "<td colspan=\"3\" class=\"no\">" << html_escape(s.pair_failed) << "</td>";
+        h << "<td colspan=\"3\" class=\"no\">" << notes.cell(s.pair_failed) << "</td>";
       else
         h << "<td class=\"" << (s.pair_order_kept ? "ok\">yes" : "no\">no: it went through") << "</td><td class=\""
           << (s.pair_inside ? "ok\">yes" : "no\">no") << "</td><td>" << s.pair_ball_collisions << "</td>";
-      if (!s.gas_failed.empty())
-        h << "<td colspan=\"3\" class=\"no\">" << html_escape(s.gas_failed) << "</td>";
-      else
-        h << "<td>" << s.gas_outside << "</td><td>" << short_number(s.gas_max_overlap) << "</td><td>" << short_number(s.gas_energy_error)
-          << "</td>";
+      if (r.speed_scene) {
+        if (!s.gas_failed.empty())
+          h << "<td colspan=\"" << (outside ? 3 : 2) << "\" class=\"no\">" << notes.cell(s.gas_failed) << "</td>";
+        else
+          h << (outside ? "<td>" + std::to_string(s.gas_outside) + "</td>" : "") << "<td>" << short_number(s.gas_max_overlap)
+            << "</td><td>" << short_number(s.gas_energy_error) << "</td>";
+      }
       h << "</tr>\n";
     }
     h << "</table>\n";
-    figure("speed", "overlap and energy error against the speed");
+    write_notes(notes);
+    if (r.speed_scene)     figure("speed", "overlap and energy error against the speed");
     h << "<p>Data: <a href=\"speed.csv\">speed.csv</a>.</p>\n";
   }
   if (has(r, "sticks")) {
     h << "<h2 id=\"sticks-heading\">Sticks between very different masses</h2>\n<p>The scene with "
          "<b>every second body</b> R times heavier (its sticks join a light and a heavy end), and with <b>the last body</b> R times "
-         "heavier (one heavy weight on light sticks), for "
+         "heavier (one heavy weight on light sticks), as far as each joins masses 1 and R (see above), for "
       << fmt::format("{:g}", r.settings.duration) << " s (at most the scene's duration), with <code>verlet</code> and the scene's "
          "projection sweeps. The stick error is the largest |length − rest length| / rest length over the sticks and the run.</p>\n";
     h << "<table aria-labelledby=\"sticks-heading\"><tr><th scope=\"col\">variant</th><th scope=\"col\">R</th><th scope=\"col\">max stick error</th><th scope=\"col\">at the end</th></tr>\n";
+    FailureNotes notes;
     for (const auto& s : r.sticks)
       h << "<tr><th scope=\"row\">" << html_escape(s.variant) << "</th><td>" << fmt::format("{:g}", s.ratio) << "</td><td>"
-        << (s.failed.empty() ? short_number(s.max_error) : html_escape(s.failed)) << "</td><td>" << short_number(s.final_error) << "</td></tr>\n";
+        << (s.failed.empty() ? short_number(s.max_error) : notes.cell(s.failed)) << "</td><td>" << short_number(s.final_error) << "</td></tr>\n";
     h << "</table>\n";
+    write_notes(notes);
     figure("sticks", "the stick error against the mass ratio");
     h << "<p>Data: <a href=\"sticks.csv\">sticks.csv</a>.</p>\n";
   }

@@ -30,6 +30,22 @@ struct Report {
   std::vector<MassRatioRow> mass_ratio;
   std::vector<SpeedRow> speed;
   std::vector<StickRow> sticks;
+  // What of a section that applies was measured (the rest is in not_applied, with why):
+  bool mass_ratio_scene = true;  // the mass-ratio rows of the scene itself (two balls or more)
+  bool speed_scene = true;       // the speed rows of the scene itself (a body moves)
+  bool speed_container = true;   // their balls outside a container (the scene has a box)
+  std::vector<std::string> stick_variants_measured;
+};
+
+// A table's failures: the cell says "failed (k)", and the message is note k below the table (a
+// message cut to fit a cell, 100 characters, ran over three columns). The same message is one note.
+class FailureNotes {
+public:
+  std::string cell(const std::string& message);  // "failed (k)"
+  const std::vector<std::string>& notes() const { return notes_; }
+
+private:
+  std::vector<std::string> notes_;
 };
 
 // The first factor of stiffness_factors() at which theory says the integrator blows up (0: none
