@@ -52,6 +52,20 @@ constexpr const char* kManifest = ".motus-render";
 // at a scene's usual dt (a few steps a frame), and no more than this for a small dt.
 constexpr double kTrailPointsPerFrame = 16;
 
+// Frames per simulated second (year) when --fps is not given.
+constexpr double kDefaultFps = 30;
+
+// The frame rate a render draws at: --fps, else kDefaultFps, but never more than one frame a step of a
+// fixed-step integrator. Frames between two steps show the state of the step after them, the one the
+// frame before showed: World2 (dt = 0.2 years) drew 6001 frames at 30 a year, of which 1001 differ
+// (316 MB and a minute, for the same video). At exactly 1/dt the frames' times are the steps' (the
+// step clock of Simulation::advance lands on t0 + k·dt), so every frame is a new step. An adaptive
+// integrator lands on every frame's time: any rate is new states.
+double frame_rate(const std::optional<double>& fps, const SceneDescription& scene, const Method& method) {
+  if (fps) return *fps;
+  return !method.adaptive() && scene.dt * kDefaultFps > 1 ? 1 / scene.dt : kDefaultFps;
+}
+
 // The names an earlier render listed in FOLDER/.motus-render (only plain names: no folder, no
 // hidden file).
 std::vector<std::string> listed_names(const fs::path& folder) {
@@ -208,7 +222,9 @@ CLI::App* add_render_command(CLI::App& app, RenderOptions& o) {
   render->add_option("scene", o.scene, "Scene file, or the name of a shipped scene (see `motus list`)")->required();
   render->add_option("--out", o.out, "Folder for frame_00000.png, ... (must not exist unless --overwrite)")->required()->check(folder_path());
   render->add_option("--size", o.size, "Frame size in pixels")->type_name("WxH")->capture_default_str();
-  render->add_option("--fps", o.fps, "Frames per second of simulated time (World2: per simulated year)")->capture_default_str();
+  render->add_option("--fps", o.fps,
+                     "Frames per second of simulated time (World2: per simulated year), and the video's rate "
+                     "(default: 30, or one a step when the scene's dt is longer than 1/30)");
   render->add_option("--duration", o.duration, "Simulated time to draw, s (World2: years; default: the scene's)")->transform(a_number());
   render->add_option("--integrator", o.integrator, "Integrator (default: the scene's); see `motus list`");
   render->add_option("--set", o.sets, "Override a scene field, e.g. --set lattice.count=1000 (repeatable)")
@@ -232,28 +248,42 @@ int render_command(const RenderOptions& o) {
   const Method method = method_for(path, scene, o.integrator);
   const std::string integrator_name = method.name();
   const auto [width, height] = parse_size(o.size);
-  if (!(o.fps > 0) || !std::isfinite(o.fps) || o.fps > 10000) throw InputError("--fps: must be a number > 0 (and at most 10000)");
+  if (o.fps && (!(*o.fps > 0) || !std::isfinite(*o.fps) || *o.fps > 10000))
+    throw InputError("--fps: must be a number > 0 (and at most 10000)");
+  const double fps = frame_rate(o.fps, scene, method);
+  const bool one_a_step = !o.fps && fps != kDefaultFps;  // (said in the summary: why not 30)
+  const std::string unit = time_unit_of(scene);  // "s" or "years"
   const double duration = o.duration.value_or(scene.duration);
   if (!(duration >= 0) || !std::isfinite(duration)) throw InputError("--duration: must be a finite number >= 0");
-  const double frame_count = std::floor(duration * o.fps + 1e-9) + 1;  // (a double first: 1e18 s is no long)
+  const double frame_count = std::floor(duration * fps + 1e-9) + 1;  // (a double first: 1e18 s is no long)
   if (frame_count > 100000)
     throw InputError(fmt::format("--duration/--fps: {} frames is too many (at most 100,000)",
                                  frame_count < 1e15 ? fmt::format("{:.0f}", frame_count) : fmt::format("{:.3g}", frame_count)));
   const long frames = static_cast<long>(frame_count);
-  // A video plays the frames at --fps; checked before anything is drawn (ffmpeg would refuse it
-  // only after every frame had been, and the failed run's folder goes with them).
+  // A video plays the frames at the frame rate, so that a simulated second (year) takes a second to
+  // watch whatever the rate: the default's one frame a step plays as 30 a second with each step
+  // repeated did. Checked before anything is drawn (ffmpeg would refuse it only after every frame had
+  // been, and the failed run's folder goes with them). At one frame a step (no --fps) it is the
+  // scene's step that is named, not an --fps the user did not give.
   if (!o.video.empty() && frames < 2)
-    throw InputError(fmt::format("--fps: {:g} frames per second of a {:g} s run is less than one frame after the first "
-                                 "(a video needs two)", o.fps, duration));
+    throw InputError(!one_a_step ? fmt::format("--fps: {:g} frames per second of a {:g} {} run is less than one frame "
+                                               "after the first (a video needs two)", fps, duration, unit)
+                                 : fmt::format("--duration: a video needs two frames, and a {:g} {} run at one frame a step "
+                                               "(dt = {:g} {}) has one: a longer --duration, or a smaller --set dt=...",
+                                               duration, unit, scene.dt, unit));
   // A GIF's frame delay is in hundredths of a second, and players slow a delay below 2 to 10: a
   // GIF past 50 frames a second played at 10 without a word (0.1 s of 10,000 a second took 100 s).
-  if (o.video == "gif" && o.fps > 50)
+  // (Without --fps the rate is at most 30.)
+  if (o.video == "gif" && fps > 50)
     throw InputError(fmt::format("--fps: a GIF plays at most 50 frames per second (its frame delay is in hundredths of a "
                                  "second), not {:g}: a lower --fps, or --video mp4",
-                                 o.fps));
-  if (!o.video.empty() && o.fps < 0.001)
-    throw InputError(fmt::format("--fps: a video at {:g} frames per second is slower than ffmpeg plays (0.001 at the least)",
-                                 o.fps));
+                                 fps));
+  if (!o.video.empty() && fps < 0.001)
+    throw InputError(!one_a_step ? fmt::format("--fps: a video at {:g} frames per second is slower than ffmpeg plays "
+                                               "(0.001 at the least)", fps)
+                                 : fmt::format("--video: one frame a step (dt = {:g} {}) is {:g} frames per second, "
+                                               "slower than ffmpeg plays (0.001 at the least): --fps 0.001 or more",
+                                               scene.dt, unit, fps));
   check_time_resolution(scene.start_time, duration, scene.dt, path + ": start_time",
                         o.duration ? "--duration" : path + ": dt/duration");
   check_position_resolution(scene, scene.dt, path);
@@ -309,7 +339,7 @@ int render_command(const RenderOptions& o) {
   };
   const bool trails_drawn = o.trails && scene.is_mechanical() && scene.mechanical->bodies.size() <= 64;
   const bool every_step = !scene.is_mechanical() || trails_drawn;
-  const double min_gap = scene.is_mechanical()       ? 0.999 / (o.fps * kTrailPointsPerFrame)
+  const double min_gap = scene.is_mechanical()       ? 0.999 / (fps * kTrailPointsPerFrame)
                          : scene.output_interval > 0 ? scene.output_interval * 0.999
                                                      : 0;
   ProgressBar progress(0, static_cast<double>(frames), scene.name, 1);
@@ -318,7 +348,7 @@ int render_command(const RenderOptions& o) {
   record(sim);
   job.frame_index.push_back(0);
   for (long k = 1; k < frames; ++k) {
-    const double target = t0 + static_cast<double>(k) / o.fps;
+    const double target = t0 + static_cast<double>(k) / fps;
     if (sim.time() < target - 1e-9 * std::max(1.0, std::abs(target))) {
       sim.advance(target, dt, tolerance, [&](const Simulation& s) {
         if (every_step && s.time() - recording.times.back() >= min_gap) record(s);
@@ -327,6 +357,17 @@ int render_command(const RenderOptions& o) {
     }
     job.frame_index.push_back(recording.times.size() - 1);
     progress.update(static_cast<double>(k));
+  }
+  // Frames that show the state the frame before showed: only at an --fps above one frame a step (the
+  // default never is). Said before the drawing, which takes the time, so that it can be stopped; not
+  // an error (a video at a round rate may be wanted), and the summary counts them again.
+  long distinct = frames > 0 ? 1 : 0;
+  for (size_t k = 1; k < job.frame_index.size(); ++k) distinct += job.frame_index[k] != job.frame_index[k - 1];
+  if (distinct < frames && !method.adaptive() && fps * scene.dt > 1) {
+    progress.finish();  // (the bar's line cleared first, on a terminal)
+    tell("motus: note: --fps {:g} is more than one frame a step of {} (dt = {:g} {}): {} of the {} frames differ, the "
+         "others repeat the one before (--fps {:g} draws each step once)\n",
+         fps, scene.name, scene.dt, unit, distinct, frames, 1 / scene.dt);
   }
 
   // Draw.
@@ -359,7 +400,7 @@ int render_command(const RenderOptions& o) {
   progress.finish();
   if (!o.video.empty()) {
     progress.note("encoding the video (ffmpeg)");
-    const std::string error = drawing.encode_video((fs::path(rendering.folder()) / "frame_%05d.png").string(), o.fps,
+    const std::string error = drawing.encode_video((fs::path(rendering.folder()) / "frame_%05d.png").string(), fps,
                                                    (fs::path(rendering.folder()) / video_name).string(), o.video);
     progress.finish();
     stop_if_interrupted();
@@ -369,9 +410,10 @@ int render_command(const RenderOptions& o) {
   stop_if_interrupted();
   rendering.move_into_place(names);
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count();
-  fmt::print("{} frame{} of {}x{} at {:g} per simulated {} ({:g} {} of {}) in {}/ ({:.1f} s)\n", frames, frames == 1 ? "" : "s", width, height,
-             o.fps, time_unit_of(scene) == "years" ? "year" : "second", duration, time_unit_of(scene), scene.name, without_trailing_separators(o.out).string(),
-             wall);
+  fmt::print("{} frame{}{} of {}x{} at {:g} per simulated {}{} ({:g} {} of {}) in {}/ ({:.1f} s)\n", frames,
+             frames == 1 ? "" : "s", distinct < frames ? fmt::format(" ({} distinct)", distinct) : "", width, height, fps,
+             unit == "years" ? "year" : "second", one_a_step ? ", one a step" : "", duration, unit, scene.name,
+             without_trailing_separators(o.out).string(), wall);
   if (!plugin_parts.empty()) fmt::print("passes       {}\n", plugin_parts);
   if (o.trails && scene.is_mechanical() && !trails_drawn)
     fmt::print("trails       none drawn: --trails draws scenes of at most 64 bodies, and this one has {}\n",

@@ -12,7 +12,9 @@ struct RenderOptions {
   std::string scene;
   std::string out;
   std::string size = "640x480";
-  double fps = 30;
+  // Frames per simulated second (year); unset: 30, or one a step of a fixed-step integrator whose
+  // dt is longer than 1/30 (render_command.cpp, frame_rate).
+  std::optional<double> fps;
   std::optional<double> duration;
   std::optional<std::string> integrator;
   std::vector<std::string> sets;

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <numbers>
@@ -313,6 +314,148 @@ TEST(RenderCommand, WritesFramesAtTheRateAskedOfTheSizeAsked) {
   EXPECT_FALSE(fs::exists(dir / "frames/frame_00005.png"));
 }
 
+// The default frame rate is at most one frame a step of a fixed-step integrator: World2 (dt = 0.2 years)
+// drew 30 frames a simulated year, 6 of each state, and spring (dt = 1 s) 30 of each. Now a frame every
+// dt, so floor(T/dt) + 1 frames, each a new step: no frame's bytes are the frame before's.
+namespace {
+std::string frame_name(long k) {
+  char name[32];
+  std::snprintf(name, sizeof name, "frame_%05ld.png", k);
+  return name;
+}
+std::string as_g(double x) {  // printf's %g, as the summary writes numbers
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", x);
+  return text;
+}
+}  // namespace
+
+TEST(RenderCommand, ByDefaultEveryFrameIsANewStep) {
+  TempDir dir;
+  for (const auto& [name, years] : std::vector<std::pair<std::string, double>>{{"world2", 2.0}, {"spring", 5.0}}) {
+    const double dt = load_scene(kScenes + "/" + name + ".json").dt;
+    ASSERT_GT(dt, 1.0 / 30) << name << ": the scene no longer has a step longer than a default frame";
+    const long expected = static_cast<long>(std::floor(years / dt + 1e-9)) + 1;  // world2: 11, spring: 6
+    const fs::path out = dir / name;
+    const auto r = run_motus(dir, {"render", name, "--out", out.string(), "--size", "320x240", "--duration",
+                                   as_g(years)});
+    ASSERT_EQ(r.status, 0) << name << ": " << r.err;
+    EXPECT_EQ(r.err, "") << name;
+    EXPECT_EQ(r.out.rfind(std::to_string(expected) + " frames of 320x240 at " + as_g(1 / dt) + " per simulated", 0), 0u)
+        << r.out;
+    EXPECT_NE(r.out.find("one a step"), std::string::npos) << r.out;
+    EXPECT_FALSE(fs::exists(out / frame_name(expected))) << name;
+    std::string before;
+    for (long k = 0; k < expected; ++k) {
+      const std::string frame = read_file(out / frame_name(k));
+      ASSERT_FALSE(frame.empty()) << name << " frame " << k;
+      EXPECT_NE(frame, before) << name << ": frame " << k << " repeats the one before";
+      before = frame;
+    }
+  }
+}
+
+// An --fps above one frame a step is drawn as asked (a video at a round rate may be wanted), and said in
+// one line before the drawing: World2 over 2 years at 30 a year is 61 frames of 2/0.2 + 1 = 11 states.
+TEST(RenderCommand, AnFpsAboveOneFrameAStepIsSaidInOneLine) {
+  TempDir dir;
+  const auto r = run_motus(dir, {"render", "world2", "--out", (dir / "frames").string(), "--size", "64x48", "--fps", "30",
+                                 "--duration", "2"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(count_lines(r.err), 1) << r.err;
+  EXPECT_EQ(r.err.rfind("motus: note: --fps 30 is more than one frame a step of world2 (dt = 0.2 years): 11 of the 61 "
+                        "frames differ",
+                        0),
+            0u)
+      << r.err;
+  EXPECT_NE(r.err.find("(--fps 5 draws each step once)"), std::string::npos) << r.err;
+  EXPECT_EQ(r.out.rfind("61 frames (11 distinct) of 64x48 at 30 per simulated year", 0), 0u) << r.out;
+  EXPECT_TRUE(fs::exists(dir / "frames/frame_00060.png"));
+}
+
+// A video of a run shorter than one step, at the default of one frame a step, has one frame: refused up
+// front as the --duration's (no --fps was given to name), one line, exit 2. (At 30 frames a second it drew
+// spring's one state at t = 1 s, past the 0.5 s asked for, 15 times.)
+TEST(RenderCommand, AVideoShorterThanAStepAtTheDefaultRateIsRefusedInOneLine) {
+  TempDir dir;
+  const auto r = run_motus(dir, {"render", "spring", "--out", (dir / "frames").string(), "--size", "64x48", "--duration",
+                                 "0.5", "--video", "gif"});  // (refused before ffmpeg is looked for)
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_EQ(count_lines(r.err), 1) << r.err;
+  EXPECT_NE(r.err.find("--duration: a video needs two frames, and a 0.5 s run at one frame a step (dt = 1 s) has one"),
+            std::string::npos)
+      << r.err;
+  EXPECT_FALSE(fs::exists(dir / "frames"));
+}
+
+namespace {
+// The frame delays (hundredths of a second) of a GIF: each Graphic Control Extension's (21 F9 04, four
+// bytes, a 00 terminator).
+std::vector<int> gif_delays(const std::string& gif) {
+  std::vector<int> delays;
+  for (size_t at = 0; at + 8 <= gif.size(); ++at)
+    if (static_cast<unsigned char>(gif[at]) == 0x21 && static_cast<unsigned char>(gif[at + 1]) == 0xF9 &&
+        gif[at + 2] == 4 && gif[at + 7] == 0)
+      delays.push_back(static_cast<unsigned char>(gif[at + 4]) | static_cast<unsigned char>(gif[at + 5]) << 8);
+  return delays;
+}
+}  // namespace
+
+// The video plays at the frame rate, so a simulated year takes a second to watch at the default's
+// one frame a step as it did at 30 a year: World2's frames, dt = 0.2 years apart, last 20 hundredths
+// of a second each (they were 31 frames of 3–4 hundredths, six of each state).
+TEST(RenderCommand, AVideoAtOneFrameAStepPlaysASimulatedYearInASecond) {
+  TempDir dir;
+  const auto r = run_motus(dir, {"render", "world2", "--out", (dir / "frames").string(), "--size", "64x48", "--duration",
+                                 "1", "--video", "gif"});
+  if (r.status == 2 && r.err.find("ffmpeg not found") != std::string::npos) GTEST_SKIP() << "no ffmpeg here";
+  ASSERT_EQ(r.status, 0) << r.err;
+  const double dt = load_scene(kScenes + "/world2.json").dt;
+  const std::vector<int> delays = gif_delays(read_file(dir / "frames/world2.gif"));
+  EXPECT_EQ(delays.size(), 6u);  // 1/0.2 + 1 frames
+  for (int delay : delays) EXPECT_EQ(delay, static_cast<int>(std::lround(100 * dt)));
+}
+
+// The time axis's labels keep apart: World2 over one year ticked every 0.1 year, 34 px apart, under
+// labels such as "1900.1" 36 px wide — "19001900.11900.2…1901" on the frame. The band the tick labels
+// are drawn in (baselines at the plot's bottom + 15 px, the bottom 40 px above the frame's:
+// draw_time_series.cpp) is cut into runs of inked columns; each run must be one label at most as wide
+// as the widest label could be, and the runs a space apart at least.
+TEST(RenderPixels, TimeAxisLabelsStayApartOverAShortRun) {
+  TempDir dir;
+  const auto r = run_motus(dir, {"render", "world2", "--out", (dir / "frames").string(), "--size", "640x480", "--fps", "5",
+                                 "--duration", "1"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const Image frame = read_png((dir / "frames/frame_00005.png").string());
+  const Color background = DrawOptions{}.background;
+  const int baseline = frame.height - 40 + 15;
+  const TextStyle tick{11};
+  int widest = 0;
+  for (int i = 0; i <= 10; ++i) widest = std::max(widest, text_width(as_g(1900 + 0.1 * i), tick));
+  const int space = text_width(" ", tick);
+  ASSERT_GT(widest, 20);
+  std::vector<std::pair<int, int>> runs;  // [first, last] inked column
+  int blank = space;                      // blank columns since the last inked one
+  for (int x = 0; x < frame.width; ++x) {
+    bool inked = false;
+    for (int y = baseline - 10; y <= baseline + 3; ++y) inked = inked || frame.pixel(x, y) != background;
+    if (!inked) {
+      ++blank;
+      continue;
+    }
+    if (blank >= 2 || runs.empty()) runs.push_back({x, x});  // (two blank columns: between digits there are fewer)
+    runs.back().second = x;
+    blank = 0;
+  }
+  EXPECT_GE(runs.size(), 3u) << "fewer than three labels stand apart on the axis";
+  for (size_t i = 0; i < runs.size(); ++i) {
+    EXPECT_LE(runs[i].second - runs[i].first + 1, widest) << "labels run into each other at x = " << runs[i].first;
+    if (i > 0) {
+      EXPECT_GE(runs[i].first - runs[i - 1].second - 1, space) << "labels closer than a space at x = " << runs[i].first;
+    }
+  }
+}
+
 // Found by fuzzing the options: --trails and --arrows on a first-order system drew nothing and
 // said nothing (the frames were those of a render without them). They are said not to be drawn.
 TEST(RenderCommand, TrailsAndArrowsOnAFirstOrderSystemAreSaidNotDrawn) {
@@ -354,8 +497,9 @@ TEST(RenderCommand, AFolderNamedWithATrailingSlashIsThatFolder) {
 TEST(RenderCommand, ARenderThatFillsTheDiskLeavesNothingOfItsOwn) {
   TempDir dir;
   fs::create_directories(dir / "small");
+  // (dt = 0.01: 91 frames at 30 a second, more than 256 KB; at the scene's dt = 1 s it is 4 frames a step apart, which fit)
   const std::string script = "mount -t tmpfs -o size=256k tmpfs \"$1\" && exec \"$2\" render spring --out \"$1/a/r\" "
-                             "--size 320x240 --duration 3";
+                             "--size 320x240 --duration 3 --set dt=0.01";
   const auto r = run_program(dir, "/usr/bin/unshare",
                              {"--mount", "--propagation", "private", "/bin/sh", "-c", script + "; s=$?; ls -A \"$1\"; exit $s",
                               "sh", (dir / "small").string(), kMotus});
@@ -465,8 +609,9 @@ TEST(RenderCommand, AnErrorFfmpegReportsFailsTheRunEvenAtExitZero) {
   write_file(dir / "bin/ffmpeg", "#!/bin/sh\necho 'Error writing trailer of out.mp4: No space left on device' >&2\n"
                                  "echo 'Error closing file out.mp4: No space left on device' >&2\nexit 0\n");
   fs::permissions(dir / "bin/ffmpeg", fs::perms::owner_all);
+  // (dt = 0.1: at the scene's 1 s, --fps 10 is more than one frame a step, and that is said on a line of its own)
   const auto r = run_motus(dir, {"render", "spring", "--out", (dir / "frames").string(), "--size", "32x32", "--fps", "10",
-                                 "--duration", "0.3", "--video", "mp4"},
+                                 "--duration", "0.3", "--set", "dt=0.1", "--video", "mp4"},
                            {"PATH=" + (dir / "bin").string() + ":/usr/bin:/bin"});
   EXPECT_EQ(r.status, 1) << r.err;
   EXPECT_EQ(count_lines(r.err), 1) << r.err;

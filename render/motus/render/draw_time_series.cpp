@@ -29,6 +29,26 @@ std::vector<double> spread_labels(std::vector<double> y, double gap, double top,
   return y;
 }
 
+// The time axis's tick step: the finest round step (1, 2 or 5 × 10^k; about one tick per 45 pixels,
+// at most 8) whose labels, each centred on its tick, stay two spaces apart. A step from the pixels
+// alone ran labels into each other when they are long: World2 over one year ticked every 0.1 year,
+// 34 px apart, under labels "1900.1" 36 px wide ("19001900.11900.2…1901").
+double time_step(double t0, double t1, double pixels, const TextStyle& style) {
+  double step = nice_step(t1 - t0, std::clamp(static_cast<int>(pixels / 45), 2, 8));
+  const double gap = 2.0 * text_width(" ", style);
+  for (int coarser = 0; coarser < 64; ++coarser) {
+    const double first = std::ceil(t0 / step) * step;
+    int widest = 0;
+    for (int i = 0; first + i * step <= t1 + 1e-9 * step; ++i)
+      widest = std::max(widest, text_width(format_number("%g", first + i * step), style));
+    if (step / (t1 - t0) * pixels >= widest + gap) break;
+    // The next round step: 1 → 2 → 5 → 10 (the mantissa read back rounded: 0.2 is not 2·10⁻¹ exactly).
+    const double power = std::pow(10, std::floor(std::log10(step) + 1e-9)), mantissa = std::round(step / power);
+    step = power * (mantissa < 2 ? 2 : mantissa < 5 ? 5 : 10);
+  }
+  return step;
+}
+
 }  // namespace
 
 void draw_time_series(Canvas& canvas, const Viewport& v, const Recording& rec, size_t upto, const SeriesLabels& labels,
@@ -57,9 +77,11 @@ void draw_time_series(Canvas& canvas, const Viewport& v, const Recording& rec, s
   const Color grey{90, 94, 104, 255};
   // Axes, grid and tick labels; the time axis says what it counts.
   const TextStyle tick{11, grey, Align::center};
-  // About one tick per 45 pixels, so that four-digit years never run into each other.
-  const double step = nice_step(t1 - t0, std::clamp(static_cast<int>((right - left) / 45), 2, 8));
-  for (double t = std::ceil(t0 / step) * step; t <= t1 + 1e-9 * step; t += step) {
+  const double step = time_step(t0, t1, right - left, tick);
+  // (Each tick as first + i·step: a sum of steps drifts, 1900 + 0.2 five times is 1901.0000000000002.)
+  const double first = std::ceil(t0 / step) * step;
+  for (int i = 0; first + i * step <= t1 + 1e-9 * step; ++i) {
+    const double t = first + i * step;
     thick_line(px(t), top, px(t), bottom, 1, kGrid);
     canvas.text(static_cast<int>(px(t)), static_cast<int>(bottom) + 15, format_number("%g", t), tick);
   }
