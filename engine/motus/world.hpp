@@ -41,6 +41,9 @@ public:
   // Whether it projects positions (sticks, pins, or verlet's contacts): not only with sticks.
   bool has_constraints() const { return constraints_ != nullptr; }
   bool has_sticks() const { return has_sticks_; }
+  // Whether its contacts are projected apart (verlet) rather than resolved by impulses: restitution
+  // is then not used.
+  bool projects_contacts() const { return project_contacts_; }
   // The passes this world runs, in order (for summaries and reports).
   std::vector<std::string> passes() const;
 
