@@ -18,6 +18,7 @@
 #include <tuple>
 
 #include "grade_harness.hpp"
+#include "motus/grade/grader.hpp"
 #include "motus/grade/sandbox.hpp"
 
 namespace {
@@ -1719,6 +1720,29 @@ namespace {
 // A handed-in file that is not where the handout says, as students hand them in: the files test
 // says where it is (under another case, in a folder, packed), and a zip given as the submission
 // is refused saying to unpack it.
+// The summary on the terminal says a failed test's output once when the next ones say the same: a
+// submission that does not compile printed "Not run: the submission does not compile (see
+// \"build\")." under every one of its twenty-odd tests (a student audit).
+TEST(Grade, TheSummarySaysARepeatedOutputOnce) {
+  motus::grade::GradeResult r;
+  r.output = "0 of 3 points";
+  const std::string not_run = "Not run: the submission does not compile (see \"build\").";
+  const auto failed_test = [](std::string name, std::string number, std::string title, std::string output) {
+    motus::grade::TestResult t;
+    t.name = std::move(name), t.number = std::move(number), t.title = std::move(title), t.output = std::move(output);
+    t.max_score = 1;
+    return t;
+  };
+  r.tests = {failed_test("build", "1", "the submission compiles", "main.cpp:1: error: expected ';'"),
+             failed_test("euler.table", "2", "the table", not_run), failed_test("rk4.order", "3", "fourth order", not_run),
+             failed_test("verlet.order", "4", "second order", "a different reason")};
+  const std::string text = motus::grade::text_summary(r);
+  EXPECT_EQ(text.find(not_run), text.rfind(not_run)) << text;  // once
+  EXPECT_NE(text.find("rk4.order: fourth order\n             (as above)\n"), std::string::npos) << text;
+  EXPECT_NE(text.find("verlet.order: second order\n             a different reason\n"), std::string::npos) << text;
+  EXPECT_NE(text.find("euler.table: the table\n             " + not_run + "\n"), std::string::npos) << text;
+}
+
 TEST(Grade, AMissingFileSaysWhereItMightBe) {
   TempDir dir;
   const std::string solution = read_file(fs::path(kAssignments) / "integrators/solution/integrators.cpp");
@@ -1750,6 +1774,14 @@ TEST(Grade, AMissingFileSaysWhereItMightBe) {
   EXPECT_EQ(zip.status, 2);
   EXPECT_NE(zip.err.find("is a file; a submission is the folder of the handout's files (unpack it first)"),
             std::string::npos) << zip.err;
+  // The handout's file itself, not its folder (a student audit): the folder to give is named.
+  fs::create_directories(dir / "mine");
+  write_file(dir / "mine/integrators.cpp", "");
+  const auto file = run_motus(dir, {"grade", "integrators", (dir / "mine/integrators.cpp").string()});
+  EXPECT_EQ(file.status, 2);
+  EXPECT_NE(file.err.find("mine/integrators.cpp: is a file; a submission is the folder of the handout's files (give the "
+                          "folder that holds it: " + (dir / "mine").string() + ")"),
+            std::string::npos) << file.err;
 }
 
 // ---------------------------------------------------------------------------------------------------

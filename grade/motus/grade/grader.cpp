@@ -477,10 +477,16 @@ std::string text_summary(const GradeResult& r) {
   std::string text = terminal_safe(r.output) + fmt::format(" ({:.1f} s)\n", r.seconds);
   if (!r.totals.empty()) text += r.totals + "\n";
   text += "\n";
+  const std::string* shown = nullptr;  // the last failed test's output, as printed
   for (const auto& t : r.tests) {
     text += fmt::format("{:<5} {:<4} {:>5}/{:<5} {}: {}\n", t.passed ? "PASS" : "FAIL", t.number, t.score, t.max_score,
                         t.name, t.title);
-    if (!t.passed) {
+    if (!t.passed && shown && *shown == t.output) {
+      // (Every test of a submission that does not compile says "Not run: ..." alike: once, under the
+      // first, not twenty times after the compiler's own words.)
+      text += "             (as above)\n";
+    } else if (!t.passed) {
+      shown = &t.output;
       std::string indented;
       size_t start = 0;
       while (start < t.output.size()) {
