@@ -233,6 +233,30 @@ TEST(BenchPrecisionCommand, WritesTheRunFolderWithEveryMethodAndPeer) {
   EXPECT_NE(html.find("odeint:runge_kutta_fehlberg78"), std::string::npos);
 }
 
+// The progress bar counts steps, not points, and leaves out what cannot run the scene: counted in
+// points, arenstorf's bar stood at 15 % for most of its 89 s (each level has twice the steps of the
+// one before), and a first-order system's bar ended at 63 % (its five symplectic methods counted).
+TEST(BenchPrecisionCommand, ItsProgressIsTheWorkDoneAndReachesTheEnd) {
+  TempDir dir;
+  const auto r = run_motus(dir,
+                           {"bench", "precision", "lorenz_equations", "--levels", "6", "--per-decade", "1", "--repeats", "1",
+                            "--out", (dir / "run").string()},
+                           {"MOTUS_PROGRESS=always", "COLUMNS=80"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  std::vector<int> percents;  // every value the bar showed, in order
+  const std::regex percent(R"((\d+)%)");
+  for (auto it = std::sregex_iterator(r.err.begin(), r.err.end(), percent); it != std::sregex_iterator(); ++it)
+    if (const int p = std::stoi((*it)[1].str()); percents.empty() || p != percents.back()) percents.push_back(p);
+  ASSERT_GE(percents.size(), 7u) << r.err;
+  EXPECT_EQ(percents.back(), 100) << r.err;
+  // The work in units of the first level's steps: euler, midpoint and rk4 six levels each, 1 + 2 + … +
+  // 32 = 63 units; rk4-doubling, rk45 and dop853 eleven tolerances each, counted at one unit (their
+  // first step is the scene's dt): 3 · 63 + 3 · 11 = 222. Euler comes first: after its levels the bar
+  // shows 100 · (1, 3, 7, 15, 31, 63) / 222 % (the first, 0.45 %, as the start's 0 %).
+  const std::vector<double> euler = {0, 100.0 * 3 / 222, 100.0 * 7 / 222, 100.0 * 15 / 222, 100.0 * 31 / 222, 100.0 * 63 / 222};
+  for (size_t k = 0; k < euler.size(); ++k) EXPECT_NEAR(percents[k], euler[k], 1.0) << k << "\n" << r.err;
+}
+
 TEST(BenchPrecisionCommand, APeerThatCannotRunTheSceneIsReported) {
   TempDir dir;
   const fs::path out = dir / "lorenz-run";

@@ -53,7 +53,7 @@ Curve sweep_engine(const SceneDescription& scene, const std::string& name, const
     p.seconds = times.fastest();
     p.median_seconds = times.median();
     c.points.push_back(p);
-    if (sweep.point_done) sweep.point_done();
+    if (sweep.point_done) sweep.point_done(static_cast<double>(steps));
   }
   return c;
 }

@@ -30,6 +30,10 @@ std::vector<double> tolerances(const Sweep& sweep) {
   return tol;
 }
 
+double nominal_steps(const SceneDescription& scene, const Sweep& sweep, double h) {
+  return static_cast<double>(fixed_step_count(sweep.end - scene.start_time, h));
+}
+
 std::vector<double> engine_steps() { return {1.0 / 30, 1.0 / 60, 1.0 / 120, 1.0 / 240, 1.0 / 480, 1.0 / 960}; }
 
 Vector true_state(const SceneDescription& scene, double t) {
@@ -89,33 +93,37 @@ Point measure(const SceneDescription& scene, const Method& method, double h, dou
 
 }  // namespace
 
+std::string why_motus_cannot_run(const SceneDescription& scene, const Method& method) {
+  if (method.needs_mechanical() && !scene.is_mechanical()) {
+    // (A plug-in's step(x, v) need not be symplectic: a student's explicit Euler steps bodies too.)
+    return method.is_external() ? "steps bodies (x and v): needs a mechanical scene (bodies)"
+                                : "symplectic: needs a mechanical scene (bodies)";
+  }
+  try {
+    Simulation refused(scene, method);  // collisions or constraints the method cannot run
+  } catch (const SceneError& e) {
+    return e.what();
+  }
+  return "";
+}
+
 Curve sweep_motus(const SceneDescription& scene, const Method& method, const Sweep& sweep) {
   Curve c;
   c.method = method.name();
   c.engine = method.is_external() ? c.method.substr(0, c.method.find(':')) : "motus";
   c.description = method.description();
   c.adaptive = method.adaptive();
-  if (method.needs_mechanical() && !scene.is_mechanical()) {
-    // (A plug-in's step(x, v) need not be symplectic: a student's explicit Euler steps bodies too.)
-    c.unsupported = method.is_external() ? "steps bodies (x and v): needs a mechanical scene (bodies)"
-                                         : "symplectic: needs a mechanical scene (bodies)";
-    return c;
-  }
-  try {
-    Simulation refused(scene, method);  // collisions or constraints the method cannot run
-  } catch (const SceneError& e) {
-    c.unsupported = e.what();
-    return c;
-  }
+  c.unsupported = why_motus_cannot_run(scene, method);
+  if (!c.unsupported.empty()) return c;
   if (c.adaptive) {
     for (double tol : tolerances(sweep)) {
       c.points.push_back(measure(scene, method, sweep.dt, tol, sweep.end, sweep.repeats, sweep.now_and_then));
-      if (sweep.point_done) sweep.point_done();
+      if (sweep.point_done) sweep.point_done(nominal_steps(scene, sweep, sweep.dt));
     }
   } else {
     for (const double h : fixed_steps(scene, sweep)) {
       c.points.push_back(measure(scene, method, h, 0, sweep.end, sweep.repeats, sweep.now_and_then));
-      if (sweep.point_done) sweep.point_done();
+      if (sweep.point_done) sweep.point_done(nominal_steps(scene, sweep, h));
     }
   }
   return c;

@@ -19,5 +19,8 @@ double state_error(const SceneDescription& scene, const Vector& y, double t);
 // that cannot run the scene (symplectic on a first-order system) comes back with `unsupported` set
 // and no points; a run that fails (a step size underflowing) is a point with `failed` set.
 Curve sweep_motus(const SceneDescription& scene, const Method& method, const Sweep& sweep);
+// Why motus's `method` cannot run `scene` (a symplectic method on a first-order system, collisions
+// or sticks it has no pass for), or "" when it can: the curve's `unsupported`.
+std::string why_motus_cannot_run(const SceneDescription& scene, const Method& method);
 
 }  // namespace motus::precision

@@ -147,7 +147,7 @@ void runge_kutta(const SceneDescription& scene, System& f, const Vector& y0, con
       }
       return Outcome{to_vector(x), t, n};
     }));
-    if (sweep.point_done) sweep.point_done();
+    if (sweep.point_done) sweep.point_done(static_cast<double>(n));
   }
   curves.push_back(std::move(rk4));
 
@@ -159,7 +159,7 @@ void runge_kutta(const SceneDescription& scene, System& f, const Vector& y0, con
         const long steps = static_cast<long>(ode::integrate_adaptive(stepper, rhs, x, t0, end, sweep.dt));
         return Outcome{to_vector(x), end, steps};
       }));
-      if (sweep.point_done) sweep.point_done();
+      if (sweep.point_done) sweep.point_done(nominal_steps(scene, sweep, sweep.dt));
     }
     curves.push_back(std::move(c));
   };
@@ -202,7 +202,7 @@ void symplectic_rkn(const SceneDescription& scene, MechanicalSystem& system, con
       y << to_vector(q), to_vector(p);
       return Outcome{y, t, steps};
     }));
-    if (sweep.point_done) sweep.point_done();
+    if (sweep.point_done) sweep.point_done(static_cast<double>(steps));
   }
 }
 

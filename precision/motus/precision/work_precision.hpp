@@ -39,7 +39,10 @@ struct Sweep {
   int levels = 8;      // fixed-step methods: h = dt / 2^k, k = 0 … levels − 1
   int per_decade = 3;  // adaptive methods: rtol = atol = 10^(−3 − j/per_decade) down to 1e-13
   int repeats = 9;     // timed runs per point (after one untimed run); the fastest counts
-  std::function<void()> point_done;  // called after every point (a progress bar), may be empty
+  // Called after every point with its nominal steps (a fixed step's run length; an adaptive point's
+  // first-step count, end/dt, a guess), so that a progress bar can weigh the points by their work:
+  // each level has twice the steps of the one before. May be empty.
+  std::function<void(double steps)> point_done;
   // Called every 65,536 steps of a point's untimed run (a safe point to stop at: Ctrl-C waited for a
   // point of 10¹³ steps to end), may be empty. Never in a timed run.
   std::function<void()> now_and_then;
@@ -50,6 +53,9 @@ struct Sweep {
 // for motus's methods and Odeint's alike.
 std::vector<double> fixed_steps(const SceneDescription& scene, const Sweep& sweep);
 std::vector<double> tolerances(const Sweep& sweep);
+// The steps of a run of step h over the sweep (fixed_step_count from the scene's start): a point's
+// work, for the progress (Sweep::point_done).
+double nominal_steps(const SceneDescription& scene, const Sweep& sweep, double h);
 
 // The peers' steps (Box2D and Bullet run at the frame rates of games): 1/30, 1/60, … 1/960 s.
 std::vector<double> engine_steps();
