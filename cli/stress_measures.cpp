@@ -319,8 +319,10 @@ namespace {
 
 double kinetic(const Simulation& s) { return s.energy()->kinetic; }
 
-// The deepest overlap of two balls, over their contact distance (sort and sweep along x).
-double deepest_overlap(const Simulation& s) {
+// Calls close(a, b, squared distance, contact distance) for every pair of balls whose centres are
+// within `reach` times their contact distance (sort and sweep along x).
+template <class Close>
+void for_each_close_pair(const Simulation& s, double reach, Close close) {
   const auto& m = *s.scene().mechanical;
   const int d = m.dimensions;
   const auto& x = s.state();
@@ -329,38 +331,30 @@ double deepest_overlap(const Simulation& s) {
   for (size_t i = 0; i < m.bodies.size(); ++i)
     if (m.bodies[i].radius > 0) balls.push_back(static_cast<int>(i)), r_max = std::max(r_max, m.bodies[i].radius);
   std::sort(balls.begin(), balls.end(), [&](int a, int b) { return x[a * d] < x[b * d]; });
-  double deepest = 0;
   for (size_t i = 0; i < balls.size(); ++i)
-    for (size_t j = i + 1; j < balls.size() && x[balls[j] * d] - x[balls[i] * d] < 2 * r_max; ++j) {
+    for (size_t j = i + 1; j < balls.size() && x[balls[j] * d] - x[balls[i] * d] <= 2 * r_max * reach; ++j) {
       const int a = balls[i], b = balls[j];
       double d2 = 0;
       for (int k = 0; k < d; ++k) d2 += (x[a * d + k] - x[b * d + k]) * (x[a * d + k] - x[b * d + k]);
       const double contact = m.bodies[static_cast<size_t>(a)].radius + m.bodies[static_cast<size_t>(b)].radius;
-      if (d2 < contact * contact) deepest = std::max(deepest, (contact - std::sqrt(d2)) / contact);
+      if (d2 <= contact * contact * reach * reach) close(a, b, d2, contact);
     }
+}
+
+// The deepest overlap of two balls, over their contact distance.
+double deepest_overlap(const Simulation& s) {
+  double deepest = 0;
+  for_each_close_pair(s, 1, [&](int, int, double d2, double contact) {
+    deepest = std::max(deepest, (contact - std::sqrt(d2)) / contact);
+  });
   return deepest;
 }
 
 // The pairs of balls touching or overlapping now (within a relative 1e-9 of their contact
 // distance: verlet's projection leaves a pair it parted at that distance, to rounding), sorted.
 std::vector<std::pair<int, int>> touching_pairs(const Simulation& s) {
-  const auto& m = *s.scene().mechanical;
-  const int d = m.dimensions;
-  const auto& x = s.state();
-  std::vector<int> balls;
-  double r_max = 0;
-  for (size_t i = 0; i < m.bodies.size(); ++i)
-    if (m.bodies[i].radius > 0) balls.push_back(static_cast<int>(i)), r_max = std::max(r_max, m.bodies[i].radius);
-  std::sort(balls.begin(), balls.end(), [&](int a, int b) { return x[a * d] < x[b * d]; });
   std::vector<std::pair<int, int>> pairs;
-  for (size_t i = 0; i < balls.size(); ++i)
-    for (size_t j = i + 1; j < balls.size() && x[balls[j] * d] - x[balls[i] * d] <= 2 * r_max * (1 + 1e-9); ++j) {
-      const int a = balls[i], b = balls[j];
-      double d2 = 0;
-      for (int k = 0; k < d; ++k) d2 += (x[a * d + k] - x[b * d + k]) * (x[a * d + k] - x[b * d + k]);
-      const double contact = (m.bodies[static_cast<size_t>(a)].radius + m.bodies[static_cast<size_t>(b)].radius) * (1 + 1e-9);
-      if (d2 <= contact * contact) pairs.emplace_back(std::min(a, b), std::max(a, b));
-    }
+  for_each_close_pair(s, 1 + 1e-9, [&](int a, int b, double, double) { pairs.emplace_back(std::min(a, b), std::max(a, b)); });
   std::sort(pairs.begin(), pairs.end());
   return pairs;
 }
