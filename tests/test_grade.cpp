@@ -610,6 +610,8 @@ TEST(Plugins, ATimeOfImpactWhenTheBodiesDoNotTouchStopsTheRun) {
   EXPECT_NE(r.err.find(centre + ": returned "), std::string::npos) << r.err;
   EXPECT_NE(r.err.find(" m from a plane and moving into it at "), std::string::npos) << r.err;
   EXPECT_NE(r.err.find(" m/s: it reaches the plane within the 0.001 s left of the step"), std::string::npos) << r.err;
+  // And where in the run: the ball's bottom falls 10 m in √(2 · 10 / 9.81) = 1.4278 s, in the 1428th step of 1 ms.
+  EXPECT_NE(r.err.find(" (in step 1428, from t = 1.427)"), std::string::npos) << r.err;
   // A small fast ball (r = 0.01 at 10 m/s, 0.05 m above the floor, dt = 0.01 s): the centre's time,
   // 0.005 s, is within the first step, when the ball would be its radius into the floor.
   write_file(dir / "fast_drop.json", R"({"name": "fast_drop", "dimensions": 2,
