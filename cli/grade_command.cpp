@@ -129,18 +129,13 @@ std::string new_folder(const std::string& prefix) {
 // stops the grading here still leaves a results.json that says why: on Gradescope a missing
 // one shows every student only "the autograder failed" (a container without user namespaces,
 // where bubblewrap cannot make a sandbox, is the likely cause there).
-// What an archive's name ends with (a submission handed in packed).
-constexpr const char* kArchiveEndings[] = {".zip", ".tar", ".tar.gz", ".tgz", ".tar.xz", ".txz", ".tar.bz2", ".tbz2", ".7z", ".rar", ".gz"};
-
 grade::Assignment ready_to_grade(const GradeCommandOptions& o, const std::string& folder) {
   try {
     const auto submission = looked_at(o.submission);
     if (fs::is_regular_file(submission)) {
       // An archive is unpacked first; any other file (the handout's integrators.cpp itself, as a
       // student audit gave it) is in the folder to give instead.
-      const std::string name = fs::path(o.submission).filename().string();
-      const bool archive = std::any_of(std::begin(kArchiveEndings), std::end(kArchiveEndings),
-                                       [&](const char* ending) { return name.ends_with(ending); });
+      const bool archive = grade::looks_packed(fs::path(o.submission).filename().string());
       const fs::path parent = fs::path(o.submission).parent_path();
       throw InputError(o.submission + ": is a file; a submission is the folder of the handout's files " +
                        (archive ? std::string("(unpack it first)")

@@ -27,15 +27,6 @@
 namespace motus::cli {
 
 namespace {
-// Whether any contact of the scene asks for a bounce: a ball with restitution above 0 (a
-// contact's e is the product of its parties': with every ball's 0, no wall's can make one).
-bool bounces(const SceneDescription& scene) {
-  if (!scene.mechanical) return false;
-  const auto& bodies = scene.mechanical->bodies;
-  return std::any_of(bodies.begin(), bodies.end(), [](const BodyDescription& b) { return b.radius > 0 && b.restitution > 0; });
-}
-}  // namespace
-namespace {
 
 namespace fs = std::filesystem;
 
@@ -530,7 +521,7 @@ int run_command(const RunOptions& o) {
   // Verlet's contacts are positions moved apart, with no velocity to reverse: a scene whose
   // restitution asks for a bounce loses the approach speed at every contact (head_on, e = 1, lost
   // 75 % of its energy with no word but the energy line's, while its description promised a bounce).
-  if (world && world->projects_contacts() && bounces(sim.scene()))
+  if (world && world->ignores_restitution())
     fmt::print(out, "contacts     projected apart (verlet): restitution is not used, so each contact loses the speed its "
                     "bodies met with (symplectic-euler's impulses use it)\n");
   if (world && world->has_collisions())

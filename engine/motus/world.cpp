@@ -1,5 +1,6 @@
 #include "motus/world.hpp"
 
+#include <algorithm>
 #include <atomic>
 
 #include "motus/scene_error.hpp"
@@ -50,6 +51,7 @@ World::World(const MechanicalDescription& scene, const Method& method, ExternalP
     constraints_ = std::make_unique<ConstraintProjection>(scene.dimensions, inverse_mass, radius, scene.sticks,
                                                           scene.pins, scene.colliders, scene.constraint_iterations, order);
     project_contacts_ = contacts;
+    ignores_restitution_ = contacts && std::any_of(restitution.begin(), restitution.end(), [](double e) { return e > 0; });
     velocity_dependent_forces_ = !f.drag.empty() || !f.springs.empty();
     if (parts.constraints) use_external_projection(scene, *parts.constraints);
     return;

@@ -41,9 +41,9 @@ public:
   // Whether it projects positions (sticks, pins, or verlet's contacts): not only with sticks.
   bool has_constraints() const { return constraints_ != nullptr; }
   bool has_sticks() const { return has_sticks_; }
-  // Whether its contacts are projected apart (verlet) rather than resolved by impulses: restitution
-  // is then not used.
-  bool projects_contacts() const { return project_contacts_; }
+  // Whether it projects contacts apart (verlet) where a body's restitution asks for a bounce: the
+  // projection has no velocity to reverse, so restitution is not used (run and compare say so).
+  bool ignores_restitution() const { return ignores_restitution_; }
   // The passes this world runs, in order (for summaries and reports).
   std::vector<std::string> passes() const;
 
@@ -70,6 +70,7 @@ private:
   std::variant<std::monostate, BallCollisions<1>, BallCollisions<2>, BallCollisions<3>> collisions_;
   std::unique_ptr<ConstraintProjection> constraints_;
   bool project_contacts_ = false;  // verlet: walls and balls are projection constraints too
+  bool ignores_restitution_ = false;  // ... and some body's e > 0
   bool has_sticks_ = false;
   bool external_collisions_ = false;  // a plug-in's collision rules resolve the contacts
   int substeps_ = 1;  // Verlet steps per step with a projection (the scene's constraint_substeps)

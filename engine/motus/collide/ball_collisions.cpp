@@ -1388,11 +1388,13 @@ double BallCollisions<D>::outside_balls_impact(const Point& p_a, const Point& v_
   if (std::isnan(t)) throw ExternalError("returned NaN as the time of impact of two balls (a time ≥ 0, or +infinity for none)");
   // A time before now is taken as "none" (as −1 for none is, a common way to write it). But
   // for balls that already touch and approach it loses a contact that is happening now, and they
-  // pass into each other: that showed only much later, as an overlap. (Touching to within
-  // rounding: a contact leaves its balls exactly touching, and their neighbours in a chain too.)
+  // pass into each other: that showed only much later, as an overlap. So does a later time.
+  // (Touching to within rounding: a contact leaves its balls exactly touching, and their
+  // neighbours in a chain too.)
   const Point dp = p_b - p_a, dv = v_b - v_a;
-  const double distance = dp.norm(), gap = distance - (r_a + r_b), opening = dp.dot(dv);  // opening < 0: approaching
-  if (t < 0 && gap <= kTouching * (r_a + r_b) && opening < 0)
+  const double R = r_a + r_b, slack = kAtContact * R + kPositionRounding * (p_a.norm() + p_b.norm());
+  const double distance = dp.norm(), gap = distance - R, opening = dp.dot(dv);  // opening < 0: approaching
+  if (gap <= kTouching * R && opening < 0 && (t < 0 || (t <= horizon && t * (-opening / distance) > slack)))
     throw ExternalError("returned " + figure(t) + " as the time of impact of two balls whose surfaces are " +
                         figure(gap) + " m apart and approaching, where they already touch" +
                         (gap < 0 ? " (overlap)" : "") + ": that is a contact now, t = 0");
@@ -1403,11 +1405,10 @@ double BallCollisions<D>::outside_balls_impact(const Point& p_a, const Point& v_
     throw ExternalError("returned " + figure(t) + " as the time of impact of two balls moving apart (the gap between "
                         "their surfaces grows at " + figure(opening / distance) +
                         " m/s): balls moving apart never touch, +infinity");
-  // A time within the step must be one at which they touch, approaching: the later root (where
-  // they would part again, having passed through each other) and a time for balls that already
-  // touch are not contacts. Without this the run went on with them inside each other, and it
+  // A time within the step must be one at which they touch, approaching (the later root, where
+  // they would part again having passed through each other, is not), and balls that clearly meet
+  // within the step have one. Without this the run went on with them inside each other, and it
   // showed only as overlaps.
-  const double R = r_a + r_b, slack = kAtContact * R + kPositionRounding * (p_a.norm() + p_b.norm());
   if (!(t >= 0 && t <= horizon) && gap > kTouching * R && opening < 0) {
     // They clearly meet within the step when the quadratic's earlier root is in it (a grazing pass,
     // whose two roots are as one, is left to the plug-in's rounding).
@@ -1418,25 +1419,18 @@ double BallCollisions<D>::outside_balls_impact(const Point& p_a, const Point& v_
                           " as the time of impact of two balls whose surfaces are " + figure(gap) +
                           " m apart and approaching: they meet within the " + figure(horizon) + " s left of the step");
   }
-  if (t >= 0 && t <= horizon) {
-    if (gap <= kTouching * R) {
-      if (opening < 0 && t * (-opening / distance) > slack)
-        throw ExternalError("returned " + figure(t) + " as the time of impact of two balls whose surfaces are " +
-                            figure(gap) + " m apart and approaching, where they already touch" +
-                            (gap < 0 ? " (overlap)" : "") + ": that is a contact now, t = 0");
-    } else {
-      const Point apart_then = dp + t * dv;
-      const double gap_then = apart_then.norm() - R;
-      if (std::abs(gap_then) > slack)
-        throw ExternalError("returned " + figure(t) + " as the time of impact of two balls whose surfaces are " +
-                            figure(gap) + " m apart: then they would be " + figure(std::abs(gap_then)) +
-                            (gap_then < 0 ? " m into each other" : " m apart") +
-                            ", not touching (they touch where |p_b + t v_b - p_a - t v_a| = r_a + r_b)");
-      if (apart_then.dot(dv) > kAtContact * R * dv.norm())
-        throw ExternalError("returned " + figure(t) + " as the time of impact of two balls whose surfaces are " +
-                            figure(gap) + " m apart: then they touch moving apart, having passed through each " +
-                            "other (the later root); they meet at the earlier one");
-    }
+  if (t >= 0 && t <= horizon && gap > kTouching * R) {
+    const Point apart_then = dp + t * dv;
+    const double gap_then = apart_then.norm() - R;
+    if (std::abs(gap_then) > slack)
+      throw ExternalError("returned " + figure(t) + " as the time of impact of two balls whose surfaces are " +
+                          figure(gap) + " m apart: then they would be " + figure(std::abs(gap_then)) +
+                          (gap_then < 0 ? " m into each other" : " m apart") +
+                          ", not touching (they touch where |p_b + t v_b - p_a - t v_a| = r_a + r_b)");
+    if (apart_then.dot(dv) > kAtContact * R * dv.norm())
+      throw ExternalError("returned " + figure(t) + " as the time of impact of two balls whose surfaces are " +
+                          figure(gap) + " m apart: then they touch moving apart, having passed through each " +
+                          "other (the later root); they meet at the earlier one");
   }
   return t >= 0 && t <= horizon ? t : kNoImpact;  // (negative: none, as +infinity)
 }
@@ -1449,9 +1443,12 @@ double BallCollisions<D>::outside_plane_impact(const Point& p, const Point& v, d
                  "time of impact of a ball and a plane", rules_->error, rules_->self);
   if (std::isnan(t))
     throw ExternalError("returned NaN as the time of impact of a ball and a plane (a time ≥ 0, or +infinity for none)");
-  // (As for two balls: a ball that already touches the plane and moves into it has a contact now.)
+  // (As for two balls: a ball that already touches the plane and moves into it has a contact now,
+  // not before, not later.)
   const double gap = plane.normal.dot(p) - plane.offset - r, away = plane.normal.dot(v);  // away < 0: into it
-  if (t < 0 && gap <= kTouching * std::max(r, 1e-300) && away < 0)
+  const double slack = kAtContact * r + kPositionRounding * (std::abs(plane.normal.dot(p)) + std::abs(plane.offset));
+  const bool touching = gap <= kTouching * std::max(r, 1e-300);
+  if (touching && away < 0 && (t < 0 || (t <= horizon && t * -away > slack)))
     throw ExternalError("returned " + figure(t) + " as the time of impact of a ball " + figure(gap) +
                         " m from a plane and moving into it, where it already touches" +
                         (gap < 0 ? " (it is into the plane)" : "") + ": that is a contact now, t = 0");
@@ -1461,24 +1458,15 @@ double BallCollisions<D>::outside_plane_impact(const Point& p, const Point& v, d
   // As for two balls: a time within the step is one at which the ball touches the plane, and a ball
   // that clearly reaches it within the step has a time in it (the radius left out of the gap gave
   // the time its centre reaches the plane: beyond the step, or with the ball r deep in the plane).
-  const double slack = kAtContact * r + kPositionRounding * (std::abs(plane.normal.dot(p)) + std::abs(plane.offset));
-  if (!(t >= 0 && t <= horizon) && gap > kTouching * std::max(r, 1e-300) && gap + away * horizon < -slack)
+  if (!(t >= 0 && t <= horizon) && !touching && gap + away * horizon < -slack)
     throw ExternalError("returned " + (t > horizon ? figure(t) : std::string("none")) + " as the time of impact of a ball " +
                         figure(gap) + " m from a plane and moving into it at " + figure(-away) +
                         " m/s: it reaches the plane within the " + figure(horizon) + " s left of the step");
-  if (t >= 0 && t <= horizon) {
-    if (gap <= kTouching * std::max(r, 1e-300)) {
-      if (away < 0 && t * -away > slack)
-        throw ExternalError("returned " + figure(t) + " as the time of impact of a ball " + figure(gap) +
-                            " m from a plane and moving into it, where it already touches" +
-                            (gap < 0 ? " (it is into the plane)" : "") + ": that is a contact now, t = 0");
-    } else if (const double gap_then = gap + away * t; std::abs(gap_then) > slack) {
-      throw ExternalError("returned " + figure(t) + " as the time of impact of a ball " + figure(gap) +
-                          " m from a plane: then it would be " + figure(std::abs(gap_then)) +
-                          (gap_then < 0 ? " m into the plane" : " m from it") +
-                          ", not touching it (the gap between them is n.p - offset - r)");
-    }
-  }
+  if (const double gap_then = gap + away * t; t >= 0 && t <= horizon && !touching && std::abs(gap_then) > slack)
+    throw ExternalError("returned " + figure(t) + " as the time of impact of a ball " + figure(gap) +
+                        " m from a plane: then it would be " + figure(std::abs(gap_then)) +
+                        (gap_then < 0 ? " m into the plane" : " m from it") +
+                        ", not touching it (the gap between them is n.p - offset - r)");
   return t >= 0 && t <= horizon ? t : kNoImpact;
 }
 

@@ -38,9 +38,7 @@ std::string where_it_might_be(const std::string& submission, const std::string& 
     const std::string lowered = lower(found);
     if (lowered == lower(name) && top->is_regular_file(error))
       return " (there is " + found + ": names are case-sensitive, rename it " + name + ")";
-    for (const char* packed : {".zip", ".tar", ".tar.gz", ".tgz", ".7z", ".rar"})
-      if (lowered.size() > std::string(packed).size() && lowered.ends_with(packed))
-        return " (there is " + found + ": hand in the files themselves, unpacked)";
+    if (looks_packed(found)) return " (there is " + found + ": hand in the files themselves, unpacked)";
   }
   // In a folder, up to three down (a zip unpacked as name/src/...: one down only was looked at),
   // no link followed, a thousand entries at most.
@@ -471,6 +469,14 @@ std::string terminal_safe(const std::string& text) {
     }
   }
   return safe;
+}
+
+bool looks_packed(const std::string& file_name) {
+  std::string name = file_name;
+  for (char& c : name) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  for (const char* packed : {".zip", ".tar", ".tar.gz", ".tgz", ".tar.xz", ".txz", ".tar.bz2", ".tbz2", ".gz", ".7z", ".rar"})
+    if (name.size() > std::string(packed).size() && name.ends_with(packed)) return true;
+  return false;
 }
 
 std::string text_summary(const GradeResult& r) {

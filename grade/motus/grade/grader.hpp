@@ -54,6 +54,9 @@ GradeResult grade_submission(const Assignment& assignment, const std::string& su
 nlohmann::json gradescope_json(const GradeResult& result);
 // The same as a person reads it.
 std::string text_summary(const GradeResult& result);
+// Whether a file's name is an archive's (integrators.zip, hw.tar.gz, in any case): a submission
+// handed in packed, which is unpacked first.
+bool looks_packed(const std::string& file_name);
 // What a student wrote (their code's output, a folder name), made safe for a terminal: control
 // characters but the line break and the tab become '?', as do C1 controls.
 std::string terminal_safe(const std::string& text);

@@ -12,13 +12,6 @@ void MotusBackend::build(const SceneDescription& scene, const Method& method, do
   const MechanicalDescription& m = *scene.mechanical;
   sweeps_ = m.constraint_iterations;
   substeps_ = m.constraint_substeps;
-  long balls = 0;
-  restitution_in_contacts_ = false;
-  for (const auto& b : m.bodies) {
-    balls += b.radius > 0 ? 1 : 0;
-    restitution_in_contacts_ = restitution_in_contacts_ || b.restitution > 0;
-  }
-  restitution_in_contacts_ = restitution_in_contacts_ && (balls >= 2 || !m.colliders.empty());
   dt_ = dt;
   steps_ = 0;
   t0_ = scene.start_time;
@@ -68,7 +61,7 @@ std::vector<std::string> MotusBackend::settings() const {
     s.push_back(substeps_ == 1 ? "projection: " + sweeps + " per step"
                                : "projection: " + std::to_string(substeps_) + " substeps of dt/" +
                                      std::to_string(substeps_) + " per step, each with " + sweeps);
-    if (restitution_in_contacts_)
+    if (sim_->world()->ignores_restitution())
       s.push_back("contacts are projected (Jakobsen): restitution is not applied (the peers apply it)");
   }
   return s;

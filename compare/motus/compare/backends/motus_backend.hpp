@@ -31,7 +31,6 @@ private:
   long steps_ = 0;
   double t0_ = 0;
   int sweeps_ = 1, substeps_ = 1;      // the projection's, as the scene sets them
-  bool restitution_in_contacts_ = false;  // bodies with e > 0 that meet walls or each other (a projection does not bounce)
 };
 
 }  // namespace motus::compare
