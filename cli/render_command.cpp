@@ -52,18 +52,30 @@ constexpr const char* kManifest = ".motus-render";
 // at a scene's usual dt (a few steps a frame), and no more than this for a small dt.
 constexpr double kTrailPointsPerFrame = 16;
 
-// Frames per simulated second (year) when --fps is not given.
+// Frames per second of video when --fps is not given.
 constexpr double kDefaultFps = 30;
 
-// The frame rate a render draws at: --fps, else kDefaultFps, but never more than one frame a step of a
-// fixed-step integrator. Frames between two steps show the state of the step after them, the one the
-// frame before showed: World2 (dt = 0.2 years) drew 6001 frames at 30 a year, of which 1001 differ
-// (316 MB and a minute, for the same video). At exactly 1/dt the frames' times are the steps' (the
-// step clock of Simulation::advance lands on t0 + k·dt), so every frame is a new step. An adaptive
-// integrator lands on every frame's time: any rate is new states.
-double frame_rate(const std::optional<double>& fps, const SceneDescription& scene, const Method& method) {
+// Without --speed a simulated second (year) takes a second to watch, unless the run is longer than
+// this many seconds of video: then it plays faster, in this long. thomas's 500 s at 1:1 drew 10,001
+// frames (393 MB, two and a half minutes) for an eight-minute video of a curve that grows slowly.
+constexpr double kLongestDefaultVideo = 20;
+
+double playing_speed(const std::optional<double>& speed, double duration) {
+  if (speed) return *speed;
+  return duration > kLongestDefaultVideo ? duration / kLongestDefaultVideo : 1;
+}
+
+// The frame rate a render draws at, per simulated second: --fps, else kDefaultFps a second of
+// video at the playing speed, but never more than one frame a step of a fixed-step integrator.
+// Frames between two steps show the state of the step after them, the one the frame before
+// showed: World2 (dt = 0.2 years) drew 6001 frames at 30 a year, of which 1001 differ (316 MB and a
+// minute, for the same video). At exactly 1/dt the frames' times are the steps' (the step clock of
+// Simulation::advance lands on t0 + k·dt), so every frame is a new step. An adaptive integrator
+// lands on every frame's time: any rate is new states.
+double frame_rate(const std::optional<double>& fps, double speed, const SceneDescription& scene, const Method& method) {
   if (fps) return *fps;
-  return !method.adaptive() && scene.dt * kDefaultFps > 1 ? 1 / scene.dt : kDefaultFps;
+  const double rate = kDefaultFps / speed;
+  return !method.adaptive() && scene.dt * rate > 1 ? 1 / scene.dt : rate;
 }
 
 // The names an earlier render listed in FOLDER/.motus-render (only plain names: no folder, no
@@ -223,8 +235,12 @@ CLI::App* add_render_command(CLI::App& app, RenderOptions& o) {
   render->add_option("--out", o.out, "Folder for frame_00000.png, ... (must not exist unless --overwrite)")->required()->check(folder_path());
   render->add_option("--size", o.size, "Frame size in pixels")->type_name("WxH")->capture_default_str();
   render->add_option("--fps", o.fps,
-                     "Frames per second of simulated time (World2: per simulated year), and the video's rate "
-                     "(default: 30, or one a step when the scene's dt is longer than 1/30)");
+                     "Frames per second of simulated time (World2: per simulated year) (default: 30 a second of "
+                     "video at --speed, but at most one a step)");
+  render->add_option("--speed", o.speed,
+                     "Simulated seconds (World2: years) a second of video plays (default: 1, or for a run longer "
+                     "than 20 s, as many as play it in 20 s)")
+      ->transform(a_number());
   render->add_option("--duration", o.duration, "Simulated time to draw, s (World2: years; default: the scene's)")->transform(a_number());
   render->add_option("--integrator", o.integrator, "Integrator (default: the scene's); see `motus list`");
   render->add_option("--set", o.sets, "Override a scene field, e.g. --set lattice.count=1000 (repeatable)")
@@ -250,18 +266,23 @@ int render_command(const RenderOptions& o) {
   const auto [width, height] = parse_size(o.size);
   if (o.fps && (!(*o.fps > 0) || !std::isfinite(*o.fps) || *o.fps > 10000))
     throw InputError("--fps: must be a number > 0 (and at most 10000)");
-  const double fps = frame_rate(o.fps, scene, method);
-  const bool one_a_step = !o.fps && fps != kDefaultFps;  // (said in the summary: why not 30)
+  if (o.speed && (!(*o.speed > 0) || !std::isfinite(*o.speed)))
+    throw InputError("--speed: must be a finite number > 0");
   const std::string unit = time_unit_of(scene);  // "s" or "years"
   const double duration = o.duration.value_or(scene.duration);
   if (!(duration >= 0) || !std::isfinite(duration)) throw InputError("--duration: must be a finite number >= 0");
+  const double speed = playing_speed(o.speed, duration);
+  const double fps = frame_rate(o.fps, speed, scene, method);
+  const bool one_a_step = !o.fps && fps != kDefaultFps / speed;  // (said in the summary: why not 30 a second)
+  // The video shows `speed` simulated seconds (years) a second: fps of them a simulated second.
+  const double video_fps = fps * speed;
   const double frame_count = std::floor(duration * fps + 1e-9) + 1;  // (a double first: 1e18 s is no long)
   if (frame_count > 100000)
     throw InputError(fmt::format("--duration/--fps: {} frames is too many (at most 100,000)",
                                  frame_count < 1e15 ? fmt::format("{:.0f}", frame_count) : fmt::format("{:.3g}", frame_count)));
   const long frames = static_cast<long>(frame_count);
-  // A video plays the frames at the frame rate, so that a simulated second (year) takes a second to
-  // watch whatever the rate: the default's one frame a step plays as 30 a second with each step
+  // A video plays the frames at fps × speed, so that `speed` simulated seconds (years) take a second
+  // to watch whatever the rate: the default's one frame a step plays as 30 a second with each step
   // repeated did. Checked before anything is drawn (ffmpeg would refuse it only after every frame had
   // been, and the failed run's folder goes with them). At one frame a step (no --fps) it is the
   // scene's step that is named, not an --fps the user did not give.
@@ -274,16 +295,20 @@ int render_command(const RenderOptions& o) {
   // A GIF's frame delay is in hundredths of a second, and players slow a delay below 2 to 10: a
   // GIF past 50 frames a second played at 10 without a word (0.1 s of 10,000 a second took 100 s).
   // (Without --fps the rate is at most 30.)
-  if (o.video == "gif" && fps > 50)
-    throw InputError(fmt::format("--fps: a GIF plays at most 50 frames per second (its frame delay is in hundredths of a "
-                                 "second), not {:g}: a lower --fps, or --video mp4",
-                                 fps));
-  if (!o.video.empty() && fps < 0.001)
-    throw InputError(!one_a_step ? fmt::format("--fps: a video at {:g} frames per second is slower than ffmpeg plays "
-                                               "(0.001 at the least)", fps)
-                                 : fmt::format("--video: one frame a step (dt = {:g} {}) is {:g} frames per second, "
+  const std::string rate_options = o.speed ? "--fps/--speed" : "--fps";
+  const std::string rate_product =
+      speed == 1 ? "" : fmt::format(" ({:g} a simulated {} × {:g} {} a second)", fps, unit == "years" ? "year" : "second",
+                                    speed, unit);
+  if (o.video == "gif" && video_fps > 50)
+    throw InputError(fmt::format("{}: a GIF plays at most 50 frames per second (its frame delay is in hundredths of a "
+                                 "second), not {:g}{}: a lower {}, or --video mp4",
+                                 rate_options, video_fps, rate_product, speed == 1 ? "--fps" : "--fps or --speed"));
+  if (!o.video.empty() && video_fps < 0.001)
+    throw InputError(!one_a_step ? fmt::format("{}: a video at {:g} frames per second{} is slower than ffmpeg plays "
+                                               "(0.001 at the least)", rate_options, video_fps, rate_product)
+                                 : fmt::format("--video: one frame a step (dt = {:g} {}) is {:g} frames per second{}, "
                                                "slower than ffmpeg plays (0.001 at the least): --fps 0.001 or more",
-                                               scene.dt, unit, fps));
+                                               scene.dt, unit, video_fps, rate_product));
   check_time_resolution(scene.start_time, duration, scene.dt, path + ": start_time",
                         o.duration ? "--duration" : path + ": dt/duration");
   check_position_resolution(scene, scene.dt, path);
@@ -400,7 +425,7 @@ int render_command(const RenderOptions& o) {
   progress.finish();
   if (!o.video.empty()) {
     progress.note("encoding the video (ffmpeg)");
-    const std::string error = drawing.encode_video((fs::path(rendering.folder()) / "frame_%05d.png").string(), fps,
+    const std::string error = drawing.encode_video((fs::path(rendering.folder()) / "frame_%05d.png").string(), video_fps,
                                                    (fs::path(rendering.folder()) / video_name).string(), o.video);
     progress.finish();
     stop_if_interrupted();
@@ -410,10 +435,12 @@ int render_command(const RenderOptions& o) {
   stop_if_interrupted();
   rendering.move_into_place(names);
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count();
-  fmt::print("{} frame{}{} of {}x{} at {:g} per simulated {}{} ({:g} {} of {}) in {}/ ({:.1f} s)\n", frames,
+  fmt::print("{} frame{}{} of {}x{} at {:g} per simulated {}{} ({:g} {} of {}{}) in {}/ ({:.1f} s)\n", frames,
              frames == 1 ? "" : "s", distinct < frames ? fmt::format(" ({} distinct)", distinct) : "", width, height, fps,
              unit == "years" ? "year" : "second", one_a_step ? ", one a step" : "", duration, unit, scene.name,
+             speed == 1 ? "" : fmt::format(", played at {:g} {} a second", speed, unit),
              without_trailing_separators(o.out).string(), wall);
+
   if (!plugin_parts.empty()) fmt::print("passes       {}\n", plugin_parts);
   if (o.trails && scene.is_mechanical() && !trails_drawn)
     fmt::print("trails       none drawn: --trails draws scenes of at most 64 bodies, and this one has {}\n",
@@ -424,7 +451,10 @@ int render_command(const RenderOptions& o) {
     fmt::print("{:<12} none drawn: {} bodies; a first-order system is drawn as its curve or its variables against time\n",
                o.trails && o.arrows ? "trails/arrows" : o.trails ? "trails" : "arrows",
                o.trails && o.arrows ? "--trails and --arrows draw" : o.trails ? "--trails draws" : "--arrows draws");
-  if (!o.video.empty()) fmt::print("video        {}\n", (without_trailing_separators(o.out) / video_name).string());
+  if (!o.video.empty())
+    fmt::print("video        {}: {:.3g} s at {:.3g} frames a second\n",
+               (without_trailing_separators(o.out) / video_name).string(), static_cast<double>(frames) / video_fps,
+               video_fps);
   // An unstable run is drawn as it went (the frames show it), but it is not a run that went well.
   for (size_t k = 0; k < recording.states.size(); ++k)
     if (!std::all_of(recording.states[k].begin(), recording.states[k].end(), [](double y) { return std::isfinite(y); })) {

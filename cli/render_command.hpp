@@ -12,9 +12,11 @@ struct RenderOptions {
   std::string scene;
   std::string out;
   std::string size = "640x480";
-  // Frames per simulated second (year); unset: 30, or one a step of a fixed-step integrator whose
-  // dt is longer than 1/30 (render_command.cpp, frame_rate).
+  // Frames per simulated second (year); unset: 30 a second of video at the playing speed, or one a
+  // step of a fixed-step integrator whose dt is longer than that (render_command.cpp, frame_rate).
   std::optional<double> fps;
+  // Simulated seconds (years) a second of video; unset: 1, or a run longer than 20 s plays in 20 s.
+  std::optional<double> speed;
   std::optional<double> duration;
   std::optional<std::string> integrator;
   std::vector<std::string> sets;

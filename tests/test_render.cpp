@@ -15,6 +15,7 @@
 #include <numbers>
 #include <span>
 #include <sstream>
+#include <numeric>
 #include <string>
 #include <vector>
 
@@ -323,9 +324,9 @@ std::string frame_name(long k) {
   std::snprintf(name, sizeof name, "frame_%05ld.png", k);
   return name;
 }
-std::string as_g(double x) {  // printf's %g, as the summary writes numbers
+std::string as_g(double x, int digits = 6) {  // printf's %g (%.3g: digits 3), as the summary writes numbers
   char text[32];
-  std::snprintf(text, sizeof text, "%g", x);
+  std::snprintf(text, sizeof text, "%.*g", digits, x);
   return text;
 }
 }  // namespace
@@ -414,6 +415,60 @@ TEST(RenderCommand, AVideoAtOneFrameAStepPlaysASimulatedYearInASecond) {
   const std::vector<int> delays = gif_delays(read_file(dir / "frames/world2.gif"));
   EXPECT_EQ(delays.size(), 6u);  // 1/0.2 + 1 frames
   for (int delay : delays) EXPECT_EQ(delay, static_cast<int>(std::lround(100 * dt)));
+}
+
+// A run longer than 20 s plays faster by default, in 20 s of video at 30 frames a second: thomas's
+// 500 s drew 10,001 frames at one a step (393 MB, two and a half minutes) for an eight-minute video
+// of a slowly growing curve. Over 100 s it plays at 100/20 = 5 s a second, 30/5 = 6 frames a
+// simulated second (dt = 0.05 is no limit), 100·6 + 1 frames; the GIF's delays (hundredths) add up
+// to their count over 30 a second, to the rounding of each (at most half a hundredth).
+TEST(RenderCommand, ARunLongerThanTwentySecondsPlaysInTwentyByDefault) {
+  TempDir dir;
+  const SceneDescription thomas = load_scene(kScenes + "/thomas.json");
+  ASSERT_GT(thomas.duration, 20);  // (the default here is about the scene's own, longer run)
+  const auto r = run_motus(dir, {"render", "thomas", "--out", (dir / "frames").string(), "--size", "32x24", "--duration",
+                                 "100", "--video", "gif"});
+  if (r.status == 2 && r.err.find("ffmpeg not found") != std::string::npos) GTEST_SKIP() << "no ffmpeg here";
+  ASSERT_EQ(r.status, 0) << r.err;
+  const long frames = 100 * 6 + 1;
+  EXPECT_EQ(r.out.rfind(std::to_string(frames) + " frames of 32x24 at 6 per simulated second (100 s of thomas, played "
+                        "at 5 s a second)", 0), 0u) << r.out;
+  EXPECT_NE(r.out.find("video        " + (dir / "frames" / "thomas.gif").string() + ": " + as_g(frames / 30.0, 3) +
+                       " s at 30 frames a second"), std::string::npos) << r.out;
+  const std::vector<int> delays = gif_delays(read_file(dir / "frames/thomas.gif"));
+  ASSERT_EQ(delays.size(), static_cast<size_t>(frames));
+  const int total = std::accumulate(delays.begin(), delays.end(), 0);
+  EXPECT_NEAR(total, 100.0 * frames / 30, 0.5 * frames / 30.0 + 1) << total;
+  // --speed 1 gives the old one a second back: 1/dt = 20 frames a simulated second at most.
+  const auto one = run_motus(dir, {"render", "thomas", "--out", (dir / "one").string(), "--size", "32x24", "--duration",
+                                   "21", "--speed", "1"});
+  ASSERT_EQ(one.status, 0) << one.err;
+  EXPECT_EQ(one.out.rfind(std::to_string(21 * 20 + 1) + " frames of 32x24 at 20 per simulated second, one a step (21 s "
+                          "of thomas) in", 0), 0u) << one.out;
+}
+
+// --speed: simulated seconds a second of video. Below 1 the frames come closer in simulated time
+// (30/0.5 = 60 a second; bouncing_balls' dt = 0.01 allows 100), and the video's rate is fps × speed,
+// which a GIF's hundredths limit to 50; bad values are one line, exit 2.
+TEST(RenderCommand, SpeedSetsTheSimulatedTimeASecondOfVideoShows) {
+  TempDir dir;
+  const auto slow = run_motus(dir, {"render", "bouncing_balls", "--out", (dir / "slow").string(), "--size", "32x24",
+                                    "--duration", "1", "--speed", "0.5"});
+  ASSERT_EQ(slow.status, 0) << slow.err;
+  EXPECT_EQ(slow.out.rfind("61 frames of 32x24 at 60 per simulated second (1 s of bouncing_balls, played at 0.5 s a "
+                           "second)", 0), 0u) << slow.out;
+  const auto gif = run_motus(dir, {"render", "bouncing_balls", "--out", (dir / "gif").string(), "--fps", "40", "--speed",
+                                   "2", "--video", "gif"});
+  EXPECT_EQ(gif.status, 2);
+  EXPECT_EQ(gif.err, "motus: error: --fps/--speed: a GIF plays at most 50 frames per second (its frame delay is in "
+                     "hundredths of a second), not 80 (40 a simulated second × 2 s a second): a lower --fps or --speed, "
+                     "or --video mp4\n");
+  for (const std::string bad : {"0", "-1", "nan", "inf"}) {
+    const auto r = run_motus(dir, {"render", "spring", "--out", (dir / "bad").string(), "--speed", bad});
+    EXPECT_EQ(r.status, 2) << bad;
+    EXPECT_EQ(count_lines(r.err), 1) << r.err;
+    EXPECT_FALSE(fs::exists(dir / "bad"));
+  }
 }
 
 // The time axis's labels keep apart: World2 over one year ticked every 0.1 year, 34 px apart, under
