@@ -184,9 +184,20 @@ int grade_one(const GradeCommandOptions& o, const std::string& folder) {
   std::optional<PartialFile> plugin_out;  // (kept only when the submission compiles)
   if (!o.plugin_out.empty()) options.plugin_out = plugin_out.emplace(o.plugin_out).path();
   ProgressBar progress(0, static_cast<double>(assignment.tests.size()), "grade " + assignment.name, 1);
-  options.progress = [&](size_t done, size_t, const std::string& test) {
+  // The compile takes seconds before any test (9–11 s for integrators): it is named while it runs.
+  options.building = [&] { progress.note("compiling the submission"); };
+  options.progress = [&](size_t done, size_t total, const std::string& test) {
+    // The tests' phase from the first on: the time to go is from their rate, not the compile's.
+    if (done == 0) progress.phase("testing", 0, static_cast<double>(total));
+    progress.step(test);
     progress.update(static_cast<double>(done));
-    progress.note(test);
+  };
+  // The grader asks whether to stop at least ten times a second while it waits for the compiler or a
+  // test: the bar is redrawn then, so that its seconds go on and a test that started within a tenth
+  // of a second of the last redraw is still named while it runs.
+  options.stop = [&progress, stop = options.stop] {
+    progress.refresh();
+    return stop && stop();
   };
   grade::GradeResult result;
   try {

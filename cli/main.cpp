@@ -18,6 +18,9 @@
 #include <iostream>
 #include <new>
 
+#include <fcntl.h>
+#include <unistd.h>
+
 #include <CLI/CLI.hpp>
 
 #include "bench_precision_command.hpp"
@@ -149,7 +152,11 @@ int motus_main(int argc, char** argv) {
     if (interrupted() && status == 0) tell("motus: interrupted once the work was done: everything was written\n");
     return status;
   } catch (const Interrupted&) {
-    tell("motus: interrupted; nothing half-written was left behind\n");
+    // (Rows streamed to standard output are the user's to keep: that file was never motus's to take back.)
+    if (run->parsed() && run_options.trajectory == "-")
+      tell("motus: interrupted; the trajectory on standard output stops where the run did, without the final state\n");
+    else
+      tell("motus: interrupted; nothing half-written was left behind\n");
     return kExitInterrupted;
   } catch (const motus::SceneFileError& e) {
     tell("motus: error: {}\n", e.what());
@@ -204,7 +211,23 @@ int motus_main(int argc, char** argv) {
 
 }  // namespace
 
+// Standard input, output and error closed by the caller (`>&-`) would be the first files motus
+// opens: a trajectory opened as descriptor 2 took the progress bar's lines, as descriptor 1 the
+// summary's. Each closed one is held by /dev/null instead, standard output read-only, so that
+// writing to it still fails (EBADF) and the run says so, as it did when it was closed.
+void hold_closed_standard_descriptors() {
+  for (const int fd : {0, 1, 2})
+    if (::fcntl(fd, F_GETFD) == -1 && errno == EBADF) {
+      const int held = ::open("/dev/null", fd == 2 ? O_WRONLY : O_RDONLY);
+      if (held >= 0 && held != fd) {  // (an earlier descriptor was open after all: put it where it belongs)
+        ::dup2(held, fd);
+        ::close(held);
+      }
+    }
+}
+
 int main(int argc, char** argv) {
+  hold_closed_standard_descriptors();
   const int status = motus_main(argc, argv);
   motus::cli::main_is_returning();  // (an exit() in a plug-in's code does not come this way)
   return status;

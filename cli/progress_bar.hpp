@@ -3,8 +3,12 @@
 // output is piped or in CI) and only once a run has taken about two seconds, so short runs
 // print nothing extra. It fits the terminal's width (no wrapping, nothing left behind when it
 // is erased), names the phase it is in (simulating, drawing, encoding the video), and gives the
-// time to go from the rate measured in that phase alone.
+// time to go from the rate measured in that phase alone. It is redrawn at most ten times a
+// second, also in a log (MOTUS_PROGRESS=always redrew it at every reading of the clock: 120 lines
+// a second of a CI log), except its first line and a note, which are drawn at once.
 //   MOTUS_PROGRESS=always  draw it from the start, also when standard error is not a terminal
+//   MOTUS_PROGRESS=every   as always, and at every reading of the clock: for tests that read each
+//                          value the bar took (a short run's, drawn within a few milliseconds)
 //   COLUMNS=N              the width to fit (else the terminal's, else 80)
 #include <chrono>
 #include <string>
@@ -27,8 +31,19 @@ public:
   // each halving the step, cost twice the one before: an estimate from the rate so far says
   // seconds where minutes are left).
   void without_estimate() { estimate_ = false; }
-  // Shows `what` (a phase without steps, such as ffmpeg encoding) until the next update.
+  // Names the step under way in this phase (the test a grading runs), shown after the phase's
+  // name and before its bar until the next step or phase. Drawn by the next update or refresh
+  // that draws.
+  void step(const std::string& name);
+  // Shows `what` (a phase without steps, such as ffmpeg encoding) until the next update: its
+  // name and the seconds so far, no bar. Drawn at once, since no update may come while it lasts;
+  // so one a phase, not one a step. The phase it follows keeps its range: an update after it
+  // shows that phase's fraction again (a note had made it 100 %).
   void note(const std::string& what);
+  // Redraws what the bar shows, when a redraw is due: the seconds go on during a wait with
+  // nothing to count (a compiler's run). Unlike update, never a place to stop for Ctrl-C: it
+  // may be called from a callback that is asked whether to stop.
+  void refresh();
   void finish();
 
   // The line a bar of this width shows (for tests): never longer than `width` columns.
@@ -36,19 +51,25 @@ public:
                           double remaining, int width);
 
 private:
-  void draw(double fraction);
+  using Clock = std::chrono::steady_clock;
+  // Whether a line is to be drawn now: enabled, after the first two seconds (from the start with
+  // MOTUS_PROGRESS=always), and a tenth of a second after the last line (except the first).
+  bool due(Clock::time_point clock) const;
+  void draw(Clock::time_point clock);
   int width() const;
 
   double start_, end_;
+  double now_;  // the last update's value
   std::string label_, phase_;
+  std::string step_;  // the step under way (step()), or ""
+  std::string note_;  // the note shown until the next update (note()), or ""
   bool enabled_;
   bool always_;
+  bool every_;
   bool shown_ = false;
   unsigned calls_ = 0;
   unsigned check_mask_, most_mask_;  // the clock is read every check_mask_ + 1 calls (at most most_mask_ + 1)
-  std::chrono::steady_clock::time_point began_, last_draw_, last_check_, phase_began_;
-  double phase_fraction_ = 0;  // where the current phase started, for its rate
-  double fraction_ = 0;
+  Clock::time_point began_, last_draw_, last_check_, phase_began_;
   // When (seconds into the phase) the progress last moved, and to where: the rate is measured up to
   // then, so that work that moves in whole steps (the tests of a grading, the submissions of a
   // batch) counts down between them instead of growing.

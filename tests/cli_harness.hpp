@@ -132,9 +132,10 @@ inline Result run_program(const TempDir& dir, const std::string& program, const 
 // Where a motus started by run_motus_with reads and writes: files by path, or standard output
 // to an open descriptor (out_fd ≥ 0), and the folder it runs in ("": this process's).
 struct MotusFiles {
-  std::string in = "/dev/null", out = "/dev/null", err = "/dev/null", folder;
+  std::string in = "/dev/null", out = "/dev/null", err = "/dev/null", folder;  // (kClosed: the descriptor is closed)
   int out_fd = -1;
 };
+inline const std::string kClosed = "(closed)";
 
 // Starts `motus ARGS...` with those files and returns at once: its pid (-1: it did not start).
 inline pid_t start_motus_with(std::vector<std::string> args, const MotusFiles& files) {
@@ -148,9 +149,14 @@ inline pid_t start_motus_with(std::vector<std::string> args, const MotusFiles& f
   posix_spawn_file_actions_addopen(&actions, 0, files.in.c_str(), O_RDONLY, 0);
   if (files.out_fd >= 0)
     posix_spawn_file_actions_adddup2(&actions, files.out_fd, 1);
+  else if (files.out == kClosed)
+    posix_spawn_file_actions_addclose(&actions, 1);
   else
     posix_spawn_file_actions_addopen(&actions, 1, files.out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_addopen(&actions, 2, files.err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  if (files.err == kClosed)
+    posix_spawn_file_actions_addclose(&actions, 2);
+  else
+    posix_spawn_file_actions_addopen(&actions, 2, files.err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
   pid_t pid = -1;
   const int spawned = posix_spawn(&pid, kMotus.c_str(), &actions, nullptr, argv.data(), environ);
   posix_spawn_file_actions_destroy(&actions);

@@ -94,7 +94,7 @@ TEST(FirstHour, TheProgressBarFitsTheTerminal) {
     TempDir dir;
     const auto r = run_motus(dir, {"render", "newtons_cradle", "--out", (dir / "frames").string(), "--size", "64x48",
                                    "--fps", "10", "--duration", "1"},
-                             {"MOTUS_PROGRESS=always", "COLUMNS=" + std::to_string(width)});
+                             {"MOTUS_PROGRESS=every", "COLUMNS=" + std::to_string(width)});
     ASSERT_EQ(r.status, 0) << r.err;
     size_t lines = 0;
     std::string piece;

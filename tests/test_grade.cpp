@@ -2058,4 +2058,72 @@ TEST(Grade, AnAssignmentWithATrailingSlashAndALongSubmissionNameAreGradedAsNamed
       << read_file(dir / "runs" / folder / "scores.csv");
 }
 
+// Found by an audit of `motus grade` on a terminal: after the first test the bar said 100 % with 2
+// of 31 tests done, alternating with the test's name, and nothing was shown in the 9–11 s of the
+// compile. The build is named while it runs, and each test's bar is the share of the tests done
+// before it (none says 100 %: the last test is not done when it starts).
+TEST(Grade, ItsProgressNamesTheBuildAndCountsTheTestsDone) {
+  TempDir dir;
+  const auto r = run_motus(dir, {"grade", "integrators", (fs::path(kAssignments) / "integrators/solution").string(),
+                                 "--hidden", hidden("integrators"), "--no-sandbox"},
+                           {"MOTUS_PROGRESS=always", "COLUMNS=200"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  std::vector<std::string> order;  // the rubric's tests, in the order they run
+  const json rubric = read_json(fs::path(kAssignments) / "integrators/rubric.json");  // (named: see definitions())
+  for (const auto& t : rubric["tests"]) order.push_back(t["name"].get<std::string>());
+  const std::regex testing(R"(^grade integrators, testing (\S+) \[[#.]+\] +(\d+)%)");
+  std::vector<std::string> lines;  // what each redraw showed
+  std::stringstream drawn(r.err);
+  for (std::string line; std::getline(drawn, line, '\r');)
+    if (line.find_first_not_of(' ') != std::string::npos) lines.push_back(line);
+  size_t compiling = lines.size(), tests = 0;
+  for (size_t k = 0; k < lines.size(); ++k) {
+    if (compiling == lines.size() && lines[k].rfind("grade integrators, compiling the submission  ", 0) == 0) compiling = k;
+    std::smatch m;
+    if (!std::regex_search(lines[k], m, testing)) continue;
+    ++tests;
+    const auto at = std::find(order.begin(), order.end(), m[1].str());
+    ASSERT_NE(at, order.end()) << lines[k];
+    EXPECT_NEAR(std::stod(m[2].str()), 100.0 * static_cast<double>(at - order.begin()) / static_cast<double>(order.size()),
+                0.51)
+        << lines[k];
+    EXPECT_GT(k, compiling) << "a test before the build: " << lines[k];
+  }
+  EXPECT_LT(compiling, lines.size()) << "the build was not named:\n" << r.err;
+  EXPECT_GE(tests, 1u) << r.err;
+  EXPECT_EQ(r.err.find("100%"), std::string::npos) << r.err;
+}
+
+// Found by an audit: with a relative entry in PATH (PATH=relbin:/usr/bin:/bin, relbin/zip a link to
+// zip) the package failed, "zip failed to write it (exit status -1)": zip was found as relbin/zip
+// and started in the folder it zips. A program found on PATH is an absolute path.
+TEST(Grade, APackageIsZippedWithAZipFoundThroughARelativePathEntry) {
+  if (!fs::exists("/usr/bin/zip")) GTEST_SKIP() << "no /usr/bin/zip";
+  TempDir dir;
+  fs::create_directories(dir / "relbin");
+  fs::create_symlink("/usr/bin/zip", dir / "relbin/zip");
+  const auto r = run_program(dir, "/usr/bin/env",
+                             {"-C", dir.path().string(), "PATH=relbin:/usr/bin:/bin", kMotus, "grade", "integrators",
+                              "--package", "gradescope", "--out", "a.zip"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto listed = run_program(dir, "/usr/bin/unzip", {"-l", (dir / "a.zip").string()});
+  EXPECT_NE(listed.out.find("run_autograder"), std::string::npos) << listed.out << listed.err;
+}
+
 }  // namespace
+
+// TMPDIR set but empty is TMPDIR unset, as mktemp and POSIX's tools take it: `TMPDIR= motus grade …`
+// failed with "TMPDIR=: cannot make a temporary folder there" (found by an audit of the surroundings
+// motus runs in).
+TEST(Grade, AnEmptyTmpdirIsTheSystemsTemporaryFolder) {
+  const char* before = std::getenv("TMPDIR");
+  const std::string kept = before ? before : "";
+  ::setenv("TMPDIR", "", 1);
+  std::string folder;
+  EXPECT_NO_THROW(folder = motus::grade::make_temporary_folder("", "motus-empty-tmpdir-"));
+  if (before) ::setenv("TMPDIR", kept.c_str(), 1);
+  else ::unsetenv("TMPDIR");
+  EXPECT_EQ(fs::path(folder).parent_path(), fs::path("/tmp"));
+  EXPECT_TRUE(fs::is_directory(folder));
+  if (!folder.empty()) fs::remove(folder);
+}

@@ -654,6 +654,51 @@ TEST(Hardening, AStandardErrorThatCannotBeWrittenKeepsTheExitStatus) {
   EXPECT_NE(read_file(dir / "summary.txt").find("total energy"), std::string::npos);
 }
 
+// A standard descriptor the caller closed (`2>&-`, `>&-`) was the first file motus opened: the
+// trajectory CSV took the progress bar's lines as descriptor 2, and as descriptor 1 it would have
+// taken the summary (found by an audit of the surroundings motus runs in). Now the CSV holds only
+// its rows, and a closed standard output is still a failed write, as it was.
+TEST(Hardening, AClosedStandardDescriptorIsNeverTheFileMotusOpens) {
+  TempDir dir;
+  ::setenv("MOTUS_PROGRESS", "always", 1);
+  const std::vector<std::string> run = {"run", "spring", "--integrator", "symplectic-euler", "--steps", "50000", "--trajectory"};
+  auto status_of = [](int raw) { return WIFEXITED(raw) ? WEXITSTATUS(raw) : 128 + WTERMSIG(raw); };
+  auto with = [&](const std::string& csv) {
+    std::vector<std::string> args = run;
+    args.push_back((dir / csv).string());
+    return args;
+  };
+  MotusFiles files;
+  files.err = (dir / "err.txt").string();  // the bar's lines go here when standard error is open
+  EXPECT_EQ(status_of(run_motus_with(with("open.csv"), files)), 0);
+  EXPECT_NE(read_file(dir / "err.txt").find('\r'), std::string::npos) << "no bar drawn: the test shows nothing";
+  files.err = kClosed;
+  EXPECT_EQ(status_of(run_motus_with(with("err_closed.csv"), files)), 0);
+  files.err = (dir / "err2.txt").string();
+  files.out = kClosed;
+  EXPECT_EQ(status_of(run_motus_with(with("out_closed.csv"), files)), 1);
+  ::unsetenv("MOTUS_PROGRESS");
+  EXPECT_NE(read_file(dir / "err2.txt").find("standard output: could not be written (Bad file descriptor)"), std::string::npos)
+      << read_file(dir / "err2.txt");
+  // Each CSV is the run's rows alone, the same in all three runs.
+  const std::string expected = read_file(dir / "open.csv");
+  EXPECT_EQ(count_lines(expected), 50002);  // the header, t = 0 and every step
+  EXPECT_EQ(read_file(dir / "err_closed.csv"), expected);
+  EXPECT_EQ(read_file(dir / "out_closed.csv"), expected);
+}
+
+// --overwrite replaces the file with the run's and keeps its permissions: a user's 0600 trajectory
+// came back 0644, readable by everyone (found by an audit of the surroundings motus runs in).
+TEST(Hardening, AnOverwrittenFileKeepsItsPermissions) {
+  TempDir dir;
+  write_file(dir / "mine.csv", "mine");
+  fs::permissions(dir / "mine.csv", fs::perms::owner_read | fs::perms::owner_write);
+  const auto r = run_motus(dir, {"run", "spring", "--trajectory", (dir / "mine.csv").string(), "--overwrite"});
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(read_file(dir / "mine.csv").rfind("t,", 0), 0u);  // the run's rows, not "mine"
+  EXPECT_EQ(fs::status(dir / "mine.csv").permissions(), fs::perms::owner_read | fs::perms::owner_write);
+}
+
 // Runs `motus ARGS...` in `dir` under the limit `resource` (setrlimit, in the child before exec),
 // standard error to dir/err.txt: its exit status (128 + the signal that ended it), or -1 when it
 // had not ended in 60 s (then it is killed).

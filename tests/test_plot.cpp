@@ -1,9 +1,15 @@
 // The figures' script (plot/motus/plot/figure.cpp) as gnuplot reads it: every line of a figure
 // drawn in a style of its own, so a work-precision diagram's twenty methods and peers can be
-// told apart by their looks, and not only by the order of the legend.
+// told apart by their looks, and not only by the order of the legend. Also the programs the plots
+// need as motus finds and starts them (process/), and the progress bar of a compare.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <optional>
 #include <regex>
 #include <set>
 #include <string>
@@ -175,6 +181,147 @@ TEST(Figures, ALineThatStopsSaysWhereInTheAxissWordsAndItsEntryFits) {
   f.x_scale = motus::plot::Scale::linear;
   (void)motus::plot::draw({f}, folder.path().string());
   EXPECT_NE(read_file(folder / "figures.gp").find("no value from t = 1000 s (failed"), std::string::npos);
+}
+
+// ---------------------------------------------------------------------------------------------------
+// The programs the plots need, as motus starts them (process/), and the progress bar of a compare.
+
+namespace fs = std::filesystem;
+using motus_test::kMotus;
+using motus_test::run_motus;
+using motus_test::run_program;
+using motus_test::write_file;
+
+// $NAME set to `value` in this process for a scope, then put back as it was (gnuplot, started by
+// motus::plot::draw, inherits this process's environment).
+class EnvironmentFor {
+public:
+  EnvironmentFor(std::string name, const std::string& value) : name_(std::move(name)) {
+    if (const char* old = std::getenv(name_.c_str())) old_ = old;
+    ::setenv(name_.c_str(), value.c_str(), 1);
+  }
+  ~EnvironmentFor() {
+    if (old_) ::setenv(name_.c_str(), old_->c_str(), 1);
+    else ::unsetenv(name_.c_str());
+  }
+  EnvironmentFor(const EnvironmentFor&) = delete;
+  EnvironmentFor& operator=(const EnvironmentFor&) = delete;
+
+private:
+  std::string name_;
+  std::optional<std::string> old_;
+};
+
+// Found by an audit of the programs motus starts: a user's ~/.gnuplot (`set decimalsign ","`) was
+// read before figures.gp, and the tick labels of every plot read "0,5". gnuplot is started with -d
+// (--default-settings), which reads neither the user's nor the system's init file.
+TEST(Figures, AUsersGnuplotInitFileDoesNotChangeThePlots) {
+  if (motus::plot::gnuplot_program().empty()) GTEST_SKIP() << "no gnuplot on PATH";
+  TempDir dir;
+  fs::create_directories(dir / "home");
+  fs::create_directories(dir / "figures");
+  write_file(dir / "home/.gnuplot", "set decimalsign \",\"\n");
+  const EnvironmentFor home("HOME", (dir / "home").string());
+  motus::plot::Figure f;
+  f.stem = "decimals";
+  f.title = "tick labels";
+  motus::plot::Series s;
+  s.name = "halves";
+  s.x = {0, 1, 2, 3};
+  s.y = {0, 0.5, 1.5, 2.5};  // (tics every 0.5: labels with decimals)
+  f.series.push_back(s);
+  ASSERT_EQ(motus::plot::draw({f}, (dir / "figures").string()), "");
+  const std::string svg = read_file(dir / "figures/decimals.svg");
+  const std::regex label(R"(<text>\s*-?\d+([.,])\d+\s*</text>)");
+  int points = 0, commas = 0;
+  for (auto it = std::sregex_iterator(svg.begin(), svg.end(), label); it != std::sregex_iterator(); ++it)
+    ((*it)[1].str() == "." ? points : commas) += 1;
+  EXPECT_GT(points, 0) << svg;
+  EXPECT_EQ(commas, 0) << "the labels took ~/.gnuplot's decimal sign";
+}
+
+// Found by an audit: with a relative entry in PATH (PATH=relbin:/usr/bin:/bin) gnuplot was found as
+// "relbin/gnuplot" and started in the report's folder, where there is no such file: "plots failed",
+// with an empty figures.log. A program found on PATH is an absolute path, made from the folder
+// motus was started in.
+TEST(Figures, GnuplotFoundThroughARelativePathEntryDrawsThePlots) {
+  const std::string gnuplot = motus::plot::gnuplot_program();
+  if (gnuplot.empty()) GTEST_SKIP() << "no gnuplot on PATH";
+  TempDir dir;
+  fs::create_directories(dir / "relbin");
+  fs::create_symlink(fs::absolute(gnuplot), dir / "relbin/gnuplot");
+  const auto r = run_program(dir, "/usr/bin/env",
+                             {"-C", dir.path().string(), "PATH=relbin:/usr/bin:/bin", kMotus, "compare", "head_on", "--out",
+                              "c1", "--repeats", "1"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.err.find("plots"), std::string::npos) << r.err;
+  const std::string svg = read_file(dir / "c1/energy.svg");
+  EXPECT_NE(svg.find("</svg>"), std::string::npos) << "c1/energy.svg was not drawn";
+}
+
+// A gnuplot that cannot be started at all (here a file that is no program) is said to be so: the
+// message pointed at the report's figures.log, which gnuplot, never started, had left empty.
+TEST(Figures, AGnuplotThatCannotBeStartedIsSaidSo) {
+  TempDir dir;
+  fs::create_directories(dir / "bad");
+  write_file(dir / "bad/gnuplot", "not a program\n");
+  fs::permissions(dir / "bad/gnuplot", fs::perms::owner_all | fs::perms::group_read | fs::perms::group_exec |
+                                           fs::perms::others_read | fs::perms::others_exec);
+  const auto r = run_program(dir, "/usr/bin/env",
+                             {"PATH=" + (dir / "bad").string() + ":/usr/bin:/bin", kMotus, "compare", "head_on", "--out",
+                              (dir / "c1").string(), "--repeats", "1"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.err.find("plots failed: gnuplot (" + (dir / "bad/gnuplot").string() + ") could not be started ("),
+            std::string::npos)
+      << r.err;
+  EXPECT_EQ(r.err.find("figures.log"), std::string::npos) << r.err;
+}
+
+// Found by an audit of long runs in logs: MOTUS_PROGRESS=always redrew the bar at every reading of
+// the clock, about 120 times a second (242 redraws in 2 s of a log), where docs/cli.md says at most
+// ten a second. Counted against the wall time of the same run.
+TEST(Progress, WithProgressAlwaysTheBarIsRedrawnAtMostTenTimesASecond) {
+  TempDir dir;
+  const auto began = std::chrono::steady_clock::now();
+  const auto r = run_motus(dir, {"compare", "ball_gas", "--out", (dir / "report").string(), "--repeats", "1"},
+                           {"MOTUS_PROGRESS=always", "COLUMNS=80"});
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count();
+  ASSERT_EQ(r.status, 0) << r.err;
+  // Each redraw writes two \r (the line and spaces to the end of the one before, then the line
+  // again); the erasing at the end two more.
+  const double redraws = static_cast<double>(std::count(r.err.begin(), r.err.end(), '\r')) / 2;
+  EXPECT_GE(redraws, 5) << "the bar was not drawn: " << r.err;
+  // Ten a second, and the few drawn at once: the first, a phase without steps as it starts
+  // ("writing the report"), the erasing.
+  EXPECT_LE(redraws, 10 * wall + 4) << redraws << " redraws in " << wall << " s";
+}
+
+// MOTUS_PROGRESS=every, for tests that read each value a short run's bar took (drawn within a few
+// milliseconds of each other), draws at every reading of the clock: more than ten a second.
+TEST(Progress, WithProgressEveryTheBarIsDrawnAtEveryReadingOfTheClock) {
+  TempDir dir;
+  const auto began = std::chrono::steady_clock::now();
+  const auto r = run_motus(dir, {"run", "head_on", "--duration", "2000", "--repeats", "1"},
+                           {"MOTUS_PROGRESS=every", "COLUMNS=80"});
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count();
+  ASSERT_EQ(r.status, 0) << r.err;
+  const double redraws = static_cast<double>(std::count(r.err.begin(), r.err.end(), '\r')) / 2;
+  EXPECT_GT(redraws, 10 * wall + 4) << redraws << " redraws in " << wall << " s";
+}
+
+// Found by an audit: `motus compare ball_gas --render` sat at "drawing 100%" for 9.5 s while the
+// video and the contact sheet were made. That phase is named as it starts.
+TEST(Progress, CompareRenderSaysSoWhileItMakesTheVideo) {
+  TempDir dir;
+  const auto r = run_motus(dir, {"compare", "head_on", "--render", "--size", "160x120", "--out", (dir / "report").string(),
+                                 "--repeats", "1"},
+                           {"MOTUS_PROGRESS=always", "COLUMNS=120"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const size_t drawn = r.err.rfind("compare head_on, drawing [##############################] 100%");
+  const size_t video = r.err.find("compare head_on, making the contact sheet and the video");
+  ASSERT_NE(video, std::string::npos) << r.err;
+  EXPECT_TRUE(drawn == std::string::npos || drawn < video) << r.err;
+  EXPECT_LT(video, r.err.find("compare head_on, writing the report")) << r.err;
 }
 
 }  // namespace

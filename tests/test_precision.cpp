@@ -241,7 +241,7 @@ TEST(BenchPrecisionCommand, ItsProgressIsTheWorkDoneAndReachesTheEnd) {
   const auto r = run_motus(dir,
                            {"bench", "precision", "lorenz_equations", "--levels", "6", "--per-decade", "1", "--repeats", "1",
                             "--out", (dir / "run").string()},
-                           {"MOTUS_PROGRESS=always", "COLUMNS=80"});
+                           {"MOTUS_PROGRESS=every", "COLUMNS=80"});
   ASSERT_EQ(r.status, 0) << r.err;
   std::vector<int> percents;  // every value the bar showed, in order
   const std::regex percent(R"((\d+)%)");

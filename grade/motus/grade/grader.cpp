@@ -147,7 +147,10 @@ bool disk_nearly_full(const std::filesystem::path& folder) {
 std::string make_temporary_folder(const std::string& root, const std::string& prefix) {
   const char* tmpdir = root.empty() ? std::getenv("TMPDIR") : nullptr;  // (named when it chose the folder)
   fs::path folder = root;
-  if (root.empty()) {
+  if (tmpdir && !*tmpdir) {  // set but empty: unset, as mktemp and POSIX's tools take it (it failed with "TMPDIR=: …")
+    folder = "/tmp";
+    tmpdir = nullptr;
+  } else if (root.empty()) {
     std::error_code error;
     folder = fs::temp_directory_path(error);
     if (error)
@@ -281,6 +284,7 @@ GradeResult grade_submission(const Assignment& a, const std::string& submission,
   TestResult build = gate("build", "0.2", "The submission compiles into a plug-in");
   BuildResult built;
   if (files.passed) {
+    if (o.building) o.building();
     built = build_plugin(a, provided, staged.string(), out.string(), headers, o.isolate, user.uid(), o.stop);
     // A disk that filled up under the compiler is this machine's failure, not the submission's: it
     // was graded "does not compile", 0 points, exit 0 — on Gradescope, every student at once. (The

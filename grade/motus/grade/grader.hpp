@@ -27,6 +27,9 @@ struct GradeOptions {
   // Called as each test of the rubric starts (`done` of `total` finished): a test that runs to
   // its limit takes seconds, and a grading that says nothing for minutes looks stuck.
   std::function<void(size_t done, size_t total, const std::string& test)> progress;
+  // Called as the build of the submission starts (not when a handed-in file is missing): the
+  // compiler takes seconds (9–11 s for integrators) before any test starts.
+  std::function<void()> building;
 };
 
 struct TestResult {

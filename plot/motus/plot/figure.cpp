@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cctype>
+#include <cstring>
 #include <fstream>
 #include <iterator>
 #include <utility>
@@ -186,7 +187,7 @@ std::string draw(const std::vector<Figure>& figures, const std::string& folder) 
   const std::string data_file = folder + "/figures.dat";
   std::ofstream data(data_file);
   std::ostringstream gp;
-  gp << "# Written by motus: every figure of this folder. Redraw with `gnuplot figures.gp`.\n"
+  gp << "# Written by motus: every figure of this folder. Redraw with `gnuplot -d figures.gp` (-d: without your ~/.gnuplot).\n"
      << "set encoding utf8\nset grid lc rgb '#dddddd'\nset key top left Left reverse box opaque\n"
      << "set border lc rgb '#555555'\nset tics nomirror\n";
   int block = 0;
@@ -322,7 +323,10 @@ std::string draw(const std::vector<Figure>& figures, const std::string& folder) 
   }
   const std::string gnuplot = gnuplot_program();
   if (gnuplot.empty()) return "plots skipped: gnuplot not found on PATH (apt-get install gnuplot-nox)";
-  const process::Outcome run = process::run_program({gnuplot, "figures.gp"}, folder, folder + "/figures.log");
+  // -d (--default-settings): neither the user's ~/.gnuplot nor the system's gnuplotrc is read
+  // first. A user's `set decimalsign ","` there made every tick label "0,5"; the script sets
+  // everything else it depends on itself.
+  const process::Outcome run = process::run_program({gnuplot, "-d", "figures.gp"}, folder, folder + "/figures.log");
   // (Named within the report: `folder` is often a partial one, renamed once the report is whole.)
   // Ended by an interrupt (process::stop_running_programs): the run stops here, and its caller's
   // partial folder goes with it (not a report whose plots "failed").
@@ -332,6 +336,9 @@ std::string draw(const std::vector<Figure>& figures, const std::string& folder) 
     // the page and the terminal say the plots failed.
     for (const auto& f : figures)
       for (const char* format : {".png", ".svg"}) std::remove((folder + "/" + f.stem + format).c_str());
+    // (Never started, it wrote nothing in figures.log: the reason is motus's to give.)
+    if (!run.started)
+      return "plots failed: gnuplot (" + gnuplot + ") could not be started (" + std::strerror(run.error) + ")";
     return "plots failed: gnuplot's messages are in the report's figures.log";
   }
   // gnuplot says nothing when a picture's write fails (a full disk, a file-size limit): it exits 0

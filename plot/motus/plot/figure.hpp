@@ -57,12 +57,13 @@ struct Figure {
   int width = 900, height = 480;
 };
 
-// Draws every figure with one gnuplot run. Returns "" or one line for the user (no gnuplot on
-// PATH, or gnuplot failed: FOLDER/figures.log says why). Throws std::runtime_error when the
-// script or the data cannot be written.
+// Draws every figure with one gnuplot run, started with its default settings (no ~/.gnuplot).
+// Returns "" or one line for the user (no gnuplot on PATH, gnuplot could not be started, or it
+// failed: FOLDER/figures.log says why). Throws std::runtime_error when the script or the data
+// cannot be written.
 std::string draw(const std::vector<Figure>& figures, const std::string& folder);
 
-// The gnuplot program, or "" when there is none.
+// The gnuplot program (an absolute path), or "" when there is none.
 std::string gnuplot_program();
 
 }  // namespace motus::plot

@@ -260,7 +260,7 @@ std::string write_precision_report(const std::string& folder, const ReportContex
           "lines lie along motus's <code>symplectic-euler</code>, a first-order method (error ∝ dt over a stretch of "
           "time; at a closed orbit's whole period its errors cancel to dt²).</p>\n";
   html += "<p>Data: <a href=\"precision.csv\">precision.csv</a> (every point), <a href=\"targets.csv\">targets.csv</a> "
-          "(every method at every target); the diagrams are redrawn by <code>gnuplot figures.gp</code> in this "
+          "(every method at every target); the diagrams are redrawn by <code>gnuplot -d figures.gp</code> in this "
           "folder.</p>\n</body></html>\n";
   write_file(folder + "/index.html", html);
   return warning;

@@ -27,8 +27,11 @@ std::string find_program(const std::string& program) {
     if (dir.empty()) dir.assign(1, '.');  // (not = ".": GCC 12 warns falsely, PR105651)
     const std::filesystem::path candidate = std::filesystem::path(dir) / program;
     std::error_code error;
-    if (std::filesystem::is_regular_file(candidate, error) && ::access(candidate.c_str(), X_OK) == 0)
-      return candidate.string();
+    if (std::filesystem::is_regular_file(candidate, error) && ::access(candidate.c_str(), X_OK) == 0) {
+      // (Absolute: run_program changes folder before it starts the program.)
+      const std::filesystem::path absolute = std::filesystem::absolute(candidate, error);
+      if (!error) return absolute.string();
+    }
   }
   return "";
 }
@@ -95,6 +98,14 @@ Outcome run_program(const std::vector<std::string>& argv_in, const std::string& 
   Outcome outcome;
   if (argv_in.empty()) return outcome;
   std::vector<std::string> args = argv_in;
+  // The program's path is taken from here, before the change of folder below (in which a relative
+  // path would name another file, or none).
+  std::string program = args[0];
+  if (!folder.empty() && !program.empty() && program.front() != '/') {
+    std::error_code error;
+    const std::filesystem::path absolute = std::filesystem::absolute(program, error);
+    if (!error) program = absolute.string();
+  }
   std::vector<char*> argv;
   for (auto& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
@@ -116,10 +127,13 @@ Outcome run_program(const std::vector<std::string>& argv_in, const std::string& 
   posix_spawnattr_setsigdefault(&attributes, &defaults);
   posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETSIGDEF);
   pid_t pid = 0;
-  const int error = posix_spawn(&pid, argv[0], &actions, &attributes, argv.data(), environ);
+  const int error = posix_spawn(&pid, program.c_str(), &actions, &attributes, argv.data(), environ);
   posix_spawn_file_actions_destroy(&actions);
   posix_spawnattr_destroy(&attributes);
-  if (error != 0) return outcome;
+  if (error != 0) {
+    outcome.error = error;
+    return outcome;
+  }
   outcome.started = true;
   const Running running(pid);
   int raw = 0;

@@ -7,18 +7,23 @@
 
 namespace motus::process {
 
-// The full path of `program` on $PATH, or "" when there is none.
+// The absolute path of `program` on $PATH, or "" when there is none. A relative entry of $PATH
+// ("bin", or "" for the current folder) is taken from the current folder now: the path is handed
+// to run_program, which may start it in another folder, where "bin/gnuplot" is no file.
 std::string find_program(const std::string& program);
 
 struct Outcome {
   bool started = false;
+  int error = 0;    // when it did not start: why (an errno value: ENOENT, EACCES, ENOEXEC…)
   int status = -1;  // the exit status, when it exited
   int signal = 0;   // the signal that ended it, else 0
   bool ok() const { return started && signal == 0 && status == 0; }
 };
 
-// Runs argv[0] (a path) with the arguments argv[1…] in `folder` ("" : here) and waits for it.
-// `log` ("" : inherit) receives its standard output and error.
+// Runs argv[0] (a path; a relative one from the current folder, not from `folder`) with the
+// arguments argv[1…] in `folder` ("" : here) and waits for it. `log` ("" : inherit) receives its
+// standard output and error. Nothing is started when it cannot be (started is false, error says
+// why): a program that is not there, not runnable, or a folder or log that cannot be opened.
 Outcome run_program(const std::vector<std::string>& argv, const std::string& folder = "", const std::string& log = "");
 
 // An interrupt came (Ctrl-C, SIGTERM, SIGHUP): sends SIGTERM to every program run_program is waiting
