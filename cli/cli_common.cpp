@@ -327,8 +327,14 @@ void check_time_resolution(double start_time, double duration, double dt, const 
                              " apart, too coarse for steps of " + fmt::format("{:g}", dt);
   if (std::abs(start_time) > duration) throw InputError(start_what + ": " + coarse + " (start nearer t = 0)");
   // (With --steps, dt scales the times and their spacing alike: only the count can change. From
-  // t = 0, a time's spacing is at most 2^-52 of it, so about 1e-6 · 2^52 steps are told apart.)
-  if (step_what == "--steps") throw InputError(step_what + ": " + coarse + " (fewer steps: from t = 0, about 4.5e9 at most)");
+  // t = 0 the times are told apart up to the end of the largest binade [2^e, 2^(e+1)) whose spacing
+  // 2^(e-52) is at most 1e-6·dt: between 1e-6·2^52 ≈ 4.5e9 and twice that many steps, by where dt
+  // falls between two powers of two — 2^33 − 1 at dt = 1.)
+  if (step_what == "--steps") {
+    const int e = std::ilogb(1e-6 * dt) + 52;
+    const double most = std::ceil(std::ldexp(1.0, e + 1) / dt) - 1;
+    throw InputError(fmt::format("{}: {} (fewer steps: from t = 0, at most {:.3g} of {:g})", step_what, coarse, most, dt));
+  }
   throw InputError(step_what + ": " + coarse + " (a larger dt or a shorter duration)");
 }
 
@@ -508,6 +514,12 @@ PartialFile::~PartialFile() {
 void PartialFile::complete(bool overwrite) {
   std::error_code error;
   if (overwrite) {
+    // The file replaced keeps its permissions: a user's 0600 file came back 0644, readable by all.
+    // (A link in its place is replaced, not written through: what it points to may be outside the
+    // folder the user gave.)
+    struct stat replaced {};
+    if (::lstat(final_.c_str(), &replaced) == 0 && S_ISREG(replaced.st_mode))
+      ::chmod(file_.c_str(), replaced.st_mode & 07777);
     fs::rename(file_, final_, error);
     if (error) throw std::runtime_error(final_ + ": could not be written (" + error.message() + ")");
   } else if (!rename_without_replacing(file_, final_)) {

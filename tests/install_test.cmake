@@ -127,8 +127,21 @@ if(NOT output MATCHES "components: as documented")
   message(FATAL_ERROR "the components project said:\n${output}")
 endif()
 
-# ... and its assignments (share/motus/assignments), without their solutions and hidden tests:
-# the installed motus grades the installed starter against its public tests.
+# ... and its assignments (share/motus/assignments), without their solutions and hidden tests, and
+# every relative link in their handouts leads to an installed file (../docs/grading.md led nowhere):
+file(GLOB_RECURSE handouts ${prefix}/share/motus/assignments/*.md)
+foreach(handout IN LISTS handouts)
+  file(READ ${handout} text)
+  string(REGEX MATCHALL "\\]\\([^)#:]+[)#]" links "${text}")
+  get_filename_component(folder ${handout} DIRECTORY)
+  foreach(link IN LISTS links)
+    string(REGEX REPLACE "^\\]\\(([^)#]+)[)#]$" "\\1" target "${link}")
+    if(NOT EXISTS ${folder}/${target})
+      message(FATAL_ERROR "${handout} links to ${target}, which the install does not have")
+    endif()
+  endforeach()
+endforeach()
+# The installed motus grades the installed starter against its public tests.
 foreach(assignment integrators collisions cloth)
   if(NOT EXISTS ${prefix}/share/motus/assignments/${assignment}/assignment.json
      OR EXISTS ${prefix}/share/motus/assignments/${assignment}/solution

@@ -9,6 +9,8 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -282,12 +284,24 @@ TEST(CliErrors, BadOptionValueIsOneLineExitTwo) {
             "grade, stress; motus --help)\n");
   EXPECT_EQ(run_motus(dir, {"run", scene("spring"), "--dt", "1e308", "--steps", "2"}).err,
             "motus: error: --steps: 2 steps of 1e+308 s is more time than a double holds\n");
-  // Past about 4.5e9 steps from t = 0 their times are not told apart, whatever dt: the advice was
+  // Past 4.5e9 to 9e9 steps from t = 0 (by dt) their times are not told apart: the advice was
   // "a larger dt or a shorter duration", neither of which a --steps run can use (found by fuzzing).
+  // It says how many: at dt = 1 the times up to 2^33 are 2^-20 ≤ 1e-6 apart, past it 2^-19 (an
+  // audit found "about 4.5e9 at most" while 8.5e9 ran).
+  auto as_3g = [](double x) {  // (as fmt's {:.3g} prints it)
+    char text[32];
+    std::snprintf(text, sizeof text, "%.3g", x);
+    return std::string(text);
+  };
   const Result many = run_motus(dir, {"run", scene("spring"), "--steps", "9000000000"});
   EXPECT_EQ(many.status, 2);
-  EXPECT_NE(many.err.find("--steps: at t = 9e+09 times are 1.90735e-06 apart, too coarse for steps of 1 (fewer steps"),
+  EXPECT_NE(many.err.find("--steps: at t = 9e+09 times are 1.90735e-06 apart, too coarse for steps of 1 (fewer steps: "
+                          "from t = 0, at most " + as_3g(std::ldexp(1.0, 33) - 1) + " of 1)"),
             std::string::npos) << many.err;
+  const Result tenth = run_motus(dir, {"run", scene("spring"), "--steps", "6000000000", "--set", "dt=0.1"});
+  EXPECT_EQ(tenth.status, 2);  // at dt = 0.1: 2^-24 ≤ 1e-7 < 2^-23, the times told apart up to 2^29 s
+  EXPECT_NE(tenth.err.find("at most " + as_3g(std::ceil(std::ldexp(1.0, 29) / 0.1) - 1) + " of 0.1)"),
+            std::string::npos) << tenth.err;
   // An empty number ran with the scene's own, exit 0 (found by fuzzing the options).
   for (const auto& [command, option] : std::vector<std::pair<std::string, std::string>>{
            {"run", "--dt"}, {"run", "--duration"}, {"run", "--rtol"}, {"run", "--atol"}, {"compare", "--dt"},
