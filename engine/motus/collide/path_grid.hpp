@@ -42,7 +42,7 @@ public:
     inverse_slab_ = 1 / slab;
     size_t buckets = 64;
     while (buckets < 2 * entries) buckets *= 2;
-    head_.assign(buckets, -1);
+    head_.resize(buckets);  // (every bucket is emptied by clear: once a step, not twice)
     mask_ = buckets - 1;
     clear();
     if (seen_.size() != static_cast<size_t>(bodies)) seen_.assign(static_cast<size_t>(bodies), 0), stamp_ = 0;
