@@ -134,8 +134,11 @@ TEST(Hardening, OverwriteRemovesOnlyWhatMotusWrote) {
     EXPECT_EQ(read_file(out / name), "mine") << name;
     fs::remove(out / name);
   }
-  // A frame count past what a long holds: refused, not wrapped round.
-  expect_one_line_exit_2(run_motus(dir, {"render", "head_on", "--out", (dir / "long").string(), "--duration", "1e18"}),
+  // A frame count past what a long holds: refused, not wrapped round. (At 30 frames a simulated
+  // second: without --fps a run this long plays in 20 s, 601 frames, and stops at its times'
+  // resolution instead.)
+  expect_one_line_exit_2(run_motus(dir, {"render", "head_on", "--out", (dir / "long").string(), "--fps", "30",
+                                         "--duration", "1e18"}),
                          "frames is too many");
   // States to draw from past 4 GB: refused up front (lorenz's every step for 9e5 s, 90 million states of 3
   // numbers, grew to std::bad_alloc after a minute; found by an audit of big inputs).
