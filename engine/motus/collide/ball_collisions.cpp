@@ -691,7 +691,9 @@ void BallCollisions<D>::prefetch_event(const Event& e, int stage) {
       if (!uniform_inverse_mass_) __builtin_prefetch(&inverse_mass_[i]);  // (the impulse's)
       if (!uniform_restitution_) __builtin_prefetch(&restitution_[b]);
     } else if (stage == 1) {
-      __builtin_prefetch(&neighbours_[static_cast<size_t>(neighbour_start_[b])]);
+      // (data() + start: the list may be empty, or end at this ball's start — &neighbours_[that] was
+      // undefined behaviour, a reference through null or past the end; found by UBSan.)
+      __builtin_prefetch(neighbours_.data() + neighbour_start_[b]);
     } else {
       for (int u = neighbour_start_[b], end = neighbour_start_[b + 1]; u < end; ++u) {
         const int k = neighbours_[static_cast<size_t>(u)];
