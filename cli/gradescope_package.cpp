@@ -3,7 +3,6 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
-#include <cstring>
 #include <filesystem>
 #include <fstream>
 
@@ -63,7 +62,7 @@ void zip_folder(const fs::path& folder, const fs::path& zip, const std::string& 
   const process::Outcome run =
       process::run_program({program, "-q", "-r", "-X", made.string(), "."}, folder.string(), (logs / "zip.log").string());
   if (!run.started)  // (it said "exit status -1", of a zip that never ran)
-    throw std::runtime_error(shown + ": zip (" + program + ") could not be started (" + std::strerror(run.error) + ")");
+    throw std::runtime_error(shown + ": " + run.not_started("zip", program));
   if (!run.ok()) {
     std::ifstream log(logs / "zip.log");
     std::string line, last;

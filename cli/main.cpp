@@ -132,6 +132,15 @@ int motus_main(int argc, char** argv) {
   if (!*serve) ::signal(SIGXFSZ, SIG_IGN);
   // (serve: the grader reports a student's exit() from its sandbox.)
   watch_plugin_exits(!*serve);
+  // What an interrupt left: rows streamed to standard output are the user's to keep (that file was
+  // never motus's to take back); every file motus was writing went with the unwinding.
+  const auto interrupted_exit = [&] {
+    if (run->parsed() && run_options.trajectory == "-")
+      tell("motus: interrupted; the trajectory on standard output stops where the run did, without the final state\n");
+    else
+      tell("motus: interrupted; nothing half-written was left behind\n");
+    return kExitInterrupted;
+  };
   int status = 0;
   try {
     if (*run) status = run_command(run_options);
@@ -152,12 +161,7 @@ int motus_main(int argc, char** argv) {
     if (interrupted() && status == 0) tell("motus: interrupted once the work was done: everything was written\n");
     return status;
   } catch (const Interrupted&) {
-    // (Rows streamed to standard output are the user's to keep: that file was never motus's to take back.)
-    if (run->parsed() && run_options.trajectory == "-")
-      tell("motus: interrupted; the trajectory on standard output stops where the run did, without the final state\n");
-    else
-      tell("motus: interrupted; nothing half-written was left behind\n");
-    return kExitInterrupted;
+    return interrupted_exit();
   } catch (const motus::SceneFileError& e) {
     tell("motus: error: {}\n", e.what());
     return kExitBadInput;
@@ -181,10 +185,7 @@ int motus_main(int argc, char** argv) {
   } catch (const std::bad_alloc&) {
     // Memory ran out (a limit such as `ulimit -v`, or the machine's): one line saying so and what
     // to make smaller; what was being written went with the unwinding (the partial folders).
-    if (interrupted()) {
-      tell("motus: interrupted; nothing half-written was left behind\n");
-      return kExitInterrupted;
-    }
+    if (interrupted()) return interrupted_exit();
     tell("motus: the run failed: out of memory (the system refused an allocation): {}\n",
          compare->parsed() ? "run fewer bodies (a smaller --set lattice.count=N, say), fewer --engines at once, a "
                              "shorter --duration or fewer --samples, or allow motus more memory"
@@ -193,10 +194,7 @@ int motus_main(int argc, char** argv) {
                             : "run fewer bodies or a shorter --duration, or allow motus more memory");
     return kExitFailure;
   } catch (const std::exception& e) {
-    if (interrupted()) {  // a program motus waited for died of the same Ctrl-C
-      tell("motus: interrupted; nothing half-written was left behind\n");
-      return kExitInterrupted;
-    }
+    if (interrupted()) return interrupted_exit();  // (a program motus waited for died of the same Ctrl-C)
     const std::string what = e.what();
     if (std::ferror(stdout) && what.rfind("standard output", 0) != 0) {  // fmt's "cannot write to file" is standard output's: named as such
       const auto* system = dynamic_cast<const std::system_error*>(&e);

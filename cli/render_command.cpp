@@ -269,6 +269,7 @@ int render_command(const RenderOptions& o) {
   if (o.speed && (!(*o.speed > 0) || !std::isfinite(*o.speed)))
     throw InputError("--speed: must be a finite number > 0");
   const std::string unit = time_unit_of(scene);  // "s" or "years"
+  const std::string one_unit = unit == "years" ? "year" : "second";  // ("per simulated year")
   const double duration = o.duration.value_or(scene.duration);
   if (!(duration >= 0) || !std::isfinite(duration)) throw InputError("--duration: must be a finite number >= 0");
   const double speed = playing_speed(o.speed, duration);
@@ -297,7 +298,7 @@ int render_command(const RenderOptions& o) {
   // (Without --fps the rate is at most 30.)
   const std::string rate_options = o.speed ? "--fps/--speed" : "--fps";
   const std::string rate_product =
-      speed == 1 ? "" : fmt::format(" ({:g} a simulated {} × {:g} {} a second)", fps, unit == "years" ? "year" : "second",
+      speed == 1 ? "" : fmt::format(" ({:g} a simulated {} × {:g} {} a second)", fps, one_unit,
                                     speed, unit);
   if (o.video == "gif" && video_fps > 50)
     throw InputError(fmt::format("{}: a GIF plays at most 50 frames per second (its frame delay is in hundredths of a "
@@ -437,7 +438,7 @@ int render_command(const RenderOptions& o) {
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count();
   fmt::print("{} frame{}{} of {}x{} at {:g} per simulated {}{} ({:g} {} of {}{}) in {}/ ({:.1f} s)\n", frames,
              frames == 1 ? "" : "s", distinct < frames ? fmt::format(" ({} distinct)", distinct) : "", width, height, fps,
-             unit == "years" ? "year" : "second", one_a_step ? ", one a step" : "", duration, unit, scene.name,
+             one_unit, one_a_step ? ", one a step" : "", duration, unit, scene.name,
              speed == 1 ? "" : fmt::format(", played at {:g} {} a second", speed, unit),
              without_trailing_separators(o.out).string(), wall);
 

@@ -73,7 +73,15 @@ struct Result {
 
 // This process's environment with `environment` ("NAME=value") replacing or adding its names;
 // under the sanitizers, where their reports go.
-inline std::vector<std::string> child_environment(const std::vector<std::string>& environment) {
+inline std::vector<std::string> child_environment(std::vector<std::string> environment) {
+#ifdef MOTUS_SANITIZE
+  // Under the sanitizers their reports go to files (docs/testing.md), so that a test counting
+  // the lines of motus's standard error counts motus's own. These replace any inherited copies:
+  // of two entries with one name, the first is the one a program reads.
+  environment.push_back("ASAN_OPTIONS=log_path=" MOTUS_SANITIZER_LOGS "/asan");
+  environment.push_back("UBSAN_OPTIONS=print_stacktrace=1:log_path=" MOTUS_SANITIZER_LOGS "/ubsan");
+  environment.push_back("LSAN_OPTIONS=suppressions=" MOTUS_LSAN_SUPPRESSIONS);
+#endif
   std::vector<std::string> env_strings;
   for (char** e = environ; *e; ++e) {
     const std::string entry = *e, name = entry.substr(0, entry.find('='));
@@ -82,13 +90,6 @@ inline std::vector<std::string> child_environment(const std::vector<std::string>
     if (!replaced) env_strings.push_back(entry);
   }
   env_strings.insert(env_strings.end(), environment.begin(), environment.end());
-#ifdef MOTUS_SANITIZE
-  // Under the sanitizers their reports go to files (docs/testing.md), so that a test counting
-  // the lines of motus's standard error counts motus's own.
-  env_strings.push_back("ASAN_OPTIONS=log_path=" MOTUS_SANITIZER_LOGS "/asan");
-  env_strings.push_back("UBSAN_OPTIONS=print_stacktrace=1:log_path=" MOTUS_SANITIZER_LOGS "/ubsan");
-  env_strings.push_back("LSAN_OPTIONS=suppressions=" MOTUS_LSAN_SUPPRESSIONS);
-#endif
   return env_strings;
 }
 

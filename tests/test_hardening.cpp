@@ -710,6 +710,10 @@ int run_motus_with_limit(const TempDir& dir, std::vector<std::string> args, int 
   std::vector<char*> argv;
   for (auto& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
+  std::vector<std::string> env_strings = child_environment({});  // (made before the fork: the child only execs)
+  std::vector<char*> envp;
+  for (auto& e : env_strings) envp.push_back(e.data());
+  envp.push_back(nullptr);
   const std::string err = (dir / "err.txt").string(), folder = dir.path().string();
   const pid_t pid = ::fork();
   if (pid == 0) {
@@ -719,7 +723,7 @@ int run_motus_with_limit(const TempDir& dir, std::vector<std::string> args, int 
     std::signal(SIGXFSZ, SIG_DFL);
     const rlimit limit{bytes, bytes};
     if (::setrlimit(static_cast<__rlimit_resource>(resource), &limit) != 0) ::_exit(126);
-    ::execv(argv[0], argv.data());
+    ::execve(argv[0], argv.data(), envp.data());
     ::_exit(127);
   }
   int raw = 0;

@@ -5,7 +5,6 @@
 #include <cmath>
 #include <cstdio>
 #include <cctype>
-#include <cstring>
 #include <fstream>
 #include <iterator>
 #include <utility>
@@ -338,7 +337,7 @@ std::string draw(const std::vector<Figure>& figures, const std::string& folder) 
       for (const char* format : {".png", ".svg"}) std::remove((folder + "/" + f.stem + format).c_str());
     // (Never started, it wrote nothing in figures.log: the reason is motus's to give.)
     if (!run.started)
-      return "plots failed: gnuplot (" + gnuplot + ") could not be started (" + std::strerror(run.error) + ")";
+      return "plots failed: " + run.not_started("gnuplot", gnuplot);
     return "plots failed: gnuplot's messages are in the report's figures.log";
   }
   // gnuplot says nothing when a picture's write fails (a full disk, a file-size limit): it exits 0

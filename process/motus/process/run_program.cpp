@@ -10,6 +10,7 @@
 
 #include <cerrno>
 #include <cstdlib>
+#include <cstring>
 #include <ctime>
 #include <filesystem>
 #include <sstream>
@@ -92,6 +93,10 @@ bool stopping() noexcept { return g_stopping.load(); }
 void kill_running_programs() noexcept {
   for (auto& running : g_running)
     if (const pid_t pid = running.load(); pid > 0) ::kill(pid, SIGKILL);
+}
+
+std::string Outcome::not_started(const std::string& name, const std::string& path) const {
+  return name + " (" + path + ") could not be started (" + std::strerror(error) + ")";
 }
 
 Outcome run_program(const std::vector<std::string>& argv_in, const std::string& folder, const std::string& log) {

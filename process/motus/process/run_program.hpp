@@ -18,6 +18,9 @@ struct Outcome {
   int status = -1;  // the exit status, when it exited
   int signal = 0;   // the signal that ended it, else 0
   bool ok() const { return started && signal == 0 && status == 0; }
+  // For a program that did not start, the words for the user: "gnuplot (/usr/bin/gnuplot) could
+  // not be started (Permission denied)" — it wrote nothing of its own to say why.
+  std::string not_started(const std::string& name, const std::string& path) const;
 };
 
 // Runs argv[0] (a path; a relative one from the current folder, not from `folder`) with the

@@ -69,7 +69,7 @@ void encode_video(const std::string& frame_pattern, double fps, const std::strin
     std::ifstream in(log);
     std::getline(in, said);  // the first line: the error, as ffmpeg words it
   }
-  if (!ffmpeg_run.started) throw RenderError("ffmpeg (" + ffmpeg + ") could not be started");
+  if (!ffmpeg_run.started) throw RenderError(ffmpeg_run.not_started("ffmpeg", ffmpeg));
   if (!ffmpeg_run.ok() || !said.empty())
     throw std::runtime_error("ffmpeg failed to write " + out_path + " (" +
                              (!said.empty()           ? "it said: " + said
