@@ -2,9 +2,13 @@
 
 #include <fmt/format.h>
 
+#include <unistd.h>
+
 #include <cmath>
+#include <cstdlib>
 #include <ctime>
 #include <filesystem>
+#include <fstream>
 #include <future>
 #include <new>
 #include <sstream>
@@ -12,6 +16,7 @@
 #include "motus/compare/backends/backend.hpp"
 #include "cli_common.hpp"
 #include "motus/compare/comparison.hpp"
+#include "motus/compare/explanations.hpp"
 #include "draw_module.hpp"
 #include "interrupt.hpp"
 #include "motus/exact/exact_solution.hpp"
@@ -44,6 +49,21 @@ std::string format_or_dash(const nlohmann::json& v, const char* format) {
 // A time per step as the report shows it (compare::microseconds_text).
 std::string micros_or_dash(const nlohmann::json& v) {
   return v.is_null() ? std::string("-") : compare::microseconds_text(v.get<double>());
+}
+
+// The 1-minute load average: the first number of /proc/loadavg — or of the file MOTUS_LOADAVG
+// names, the tests' way to make the machine look busy or idle; NaN when it cannot be read.
+double load_average() {
+  const char* file = std::getenv("MOTUS_LOADAVG");
+  std::ifstream in(file && *file ? file : "/proc/loadavg");
+  double load = NAN;
+  return in >> load ? load : NAN;
+}
+
+// The cores the machine has online (as the grader counts them), or 0 when it does not say.
+long online_cores() {
+  const long cores = ::sysconf(_SC_NPROCESSORS_ONLN);
+  return cores > 0 ? cores : 0;
 }
 
 }  // namespace
@@ -138,13 +158,21 @@ int compare_command(const CompareOptions& o) {
   if (!(options.duration > 0) || !std::isfinite(options.duration)) throw InputError("--duration: must be a finite number > 0");
   options.samples = o.samples;
   options.repeats = o.repeats;
-  // A plug-in's prints come once, with the metrics run; the timing rounds' go to /dev/null.
+  // A plug-in's prints come once, with the metrics run; the timing rounds' go to /dev/null. The
+  // machine's load is taken as the rounds begin and end (on a busy one the ratios may be off).
   QuietStandardOutput quiet;
-  if (!plugins().empty())
-    options.timing_rounds = [&quiet](bool begin) {
-      if (begin) quiet.begin();
-      else quiet.end();
-    };
+  compare::MachineLoad load;
+  load.cores = online_cores();
+  const bool quieten = !plugins().empty();
+  options.timing_rounds = [&quiet, &load, quieten](bool begin) {
+    if (begin) {
+      load.at_start = load_average();
+      if (quieten) quiet.begin();
+    } else {
+      if (quieten) quiet.end();
+      load.at_end = load_average();
+    }
+  };
   const std::string what = o.duration ? "--duration" : o.dt ? "--dt" : path + ": dt/duration";
   checked_step_count(options.duration, options.dt, what);
   check_time_resolution(scene.start_time, options.duration, options.dt, path + ": start_time", what);
@@ -287,6 +315,7 @@ int compare_command(const CompareOptions& o) {
   }
   const std::string warning = plots.get();
   progress.note("writing the report");
+  context.load = load;
   compare::write_report(work, context, runs, warning);
   progress.finish();
   stop_if_interrupted();  // (a plot that died of the same Ctrl-C is no reason to finish the report)
@@ -298,22 +327,42 @@ int compare_command(const CompareOptions& o) {
     fmt::print(data_output(), "{}\n", summary.dump(2, ' ', false, nlohmann::json::error_handler_t::replace));  // (a path not in UTF-8)
   } else {
     const long steps = fixed_step_count(options.duration, options.dt);
+    // (The run ends after whole steps: kepler's 2π s at 0.01 s ends at 6.29 s, as motus run says.)
+    const auto end = compare::end_past_duration(scene.start_time, options.duration, options.dt);
     // (motus's integrator only where motus ran: --engines box2d,bullet named one that did nothing.)
-    fmt::print("{}: {} {}, {}-D, dt = {:g} s, {:g} s ({} step{}){}\n", scene.name, context.bodies,
+    fmt::print("{}: {} {}, {}-D, dt = {:g} s, {:g} s ({} step{}{}){}\n", scene.name, context.bodies,
                context.bodies == 1 ? "body" : "bodies", context.dimensions, options.dt, options.duration, steps,
-               steps == 1 ? "" : "s", motus_runs ? "; motus integrator " + integrator_name : std::string());
+               steps == 1 ? "" : "s", end ? fmt::format(", ending at t = {:g} s", *end) : "",
+               motus_runs ? "; motus integrator " + integrator_name : std::string());
     // Where the scene has an exact answer, the distance from it matters more than from motus.
     const bool exact_known = has_exact_solution(scene);
     const char* distance_key = exact_known ? "max_distance_from_exact" : "max_distance_from_motus";
-    fmt::print("us/step: CPU time per step, {} (engines taking turns), the median beside it; "
-               "spread = (slowest - fastest) / fastest\n\n",
-               context.repeats == 0   ? std::string("no round (no engine ran)")
-               : context.repeats == 1 ? std::string("one round")
-                                      : fmt::format("the fastest of {} rounds", context.repeats));
+    // What the timing line says is what was done: no round, one, or several; turns only between engines.
+    const long timed = std::count_if(runs.begin(), runs.end(), [](const compare::EngineRun& r) { return r.supported; });
+    if (context.repeats == 0)
+      fmt::print("us/step: nothing was timed (no engine could run the scene)\n");
+    else if (context.repeats == 1)
+      fmt::print("us/step: CPU time per step in one timing round{}; with one round the median is that round and there "
+                 "is no spread\n",
+                 timed > 1 ? ", the engines one after another" : "");
+    else
+      fmt::print("us/step: CPU time per step, the fastest of {} rounds{}, the median beside it; "
+                 "spread = (slowest - fastest) / fastest\n",
+                 context.repeats, timed > 1 ? " (engines taking turns)" : "");
+    if (context.repeats > 0 && compare::busy_machine(load)) fmt::print("warning: {}\n", compare::busy_machine_warning(load));
+    fmt::print("\n");
     const bool joules = summary["energy_unit"] == "J";
-    fmt::print("{:<8}{:>13}{:>13}{:>13}{:>13}{:>13}{:>13}{:>11}{:>11}{:>8}{:>12}\n", "engine",
+    // The momentum column: a pendulum's is m·θ'; marked "*", with a note under the table, where
+    // it is not an engine's error (the report's decision: conserved_quantities, momentum_footnote).
+    const bool angle = summary["momentum_quantity"] != "momentum", change = summary["momentum_unit"] != "scale";
+    const std::string momentum_footnote = compare::momentum_footnote(scene, context.momentum_conserved);
+    const std::string momentum_heading =
+        std::string(angle ? (change ? "m theta' [kg rad/s]" : "m theta'") : (change ? "p [kg m/s]" : "momentum")) +
+        (momentum_footnote.empty() ? "" : "*");
+    const int momentum_width = std::max(13, static_cast<int>(momentum_heading.size()) + 2);
+    fmt::print("{:<8}{:>13}{:>13}{:>{}}{:>13}{:>13}{:>13}{:>11}{:>11}{:>8}{:>12}\n", "engine",
                joules ? "E drift [J]" : "energy drift", joules ? "max |dE| [J]" : "max |dE|/E0",
-               summary["momentum_unit"] == "scale" ? "momentum" : "p [kg m/s]",
+               momentum_heading, momentum_width,
                "penetration", "constraint", exact_known ? "from exact" : "from motus",
                "us/step", "median", "spread", "time/motus");
     for (const auto& e : summary["engines"]) {
@@ -321,9 +370,10 @@ int compare_command(const CompareOptions& o) {
         for (const auto& u : e["unsupported"]) fmt::print("{:<8}{}\n", e["engine"].get<std::string>(), u.get<std::string>());
         continue;
       }
-      fmt::print("{:<8}{:>13}{:>13}{:>13}{:>13}{:>13}{:>13}{:>11}{:>11}{:>8}{:>12}\n", e["engine"].get<std::string>(),
+      fmt::print("{:<8}{:>13}{:>13}{:>{}}{:>13}{:>13}{:>13}{:>11}{:>11}{:>8}{:>12}\n", e["engine"].get<std::string>(),
                  format_or_dash(e["energy_drift"], "{:+.2e}"), format_or_dash(e["max_energy_error"], "{:.2e}"),
-                 format_or_dash(e["momentum_drift"], "{:.2e}"), format_or_dash(e["max_penetration"], "{:.2e}"),
+                 format_or_dash(e["momentum_drift"], "{:.2e}"), momentum_width,
+                 format_or_dash(e["max_penetration"], "{:.2e}"),
                  format_or_dash(e["constraint_error"], "{:.2e}"), format_or_dash(e[distance_key], "{:.2e}"),
                  micros_or_dash(e["us_per_step"]), micros_or_dash(e["us_per_step_median"]),
                  e["us_per_step_spread"].is_null()
@@ -331,6 +381,7 @@ int compare_command(const CompareOptions& o) {
                      : fmt::format("{:.0f}%", 100 * e["us_per_step_spread"].get<double>()),
                  format_or_dash(e["time_relative_to_motus"], "{:.2f}x"));
     }
+    if (!momentum_footnote.empty()) fmt::print("{}\n", momentum_footnote);
     for (const auto& e : summary["engines"])
       for (const auto& n : e["notes"]) fmt::print("note ({}): {}\n", e["engine"].get<std::string>(), n.get<std::string>());
     for (const auto& e : summary["engines"])

@@ -405,11 +405,14 @@ TEST(Compare, ARunThatBlewUpIsNotReportedAsExact) {
 }
 
 TEST(Compare, AFigureNoEngineCouldDrawIsStillThereForItsLink) {
-  // Box2D cannot run a 1-D scene: the energy figure has no line, and was not drawn, though the
-  // report links it. It is drawn as empty axes that say so.
+  // Box2D cannot run a 3-D scene: the energy figure has no line, and was not drawn, though the
+  // report links it. It is drawn as empty axes that say so. (It was the 1-D oscillator, which Box2D
+  // now runs on its x axis.) Nothing was timed, and the line above the table says so.
   TempDir dir;
-  const Result r = run_motus(dir, {"compare", scene("oscillator"), "--engines", "box2d", "--out", (dir / "r").string()});
+  const Result r = run_motus(dir, {"compare", scene("bouncing_balls_3d"), "--engines", "box2d", "--duration", "0.1",
+                                   "--out", (dir / "r").string()});
   ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("us/step: nothing was timed (no engine could run the scene)\n"), std::string::npos) << r.out;
   if (!fs::exists("/usr/bin/gnuplot")) GTEST_SKIP() << "no gnuplot here";
   EXPECT_TRUE(fs::exists(dir / "r" / "energy.svg"));
   EXPECT_TRUE(fs::exists(dir / "r" / "energy.png"));
@@ -417,7 +420,208 @@ TEST(Compare, AFigureNoEngineCouldDrawIsStillThereForItsLink) {
   const std::string script = read_file(dir / "r" / "figures.gp");
   EXPECT_NE(script.find("nothing to draw: no run has data for this figure"), std::string::npos);
   EXPECT_EQ(script.find("every value is exactly 0"), std::string::npos);
-  EXPECT_NE(r.out.find("no round (no engine ran)"), std::string::npos) << r.out;
+}
+
+// The table's header line of a compare run's standard output (the line that starts "engine").
+std::string table_header(const std::string& out) {
+  std::istringstream lines(out);
+  for (std::string line; std::getline(lines, line);)
+    if (line.rfind("engine ", 0) == 0) return line;
+  return "";
+}
+
+// The report marks a momentum column that walls or outside forces change with "*" and a note under
+// the table; the terminal's table showed free_fall's 1.88e+00 (gravity's push) unmarked. Now both
+// mark it, from the one decision (conserved_quantities: momentum_conserved in the summary), with the
+// same note; head_on (no walls, no forces) keeps its momentum and is not marked.
+TEST(Compare, AMomentumTheSceneDoesNotKeepIsMarkedInTheTableAsInTheReport) {
+  TempDir dir;
+  const Result fall = run_motus(dir, {"compare", scene("free_fall"), "--engines", "motus", "--repeats", "1", "--out",
+                                      (dir / "f").string()});
+  ASSERT_EQ(fall.status, 0) << fall.err;
+  const std::string note =
+      "* This scene does not keep its momentum (walls, pins or outside forces act on it): that column shows their "
+      "push, not an engine's error.";
+  EXPECT_NE(table_header(fall.out).find(" momentum* "), std::string::npos) << fall.out;
+  EXPECT_NE(fall.out.find("\n" + note + "\n"), std::string::npos) << fall.out;
+  EXPECT_FALSE(nlohmann::json::parse(read_file(dir / "f" / "summary.json")).at("momentum_conserved").get<bool>());
+  const std::string page = read_file(dir / "f" / "index.html");
+  EXPECT_NE(page.find("<th scope=\"col\">momentum drift*</th>"), std::string::npos);
+  EXPECT_NE(page.find("<p class=\"dim\">" + note + "</p>"), std::string::npos);
+
+  const Result head_on = run_motus(dir, {"compare", scene("head_on"), "--engines", "motus", "--repeats", "1",
+                                         "--duration", "0.1", "--out", (dir / "h").string()});
+  ASSERT_EQ(head_on.status, 0) << head_on.err;
+  EXPECT_NE(table_header(head_on.out).find(" momentum "), std::string::npos) << head_on.out;
+  EXPECT_EQ(head_on.out.find("* This scene"), std::string::npos) << head_on.out;
+  EXPECT_TRUE(nlohmann::json::parse(read_file(dir / "h" / "summary.json")).at("momentum_conserved").get<bool>());
+  EXPECT_NE(read_file(dir / "h" / "index.html").find("<th scope=\"col\">momentum drift</th>"), std::string::npos);
+}
+
+// A pendulum's coordinate is its angle θ (scene-format.md): what the momentum columns measure is
+// m·θ', the mass times the angular velocity, not a momentum. The table, the summary and the report
+// said "momentum" (and, for a pendulum let go at rest, "kg·m/s").
+TEST(Compare, APendulumsMomentumColumnIsItsMassTimesItsAngularVelocity) {
+  TempDir dir;
+  const Result swing = run_motus(dir, {"compare", scene("pendulum"), "--engines", "motus", "--repeats", "1",
+                                       "--duration", "1", "--out", (dir / "p").string()});
+  ASSERT_EQ(swing.status, 0) << swing.err;
+  EXPECT_NE(table_header(swing.out).find(" m theta'* "), std::string::npos) << swing.out;
+  EXPECT_NE(swing.out.find("\n* This scene's coordinate is the pendulum's angle θ: that column is the change in m·θ' "),
+            std::string::npos)
+      << swing.out;
+  const auto j = nlohmann::json::parse(read_file(dir / "p" / "summary.json"));
+  EXPECT_EQ(j.at("momentum_quantity"), "m·θ'");
+  EXPECT_EQ(j.at("coordinate_unit"), "rad");
+  EXPECT_EQ(j.at("momentum_unit"), "scale");  // (θ' starts at 5 rad/s)
+  const std::string page = read_file(dir / "p" / "index.html");
+  EXPECT_NE(page.find("<th scope=\"col\">m·θ' drift*</th>"), std::string::npos);
+  EXPECT_NE(page.find("<dt>m·θ' drift</dt>"), std::string::npos);
+  EXPECT_EQ(page.find("<th scope=\"col\">momentum drift"), std::string::npos);
+
+  // Let go at rest (θ = 1 rad, θ' = 0): no scale, so the column is the change itself, in kg·rad/s.
+  write_file(dir / "rest.json", R"({"name": "rest", "dimensions": 1, "bodies": [{"mass": 1, "position": [1],
+    "velocity": [0]}], "forces": [{"type": "pendulum", "g": 9.81, "length": 1}], "integrator": "symplectic-euler",
+    "dt": 0.01, "duration": 1})");
+  const Result rest = run_motus(dir, {"compare", (dir / "rest.json").string(), "--engines", "motus", "--repeats", "1",
+                                      "--out", (dir / "r").string()});
+  ASSERT_EQ(rest.status, 0) << rest.err;
+  EXPECT_NE(table_header(rest.out).find(" m theta' [kg rad/s]* "), std::string::npos) << rest.out;
+  const auto k = nlohmann::json::parse(read_file(dir / "r" / "summary.json"));
+  EXPECT_EQ(k.at("momentum_unit"), "kg·rad/s");
+  const auto& motus = *engine(k, "motus");
+  EXPECT_DOUBLE_EQ(motus.at("momentum_drift").get<double>(), std::abs(motus.at("momentum").at("final")[0].get<double>()));
+  EXPECT_NE(read_file(dir / "r" / "index.html").find("<th scope=\"col\">m·θ' drift [kg·rad/s]*</th>"), std::string::npos);
+}
+
+// The line above the table says what was timed: it said "one round (engines taking turns), the
+// median beside it" of one round (no median of one, no turns) and "no round (no engine ran)
+// (engines taking turns)" when nothing ran. Turns are between engines, a median over rounds.
+TEST(Compare, TheTimingLineSaysWhatWasTimed) {
+  TempDir dir;
+  auto timing_line = [&](const std::string& engines, const std::string& repeats) {
+    const fs::path out = dir / (engines + "-" + repeats);
+    const Result r = run_motus(dir, {"compare", scene("head_on"), "--engines", engines, "--repeats", repeats,
+                                     "--duration", "0.1", "--out", out.string()});
+    EXPECT_EQ(r.status, 0) << r.err;
+    std::istringstream lines(r.out);
+    std::string line;
+    while (std::getline(lines, line) && line.rfind("us/step:", 0) != 0) {
+    }
+    return std::make_pair(line, read_file(out / "index.html"));
+  };
+  const auto [alone_once, alone_once_page] = timing_line("motus", "1");
+  EXPECT_EQ(alone_once,
+            "us/step: CPU time per step in one timing round; with one round the median is that round and there is "
+            "no spread");
+  EXPECT_NE(alone_once_page.find("Times are CPU time per step over one timing round."), std::string::npos);
+  const auto [two_once, two_once_page] = timing_line("motus,box2d", "1");
+  EXPECT_EQ(two_once,
+            "us/step: CPU time per step in one timing round, the engines one after another; with one round the median "
+            "is that round and there is no spread");
+  EXPECT_NE(two_once_page.find("over one timing round, the engines one after another."), std::string::npos);
+  const auto [alone_twice, alone_twice_page] = timing_line("motus", "2");
+  EXPECT_EQ(alone_twice,
+            "us/step: CPU time per step, the fastest of 2 rounds, the median beside it; spread = (slowest - fastest) / "
+            "fastest");
+  EXPECT_NE(alone_twice_page.find("over 2 timing rounds: the fastest round"), std::string::npos);
+  const auto [two_twice, two_twice_page] = timing_line("motus,box2d", "2");
+  EXPECT_EQ(two_twice,
+            "us/step: CPU time per step, the fastest of 2 rounds (engines taking turns), the median beside it; spread "
+            "= (slowest - fastest) / fastest");
+  EXPECT_NE(two_twice_page.find("over 2 timing rounds, the engines taking turns in each: the fastest round"),
+            std::string::npos);
+}
+
+// A fixed-step run takes whole steps: kepler's 2π s at dt = 0.01 s is ⌈628.3⌉ = 629 steps, ending at
+// 6.29 s (as motus run says: "time 0 -> 6.29"). The header said "6.28319 s (629 steps)" only.
+TEST(Compare, TheHeaderSaysWhenTheRunEndsPastItsDuration) {
+  TempDir dir;
+  const Result kepler = run_motus(dir, {"compare", scene("kepler"), "--engines", "motus", "--repeats", "1", "--out",
+                                        (dir / "k").string()});
+  ASSERT_EQ(kepler.status, 0) << kepler.err;
+  EXPECT_NE(kepler.out.find("dt = 0.01 s, 6.28319 s (629 steps, ending at t = 6.29 s);"), std::string::npos)
+      << kepler.out;
+  EXPECT_NE(read_file(dir / "k" / "index.html").find("dt = 0.01 s for 6.28319 s (629 steps, ending at t = 6.29 s);"),
+            std::string::npos);
+  const auto rows = csv_data_rows(read_file(dir / "k" / "metrics.csv"));
+  ASSERT_FALSE(rows.empty());
+  EXPECT_NEAR(std::stod(rows.back().at(1)), 6.29, 1e-12);  // where the run did end
+  // 0.1 s at 0.01 s is 10 whole steps: nothing to add.
+  const Result head_on = run_motus(dir, {"compare", scene("head_on"), "--engines", "motus", "--repeats", "1",
+                                         "--duration", "0.1", "--out", (dir / "h").string()});
+  ASSERT_EQ(head_on.status, 0) << head_on.err;
+  EXPECT_NE(head_on.out.find("dt = 0.01 s, 0.1 s (10 steps);"), std::string::npos) << head_on.out;
+}
+
+// The machine's load while the engines were timed: the 1-minute load average as the rounds began
+// and ended, and the cores, in the summary and the report; above the cores, a warning in the table
+// and the report that ratios between engines may be off (taking turns cannot make rounds of very
+// different lengths meet the same load: an audit's ball_gas with 10,000 balls, motus's round 0.04 s, Bullet's
+// 23 s). The load is read from MOTUS_LOADAVG's file instead of /proc/loadavg, so that the test does
+// not depend on how busy this machine is.
+TEST(Compare, TheTimingsSayHowBusyTheMachineWas) {
+  TempDir dir;
+  const long cores = ::sysconf(_SC_NPROCESSORS_ONLN);
+  ASSERT_GT(cores, 0);
+  struct Case {
+    std::string name, loadavg;  // the file's first number ("" : no such file)
+    bool busy;
+  };
+  const std::vector<Case> cases = {
+      {"idle", "0.00", false},
+      {"as_many_as_cores", std::to_string(cores) + ".00", false},  // exceeded, not reached
+      {"busy", std::to_string(cores) + ".01", true},
+      {"unreadable", "", false},
+  };
+  for (const Case& c : cases) {
+    const fs::path file = dir / (c.name + ".loadavg");
+    if (!c.loadavg.empty()) write_file(file, c.loadavg + " 0.50 0.40 2/345 6789\n");
+    const fs::path out = dir / c.name;
+    const Result r = run_motus(dir, {"compare", scene("head_on"), "--engines", "motus", "--repeats", "1", "--duration",
+                                     "0.1", "--out", out.string()},
+                               {"MOTUS_LOADAVG=" + file.string()});
+    ASSERT_EQ(r.status, 0) << c.name << ": " << r.err;
+    const auto j = nlohmann::json::parse(read_file(out / "summary.json"));
+    EXPECT_EQ(j.at("cores").get<long>(), cores) << c.name;
+    EXPECT_EQ(j.at("busy_machine").get<bool>(), c.busy) << c.name;
+    const std::string page = read_file(out / "index.html");
+    if (c.loadavg.empty()) {
+      EXPECT_TRUE(j.at("load_average").at("start").is_null()) << c.name;
+      EXPECT_TRUE(j.at("load_average").at("end").is_null()) << c.name;
+      EXPECT_NE(page.find("The machine has " + std::to_string(cores) + " core" + (cores == 1 ? "" : "s") +
+                          "; its load average could not be read."),
+                std::string::npos)
+          << c.name;
+    } else {
+      EXPECT_EQ(j.at("load_average").at("start").get<double>(), std::stod(c.loadavg)) << c.name;
+      EXPECT_EQ(j.at("load_average").at("end").get<double>(), std::stod(c.loadavg)) << c.name;
+      EXPECT_NE(page.find("The machine's 1-minute load average was " + c.loadavg + " as the timing began and " +
+                          c.loadavg + " as it ended, on " + std::to_string(cores) + " core"),
+                std::string::npos)
+          << c.name;
+    }
+    const std::string warning = "the timings were taken on a busy machine (a 1-minute load average of " + c.loadavg +
+                                " as they began and " + c.loadavg + " as they ended, on " + std::to_string(cores) +
+                                " core" + (cores == 1 ? "" : "s") +
+                                "): rounds of very different lengths do not meet the same load, so the ratios "
+                                "between engines may be off";
+    if (c.busy) {
+      EXPECT_NE(r.out.find("\nwarning: " + warning + "\n"), std::string::npos) << r.out;
+      EXPECT_NE(page.find("<p class=\"no\">T" + warning.substr(1) + ".</p>"), std::string::npos) << c.name;
+    } else {
+      EXPECT_EQ(r.out.find("busy machine"), std::string::npos) << c.name << ":\n" << r.out;
+      EXPECT_EQ(page.find("The timings were taken on a busy machine"), std::string::npos) << c.name;
+    }
+  }
+  // Without MOTUS_LOADAVG, /proc/loadavg's: numbers (whatever they are).
+  const Result real = run_motus(dir, {"compare", scene("head_on"), "--engines", "motus", "--repeats", "1",
+                                      "--duration", "0.1", "--json", "--out", (dir / "real").string()});
+  ASSERT_EQ(real.status, 0) << real.err;
+  const auto j = nlohmann::json::parse(real.out);
+  EXPECT_TRUE(j.at("load_average").at("start").is_number()) << real.out;
+  EXPECT_TRUE(j.at("load_average").at("end").is_number()) << real.out;
+  EXPECT_TRUE(j.at("busy_machine").is_boolean()) << real.out;
 }
 
 TEST(Compare, BadInputIsOneLineAndExitTwo) {

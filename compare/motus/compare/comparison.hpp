@@ -94,8 +94,9 @@ struct ComparisonOptions {
 // First every engine runs the scene once with its metrics sampled (untimed): the rows, frames,
 // settings and notes. Then `repeats` timing rounds: in each, every engine builds the scene
 // afresh and runs all its steps with nothing else in between, timed as one block of CPU time;
-// the engines take turns within a round (the round's first engine rotates), so that whatever
-// else the machine is doing falls on all of them alike. With repeats 0 (the default) the first
+// the engines take turns within a round (the round's first engine rotates), which spreads the
+// machine's slow spells across the engines (it cannot make rounds of very different lengths meet
+// the same load: compare reports the load average). With repeats 0 (the default) the first
 // round's time decides how many there are (auto_rounds, timing.hpp: 5 for a small scene).
 // progress(fraction of all engines' steps done) is called now and then.
 std::vector<EngineRun> run_comparison(const SceneDescription& scene, const ComparisonOptions& options,

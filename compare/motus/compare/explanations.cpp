@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "motus/exact/exact_solution.hpp"
+#include "motus/simulation.hpp"
 
 namespace motus::compare {
 namespace {
@@ -90,6 +91,54 @@ std::string coordinate_unit(const SceneDescription& scene) {
   return scene.mechanical && !scene.mechanical->forces.pendulums.empty() ? "rad" : "m";
 }
 
+std::optional<double> end_past_duration(double start, double duration, double dt) {
+  const double end = start + static_cast<double>(fixed_step_count(duration, dt)) * dt;
+  if (fmt::format("{:g}", end) == fmt::format("{:g}", start + duration)) return std::nullopt;
+  return end;
+}
+
+std::string momentum_quantity(const SceneDescription& scene) {
+  return coordinate_unit(scene) == "rad" ? "m·θ'" : "momentum";
+}
+
+std::string momentum_footnote(const SceneDescription& scene, bool momentum_conserved) {
+  if (momentum_quantity(scene) != "momentum")
+    return "* This scene's coordinate is the pendulum's angle θ: that column is the change in m·θ' (the mass "
+           "times the angular velocity), not in a momentum, and the pendulum's gravity changes it: it shows the "
+           "swing, not an engine's error.";
+  if (momentum_conserved) return "";
+  return "* This scene does not keep its momentum (walls, pins or outside forces act on it): that column shows their "
+         "push, not an engine's error.";
+}
+
+namespace {
+// A load average as the timing's sentences give it: two decimals, or "not known".
+std::string load_text(double x) { return std::isnan(x) ? std::string("not known") : fmt::format("{:.2f}", x); }
+}  // namespace
+
+bool busy_machine(const MachineLoad& load) {
+  // (A load not known is NaN, which compares false: no warning.)
+  const double cores = static_cast<double>(load.cores);
+  return load.cores > 0 && (load.at_start > cores || load.at_end > cores);
+}
+
+std::string busy_machine_warning(const MachineLoad& load) {
+  if (!busy_machine(load)) return "";
+  return fmt::format("the timings were taken on a busy machine (a 1-minute load average of {} as they began and "
+                     "{} as they ended, on {} core{}): rounds of very different lengths do not meet the same "
+                     "load, so the ratios between engines may be off",
+                     load_text(load.at_start), load_text(load.at_end), load.cores, load.cores == 1 ? "" : "s");
+}
+
+std::string machine_load_sentence(const MachineLoad& load) {
+  const std::string cores = fmt::format("{} core{}", load.cores, load.cores == 1 ? "" : "s");
+  if (std::isnan(load.at_start) && std::isnan(load.at_end))
+    return load.cores > 0 ? "The machine has " + cores + "; its load average could not be read." : "";
+  return fmt::format("The machine's 1-minute load average was {} as the timing began and {} as it ended, on {}.",
+                     load_text(load.at_start), load_text(load.at_end),
+                     load.cores > 0 ? cores : std::string("a number of cores not known"));
+}
+
 namespace {
 
 // "ball 4" for a ball, "body 4" for a point mass.
@@ -128,7 +177,9 @@ std::string format_vector(const std::vector<double>& v) {
 std::vector<ColumnDefinition> column_definitions(const SceneDescription& scene, long samples, bool momentum_conserved,
                                                  bool energy_in_joules) {
   std::vector<ColumnDefinition> d;
-  const std::string over = fmt::format("over the {} samples of the run (and its start and end)", samples);
+  // (run_comparison's samples: at the steps nearest k·steps/samples, k = 1 … samples, the last at the end.)
+  const std::string over = fmt::format("over the run's start and its {} samples (evenly spaced, the last at its end)",
+                                       samples);
   const std::string energy = " E is the kinetic energy ½ m v² plus the potential energy of the scene's forces, computed "
                              "by the same code from every engine's positions and velocities.";
   if (energy_in_joules) {
@@ -142,16 +193,24 @@ std::vector<ColumnDefinition> column_definitions(const SceneDescription& scene, 
                      energy});
     d.push_back({"max |ΔE|/E₀", "the largest |E(t) − E₀| / |E₀| " + over + ": an engine can end near E₀ and stray on the way."});
   }
-  d.push_back({"momentum drift",
-               "|p_end − p₀| / scale, where p = Σ m v is the total momentum and the scale is the larger of |p₀| and Σ m "
-               "|v₀| (the momentum in play: in a head-on collision p₀ is 0, and dividing by it would mean nothing); "
-               "a scene that starts with nothing moving has no scale, and the column is then |p_end − p₀| in kg·m/s "
-               "(the summary's momentum_unit says which). " +
-                   std::string(momentum_conserved
-                                   ? "This scene keeps its momentum exactly (no walls, no outside force), so any change "
-                                     "is the engine's error."
-                                   : "This scene does not keep its momentum (walls or outside forces push on it): the "
-                                     "column shows that push, not an error.")});
+  if (momentum_quantity(scene) != "momentum")
+    d.push_back({"m·θ' drift",
+                 "|p_end − p₀| / scale, computed as the momentum drift of other scenes is, from p = Σ m v: this scene's "
+                 "coordinate is the pendulum's angle θ, so p is Σ m·θ', the mass times the angular velocity, not a "
+                 "momentum. The scale is the larger of |p₀| and Σ m |v₀|; a pendulum that starts at rest has none, "
+                 "and the column is then |p_end − p₀| in kg·rad/s (the summary's momentum_unit says which). The "
+                 "pendulum's gravity changes it: the column shows the swing, not an error."});
+  else
+    d.push_back({"momentum drift",
+                 "|p_end − p₀| / scale, where p = Σ m v is the total momentum and the scale is the larger of |p₀| and "
+                 "Σ m |v₀| (the momentum in play: in a head-on collision p₀ is 0, and dividing by it would mean "
+                 "nothing); a scene that starts with nothing moving has no scale, and the column is then |p_end − p₀| "
+                 "in kg·m/s (the summary's momentum_unit says which). " +
+                     std::string(momentum_conserved
+                                     ? "This scene keeps its momentum exactly (no walls, no outside force), so any "
+                                       "change is the engine's error."
+                                     : "This scene does not keep its momentum (walls, pins or outside forces push on "
+                                       "it): the column shows that push, not an error.")});
   d.push_back({"max penetration [m]",
                "the deepest overlap of two balls (r_a + r_b − distance) or of a ball and a wall (radius − height above it) "
                "over every step of the run (an overlap lasts a step or two, between samples). Exact collisions never "
@@ -171,8 +230,10 @@ std::vector<ColumnDefinition> column_definitions(const SceneDescription& scene, 
   d.push_back({"µs per step (min)",
                "CPU time spent inside the engine's steps, divided by the number of steps, in the fastest of the timing "
                "rounds: every engine runs the whole scene again in each round, with nothing measured in between, the "
-               "engines taking turns, so that a busy machine slows all of them alike; the run least disturbed is the "
-               "one shown. Compare ratios, not absolute times, on a shared machine."});
+               "engines taking turns (the first of them changing from round to round), which spreads the machine's "
+               "slow spells across the engines; the run least disturbed is the one shown. Taking turns cannot make "
+               "rounds of very different lengths meet the same load: on a busy machine (a load average above its "
+               "cores, which the report gives) the ratios between engines may be off."});
   d.push_back({"median", "the median round's µs per step: how typical the fastest was."});
   d.push_back({"spread", "(slowest round − fastest round) / fastest round: how much the rounds disagreed."});
   d.push_back({"time / motus", "µs per step (min) divided by motus's: below 1 is faster than motus."});

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "motus/compare/comparison.hpp"
+#include "motus/compare/report.hpp"
 #include "motus/scene.hpp"
 
 namespace motus::compare {
@@ -55,6 +56,35 @@ bool conserves_energy(const SceneDescription& scene);
 // The unit of the bodies' coordinates and of distances between them: "rad" for a pendulum (its
 // coordinate is its angle θ), else "m".
 std::string coordinate_unit(const SceneDescription& scene);
+
+// The time a run ends at (`start` + steps·dt) when it reads otherwise than start + duration: the
+// step count is rounded up to whole steps (motus::fixed_step_count), so kepler's 2π s at dt = 0.01 s
+// takes 629 steps and ends at 6.29 s. nullopt when the two read the same ({:g}).
+std::optional<double> end_past_duration(double start, double duration, double dt);
+
+// What the momentum columns measure: "momentum", p = Σ m v — or, where the coordinate is an angle θ
+// (coordinate_unit "rad"), "m·θ'", the mass times the angular velocity, which is no momentum.
+std::string momentum_quantity(const SceneDescription& scene);
+
+// The note under the table for its momentum column, whose heading is then marked "*", when that
+// column is not an engine's error: the scene does not keep its momentum (`momentum_conserved`, as
+// conserved_quantities decides it: walls, pins or outside forces push on it), or what it measures
+// is m·θ' (a pendulum). "" when every change in the column is the engine's error.
+std::string momentum_footnote(const SceneDescription& scene, bool momentum_conserved);
+
+// Whether the load average exceeded the number of cores as the timing began or as it ended (the
+// 1-minute average lags: either end may show a busy spell). False where the load or the cores are
+// not known.
+bool busy_machine(const MachineLoad& load);
+
+// One sentence for the terminal and the report when busy_machine(load), else "": the timings were
+// taken on a busy machine, and the ratios between engines may be off.
+std::string busy_machine_warning(const MachineLoad& load);
+
+// The report's sentence of the load ("The machine's 1-minute load average was 0.52 as the timing
+// began and 0.61 as it ended, on 2 cores."; "The machine has 2 cores; its load average could not be
+// read."); "" when neither the load nor the cores are known.
+std::string machine_load_sentence(const MachineLoad& load);
 
 // A vector as "(1, −0.5)" with three significant digits (the report's and the table's style).
 std::string format_vector(const std::vector<double>& v);

@@ -4,6 +4,7 @@
 #include <fmt/ranges.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdlib>
 #include <cerrno>
@@ -16,6 +17,7 @@
 #include "motus/plot/figure.hpp"
 #include "motus/plot/html.hpp"
 #include "motus/plot/write_failure.hpp"
+#include "motus/simulation.hpp"
 
 namespace motus::compare {
 namespace {
@@ -187,6 +189,15 @@ std::vector<plot::Figure> figures(const ReportContext& c, const std::vector<Engi
 
 nlohmann::json number_or_null(double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); }
 
+// What the momentum columns measure, and their note (explanations.hpp), for a context that may
+// have no scene (then a momentum in metres).
+std::string momentum_quantity_of(const ReportContext& c) {
+  return c.scene ? momentum_quantity(*c.scene) : "momentum";
+}
+std::string momentum_footnote_of(const ReportContext& c) {
+  return momentum_footnote(c.scene ? *c.scene : SceneDescription{}, c.momentum_conserved);
+}
+
 }  // namespace
 
 std::string microseconds_text(double us) {
@@ -214,6 +225,7 @@ Conserved conserved_quantities(const SceneDescription& scene) {
 }
 
 nlohmann::json summary_json(const ReportContext& c, const std::vector<EngineRun>& runs) {
+  const MachineLoad& load = c.load;
   nlohmann::json j;
   j["scene"] = c.scene_name;
   j["file"] = c.scene_file;
@@ -223,8 +235,17 @@ nlohmann::json summary_json(const ReportContext& c, const std::vector<EngineRun>
   j["dimensions"] = c.dimensions;
   j["bodies"] = c.bodies;
   j["repeats"] = c.repeats;
+  // The machine while the engines were timed: its cores and 1-minute load average (null: not known).
+  j["cores"] = load.cores > 0 ? nlohmann::json(load.cores) : nlohmann::json(nullptr);
+  j["load_average"] = {{"start", number_or_null(load.at_start)}, {"end", number_or_null(load.at_end)}};
+  j["busy_machine"] = busy_machine(load);
   j["energy_unit"] = energy_in_joules(runs) ? "J" : "E0";  // energy_drift, max_energy_error: joules, or fractions of |E₀|
-  j["momentum_unit"] = momentum_in_kg_m_s(runs) ? "kg·m/s" : "scale";  // momentum_drift: kg·m/s, or fractions of the scale
+  // momentum_drift: a change in kg·m/s (kg·rad/s where the coordinate is an angle), or a fraction of the scale.
+  const std::string quantity = momentum_quantity_of(c);
+  j["momentum_unit"] = !momentum_in_kg_m_s(runs) ? "scale" : quantity == "momentum" ? "kg·m/s" : "kg·rad/s";
+  j["momentum_quantity"] = quantity;  // "momentum", or "m·θ'" (a pendulum's coordinate is its angle)
+  j["momentum_conserved"] = c.momentum_conserved;  // else the table marks the column "*"
+  j["coordinate_unit"] = c.scene ? coordinate_unit(*c.scene) : "m";
   const EngineRun* motus = find_motus(runs);
   const Timings motus_time = motus ? motus->microseconds_per_step() : Timings{};
   j["engines"] = nlohmann::json::array();
@@ -315,6 +336,7 @@ std::string draw_figures(const std::string& folder, const ReportContext& c, cons
 
 void write_report(const std::string& folder, const ReportContext& c, const std::vector<EngineRun>& runs,
                   const std::string& plots_line) {
+  const MachineLoad& load = c.load;
   // metrics.csv: every sample of every engine.
   {
     std::ofstream csv(folder + "/metrics.csv");
@@ -357,22 +379,40 @@ void write_report(const std::string& folder, const ReportContext& c, const std::
           "img{max-width:100%}code{background:#f3f3f3;padding:0 .2em}"
        << (c.scene ? replay_style() : std::string()) << "</style></head><body>\n";
   html << "<h1>" << html_escape(c.scene_name) << "</h1>\n<p>" << html_escape(c.description) << "</p>\n";
-  const std::string timing =
-      c.repeats == 0   ? "No engine ran, so nothing was timed."
-      : c.repeats == 1 ? "Times are CPU time per step over one timing round."
-                       : fmt::format("Times are CPU time per step over {} timing rounds, the engines taking turns in each: the "
-                                     "fastest round, with the median and the spread (largest − smallest) / smallest beside it.",
-                                     c.repeats);
-  html << fmt::format("<p>{} {} in {} dimension{}; dt = {:g} s for {:g} s; motus integrator <code>{}</code>. "
+  const long timed = std::count_if(runs.begin(), runs.end(), [](const EngineRun& r) { return r.supported; });
+  std::string timing =
+      c.repeats == 0 ? "No engine ran, so nothing was timed."
+      : c.repeats == 1
+          ? std::string("Times are CPU time per step over one timing round") +
+                (timed > 1 ? ", the engines one after another." : ".")
+          : fmt::format("Times are CPU time per step over {} timing rounds{}: the fastest round, with the median and "
+                        "the spread (largest − smallest) / smallest beside it.",
+                        c.repeats, timed > 1 ? ", the engines taking turns in each" : "");
+  if (c.repeats > 0 && !machine_load_sentence(load).empty()) timing += " " + machine_load_sentence(load);
+  // (The run ends after whole steps: kepler's 2π s at 0.01 s ends at 6.29 s, as motus run says.)
+  const auto end = end_past_duration(c.scene ? c.scene->start_time : 0, c.duration, c.dt);
+  html << fmt::format("<p>{} {} in {} dimension{}; dt = {:g} s for {:g} s{}; motus integrator <code>{}</code>. "
                       "Every engine runs the same parsed scene in one process; every metric is computed by the same "
                       "code from each engine's positions and velocities. {}</p>\n",
                       c.bodies, c.bodies == 1 ? "body" : "bodies", c.dimensions, c.dimensions == 1 ? "" : "s", c.dt,
-                      c.duration, html_escape(c.integrator), timing);
+                      c.duration,
+                      end ? fmt::format(" ({} steps, ending at t = {:g} s)", fixed_step_count(c.duration, c.dt), *end) : "",
+                      html_escape(c.integrator), timing);
+  if (c.repeats > 0 && busy_machine(load)) {
+    std::string warning = busy_machine_warning(load);
+    warning[0] = static_cast<char>(std::toupper(static_cast<unsigned char>(warning[0])));
+    html << "<p class=\"no\">" << html_escape(warning) << ".</p>\n";
+  }
   const bool exact_known = c.scene && has_exact_solution(*c.scene);
   const std::string unit = c.scene ? coordinate_unit(*c.scene) : "m";
   if (summary.contains("notice"))
     html << "<p class=\"notice\"><b>What to notice.</b> " << html_escape(summary["notice"].get<std::string>()) << "</p>\n";
   const int columns = exact_known ? 11 : 10;
+  // (Marked "*" where the column is not an engine's error; the note under the table says why.)
+  const std::string momentum_heading =
+      (momentum_quantity_of(c) == "momentum" ? std::string("momentum drift") + (momentum_in_kg_m_s(runs) ? " [kg·m/s]" : "")
+                                             : std::string("m·θ' drift") + (momentum_in_kg_m_s(runs) ? " [kg·rad/s]" : "")) +
+      (momentum_footnote_of(c).empty() ? "" : "*");
   // (Headers are column headers and each row's engine its row's header, for a screen reader's
   // "column, row" reading of a cell; headers may wrap, numbers not, so that the table fits the page.)
   auto header = [](const std::string& text) { return "<th scope=\"col\">" + text + "</th>"; };
@@ -381,8 +421,7 @@ void write_report(const std::string& folder, const ReportContext& c, const std::
        << header("engine")
        << (energy_in_joules(runs) ? header("energy drift [J]") + header("max |ΔE| [J]")
                                   : header("energy drift") + header("max |ΔE|/E₀"))
-       << header(std::string("momentum drift") + (momentum_in_kg_m_s(runs) ? " [kg·m/s]" : "") +
-                 (c.momentum_conserved ? "" : "*"))
+       << header(momentum_heading)
        << header("max penetration [m]") << header("constraint error") << header("max distance from motus [" + unit + "]")
        << (exact_known ? header("max distance from exact [" + unit + "]") : "") << header("µs per step (min)")
        << header("median [µs]") << header("spread") << header("time / motus") << "</tr>\n";
@@ -410,9 +449,8 @@ void write_report(const std::string& folder, const ReportContext& c, const std::
          << "</td><td>" << cell(e["time_relative_to_motus"], "{:.2f}×") << "</td></tr>\n";
   }
   html << "</table></div>\n";
-  if (!c.momentum_conserved)  // (a note on the table, not a row of it)
-    html << "<p class=\"dim\">* This scene does not keep its momentum (walls or outside forces act on it): "
-            "that column shows their push, not an engine's error.</p>\n";
+  if (!momentum_footnote_of(c).empty())  // (a note on the table, not a row of it)
+    html << "<p class=\"dim\">" << html_escape(momentum_footnote_of(c)) << "</p>\n";
   for (const auto& e : summary["engines"])
     if (e.contains("not_finite_from") && !e["not_finite_from"].is_null())
       html << fmt::format("<p class=\"no\">{} blew up: its energy is not finite from t = {:g} s on (its figures after "

@@ -2,6 +2,7 @@
 // What `motus compare` leaves behind in its folder: the metrics as CSV and JSON, plots
 // of energy and momentum against time (gnuplot), and an index.html that opens
 // straight from the file system.
+#include <cmath>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -9,6 +10,17 @@
 #include "motus/compare/comparison.hpp"
 
 namespace motus::compare {
+
+// How busy the machine was while the engines were timed. The rounds are CPU time, so a wait for a
+// core is not counted; but with more runnable work than cores a round shares the caches and the
+// memory bandwidth and is cut into slices, more or less as the load comes and goes, and taking
+// turns cannot make rounds of very different lengths meet the same load (an audit's ball_gas with
+// 10,000 balls: motus's round took 0.04 s, Bullet's 23 s), so the ratios between engines may be off.
+struct MachineLoad {
+  // The 1-minute load average as the timing rounds began and as they ended (NaN: not known).
+  double at_start = NAN, at_end = NAN;
+  long cores = 0;  // online (0: not known)
+};
 
 struct ReportContext {
   const SceneDescription* scene = nullptr;  // what was run (the definitions, the exact answer, the replay)
@@ -24,6 +36,7 @@ struct ReportContext {
   std::string pictures_note;         // why --render's pictures (or its video) are missing, or ""
   bool momentum_conserved = false;          // the scene keeps it (no walls, no outside force)
   bool angular_momentum_conserved = false;  // about the origin
+  MachineLoad load;                         // while the engines were timed (unknown: NaN and 0)
 };
 
 // Whether a scene keeps its total momentum and its angular momentum about the origin exactly
