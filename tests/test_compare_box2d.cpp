@@ -118,6 +118,11 @@ TEST(Box2dSameIntegrator, OneDimensionalScenesRunOnTheXAxis) {
   throw1.mechanical->forces.gravity.push_back({{-10, 0, 0}});
   expect_same_trajectory(throw1, 1.0 / 60, 120);
   EXPECT_TRUE(has_line_containing(built("box2d", throw1, 1.0 / 60)->settings(), "1-D: the x axis"));
+  // The pendulum's coordinate is its angle: the notes' lengths are radians.
+  auto pendulum = built("box2d", load("pendulum"), 0.01);
+  run(*pendulum, 100);
+  EXPECT_TRUE(has_line_containing(pendulum->notes(), "rad from the origin, the farthest a body came"));
+  EXPECT_TRUE(has_line_containing(pendulum->notes(), "(2 rad per step; the fastest body moved"));
 }
 
 TEST(Box2dContacts, OneDimensionalCollisionsStayOnTheAxis) {

@@ -97,6 +97,7 @@ struct Box2dBackend::World {
   double dt = 0, t0 = 0;
   long steps = 0;
   size_t d = 2;                 // the scene's dimensions: 2, or 1 on the x axis (on_the_x_axis)
+  const char* unit = "m";       // of the coordinates: "rad" where the one coordinate is a pendulum's angle
   std::vector<double> x, v, F;  // scratch: the state in double (d numbers a body), the forces
 
   // What the settings and notes report.
@@ -240,6 +241,7 @@ void Box2dBackend::build(const SceneDescription& scene, const Method& /*method*/
   w->dt = dt;
   w->t0 = scene.start_time;
   w->d = static_cast<size_t>(as_written.dimensions);
+  if (!as_written.forces.pendulums.empty()) w->unit = "rad";  // (Box2D's x is then θ: its notes say rad)
   auto forces = std::make_unique<PeerForces>(as_written);  // (in the scene's own dimensions)
   w->gravity[0] = forces->gravity()[0];
   w->gravity[1] = forces->gravity()[1];
@@ -448,26 +450,27 @@ std::vector<std::string> Box2dBackend::notes() const {
   std::vector<std::string> s;
   if (!world_) return s;
   const World& w = *world_;
-  s.push_back(format("Box2D is float: positions to ~1e-7 relative (about %.1g m at %.3g m from the origin, the "
+  const char* u = w.unit;
+  s.push_back(format("Box2D is float: positions to ~1e-7 relative (about %.1g %s at %.3g %s from the origin, the "
                      "farthest a body came), velocities likewise",
-                     std::max(w.farthest, 1.0) * 1.2e-7, w.farthest));
+                     std::max(w.farthest, 1.0) * 1.2e-7, u, w.farthest, u));
   const double cap = b2_maxTranslation;
   // (One line when the run never came near the cap: the start's speed and the run's said together.)
   if (w.capped == 0 && w.steps > 0) {
     const double fastest = std::max(w.run_fastest, w.start_fastest);
-    s.push_back(format("b2_maxTranslation not reached in %ld steps (%g m per step; the fastest body moved %.3g m in a "
-                       "step, %.3g%% of it, and %.3g m at the start)",
-                       w.steps, cap, fastest, 100 * fastest / cap, w.start_fastest));
+    s.push_back(format("b2_maxTranslation not reached in %ld steps (%g %s per step; the fastest body moved %.3g %s in a "
+                       "step, %.3g%% of it, and %.3g %s at the start)",
+                       w.steps, cap, u, fastest, u, 100 * fastest / cap, w.start_fastest, u));
   } else {
-    s.push_back(format("b2_maxTranslation (%g m per step): the fastest body moves %.3g m per step at the start "
+    s.push_back(format("b2_maxTranslation (%g %s per step): the fastest body moves %.3g %s per step at the start "
                        "(%.3g%% of it%s)",
-                       cap, w.start_fastest, 100 * w.start_fastest / cap,
+                       cap, u, w.start_fastest, u, 100 * w.start_fastest / cap,
                        w.start_fastest > cap ? ": Box2D will slow it to the cap" : ""));
   }
   if (w.capped > 0)
     s.push_back(format("b2_maxTranslation capped %ld body-steps (first at step %ld, t = %.6g s): those bodies moved "
-                       "only %g m in a step where the scene says farther",
-                       w.capped, w.first_capped_step, w.t0 + static_cast<double>(w.first_capped_step) * w.dt, cap));
+                       "only %g %s in a step where the scene says farther",
+                       w.capped, w.first_capped_step, w.t0 + static_cast<double>(w.first_capped_step) * w.dt, cap, u));
   s.push_back("b2_maxRotation (0.5*pi per step) cannot bite: every body has fixed rotation");
   if (w.bullet_steps > 0)
     s.push_back(format("bullets: %ld body-steps of a ball moving more than its radius were taken with continuous "
