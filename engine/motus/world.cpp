@@ -17,7 +17,7 @@ MechanicalSystem make_system(const MechanicalDescription& scene) {
 }  // namespace
 
 World::World(const MechanicalDescription& scene, const Method& method, ExternalParts parts)
-    : system_(make_system(scene)), has_forces_(!scene.forces.empty()),
+    : system_(make_system(scene)), has_forces_(scene.forces.acts()),
       has_sticks_(!scene.sticks.empty()) {
   const ForceSet& f = scene.forces;
   position_dependent_forces_ =
