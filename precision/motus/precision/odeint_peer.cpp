@@ -125,13 +125,51 @@ Curve curve(const std::string& name, const std::string& description, bool adapti
   return c;
 }
 
-// The three Runge–Kutta steppers on the first-order system f (y = [x; v] for point masses).
-template <class System>
-void runge_kutta(const SceneDescription& scene, System& f, const Vector& y0, const Sweep& sweep,
-                 std::vector<Curve>& curves) {
-  using State = OdeintState<static_size_of<System>>;
-  const SameRightHandSide<System> rhs{&f};
-  long& evaluations = evaluations_of(f);
+// One body under central gravity alone (Kepler), as an Odeint user writes its right-hand side:
+// the parameters copied into the function object, the derivative assigned whole. Through motus's
+// one-body right-hand side (SameRightHandSide over OneBodyAsFirstOrder), shaped for motus's stage
+// vectors (one vector store of the acceleration), Odeint paid 2–2.5× per evaluation on its
+// std::arrays where motus's own steppers pay nothing (an audit, 2026-12-07). The same formula and
+// order of operations as CentralGravity::add_forces and acceleration_of_one_body: the same numbers.
+template <int D>
+struct CentralGravityForOdeint {
+  std::array<double, 3> centre{};
+  double mu = 0, softening = 0, mass = 0, inverse_mass = 0;
+  long* evaluations = nullptr;
+  void operator()(const std::array<double, 2 * D>& y, std::array<double, 2 * D>& dydt, double) const {
+    ++*evaluations;
+    double r[D];
+    for (int k = 0; k < D; ++k) r[k] = y[k] - centre[k];
+    double s2 = r[0] * r[0];
+    for (int k = 1; k < D; ++k) s2 += r[k] * r[k];
+    if (softening != 0) s2 += softening * softening;
+    const double scale = -mu * mass / (s2 * std::sqrt(s2));
+    std::array<double, 2 * D> d;
+    for (int k = 0; k < D; ++k) {
+      d[k] = y[D + k];
+      d[D + k] = (scale * r[k]) * inverse_mass;
+    }
+    dydt = d;
+  }
+};
+
+// Lorenz's right-hand side likewise (σ, ρ, β copied in; Lorenz::derivative's formula): through
+// SameRightHandSide Odeint paid 1.15–1.2× per evaluation in this command.
+struct LorenzForOdeint {
+  double sigma = 0, rho = 0, beta = 0;
+  long* evaluations = nullptr;
+  void operator()(const std::array<double, 3>& s, std::array<double, 3>& d, double) const {
+    ++*evaluations;
+    const double x = s[0], y = s[1], z = s[2];
+    d = {sigma * (y - x), x * (rho - z) - y, x * y - beta * z};
+  }
+};
+
+// The three Runge–Kutta steppers on the right-hand side rhs (y = [x; v] for point masses), whose
+// evaluations `evaluations` counts.
+template <class State, class Rhs>
+void runge_kutta_on(const SceneDescription& scene, const Rhs& rhs, long& evaluations, const Vector& y0,
+                    const Sweep& sweep, std::vector<Curve>& curves) {
   const double t0 = scene.start_time, end = sweep.end;
 
   Curve rk4 = curve("runge_kutta4", "Odeint's classic fourth-order Runge-Kutta, fixed step", false);
@@ -172,6 +210,35 @@ void runge_kutta(const SceneDescription& scene, System& f, const Vector& y0, con
              [&](double tol) { return controller.template operator()<ode::runge_kutta_dopri5<State>>(tol); });
   controlled(curve("runge_kutta_fehlberg78", "Odeint's Runge-Kutta-Fehlberg 7(8), controlled (as make_controlled)", true),
              [&](double tol) { return controller.template operator()<ode::runge_kutta_fehlberg78<State>>(tol); });
+}
+
+// The three on the first-order system f, by its concrete type.
+template <class System>
+void runge_kutta(const SceneDescription& scene, System& f, const Vector& y0, const Sweep& sweep,
+                 std::vector<Curve>& curves) {
+  runge_kutta_on<OdeintState<static_size_of<System>>>(scene, SameRightHandSide<System>{&f}, evaluations_of(f), y0,
+                                                       sweep, curves);
+}
+
+// Kepler's right-hand side for Odeint (CentralGravityForOdeint) when the scene is one body under
+// one central gravity and nothing else; false otherwise.
+template <int D>
+bool runge_kutta_on_kepler(const SceneDescription& scene, MechanicalSystem& m, const Vector& y0, const Sweep& sweep,
+                           std::vector<Curve>& curves) {
+  const ForceSet& f = m.forces();
+  if (m.particles() != 1 || m.dimensions() != D || m.one_body_force_kinds() != kCentralGravityForce ||
+      f.central_gravity.size() != 1 || f.central_gravity[0].body > 0)
+    return false;
+  const CentralGravity& g = f.central_gravity[0];
+  CentralGravityForOdeint<D> rhs;
+  rhs.centre = g.centre;
+  rhs.mu = g.mu;
+  rhs.softening = g.softening;
+  rhs.mass = m.masses()[0];
+  rhs.inverse_mass = 1 / m.masses()[0];
+  rhs.evaluations = &m.evaluations;
+  runge_kutta_on<std::array<double, 2 * D>>(scene, rhs, m.evaluations, y0, sweep, curves);
+  return true;
 }
 
 // McLachlan's symplectic RKN on point masses: q = x, p = v, dq/dt = p, dp/dt = a(q).
@@ -232,8 +299,16 @@ std::vector<Curve> sweep_odeint(const SceneDescription& scene, const Sweep& swee
   const Vector y0 = sim.state();
   std::vector<Curve> curves;
   auto run = [&](auto& f) { runge_kutta(scene, f, y0, sweep, curves); };
-  if (MechanicalSystem* m = sim.mechanical_system()) with_first_order_view(*m, run);
-  else with_concrete_system(*sim.first_order_system(), run);
+  if (MechanicalSystem* m = sim.mechanical_system()) {
+    if (!runge_kutta_on_kepler<1>(scene, *m, y0, sweep, curves) && !runge_kutta_on_kepler<2>(scene, *m, y0, sweep, curves) &&
+        !runge_kutta_on_kepler<3>(scene, *m, y0, sweep, curves))
+      with_first_order_view(*m, run);
+  } else if (auto* lorenz = dynamic_cast<Lorenz*>(sim.first_order_system())) {
+    const LorenzForOdeint rhs{lorenz->sigma, lorenz->rho, lorenz->beta, &lorenz->evaluations};
+    runge_kutta_on<std::array<double, 3>>(scene, rhs, lorenz->evaluations, y0, sweep, curves);
+  } else {
+    with_concrete_system(*sim.first_order_system(), run);
+  }
 
   Curve rkn = curve("symplectic_rkn_sb3a_mclachlan",
                     "Odeint's symplectic Runge-Kutta-Nystrom of order 4 (McLachlan), fixed step", false);

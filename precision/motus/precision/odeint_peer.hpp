@@ -1,10 +1,12 @@
 #pragma once
 // Boost.Odeint as a peer of motus's integrators (docs/peers.md): its steppers on the same
-// right-hand side motus integrates — the scene's system by its concrete type, exactly as
-// Simulation steps it (systems/concrete_system.hpp) — with the state in a std::array when its size
-// is known at compile time, else in a std::vector. Not Odeint at its fastest: calling motus's
-// derivative through Eigen maps of the state costs Odeint 2–2.5× per evaluation on Kepler and
-// 1.15–1.5× on Lorenz beside a hand-written function object (an audit, 2026-12-07; README):
+// right-hand side motus integrates, with the state in a std::array when its size is known at
+// compile time, else in a std::vector. For Kepler (one body, one central gravity) and Lorenz, the
+// right-hand side is written as an Odeint user writes it (a function object with the numbers
+// copied in, the same formula: the same errors, steps and evaluations); for every other scene it is
+// the scene's system by its concrete type, exactly as Simulation steps it
+// (systems/concrete_system.hpp), seen through Eigen maps of the state — which cost Odeint 2–2.5×
+// per evaluation on Kepler and 1.15–1.2× on Lorenz (an audit, 2026-12-07; README):
 //   odeint:runge_kutta4                   fixed step, the classic RK4
 //   odeint:runge_kutta_dopri5             controlled (make_controlled), Dormand–Prince 5(4)
 //   odeint:runge_kutta_fehlberg78         controlled, Runge–Kutta–Fehlberg 7(8)
