@@ -35,6 +35,16 @@ public:
 
   template <Mechanical System>
   void step(System& s, double t, double h, VectorRef x, VectorRef v) {
+    move(s, t, h, x, v);
+    s.acceleration(t + h, x, v, a_);
+    v = (x - x_previous_) / h + (0.5 * h) * a_;
+  }
+
+  // The step's positions alone, x_{n+1} = 2 x_n − x_{n−1} + a_n Δt²: for a world that projects
+  // them, then reads the velocity from them and takes a_{n+1} itself where the forces can change
+  // it (world.hpp; refresh_acceleration). What step() adds to it would be thrown away there.
+  template <Mechanical System>
+  void move(System& s, double t, double h, VectorRef x, ConstVectorRef v) {
     if (!started_) {
       s.acceleration(t, x, v, a_);
       x_previous_ = x - h * v + (0.5 * h * h) * a_;
@@ -50,8 +60,6 @@ public:
       x_next[i] = (2 * x_n - x_previous[i]) + h2 * a[i];
       x_previous[i] = x_n;
     }
-    s.acceleration(t + h, x, v, a_);
-    v = (x - x_previous_) / h + (0.5 * h) * a_;
   }
 
 private:
