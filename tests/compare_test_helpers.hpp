@@ -76,6 +76,17 @@ inline SceneDescription one_body(std::vector<double> x, std::vector<double> v) {
   return scene;
 }
 
+// head_on (masses 1 and 3 at ±1 m/s, e = 1) along a line: the same scene as a 1-D one.
+inline SceneDescription head_on_along_a_line() {
+  SceneDescription scene = load("head_on");
+  scene.mechanical->dimensions = 1;
+  for (auto& b : scene.mechanical->bodies) {
+    b.position.resize(1);
+    b.velocity.resize(1);
+  }
+  return scene;
+}
+
 // peers.md's gravity, g = 10 m/s² downward (along −y).
 inline const motus::UniformGravity kPeersGravity{{0, -10, 0}};
 

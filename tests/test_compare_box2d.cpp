@@ -128,13 +128,7 @@ TEST(Box2dSameIntegrator, OneDimensionalScenesRunOnTheXAxis) {
 TEST(Box2dContacts, OneDimensionalCollisionsStayOnTheAxis) {
   // head_on along a line (masses 1 and 3 at ±1 m/s, e = 1): the same exact velocities as in
   // the plane, −2 and 0 m/s (contact normals along x: nothing leaves the axis).
-  SceneDescription line = load("head_on");
-  line.mechanical->dimensions = 1;
-  for (auto& b : line.mechanical->bodies) {
-    b.position.resize(1);
-    b.velocity.resize(1);
-  }
-  line.mechanical->colliders = {};
+  const SceneDescription line = head_on_along_a_line();
   const Snapshot s = run(*built("box2d", line, line.dt), steps_of(line));
   ASSERT_EQ(s.v.size(), 2u);
   EXPECT_NEAR(s.v[0], -2, 1e-6);

@@ -384,12 +384,7 @@ TEST(CompareBullet, TheSticksNoteSaysTheWorstLengthErrorAsAPercentage) {
 TEST(CompareBullet, HeadOnIn1DRunsAlongX) {
   // head_on as a 1-D scene: bodies on the x axis (linear factor (1, 0, 0)), one number
   // per body read back; the same outcome as in 2-D (measured: −2.00000000000004, 1.3e-14).
-  SceneDescription scene = load("head_on");
-  scene.mechanical->dimensions = 1;
-  for (auto& b : scene.mechanical->bodies) {
-    b.position.resize(1);
-    b.velocity.resize(1);
-  }
+  const SceneDescription scene = head_on_along_a_line();
   auto bullet = built("bullet", scene, scene.dt);
   const Snapshot s = run(*bullet, steps_of(scene));
   ASSERT_EQ(s.x.size(), 2U);
