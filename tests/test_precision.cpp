@@ -144,9 +144,14 @@ TEST(EnginePeers, Box2dFallsAsSymplecticEulerDoes) { expect_free_fall_error_of_s
 TEST(EnginePeers, BulletFallsAsSymplecticEulerDoes) { expect_free_fall_error_of_symplectic_euler("bullet", 1e-9, 1e-6); }
 
 TEST(EnginePeers, WhatAnEngineCannotRunIsSaid) {
-  const SceneDescription oscillator = shipped("oscillator");  // 1-D
+  SceneDescription oscillator = shipped("oscillator");  // made 3-D: Box2D is a 2-D engine
+  oscillator.mechanical->dimensions = 3;
+  for (auto& b : oscillator.mechanical->bodies) {
+    b.position.resize(3, 0.0);
+    b.velocity.resize(3, 0.0);
+  }
   const precision::Curve c = precision::sweep_engine(oscillator, "box2d", short_sweep(oscillator, 1));
-  EXPECT_NE(c.unsupported.find("1-D"), std::string::npos) << c.unsupported;
+  EXPECT_NE(c.unsupported.find("3-D"), std::string::npos) << c.unsupported;
   EXPECT_TRUE(c.points.empty());
 }
 
