@@ -76,6 +76,16 @@ inline SceneDescription one_body(std::vector<double> x, std::vector<double> v) {
   return scene;
 }
 
+// Two of one_body's balls (radius 0.5, mass 2) at x = ∓3 moving towards each other at ±speed.
+inline SceneDescription two_balls_head_on(double speed) {
+  SceneDescription pair = one_body({-3, 0}, {speed, 0});
+  BodyDescription other = pair.mechanical->bodies[0];
+  other.position = {3, 0};
+  other.velocity = {-speed, 0};
+  pair.mechanical->bodies.push_back(other);
+  return pair;
+}
+
 // head_on (masses 1 and 3 at ±1 m/s, e = 1) along a line: the same scene as a 1-D one.
 inline SceneDescription head_on_along_a_line() {
   SceneDescription scene = load("head_on");

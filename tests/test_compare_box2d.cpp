@@ -298,21 +298,14 @@ TEST(Box2dContacts, AFastBallIsABulletAndDoesNotPassThrough) {
   // ±0.33 m, swapped) and be pushed on through. As bullets they meet at the time of impact and
   // stay in their order, bouncing apart at their full 100 m/s (e = 1; measured: the energy
   // exactly kept, where Bullet's CCD stops both dead).
-  SceneDescription pair = one_body({-3, 0}, {100, 0});
-  BodyDescription other = pair.mechanical->bodies[0];
-  other.position = {3, 0};
-  other.velocity = {-100, 0};
-  pair.mechanical->bodies.push_back(other);
-  auto box2d = built("box2d", pair, 1.0 / 60);
+  auto box2d = built("box2d", two_balls_head_on(100), 1.0 / 60);
   const Snapshot p = run(*box2d, 10);
   EXPECT_LT(p.x[0], p.x[2]);
   EXPECT_NEAR(p.v[0], -100, 1e-3);  // bounced back, not through (float: 1e-5 relative)
   EXPECT_NEAR(p.v[2], 100, 1e-3);
   EXPECT_TRUE(has_line_containing(box2d->notes(), "bullets: "));
   // The same pair at ±1 m/s (a sixtieth of a metre a step) is never a bullet: nothing said.
-  pair.mechanical->bodies[0].velocity = {1, 0};
-  pair.mechanical->bodies[1].velocity = {-1, 0};
-  auto slow = built("box2d", pair, 1.0 / 60);
+  auto slow = built("box2d", two_balls_head_on(1), 1.0 / 60);
   run(*slow, 200);
   EXPECT_FALSE(has_line_containing(slow->notes(), "bullets: "));
 }

@@ -469,12 +469,7 @@ TEST(CompareBullet, ContinuousCollisionStopsTunnellingButNotEnergyLoss) {
   const auto notes = bullet->notes();
   EXPECT_TRUE(std::any_of(notes.begin(), notes.end(), [](const std::string& n) { return n.rfind("CCD armed", 0) == 0; }));
 
-  SceneDescription pair = one_body({-3, 0}, {100, 0});
-  BodyDescription other = pair.mechanical->bodies[0];
-  other.position = {3, 0};
-  other.velocity = {-100, 0};
-  pair.mechanical->bodies.push_back(other);
-  auto bullet_pair = built("bullet", pair, 1.0 / 60);
+  auto bullet_pair = built("bullet", two_balls_head_on(100), 1.0 / 60);
   const Snapshot p = run(*bullet_pair, 10);
   EXPECT_LT(p.x[0], p.x[2]);  // still in their order
   EXPECT_NEAR(p.x[2] - p.x[0], 1.0, 1e-9);

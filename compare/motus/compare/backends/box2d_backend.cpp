@@ -13,6 +13,7 @@
 #include <optional>
 #include <string>
 
+#include "motus/compare/backends/note_format.hpp"
 #include "motus/compare/backends/peer_forces.hpp"
 #include "motus/compare/backends/starting_outside.hpp"
 
@@ -41,13 +42,6 @@ constexpr double kPointRadius = 1e-4;  // m
 constexpr double kPlaneHalfLength = 1e4;  // m
 // Collision filter: balls meet walls and balls, points meet walls only (as in motus).
 constexpr std::uint16_t kWallBits = 0x1, kBallBits = 0x2, kPointBits = 0x4;
-
-template <class... A>
-std::string format(const char* pattern, A... args) {
-  char buffer[512];
-  std::snprintf(buffer, sizeof buffer, pattern, args...);
-  return buffer;
-}
 
 // Each fixture's e (a double owned by the world) hangs from its user data.
 double restitution_of(b2Fixture* fixture) {

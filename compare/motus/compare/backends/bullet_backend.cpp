@@ -15,6 +15,7 @@
 #include <string>
 #include <utility>
 
+#include "motus/compare/backends/note_format.hpp"
 #include "motus/compare/backends/peer_forces.hpp"
 #include "motus/compare/backends/starting_outside.hpp"
 
@@ -90,15 +91,6 @@ void* allocate_or_throw(size_t size) {
 }
 
 void release(void* p) { std::free(p); }
-
-// printf's formatting, into a string as long as it needs (the contacts' note is longer than a line).
-template <class... A>
-std::string format(const char* pattern, A... args) {
-  const int size = std::snprintf(nullptr, 0, pattern, args...);
-  std::string out(static_cast<size_t>(std::max(size, 0)), '\0');
-  std::snprintf(out.data(), out.size() + 1, pattern, args...);
-  return out;
-}
 
 void use_allocator_that_throws() {
   static std::once_flag once;
