@@ -12,12 +12,14 @@
 
 #include "cli_common.hpp"
 #include "interrupt.hpp"
+#include "motus/compare/explanations.hpp"
 #include "motus/exact/exact_solution.hpp"
 #include "motus/precision/engine_peers.hpp"
 #include "motus/precision/motus_sweep.hpp"
 #include "motus/precision/odeint_peer.hpp"
 #include "motus/precision/precision_report.hpp"
 #include "motus/precision/targets.hpp"
+#include "motus/precision/timing_rounds.hpp"
 #include "motus/scene_file/scene_file.hpp"
 #include "motus/scene_file/spelling.hpp"
 #include "motus/simulation.hpp"
@@ -52,7 +54,8 @@ CLI::App* add_bench_precision_command(CLI::App& bench, BenchPrecisionOptions& o)
   p->add_option("--per-decade", o.per_decade, "Adaptive methods: tolerances 1e-3 ... 1e-13, this many per decade")
       ->transform(whole_number_in(1, 10))
       ->capture_default_str();
-  p->add_option("--repeats", o.repeats, "Timed runs per point, after one untimed run; the fastest counts")
+  p->add_option("--repeats", o.repeats, "Timed rounds, after one untimed round: each runs every point of every engine once, the engines taking "
+                 "turns; a point's fastest run counts")
       ->transform(whole_number_in(1, 100))
       ->capture_default_str();
   add_list_option(p, "--targets", o.targets,
@@ -155,6 +158,9 @@ int bench_precision_command(const BenchPrecisionOptions& o) {
   if (wants("odeint") && precision::why_motus_cannot_run(scene, Integrator::Rk4).empty())
     total += 2 * fixed_work + 2 * adaptive_work;
   for (const char* engine : {"box2d", "bullet"}) total += wants(engine) && scene.is_mechanical() ? engine_work : 0;
+  // Every point runs once untimed, then once in each timed round (timing_rounds.hpp).
+  const double rounds = 1 + sweep.repeats;
+  total *= rounds;
   ProgressBar progress(0, total, "bench precision", 1);
   progress.without_estimate();  // (the steps to come cost more each than those done: no rate says what is left)
   double done = 0;
@@ -164,36 +170,51 @@ int bench_precision_command(const BenchPrecisionOptions& o) {
   };
   sweep.now_and_then = [] { stop_if_interrupted(); };
 
-  std::vector<precision::Curve> curves;
-  for (const Method& method : chosen) curves.push_back(precision::sweep_motus(scene, method, sweep));
+  // Each method's sweep; the peers' in the order asked for. What a peer cannot run is found as it runs
+  // (in the untimed round): its work, counted in the total for every round, is then done.
+  std::vector<precision::SweepOf> sweeps;
+  for (const Method& method : chosen)
+    sweeps.push_back([&scene, method](const precision::Sweep& s) { return std::vector{precision::sweep_motus(scene, method, s)}; });
   std::vector<std::string> versions = {"motus " MOTUS_VERSION};
   if (wants("odeint")) {
-    for (auto& c : precision::sweep_odeint(scene, sweep)) {
-      // (Odeint's symplectic method on a first-order system or with drag: found only as it runs.)
-      if (!c.unsupported.empty() && precision::why_motus_cannot_run(scene, Integrator::Rk4).empty())
-        progress.update(done += c.adaptive ? adaptive_work : fixed_work);
-      curves.push_back(std::move(c));
-    }
+    sweeps.push_back([&](const precision::Sweep& s) {
+      std::vector<precision::Curve> curves = precision::sweep_odeint(scene, s);
+      for (const auto& c : curves)
+        // (Odeint's symplectic method on a first-order system or with drag: found only as it runs.)
+        if (s.round == 0 && !c.unsupported.empty() && precision::why_motus_cannot_run(scene, Integrator::Rk4).empty())
+          progress.update(done += rounds * (c.adaptive ? adaptive_work : fixed_work));
+      return curves;
+    });
     versions.push_back(precision::odeint_version());
   }
   for (const char* engine : {"box2d", "bullet"}) {
     if (!wants(engine)) continue;
-    if (!scene.is_mechanical()) {
+    sweeps.push_back([&, engine](const precision::Sweep& s) {
       precision::Curve c;
-      c.method = c.engine = engine;
-      c.unsupported = "a first-order system: the engines model bodies";
-      curves.push_back(c);
-      continue;
-    }
-    curves.push_back(precision::sweep_engine(scene, engine, sweep));
-    if (!curves.back().unsupported.empty()) progress.update(done += engine_work);  // (found only as it runs)
-    if (!curves.back().description.empty()) versions.push_back(curves.back().description);
+      if (!scene.is_mechanical()) {
+        c.method = c.engine = engine;
+        c.unsupported = "a first-order system: the engines model bodies";
+        return std::vector{c};
+      }
+      c = precision::sweep_engine(scene, engine, s);
+      if (s.round == 0 && !c.unsupported.empty()) progress.update(done += rounds * engine_work);  // (found only as it runs)
+      return std::vector{c};
+    });
   }
+  // The machine's load as the sweeps begin and end (on a busy one the ratios may be off), as compare says it.
+  compare::MachineLoad load;
+  load.cores = online_cores();
+  load.at_start = load_average();
+  std::vector<precision::Curve> curves = precision::sweep_in_rounds(sweeps, sweep);
+  load.at_end = load_average();
+  for (const auto& c : curves)
+    if ((c.engine == "box2d" || c.engine == "bullet") && !c.description.empty()) versions.push_back(c.description);
   progress.finish();
 
   // The points, method by method.
   fmt::print("run time against error: {} to t = {:g}; error = max |y - y_exact| over the state where each run ends (a fixed\n"
-             "step's at its first step at or past t); seconds = fastest of {} timed runs (after one untimed run)\n\n",
+             "step's at its first step at or past t); seconds = CPU time, the fastest of {} timed rounds (after one untimed\n"
+             "round), every engine in each round, taking turns\n\n",
              scene.name, end, o.repeats);
   fmt::print("{:<38}{:>11}{:>10}{:>13}{:>12}{:>12}\n", "integrator", "h / tol", "steps", "evaluations", "error", "seconds");
   for (const auto& c : curves) {
@@ -218,9 +239,11 @@ int bench_precision_command(const BenchPrecisionOptions& o) {
     if (std::find(engines.begin(), engines.end(), c.engine) == engines.end()) engines.push_back(c.engine);
   fmt::print("\ntargets: the fastest method of each engine at each target error, each curve interpolated on log-log "
              "axes;\nus = microseconds of the fastest runs (the median runs'); <= : at most this (the cheapest point, or "
-             "one after a blow-up, is already below the target; a ratio with one such side is a bound)\n{:<8}", "target");
+             "one after a blow-up, is already below the target; a ratio with one such side is a bound)\nnot reached (best E): no "
+             "point of the engine's sweep gets below the target; E is the smallest error any reached (a curve\nstill falling at "
+             "its finest step or tightest tolerance may get there further on)\n{:<8}", "target");
   // (The method column as wide as its longest entry: odeint's symplectic_rkn_sb3a_mclachlan is 36.)
-  size_t method_width = std::string_view("cannot run this scene").size();
+  size_t method_width = std::string_view("not reached (best 6.7e-10)").size();
   for (const auto& c : curves) method_width = std::max(method_width, c.method.size());
   for (const auto& e : engines) fmt::print("  {:<{}}{:>18}", e, method_width, "us");
   for (size_t k = 1; k < engines.size(); ++k) fmt::print("{:>22}", "motus/" + engines[k]);
@@ -232,13 +255,16 @@ int bench_precision_command(const BenchPrecisionOptions& o) {
       best.push_back(precision::fastest(curves, e, target));
       fmt::print("  {:<{}}{:>18}",
                  best.back()                       ? best.back()->method
-                 : precision::engine_runs(curves, e) ? "not reached"
+                 : precision::engine_runs(curves, e) ? precision::not_reached_text(curves, e, true)
                                                      : "cannot run this scene",
                  method_width, microseconds(best.back()));
     }
     for (size_t k = 1; k < engines.size(); ++k) fmt::print("{:>22}", precision::ratio_text(best[0], best[k], true));
     fmt::print("\n");
   }
+
+  fmt::print("\n{}\n", compare::machine_load_sentence(load));
+  if (compare::busy_machine(load)) fmt::print("warning: {}\n", compare::busy_machine_warning(load));
 
   precision::ReportContext context;
   context.scene = scene.name;
@@ -250,6 +276,8 @@ int bench_precision_command(const BenchPrecisionOptions& o) {
   context.sweep = sweep;
   context.targets = targets;
   context.versions = versions;
+  context.machine_load = compare::machine_load_sentence(load);
+  context.busy_machine = compare::busy_machine_warning(load);
   const std::string warning = precision::write_precision_report(partial.path(), context, curves);
   if (!warning.empty()) tell("motus: {}\n", warning);
   stop_if_interrupted();

@@ -708,4 +708,16 @@ std::string time_unit_of(const SceneDescription& scene) {
   return "s";
 }
 
+double load_average() {
+  const char* file = std::getenv("MOTUS_LOADAVG");
+  std::ifstream in(file && *file ? file : "/proc/loadavg");
+  double load = NAN;
+  return in >> load ? load : NAN;
+}
+
+long online_cores() {
+  const long cores = ::sysconf(_SC_NPROCESSORS_ONLN);
+  return cores > 0 ? cores : 0;
+}
+
 }  // namespace motus::cli

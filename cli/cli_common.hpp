@@ -165,6 +165,12 @@ std::vector<std::string> known_integrators();
 // catalog's time_unit).
 std::string time_unit_of(const SceneDescription& scene);
 
+// The 1-minute load average: the first number of /proc/loadavg — or of the file MOTUS_LOADAVG
+// names, the tests' way to make the machine look busy or idle; NaN when it cannot be read.
+double load_average();
+// The cores the machine has online (as the grader counts them), or 0 when it does not say.
+long online_cores();
+
 // A name (a scene's, say) made safe as one file name: letters, digits, '.', '-' and '_' are
 // kept, anything else becomes '_', no leading dot, at most 64 characters; "scene" if nothing is
 // left. A scene named "../victim" writes "victim", inside the folder it was given.

@@ -51,21 +51,6 @@ std::string micros_or_dash(const nlohmann::json& v) {
   return v.is_null() ? std::string("-") : compare::microseconds_text(v.get<double>());
 }
 
-// The 1-minute load average: the first number of /proc/loadavg — or of the file MOTUS_LOADAVG
-// names, the tests' way to make the machine look busy or idle; NaN when it cannot be read.
-double load_average() {
-  const char* file = std::getenv("MOTUS_LOADAVG");
-  std::ifstream in(file && *file ? file : "/proc/loadavg");
-  double load = NAN;
-  return in >> load ? load : NAN;
-}
-
-// The cores the machine has online (as the grader counts them), or 0 when it does not say.
-long online_cores() {
-  const long cores = ::sysconf(_SC_NPROCESSORS_ONLN);
-  return cores > 0 ? cores : 0;
-}
-
 }  // namespace
 
 CLI::App* add_compare_command(CLI::App& app, CompareOptions& o) {

@@ -14,6 +14,7 @@
 #include <regex>
 #include <set>
 #include <sstream>
+#include <unistd.h>
 #include <string>
 
 #include "accessibility.hpp"
@@ -22,6 +23,7 @@
 #include "motus/precision/motus_sweep.hpp"
 #include "motus/precision/odeint_peer.hpp"
 #include "motus/precision/targets.hpp"
+#include "motus/precision/timing_rounds.hpp"
 #include "motus/scene_file/scene_file.hpp"
 
 namespace {
@@ -262,9 +264,10 @@ TEST(BenchPrecisionCommand, ItsProgressIsTheWorkDoneAndReachesTheEnd) {
   EXPECT_EQ(percents.back(), 100) << r.err;
   // The work in units of the first level's steps: euler, midpoint and rk4 six levels each, 1 + 2 + … +
   // 32 = 63 units; rk4-doubling, rk45 and dop853 eleven tolerances each, counted at one unit (their
-  // first step is the scene's dt): 3 · 63 + 3 · 11 = 222. Euler comes first: after its levels the bar
-  // shows 100 · (1, 3, 7, 15, 31, 63) / 222 % (the first, 0.45 %, as the start's 0 %).
-  const std::vector<double> euler = {0, 100.0 * 3 / 222, 100.0 * 7 / 222, 100.0 * 15 / 222, 100.0 * 31 / 222, 100.0 * 63 / 222};
+  // first step is the scene's dt): 3 · 63 + 3 · 11 = 222, done once in the untimed round and once in
+  // the one timed round (--repeats 1): 444. Euler comes first in the untimed round: after its levels
+  // the bar shows 100 · (1, 3, 7, 15, 31, 63) / 444 % (the first, 0.23 %, as the start's 0 %).
+  const std::vector<double> euler = {0, 100.0 * 3 / 444, 100.0 * 7 / 444, 100.0 * 15 / 444, 100.0 * 31 / 444, 100.0 * 63 / 444};
   for (size_t k = 0; k < euler.size(); ++k) EXPECT_NEAR(percents[k], euler[k], 1.0) << k << "\n" << r.err;
 }
 
@@ -495,6 +498,99 @@ TEST(BenchPrecisionCommand, ThePageIsNamedItsTablesHaveHeadersAndItsTimesUnits) 
   const std::string table = html.substr(every, html.find("</table>", every) - every);
   EXPECT_NE(table.find("<td>not reached</td>"), std::string::npos) << table;
   EXPECT_EQ(table.find("–"), std::string::npos) << table;
+}
+
+// ---------------------------------------------------------------------------------------------------------
+// The timing rounds: an untimed round gives every point its numbers, then each timed round runs every
+// method once more, the methods taking turns (each round one further on), so that a slow spell of a
+// shared machine falls on all of them alike; a point's time is the fastest of its timed runs, the
+// median beside it. (Before, each method ran all of its timed runs in a row, motus's before Odeint's.)
+// Here the sweeps are stand-ins that say which round called them and give each point a time the
+// test chooses, so the fastest and median are known.
+TEST(TimingRounds, TheNumbersAreTheUntimedRoundsAndTheTimesTheFastestOfTheTimedOnes) {
+  std::vector<std::string> calls;  // "a0", "b0", "a1", …: which sweep ran for which round
+  auto stand_in = [&](const std::string& name, double error, std::vector<double> seconds_by_round,
+                      bool unsupported = false) -> precision::SweepOf {
+    return [&calls, name, error, seconds_by_round, unsupported](const precision::Sweep& s) {
+      calls.push_back(name + std::to_string(s.round));
+      precision::Curve c;
+      c.method = c.engine = name;
+      if (unsupported) {
+        c.unsupported = "cannot";
+        return std::vector{c};
+      }
+      precision::Point p;
+      // Later rounds give another error: only the untimed round's may be reported.
+      p.error = s.round == 0 ? error : 1.0;
+      p.seconds = p.median_seconds = seconds_by_round.at(static_cast<size_t>(s.round));
+      c.points = {p};
+      return std::vector{c};
+    };
+  };
+  precision::Sweep sweep;
+  sweep.repeats = 4;
+  const auto curves = precision::sweep_in_rounds(
+      {stand_in("a", 1e-6, {99, 5, 3, 4, 8}), stand_in("b", 1e-7, {99, 2, 6, 1, 7}), stand_in("c", 0, {}, true)},
+      sweep);
+  // Round 0 in order; then a, b in turns, each timed round beginning one further on (c, which cannot
+  // run the scene, has nothing to time and runs in the untimed round only).
+  EXPECT_EQ(calls, (std::vector<std::string>{"a0", "b0", "c0", "a1", "b1", "b2", "a2", "a3", "b3", "b4", "a4"}));
+  ASSERT_EQ(curves.size(), 3u);
+  EXPECT_EQ(curves[0].method, "a");
+  EXPECT_EQ(curves[0].points.at(0).error, 1e-6);
+  EXPECT_EQ(curves[0].points.at(0).seconds, 3);           // of 5, 3, 4, 8 (never the untimed 99)
+  EXPECT_EQ(curves[0].points.at(0).median_seconds, 4.5);  // (4 + 5) / 2
+  EXPECT_EQ(curves[1].points.at(0).error, 1e-7);
+  EXPECT_EQ(curves[1].points.at(0).seconds, 1);
+  EXPECT_EQ(curves[1].points.at(0).median_seconds, 4);  // (2 + 6) / 2
+  EXPECT_EQ(curves[2].unsupported, "cannot");
+}
+
+// What the table says beside "not reached": the smallest error any point of the engine reached, so
+// that a reader can tell a method that stops short of a target from a sweep that ends before it
+// (an audit: arenstorf's rkf78 reaches 6.7e-10 at a tolerance of 1e-14, past the sweep's 1e-13).
+TEST(Targets, NotReachedSaysTheSmallestErrorReached) {
+  precision::Curve a, b;
+  a.engine = b.engine = "odeint";
+  for (double e : {1e-3, 6.7e-10, 2e-9}) {
+    precision::Point p;
+    p.error = e;
+    a.points.push_back(p);
+  }
+  precision::Point failed;
+  failed.error = 1e-12;  // (a failed point's numbers are not a result)
+  failed.failed = "underflow";
+  b.points = {failed};
+  EXPECT_EQ(precision::not_reached_text({a, b}, "odeint", true), "not reached (best 6.7e-10)");
+  EXPECT_EQ(precision::not_reached_text({a, b}, "odeint"), "not reached (best 6.7e−10)");
+  EXPECT_EQ(precision::not_reached_text({b}, "odeint", true), "not reached");
+}
+
+// The page speaks of the peers that ran only (it described Box2D's and Bullet's steps and semi-implicit
+// Euler on a run of motus and Odeint), and says how busy the machine was while the points were timed
+// (MOTUS_LOADAVG's file: the test does not depend on this machine's load), warning when busier than
+// its cores, as compare does.
+TEST(BenchPrecisionCommand, ThePageSaysOnlyThePeersThatRanAndHowBusyTheMachineWas) {
+  TempDir dir;
+  const long cores = ::sysconf(_SC_NPROCESSORS_ONLN);
+  ASSERT_GT(cores, 0);
+  const fs::path busy = dir / "busy.loadavg";
+  write_file(busy, std::to_string(cores) + ".50 0.50 0.40 2/345 6789\n");
+  const fs::path out = dir / "kepler-run";
+  const auto r = run_motus(dir, {"bench", "precision", "kepler", "--peers", "odeint", "--integrators", "rk4", "--levels",
+                                 "1", "--per-decade", "1", "--repeats", "1", "--out", out.string()},
+                           {"MOTUS_LOADAVG=" + busy.string()});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const std::string html = read_file(out / "index.html");
+  EXPECT_EQ(html.find("Box2D"), std::string::npos) << html;
+  EXPECT_EQ(html.find("Bullet"), std::string::npos) << html;
+  EXPECT_NE(html.find("Odeint's steppers"), std::string::npos);
+  const std::string load = "The machine's 1-minute load average was " + std::to_string(cores) + ".50 as the timing began and " +
+                           std::to_string(cores) + ".50 as it ended, on " + std::to_string(cores) + " core";
+  EXPECT_NE(html.find(load), std::string::npos) << html;
+  EXPECT_NE(html.find("<strong>Warning:</strong> the timings were taken on a busy machine"), std::string::npos) << html;
+  EXPECT_NE(r.out.find(load), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("warning: the timings were taken on a busy machine"), std::string::npos) << r.out;
 }
 
 }  // namespace

@@ -1,6 +1,5 @@
 #include "motus/precision/motus_sweep.hpp"
 
-#include <chrono>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -49,45 +48,34 @@ double state_error(const SceneDescription& scene, const Vector& y, double t) {
 
 namespace {
 
-Point measure(const SceneDescription& scene, const Method& method, double h, double tol, double end, int repeats,
-              const std::function<void()>& now_and_then) {
+// One run of the point (Sweep::round says which): its numbers, and its time from the first step to
+// the last (run_times.hpp: the Simulation is built outside it).
+Point measure(const SceneDescription& scene, const Method& method, double h, double tol, const Sweep& sweep) {
   Point p;
   p.h = h;
   p.tolerance = method.adaptive() ? tol : 0;
-  RunTimes times;
-  // One untimed run (its numbers are the point's), then the timed ones.
-  for (int r = 0; r <= repeats; ++r) {
-    Simulation sim(scene, method);
-    const auto began = std::chrono::steady_clock::now();
-    try {
-      if (r == 0 && repeats > 0 && now_and_then) {  // (the untimed run: a call per step costs it nothing that counts)
-        long count = 0;
-        sim.advance(end, h, Tolerance{tol, tol}, [&](const Simulation&) {
-          if ((++count & 0xFFFF) == 0) now_and_then();
-        });
-      } else {
-        sim.advance(end, h, Tolerance{tol, tol});
-      }
-    } catch (const StepSizeUnderflow& e) {  // the tolerance cannot be met: no point here
-      p.failed = e.what();
-      return p;
-    }
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count();
-    if (r == 0) {
-      p.t_end = sim.time();
-      p.error = state_error(scene, sim.state(), sim.time());
-      p.steps = sim.steps();
-      p.evaluations = sim.evaluations();
-      if (repeats == 0) times.add(seconds);
+  Simulation sim(scene, method);
+  Stopwatch watch;
+  try {
+    if (!sweep.timed() && sweep.now_and_then) {  // (the untimed run: a call per step costs it nothing that counts)
+      long count = 0;
+      sim.advance(sweep.end, h, Tolerance{tol, tol}, [&](const Simulation&) {
+        if ((++count & 0xFFFF) == 0) sweep.now_and_then();
+      });
     } else {
-      times.add(seconds);
+      watch.start();
+      sim.advance(sweep.end, h, Tolerance{tol, tol});
+      watch.stop();
     }
-    // Between the timed runs too (outside their time): at a sweep's finest levels a hundred of them
-    // ran for half a minute with no safe point, and one Ctrl-C waited for its 30 s backstop.
-    if (r > 0 && now_and_then) now_and_then();
+  } catch (const StepSizeUnderflow& e) {  // the tolerance cannot be met: no point here
+    p.failed = e.what();
+    return p;
   }
-  p.seconds = times.fastest();
-  p.median_seconds = times.median();
+  p.t_end = sim.time();
+  p.error = state_error(scene, sim.state(), sim.time());
+  p.steps = sim.steps();
+  p.evaluations = sim.evaluations();
+  p.seconds = p.median_seconds = watch.seconds();
   return p;
 }
 
@@ -117,12 +105,12 @@ Curve sweep_motus(const SceneDescription& scene, const Method& method, const Swe
   if (!c.unsupported.empty()) return c;
   if (c.adaptive) {
     for (double tol : tolerances(sweep)) {
-      c.points.push_back(measure(scene, method, sweep.dt, tol, sweep.end, sweep.repeats, sweep.now_and_then));
+      c.points.push_back(measure(scene, method, sweep.dt, tol, sweep));
       if (sweep.point_done) sweep.point_done(nominal_steps(scene, sweep, sweep.dt));
     }
   } else {
     for (const double h : fixed_steps(scene, sweep)) {
-      c.points.push_back(measure(scene, method, h, 0, sweep.end, sweep.repeats, sweep.now_and_then));
+      c.points.push_back(measure(scene, method, h, 0, sweep));
       if (sweep.point_done) sweep.point_done(nominal_steps(scene, sweep, h));
     }
   }

@@ -4,7 +4,6 @@
 #include <boost/version.hpp>
 
 #include <array>
-#include <chrono>
 #include <cmath>
 #include <optional>
 #include <type_traits>
@@ -77,42 +76,33 @@ struct Outcome {
   long steps = 0;
 };
 
-// One point: an untimed run whose numbers it reports, then `repeats` timed ones; `run` integrates
-// from a fresh initial state and returns the outcome.
+// One run of the point (Sweep::round says which): `run` integrates from a fresh initial state,
+// starting and stopping the watch around its steps (its stepper and state are made before, as
+// motus's Simulation is built outside its time), and returns the outcome.
 template <class Run>
-Point measure(const SceneDescription& scene, long& evaluations, double h, double tol, int repeats, Run run) {
+Point measure(const SceneDescription& scene, long& evaluations, double h, double tol, Run run) {
   Point p;
   p.h = h;
   p.tolerance = tol;
-  RunTimes times;
-  for (int r = 0; r <= repeats; ++r) {
-    const long before = evaluations;
-    const auto began = std::chrono::steady_clock::now();
-    Outcome o;
-    try {
-      o = run();
-    } catch (const std::exception& e) {  // Odeint gave up (too many step size adjustments)
-      p.failed = std::string("odeint: ") + e.what();
-      return p;
-    }
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count();
-    if (r == 0) {
-      p.t_end = o.t_end;
-      p.steps = o.steps;
-      p.evaluations = evaluations - before;
-      try {
-        p.error = state_error(scene, o.state, o.t_end);
-      } catch (const std::exception& e) {  // (no exact state where it ended: that point, not the run)
-        p.failed = e.what();
-        return p;
-      }
-      if (repeats == 0) times.add(seconds);
-    } else {
-      times.add(seconds);
-    }
+  const long before = evaluations;
+  Stopwatch watch;
+  Outcome o;
+  try {
+    o = run(watch);
+  } catch (const std::exception& e) {  // Odeint gave up (too many step size adjustments)
+    p.failed = std::string("odeint: ") + e.what();
+    return p;
   }
-  p.seconds = times.fastest();
-  p.median_seconds = times.median();
+  p.t_end = o.t_end;
+  p.steps = o.steps;
+  p.evaluations = evaluations - before;
+  try {
+    p.error = state_error(scene, o.state, o.t_end);
+  } catch (const std::exception& e) {  // (no exact state where it ended: that point, not the run)
+    p.failed = e.what();
+    return p;
+  }
+  p.seconds = p.median_seconds = watch.seconds();
   return p;
 }
 
@@ -136,19 +126,21 @@ struct CentralGravityForOdeint {
   std::array<double, 3> centre{};
   double mu = 0, softening = 0, mass = 0, inverse_mass = 0;
   long* evaluations = nullptr;
-  void operator()(const std::array<double, 2 * D>& y, std::array<double, 2 * D>& dydt, double) const {
+  // a = F/m at x (one evaluation): also what Odeint's symplectic RKN gets on Kepler.
+  void acceleration(const double* x, double* a) const {
     ++*evaluations;
     double r[D];
-    for (int k = 0; k < D; ++k) r[k] = y[k] - centre[k];
+    for (int k = 0; k < D; ++k) r[k] = x[k] - centre[k];
     double s2 = r[0] * r[0];
     for (int k = 1; k < D; ++k) s2 += r[k] * r[k];
     if (softening != 0) s2 += softening * softening;
     const double scale = -mu * mass / (s2 * std::sqrt(s2));
+    for (int k = 0; k < D; ++k) a[k] = (scale * r[k]) * inverse_mass;
+  }
+  void operator()(const std::array<double, 2 * D>& y, std::array<double, 2 * D>& dydt, double) const {
     std::array<double, 2 * D> d;
-    for (int k = 0; k < D; ++k) {
-      d[k] = y[D + k];
-      d[D + k] = (scale * r[k]) * inverse_mass;
-    }
+    for (int k = 0; k < D; ++k) d[k] = y[D + k];
+    acceleration(y.data(), d.data() + D);
     dydt = d;
   }
 };
@@ -175,14 +167,16 @@ void runge_kutta_on(const SceneDescription& scene, const Rhs& rhs, long& evaluat
   Curve rk4 = curve("runge_kutta4", "Odeint's classic fourth-order Runge-Kutta, fixed step", false);
   for (const double h : fixed_steps(scene, sweep)) {
     const long n = fixed_step_count(end - t0, h);
-    rk4.points.push_back(measure(scene, evaluations, h, 0, sweep.repeats, [&] {
+    rk4.points.push_back(measure(scene, evaluations, h, 0, [&](Stopwatch& watch) {
       ode::runge_kutta4<State> stepper;
       State x = make_state<State>(y0);
       double t = t0;
+      watch.start();
       for (long i = 0; i < n; ++i) {
         stepper.do_step(rhs, x, t, h);
         t = t0 + static_cast<double>(i + 1) * h;
       }
+      watch.stop();
       return Outcome{to_vector(x), t, n};
     }));
     if (sweep.point_done) sweep.point_done(static_cast<double>(n));
@@ -191,10 +185,12 @@ void runge_kutta_on(const SceneDescription& scene, const Rhs& rhs, long& evaluat
 
   auto controlled = [&](Curve c, auto make_stepper) {
     for (double tol : tolerances(sweep)) {
-      c.points.push_back(measure(scene, evaluations, sweep.dt, tol, sweep.repeats, [&] {
+      c.points.push_back(measure(scene, evaluations, sweep.dt, tol, [&](Stopwatch& watch) {
         auto stepper = make_stepper(tol);
         State x = make_state<State>(y0);
+        watch.start();
         const long steps = static_cast<long>(ode::integrate_adaptive(stepper, rhs, x, t0, end, sweep.dt));
+        watch.stop();
         return Outcome{to_vector(x), end, steps};
       }));
       if (sweep.point_done) sweep.point_done(nominal_steps(scene, sweep, sweep.dt));
@@ -220,15 +216,14 @@ void runge_kutta(const SceneDescription& scene, System& f, const Vector& y0, con
                                                        sweep, curves);
 }
 
-// Kepler's right-hand side for Odeint (CentralGravityForOdeint) when the scene is one body under
-// one central gravity and nothing else; false otherwise.
+// Kepler's right-hand side for Odeint when the scene is one body in D dimensions under one central
+// gravity and nothing else; none otherwise.
 template <int D>
-bool runge_kutta_on_kepler(const SceneDescription& scene, MechanicalSystem& m, const Vector& y0, const Sweep& sweep,
-                           std::vector<Curve>& curves) {
+std::optional<CentralGravityForOdeint<D>> kepler_right_hand_side(MechanicalSystem& m) {
   const ForceSet& f = m.forces();
   if (m.particles() != 1 || m.dimensions() != D || m.one_body_force_kinds() != kCentralGravityForce ||
       f.central_gravity.size() != 1 || f.central_gravity[0].body > 0)
-    return false;
+    return std::nullopt;
   const CentralGravity& g = f.central_gravity[0];
   CentralGravityForOdeint<D> rhs;
   rhs.centre = g.centre;
@@ -237,40 +232,71 @@ bool runge_kutta_on_kepler(const SceneDescription& scene, MechanicalSystem& m, c
   rhs.mass = m.masses()[0];
   rhs.inverse_mass = 1 / m.masses()[0];
   rhs.evaluations = &m.evaluations;
-  runge_kutta_on<std::array<double, 2 * D>>(scene, rhs, m.evaluations, y0, sweep, curves);
+  return rhs;
+}
+
+// The Runge–Kutta steppers on Kepler's right-hand side (kepler_right_hand_side); false when the
+// scene is not one body in D dimensions under central gravity alone.
+template <int D>
+bool runge_kutta_on_kepler(const SceneDescription& scene, MechanicalSystem& m, const Vector& y0, const Sweep& sweep,
+                           std::vector<Curve>& curves) {
+  const auto rhs = kepler_right_hand_side<D>(m);
+  if (!rhs) return false;
+  runge_kutta_on<std::array<double, 2 * D>>(scene, *rhs, m.evaluations, y0, sweep, curves);
   return true;
 }
 
-// McLachlan's symplectic RKN on point masses: q = x, p = v, dq/dt = p, dp/dt = a(q).
-template <int D>  // one body in D dimensions, or D = Eigen::Dynamic: any number of bodies
-void symplectic_rkn(const SceneDescription& scene, MechanicalSystem& system, const Vector& y0, const Sweep& sweep,
-                    Curve& c) {
+// McLachlan's symplectic RKN on point masses: q = x, p = v, dq/dt = p, dp/dt = a(q), with
+// acceleration(q, dpdt) counting its evaluations in `evaluations`.
+template <int D, class Acceleration>  // one body in D dimensions, or D = Eigen::Dynamic: any number of bodies
+void symplectic_rkn(const SceneDescription& scene, long& evaluations, Acceleration acceleration, const Vector& y0,
+                    const Sweep& sweep, Curve& c) {
   using Coor = OdeintState<D>;
   const Eigen::Index n = y0.size() / 2;
-  const Coor zero = make_state<Coor>(Vector::Zero(n));  // the forces do not read velocities
-  auto acceleration = [&](const Coor& q, Coor& dpdt) {
-    if constexpr (D == Eigen::Dynamic)
-      system.acceleration(0, view(q), view(zero), view(dpdt));
-    else
-      system.acceleration_of_one_body<D>(0, q.data(), zero.data(), dpdt.data());
-  };
   const double t0 = scene.start_time;
   for (const double h : fixed_steps(scene, sweep)) {
     const long steps = fixed_step_count(sweep.end - t0, h);
-    c.points.push_back(measure(scene, system.evaluations, h, 0, sweep.repeats, [&] {
+    c.points.push_back(measure(scene, evaluations, h, 0, [&](Stopwatch& watch) {
       ode::symplectic_rkn_sb3a_mclachlan<Coor> stepper;
       Coor q = make_state<Coor>(y0.head(n)), p = make_state<Coor>(y0.tail(n));
       double t = t0;
+      watch.start();
       for (long i = 0; i < steps; ++i) {
         stepper.do_step(acceleration, std::make_pair(std::ref(q), std::ref(p)), t, h);
         t = t0 + static_cast<double>(i + 1) * h;
       }
+      watch.stop();
       Vector y(2 * n);
       y << to_vector(q), to_vector(p);
       return Outcome{y, t, steps};
     }));
     if (sweep.point_done) sweep.point_done(static_cast<double>(steps));
   }
+}
+
+// The RKN on the system's own forces: on Kepler the function object the Runge–Kutta steppers get
+// (through the general force loop it paid for kinds of force Kepler lacks, where motus's methods
+// are compiled for central gravity); otherwise motus's acceleration, of one body or of any.
+template <int D>
+void symplectic_rkn_on(const SceneDescription& scene, MechanicalSystem& system, const Vector& y0, const Sweep& sweep,
+                       Curve& c) {
+  using Coor = OdeintState<D>;
+  if constexpr (D != Eigen::Dynamic) {
+    if (const auto rhs = kepler_right_hand_side<D>(system)) {
+      symplectic_rkn<D>(scene, system.evaluations,
+                        [rhs = *rhs](const Coor& q, Coor& dpdt) { rhs.acceleration(q.data(), dpdt.data()); }, y0, sweep, c);
+      return;
+    }
+  }
+  const Coor zero = make_state<Coor>(Vector::Zero(y0.size() / 2));  // the forces do not read velocities
+  symplectic_rkn<D>(scene, system.evaluations,
+                    [&](const Coor& q, Coor& dpdt) {
+                      if constexpr (D == Eigen::Dynamic)
+                        system.acceleration(0, view(q), view(zero), view(dpdt));
+                      else
+                        system.acceleration_of_one_body<D>(0, q.data(), zero.data(), dpdt.data());
+                    },
+                    y0, sweep, c);
 }
 
 }  // namespace
@@ -319,13 +345,13 @@ std::vector<Curve> sweep_odeint(const SceneDescription& scene, const Sweep& swee
     if (damped) {
       rkn.unsupported = "forces that depend on velocity (drag, damping): dq/dt = p, dp/dt = a(q) only";
     } else if (m->particles() == 1 && m->dimensions() == 1) {
-      symplectic_rkn<1>(scene, *m, y0, sweep, rkn);
+      symplectic_rkn_on<1>(scene, *m, y0, sweep, rkn);
     } else if (m->particles() == 1 && m->dimensions() == 2) {
-      symplectic_rkn<2>(scene, *m, y0, sweep, rkn);
+      symplectic_rkn_on<2>(scene, *m, y0, sweep, rkn);
     } else if (m->particles() == 1 && m->dimensions() == 3) {
-      symplectic_rkn<3>(scene, *m, y0, sweep, rkn);
+      symplectic_rkn_on<3>(scene, *m, y0, sweep, rkn);
     } else {
-      symplectic_rkn<Eigen::Dynamic>(scene, *m, y0, sweep, rkn);
+      symplectic_rkn_on<Eigen::Dynamic>(scene, *m, y0, sweep, rkn);
     }
   } else {
     rkn.unsupported = "symplectic: needs a mechanical scene (bodies)";

@@ -74,8 +74,8 @@ std::vector<plot::Figure> diagrams(const ReportContext& c, const std::vector<Cur
   plot::Figure time, work;
   time.stem = "error_against_time";
   time.title = c.scene + ": error against run time";
-  time.x_label = c.sweep.repeats == 1 ? std::string("run time [s] (one timed run)")
-                                       : "run time [s] (the fastest of " + std::to_string(c.sweep.repeats) + " runs)";
+  time.x_label = c.sweep.repeats == 1 ? std::string("run time [s] (CPU time, one timed round)")
+                                       : "run time [s] (CPU time, the fastest of " + std::to_string(c.sweep.repeats) + " rounds)";
   work.stem = "error_against_evaluations";
   work.title = c.scene + ": error against derivative evaluations";
   work.x_label = "derivative (force) evaluations";
@@ -139,7 +139,9 @@ std::vector<plot::Figure> diagrams(const ReportContext& c, const std::vector<Cur
         who += (who.empty() ? "" : ", ") + std::string(box2d && bullet ? "Box2D and Bullet" : box2d ? "Box2D" : "Bullet") +
                " with semi-implicit Euler";
     }
-    for (plot::Figure* f : {&time, &work}) f->note += "; squares, triangles and diamonds on dashed lines: the peers (" + who + ")";
+    // (Not "on dashed lines": motus's own lines after its first are dashed too, each its own way, so that
+    // lines lying on each other show through; the points' shapes are what tell the engines apart.)
+    for (plot::Figure* f : {&time, &work}) f->note += "; squares, triangles and diamonds: the peers (" + who + ")";
   }
   if (!no_evaluations.empty())
     work.note += "; not drawn, as they evaluate no force here: " + fmt::format("{}", fmt::join(no_evaluations, ", "));
@@ -186,22 +188,31 @@ std::string write_precision_report(const std::string& folder, const ReportContex
           "th{background:#f3f3f3}th[scope=row]{background:none;font-weight:normal}td:first-child,th:first-child{text-align:left}.no{color:#a00}.best{font-weight:bold}"
           "img{max-width:100%}code{background:#f3f3f3;padding:0 .2em}</style></head><body>\n";
   html += "<h1>" + html_escape(c.scene) + ": run time against error</h1>\n<p>" + html_escape(c.description) + "</p>\n";
+  const auto ran = [&](const char* engine) { return std::find(engines.begin(), engines.end(), engine) != engines.end(); };
+  const std::string engines_steps = ran("box2d") && ran("bullet") ? "; Box2D and Bullet run at dt = 1/30 … 1/960 s"
+                                    : ran("box2d")                ? "; Box2D runs at dt = 1/30 … 1/960 s"
+                                    : ran("bullet")               ? "; Bullet runs at dt = 1/30 … 1/960 s"
+                                                                  : "";
   html += fmt::format(
       "<p>From t = {:g} {} to t = {:g} {}; error = the largest |y − y<sub>exact</sub>| over the state (positions and "
       "velocities, or y) where the run ended, against the scene's exact solution or reference states. Fixed-step "
       "methods take h = dt/2<sup>k</sup> (dt = {:g} {}, k = 0 … {}), adaptive ones rtol = atol = 10<sup>−3</sup> … "
-      "10<sup>−13</sup>, {} per decade, first step dt; Box2D and Bullet run at dt = 1/30 … 1/960 s. Each point is one "
-      "untimed run and then the fastest of {} timed runs, all in one process; only ratios within this run mean "
-      "anything on another machine.</p>\n",
+      "10<sup>−13</sup>, {} per decade, first step dt{}. Each point runs once untimed (its error, steps and "
+      "evaluations), then once in each of {} timed round{}, every engine in every round, taking turns (each round "
+      "begins one method further on), all in one process. A run's time is CPU time from its first step to its last "
+      "(what an engine builds before, its stepper, state or world, is left out alike); a point's is the fastest of its "
+      "rounds, with the median beside it. {}{} Only ratios within this run mean anything on another machine.</p>\n",
       c.start, html_escape(c.time_unit), c.end, html_escape(c.time_unit), c.sweep.dt, html_escape(c.time_unit),
-      c.sweep.levels - 1, c.sweep.per_decade, c.sweep.repeats);
+      c.sweep.levels - 1, c.sweep.per_decade, engines_steps, c.sweep.repeats, c.sweep.repeats == 1 ? "" : "s",
+      html_escape(c.machine_load),
+      c.busy_machine.empty() ? "" : " <strong>Warning:</strong> " + html_escape(c.busy_machine) + ".");
 
   // The fastest of each engine at each target.
   // (Each µs column names its engine: read alone, by a screen reader, "µs" would not say whose.)
   auto header = [](const std::string& text) { return "<th scope=\"col\">" + text + "</th>"; };
   html += "<h2 id=\"targets\">Targets: the fastest method at each target error</h2>\n<p>Each method's curve read at "
           "the target, interpolated on log–log axes between the two points that bracket it (≤: the method's cheapest "
-          "point is already below the target; not reached: no point of it is). µs: from the fastest runs of each "
+          "point is already below the target; not reached: no point of its sweep is, with the smallest error any of the  from the fastest runs of each "
           "point, the median runs' in brackets; the ratios likewise. –: no number, as there is no method to time.</p>\n"
           "<table aria-labelledby=\"targets\"><tr>" + header("target error");
   for (const auto& e : engines) html += header(html_escape(e) + " fastest") + header(html_escape(e) + " µs");
@@ -213,7 +224,7 @@ std::string write_precision_report(const std::string& folder, const ReportContex
     for (const auto& e : engines) {
       best.push_back(fastest(curves, e, target));
       html += best.back()            ? "<td>" + html_escape(best.back()->method) + "</td><td>" + micro(best.back()->at) + "</td>"
-              : engine_runs(curves, e) ? "<td class=\"no\">not reached</td><td>–</td>"
+              : engine_runs(curves, e) ? "<td class=\"no\">" + not_reached_text(curves, e) + "</td><td>–</td>"
                                        : "<td class=\"no\">cannot run this scene</td><td>–</td>";
     }
     for (size_t k = 1; k < engines.size(); ++k)
@@ -254,11 +265,19 @@ std::string write_precision_report(const std::string& folder, const ReportContex
             "</li>\n";
   html += "</ul>\n<p>Engines: ";
   for (size_t i = 0; i < c.versions.size(); ++i) html += (i ? "; " : "") + html_escape(c.versions[i]);
-  html += ". Odeint's steppers call motus's own right-hand side (the scene's system by its concrete type), with the "
-          "state in a std::array where its size is known at compile time; their tolerances are in Odeint's error "
-          "norm, so only errors reached are compared. Box2D and Bullet integrate with semi-implicit Euler: their "
-          "lines lie along motus's <code>symplectic-euler</code>, a first-order method (error ∝ dt over a stretch of "
-          "time; at a closed orbit's whole period its errors cancel to dt²).</p>\n";
+  html += ".";
+  if (ran("odeint"))
+    html += " Odeint's steppers keep their state in a std::array where its size is known at compile time. On one "
+            "body under central gravity (Kepler) and on Lorenz they are given the right-hand side an Odeint user "
+            "would write, the same formula in the same order as motus's, so the same numbers; on any other scene they "
+            "call motus's own right-hand side (the scene's system by its concrete type) through views of their state, "
+            "which costs them more per evaluation than a hand-written one would. Their tolerances are in Odeint's "
+            "error norm, so only errors reached are compared.";
+  if (ran("box2d") || ran("bullet"))
+    html += " Box2D and Bullet integrate with semi-implicit Euler: their lines lie along motus's "
+            "<code>symplectic-euler</code>, a first-order method (error ∝ dt over a stretch of time; at a closed "
+            "orbit's whole period its errors cancel to dt²).";
+  html += "</p>\n";
   html += "<p>Data: <a href=\"precision.csv\">precision.csv</a> (every point), <a href=\"targets.csv\">targets.csv</a> "
           "(every method at every target); the diagrams are redrawn by <code>gnuplot -d figures.gp</code> in this "
           "folder.</p>\n</body></html>\n";

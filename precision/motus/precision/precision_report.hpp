@@ -17,6 +17,9 @@ struct ReportContext {
   Sweep sweep;
   std::vector<double> targets;
   std::vector<std::string> versions;  // one line per engine taking part ("Boost.Odeint, Boost 1.74.0")
+  // The machine's load while the points were timed (compare::machine_load_sentence), and the warning
+  // when it was busier than its cores, or "".
+  std::string machine_load, busy_machine;
 };
 
 // The CSV of precision.csv, which --csv also writes: a header and one row per point.

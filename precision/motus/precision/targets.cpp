@@ -55,6 +55,25 @@ bool engine_runs(const std::vector<Curve>& curves, const std::string& engine) {
                      [&](const Curve& c) { return c.engine == engine && c.unsupported.empty(); });
 }
 
+std::optional<double> smallest_error(const std::vector<Curve>& curves, const std::string& engine) {
+  std::optional<double> best;
+  for (const Curve& c : curves) {
+    if (c.engine != engine || !c.unsupported.empty()) continue;
+    for (const Point& p : c.points)
+      if (p.failed.empty() && std::isfinite(p.error) && (!best || p.error < *best)) best = p.error;
+  }
+  return best;
+}
+
+std::string not_reached_text(const std::vector<Curve>& curves, const std::string& engine, bool ascii) {
+  const auto best = smallest_error(curves, engine);
+  if (!best) return "not reached";
+  std::string e = fmt::format("{:.2g}", *best);
+  if (!ascii)
+    if (const size_t minus = e.find("e-"); minus != std::string::npos) e.replace(minus + 1, 1, "−");
+  return "not reached (best " + e + ")";
+}
+
 std::string ratio_text(const std::optional<Fastest>& motus, const std::optional<Fastest>& peer, bool ascii) {
   const std::string none = ascii ? "-" : "–";
   if (!motus || !peer || (motus->at.upper_bound && peer->at.upper_bound)) return none;

@@ -35,6 +35,15 @@ std::optional<Fastest> fastest(const std::vector<Curve>& curves, const std::stri
 // "cannot run this scene", not "not reached").
 bool engine_runs(const std::vector<Curve>& curves, const std::string& engine);
 
+// The smallest error any point of `engine`'s curves reached (none when no point was measured): what
+// the table gives beside "not reached", since a curve that does not reach a target may stop short of
+// it (its error stops falling: rounding, a first-order method) or only the sweep does (its finest
+// step or tightest tolerance, 1e-13, is where it ends).
+std::optional<double> smallest_error(const std::vector<Curve>& curves, const std::string& engine);
+
+// "not reached (best 6.7e-10)", or "not reached" when no point was measured. `ascii`: "e-10", else "e−10".
+std::string not_reached_text(const std::vector<Curve>& curves, const std::string& engine, bool ascii = false);
+
 // motus's time over a peer's at a target, fastest runs (median runs): "0.52 (0.55)"; a bound where
 // one side is (its cheapest point already below the target): "≤ …" when motus's is, "≥ …" when
 // the peer's is; "–" when both are, or either reached nothing. `ascii`: "<=", ">=" and "-".

@@ -18,7 +18,7 @@ struct Point {
   long evaluations = 0;  // derivative (force) evaluations, rejected attempts included
   double t_end = 0;      // where the run ended, at which the error is taken
   double error = 0;      // max over the state of |y − y_exact| at t_end (inf when it blew up)
-  double seconds = 0;    // the fastest of the timed runs
+  double seconds = 0;    // the fastest of the timed runs (one per timing round: sweep_in_rounds)
   double median_seconds = 0;  // their median
   std::string failed;    // why this point could not be measured, or ""
 };
@@ -38,7 +38,11 @@ struct Sweep {
   double dt = 0;       // the scene's step: fixed steps dt/2^k, and the first step of adaptive runs
   int levels = 8;      // fixed-step methods: h = dt / 2^k, k = 0 … levels − 1
   int per_decade = 3;  // adaptive methods: rtol = atol = 10^(−3 − j/per_decade) down to 1e-13
-  int repeats = 9;     // timed runs per point (after one untimed run); the fastest counts
+  int repeats = 9;     // timing rounds (after one untimed round): a timed run per point each; the fastest counts
+  // Which round a sweep is run for (sweep_in_rounds): 0, the untimed one, whose numbers (error, steps,
+  // evaluations) every point reports; 1 … repeats, the timed ones. A sweep runs every point once per
+  // call and gives that run's time as the point's (round 0's counts only when repeats is 0).
+  int round = 0;
   // Called after every point with its nominal steps (a fixed step's run length; an adaptive point's
   // first-step count, end/dt, a guess), so that a progress bar can weigh the points by their work:
   // each level has twice the steps of the one before. May be empty.
@@ -46,6 +50,8 @@ struct Sweep {
   // Called every 65,536 steps of a point's untimed run (a safe point to stop at: Ctrl-C waited for a
   // point of 10¹³ steps to end), may be empty. Never in a timed run.
   std::function<void()> now_and_then;
+  // Whether this call's runs are timed ones (their time is a point's).
+  bool timed() const { return round > 0 || repeats == 0; }
 };
 
 // The fixed steps dt/2^k; where only reference states are known (no formula for every t), each
