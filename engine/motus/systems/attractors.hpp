@@ -8,6 +8,8 @@
 
 namespace motus {
 
+// Each system's formula is its rate(s, d): on any state and derivative read and written by [k] (motus's
+// vectors, or Odeint's std::arrays in `motus bench precision`, which is thereby given the same formula).
 class ThreeVariableSystem : public FirstOrderSystem {
 public:
   static constexpr int static_size = 3;
@@ -21,6 +23,10 @@ public:
   Lorenz(double sigma = 10, double rho = 28, double beta = 8.0 / 3) : sigma(sigma), rho(rho), beta(beta) {}
   void derivative(double, ConstVectorRef s, VectorRef d) override {
     ++evaluations;
+    rate(s, d);
+  }
+  template <class State, class Rate>
+  void rate(const State& s, Rate& d) const {
     const double x = s[0], y = s[1], z = s[2];
     d[0] = sigma * (y - x);
     d[1] = x * (rho - z) - y;
@@ -35,6 +41,10 @@ public:
   Rossler(double a, double b, double c) : a(a), b(b), c(c) {}
   void derivative(double, ConstVectorRef s, VectorRef d) override {
     ++evaluations;
+    rate(s, d);
+  }
+  template <class State, class Rate>
+  void rate(const State& s, Rate& d) const {
     const double x = s[0], y = s[1], z = s[2];
     d[0] = -y - z;
     d[1] = x + a * y;
@@ -49,6 +59,10 @@ public:
   Chen(double a, double b, double c) : a(a), b(b), c(c) {}
   void derivative(double, ConstVectorRef s, VectorRef d) override {
     ++evaluations;
+    rate(s, d);
+  }
+  template <class State, class Rate>
+  void rate(const State& s, Rate& d) const {
     const double x = s[0], y = s[1], z = s[2];
     d[0] = a * (y - x);
     d[1] = (c - a) * x - x * z + c * y;
@@ -63,6 +77,10 @@ public:
   explicit Thomas(double b) : b(b) {}
   void derivative(double, ConstVectorRef s, VectorRef d) override {
     ++evaluations;
+    rate(s, d);
+  }
+  template <class State, class Rate>
+  void rate(const State& s, Rate& d) const {
     const double x = s[0], y = s[1], z = s[2];
     d[0] = std::sin(y) - b * x;
     d[1] = std::sin(z) - b * y;
@@ -78,6 +96,10 @@ public:
   Aizawa(double a, double b, double c, double d, double e, double f) : a(a), b(b), c(c), d(d), e(e), f(f) {}
   void derivative(double, ConstVectorRef s, VectorRef out) override {
     ++evaluations;
+    rate(s, out);
+  }
+  template <class State, class Rate>
+  void rate(const State& s, Rate& out) const {
     const double x = s[0], y = s[1], z = s[2];
     out[0] = (z - b) * x - d * y;
     out[1] = d * x + (z - b) * y;
