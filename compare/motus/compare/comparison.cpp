@@ -235,7 +235,7 @@ std::vector<EngineRun> run_comparison(const SceneDescription& scene, const Compa
   } timing_rounds(options.timing_rounds);
   for (int round = 0; round < repeats; ++round) {
     for (size_t turn = 0; turn < timed.size(); ++turn) {
-      const size_t e = timed[(turn + static_cast<size_t>(round)) % timed.size()];
+      const size_t e = timed[taking_turns(timed.size(), static_cast<size_t>(round), turn)];
       EngineRun& run = runs[e];
       std::unique_ptr<Backend> backend = make(run.engine);
       backend->build(scene, method_of(run.engine), options.dt);

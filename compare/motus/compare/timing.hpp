@@ -38,6 +38,12 @@ inline Timings summarize(std::vector<double> rounds) {
   return t;
 }
 
+// Which of `engines` takes turn `turn` of timing round `round` (both from 0): every engine once a round,
+// each round beginning one engine further on, so that a slow spell of a shared machine — at a round's
+// start, say — falls on every engine alike rather than always on the same one. (`motus compare`'s
+// rounds, and `motus bench precision`'s, whose "engines" are its methods.)
+inline size_t taking_turns(size_t engines, size_t round, size_t turn) { return (turn + round) % engines; }
+
 // The default number of timing rounds: kMostRounds, or as many as fit in `budget` CPU seconds
 // when one round takes `seconds_per_round` — at least one. `motus compare` gives a round (every
 // engine once) kCompareBudget: a small scene gets all five and stays well under a second, the

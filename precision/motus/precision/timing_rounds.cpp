@@ -29,7 +29,7 @@ std::vector<Curve> sweep_in_rounds(const std::vector<SweepOf>& sweeps, const Swe
   for (int r = 1; r <= sweep.repeats; ++r) {
     round.round = r;
     for (size_t k = 0; k < to_time.size(); ++k) {
-      const size_t s = to_time[(k + static_cast<size_t>(r - 1)) % to_time.size()];  // each round one further on
+      const size_t s = to_time[compare::taking_turns(to_time.size(), static_cast<size_t>(r - 1), k)];
       const std::vector<Curve> timed = sweeps[s](round);
       for (size_t c = 0; c < std::min(timed.size(), untimed[s].size()); ++c)
         for (size_t p = 0; p < std::min(timed[c].points.size(), untimed[s][c].points.size()); ++p)
