@@ -270,7 +270,7 @@ std::string write_precision_report(const std::string& folder, const ReportContex
     html += " Odeint's steppers keep their state in a std::array where its size is known at compile time. On one "
             "body under central gravity (Kepler) and on the strange attractors (Lorenz, Rössler, Chen, Thomas, Aizawa) "
             "they are given the right-hand side an Odeint user would write, the same formula in the same order as "
-            "motus's, so the same numbers; on any other scene they call motus's own right-hand side (the scene's "
+            "motus's, so the same steps and evaluations and the same errors to rounding; on any other scene they call motus's own right-hand side (the scene's "
             "system by its concrete type) through views of their state, which costs them more per evaluation than a "
             "hand-written one would. Their tolerances are in Odeint's "
             "error norm, so only errors reached are compared.";

@@ -448,9 +448,11 @@ std::vector<std::string> BulletBackend::notes() const {
                    " body-steps (a body moving more than its radius in a step): Bullet sweeps it against the "
                    "others' start-of-step positions; when the sweep hits, it clamps the motion at the time of impact "
                    "(the rest of the step is lost) and adds a predictive contact with restitution 0. That stops "
-                   "tunnelling but loses energy at such a contact: a ball at 100 m/s meeting a wall 0.7 step away "
-                   "leaves at 70 m/s, two balls meeting head-on at 100 m/s stop dead (measured at 60 Hz), whatever "
-                   "their e; a fast body that meets nothing is not changed");
+                   "tunnelling but can lose energy at such a contact, whatever the bodies' e, by how much depending "
+                   "on where in its step the contact falls (measured at 60 Hz): a ball at 100 m/s leaves a wall at "
+                   "70 m/s from 5 m away, at 22 m/s from 4.2 m, at 4 m/s from 3.9 m; two balls meeting head-on at "
+                   "100 m/s from +-3 m stop dead, from +-5 m bounce apart whole; a fast body that meets nothing is "
+                   "not changed");
   // The π/4-per-step angular clamp never bites here: no body rotates (angular factor 0).
   return n;
 }
