@@ -46,7 +46,12 @@ public:
   bool has_pins() const { return !pins_.empty(); }
   bool pinned(int body) const;
 
+  // Hash buckets looked into by the ball pairs' broad phase, over every projection so far: a
+  // projection that reuses the neighbour list looks into none.
   long broad_phase_queries() const { return broad_phase_queries_; }
+  // How many times the neighbour list of the ball pairs was built (the first projection with two
+  // balls or more, then each one that finds a ball moved more than half the skin since the last).
+  long ball_pair_builds() const { return ball_pair_builds_; }
 
   // A wall in the one form the sweep needs: the free half-space n·x ≥ offset, |n| = 1.
   struct Wall {
@@ -57,15 +62,20 @@ public:
   const std::vector<Wall>& walls() const { return walls_; }
 
 private:
-  // A point of the scene's d ≤ 3 dimensions, on the stack (no allocation).
-  using Point = Eigen::Matrix<double, Eigen::Dynamic, 1, Eigen::ColMajor, 3, 1>;
-
   void place_pins(VectorRef x) const;
   void project_sticks(VectorRef x) const;
   void project_walls(VectorRef x) const;
   void project_segment(size_t j, int i, VectorRef xi) const;
   void remember_segment_sides(ConstVectorRef x);
   void find_ball_pairs(ConstVectorRef x);
+  template <int D>
+  void find_ball_pairs_in(const double* x);
+  template <int D>
+  bool neighbours_still_hold(const double* x) const;
+  template <int D>
+  void build_neighbours(const double* x);
+  template <int D>
+  void select_close_pairs(const double* x);
   void project_ball_pairs(VectorRef x) const;
 
   int d_;
@@ -88,14 +98,22 @@ private:
   Colliders colliders_;
   int iterations_;
   long broad_phase_queries_ = 0;
+  long ball_pair_builds_ = 0;
 
   std::vector<Wall> walls_;  // planes, and each box's inward faces
   std::vector<int> balls_;   // bodies with radius > 0
   double max_radius_ = 0;
   std::vector<signed char> side_;  // body i's side of segment j (+1, −1; 0: not yet seen)
 
-  // Broad phase (sized in the constructor): balls counting-sorted by hash bucket, and
-  // the candidate pairs the sweeps test.
+  // Broad phase (sized in the constructor). A neighbour ("Verlet") list kept across projections:
+  // the pairs closer than r_a + r_b + margin + skin when it was built, sorted by (i, k), and each
+  // ball's position then (ball s of balls_: built_at_[s·d .. s·d + d)); the hash that builds it
+  // (balls counting-sorted by bucket); and the candidate pairs the sweeps test, the neighbours
+  // closer than r_a + r_b + margin at the projection's start (in the same order).
+  double margin_ = 0, skin_ = 0;
+  bool have_neighbours_ = false;
+  std::vector<std::pair<int, int>> neighbours_;
+  std::vector<double> built_at_;
   std::vector<int> bucket_start_, bucket_of_, sorted_;
   std::vector<std::pair<int, int>> pairs_;
 };
