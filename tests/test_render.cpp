@@ -790,8 +790,13 @@ TEST(RenderVideo, AFolderWithPercentSignsGetsItsVideo) {
   fs::create_directories(folder);
   for (int k = 0; k < 2; ++k)
     motus::render::write_png((folder / ("frame_0000" + std::to_string(k) + ".png")).string(), motus::render::Image(32, 32));
-  motus::render::encode_video((folder / "frame_%05d.png").string(), 2, (folder / "v.gif").string(),
-                              motus::render::VideoFormat::gif);
+  try {
+    motus::render::encode_video((folder / "frame_%05d.png").string(), 2, (folder / "v.gif").string(),
+                                motus::render::VideoFormat::gif);
+  } catch (const RenderError& e) {  // (as the other video tests: no ffmpeg on PATH, nothing to check)
+    if (std::string(e.what()).find("ffmpeg not found") != std::string::npos) GTEST_SKIP() << "no ffmpeg here";
+    throw;
+  }
   EXPECT_EQ(read_file(folder / "v.gif").rfind("GIF89a", 0), 0u);
 }
 }  // namespace

@@ -318,8 +318,14 @@ std::string what_to_notice(const SceneDescription& scene, const std::vector<Engi
     // (A pendulum's coordinate is its angle θ: the distance is in radians.)
     const std::string unit = coordinate_unit(scene);
     std::vector<std::string> parts;
-    for (const EngineRun* r : engines)
-      if (r->max_from_exact() >= 0) parts.push_back(fmt::format("{} {} {}", r->engine, number(r->max_from_exact()), unit));
+    for (const EngineRun* r : engines) {
+      if (r->max_from_exact() < 0) continue;
+      // (A run that blew up is not "inf m" away: say where its state stopped being finite.)
+      if (!std::isnan(r->not_finite_from()))
+        parts.push_back(fmt::format("{} not finite from t = {:g} s on", r->engine, r->not_finite_from()));
+      else
+        parts.push_back(fmt::format("{} {} {}", r->engine, number(r->max_from_exact()), unit));
+    }
     if (!parts.empty())
       return "Against " + solution_name(scene) + ", the farthest each engine strays over the run: " + joined(parts) +
              unsupported_tail(runs) + ".";
