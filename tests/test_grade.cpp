@@ -1005,7 +1005,7 @@ TEST(Grade, MotusInAFolderOnlyRootCanEnterStillGrades) {
                                                               (dir / "r.json").string()});
   ASSERT_EQ(r.status, 0) << r.err;
   const json result = read_json(dir / "r.json");
-  EXPECT_EQ(result["score"], 24) << result.dump(2);  // (the solution's full marks on the public tests)
+  EXPECT_EQ(result["score"], 25) << result.dump(2);  // (the solution's full marks on the public tests)
 }
 
 // Only the handed-in files themselves are taken: a link (to the solution, say) is not followed,
