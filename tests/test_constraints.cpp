@@ -1100,4 +1100,275 @@ TEST(BallPairs, PushesGoInTheOrderOfThePairsNotOfTheHash) {
   }
 }
 
+// ---------------------------------------------------------------------------------
+// The walls' broad phase: the sweeps' wall passes test only the bodies listed near each wall,
+// lists kept across projections until a body has moved their skin; the projection's last wall
+// pass tests every body (constraint_projection.cpp, find_bodies_near_walls).
+
+using Walls = std::vector<motus::ConstraintProjection::Wall>;
+
+// n·x − offset − r for body i against every wall, the smallest: < 0 means inside one.
+double lowest_height(const Walls& walls, const Vector& x, const std::vector<double>& radius, int d, int i) {
+  double lowest = INFINITY;
+  for (const auto& wall : walls) {
+    double height = -wall.offset - radius[static_cast<size_t>(i)];
+    for (int k = 0; k < d; ++k) height += wall.normal[static_cast<size_t>(k)] * x[d * i + k];
+    lowest = std::min(lowest, height);
+  }
+  return lowest;
+}
+
+// The projection of balls in a box with no broad phase for the walls, as it was before the lists:
+// candidates from all N²/2 pairs (those closer than r_a + r_b + the largest radius, in (i, k)
+// order), then `sweeps` sweeps of every body against every wall followed by the pushes, then every
+// body against every wall once more — constraint_projection.cpp's arithmetic, written out.
+void every_wall_projection(const Gas& g, const Walls& walls, Vector& x, int sweeps) {
+  const int d = g.d;
+  const auto n = static_cast<int>(g.radius.size());
+  const double margin = *std::max_element(g.radius.begin(), g.radius.end());
+  auto at = [&](int i) { return static_cast<size_t>(i); };
+  std::vector<std::array<int, 2>> pairs;
+  for (int i = 0; i < n; ++i)
+    for (int k = i + 1; k < n; ++k) {
+      double distance2 = 0;
+      for (int c = 0; c < d; ++c) distance2 += (x[d * k + c] - x[d * i + c]) * (x[d * k + c] - x[d * i + c]);
+      const double reach = g.radius[at(i)] + g.radius[at(k)] + margin;
+      if (distance2 < reach * reach) pairs.push_back({i, k});
+    }
+  auto every_body_against_every_wall = [&] {
+    for (const auto& wall : walls)
+      for (int i = 0; i < n; ++i) {
+        double height = -wall.offset - g.radius[at(i)];
+        for (int c = 0; c < d; ++c) height += wall.normal[at(c)] * x[d * i + c];
+        if (height < 0)
+          for (int c = 0; c < d; ++c) x[d * i + c] -= height * wall.normal[at(c)];
+      }
+  };
+  for (int sweep = 0; sweep < sweeps; ++sweep) {
+    every_body_against_every_wall();
+    for (const auto& [i, k] : pairs) {
+      const double wi = g.inverse_mass[i], wk = g.inverse_mass[k], w = wi + wk;
+      double delta[3] = {0, 0, 0}, distance2 = 0;
+      for (int c = 0; c < d; ++c) {
+        delta[c] = x[d * k + c] - x[d * i + c];
+        distance2 += delta[c] * delta[c];
+      }
+      const double touching = g.radius[at(i)] + g.radius[at(k)];
+      if (distance2 >= touching * touching) continue;
+      const double distance = std::sqrt(distance2);
+      const double depth = (touching - distance) / distance;  // (no coincident centres in this gas)
+      const double move_i = depth * wi / w, move_k = depth * wk / w;
+      for (int c = 0; c < d; ++c) {
+        x[d * i + c] -= move_i * delta[c];
+        x[d * k + c] += move_k * delta[c];
+      }
+    }
+  }
+  every_body_against_every_wall();
+}
+
+TEST(WallLists, AProjectionIsExactlyEveryBodyAgainstEveryWall) {
+  // The dense gas of the ball pairs' tests (gaps of 0.1 m to 0.5 m, balls of radii 0.3 to 0.5 m,
+  // up to 3 m/s, numbered at random) in its box, whose walls its outer balls start 0.55 m from:
+  // stepped by one projection kept from step to step, and by the projection above that tests
+  // every body against every wall in every pass. No ball crosses a margin (0.5 m) in one
+  // projection, so no ball left off a list is ever inside a wall in a sweep: the positions agree
+  // to the last bit at every step, lists kept over steps included.
+  for (const int d : {2, 3}) {
+    Gas g = lattice_gas(d, d == 2 ? 300 : 216, 1.1, 3, 0.4, true);
+    motus::ConstraintProjection p = projection_of(g, true);
+    const Walls walls = p.walls();
+    const auto n = static_cast<int>(g.radius.size());
+    Vector reference = g.x;
+    p.project(g.x);
+    every_wall_projection(g, walls, reference, 10);
+    ASSERT_EQ(g.x, reference) << d << "-D, the start";
+    int touches = 0;  // balls that ended a step on a wall
+    for (int step = 0; step < 120; ++step) {
+      predict(g);
+      reference = g.next;
+      p.project(g.next);
+      every_wall_projection(g, walls, reference, 10);
+      ASSERT_EQ(g.next, reference) << d << "-D, step " << step;
+      for (int i = 0; i < n; ++i) touches += lowest_height(walls, g.next, g.radius, d, i) < 1e-12;
+      advance(g);
+    }
+    const long every_body_every_sweep = 121L * 10 * static_cast<long>(walls.size()) * n;
+    std::printf("  %d-D gas of %d balls in its box, 120 steps: %d touches of a wall, lists made %ld times, "
+                "%ld body-wall tests in the sweeps (%.1f %% of every body in every sweep)\n",
+                d, n, touches, p.near_wall_builds(), p.near_wall_tests(),
+                100.0 * static_cast<double>(p.near_wall_tests()) / static_cast<double>(every_body_every_sweep));
+    EXPECT_GT(touches, 100);  // the walls were hit: the comparison compared something
+    EXPECT_LT(p.near_wall_tests(), every_body_every_sweep / 2);
+  }
+}
+
+TEST(WallLists, TheSweepsTestTheBodiesNearTheWallsAndTheListsAreKept) {
+  // ball_gas.json with verlet (400 balls of radius 0.5 m, 2 m apart in a 40 m box, each velocity
+  // component up to 1 m/s: at most 0.024 m a step), 120 steps of 10 sweeps. The lists hold the
+  // balls within margin + skin (0.5 m + 0.5 m) of a wall, the outer rows at most, so the sweeps
+  // test a small part of the 400 × 4 body-wall pairs; they serve until a ball has moved 0.5 m,
+  // about 21 steps at the fastest; no step allocates, new lists included.
+  Gas g = lattice_gas(2, 400, 2, 1);
+  motus::ConstraintProjection p = projection_of(g, true);
+  p.project(g.x);
+  ASSERT_EQ(p.near_wall_builds(), 1);
+  const long allocations = g_allocations.load();
+  const int steps = 120;
+  for (int step = 0; step < steps; ++step) {
+    predict(g);
+    p.project(g.next);
+    advance(g);
+  }
+  EXPECT_EQ(g_allocations.load() - allocations, 0);
+  const long every_body_every_sweep = (steps + 1L) * 10 * 4 * 400;
+  std::printf("  ball gas of 400, %d steps: the lists made %ld times, %ld body-wall tests in the sweeps (of %ld)\n",
+              steps, p.near_wall_builds(), p.near_wall_tests(), every_body_every_sweep);
+  EXPECT_GE(p.near_wall_builds(), 3);             // the balls did move
+  EXPECT_LE(p.near_wall_builds(), steps / 10);    // and the lists were kept for many steps
+  EXPECT_GT(p.near_wall_tests(), 0);              // the outer rows: 1 of 20 at the start
+  EXPECT_LT(p.near_wall_tests(), every_body_every_sweep / 10);
+}
+
+TEST(WallLists, ASinglePlaneAndOneSweepNeedNoLists) {
+  // A cloth's case (cloth.json: one floor, substeps of one sweep each): the sweep's own wall pass is
+  // the projection's last, over every body, so there are no lists to make. With three sweeps the
+  // first two use them, and the third is the pass over every body.
+  motus::Colliders floor;
+  floor.planes.push_back(ground());
+  Vector x(4);
+  x << 0, 0.5, 1, -0.25;
+  motus::ConstraintProjection one(2, Vector::Ones(2), {0, 0}, {{0, 1, 1.0}}, {}, floor, 1);
+  one.project(x);
+  EXPECT_EQ(one.near_wall_builds(), 0);
+  EXPECT_EQ(one.near_wall_tests(), 0);
+  EXPECT_GE(x[3], 0.0);
+  motus::ConstraintProjection three(2, Vector::Ones(2), {0, 0}, {{0, 1, 1.0}}, {}, floor, 3);
+  three.project(x);
+  EXPECT_EQ(three.near_wall_builds(), 1);
+  EXPECT_EQ(three.near_wall_tests(), 2 * 2);  // both bodies within margin + skin (2 m) of the floor, two sweeps
+  EXPECT_GE(x[1], 0.0);
+  EXPECT_GE(x[3], 0.0);
+}
+
+TEST(WallLists, ABodyPulledFarIntoAWallWithinOneProjectionEndsOnItsSurface) {
+  // Body 0 is pinned at (100, 5), far beyond the right wall of the box [0, 10]² (a pin wins over a
+  // wall); body 1, free, is at the box's centre, 5 m from every wall, tied to body 0 by a stick of
+  // 1 m stretched to 95 m. The margin is the longest stick, 1 m, and the skin as much: body 1 is on
+  // no list, and the sweeps test no body at all. The first sweep's stick puts body 1 at (99, 5),
+  // 89 m into the right wall, and so does each sweep after it; the last wall pass, over every body,
+  // puts it on the wall's surface, x = 10 exactly (99 − 89).
+  motus::Colliders box;
+  box.boxes.push_back({{0, 0, 0}, {10, 10, 0}, 1});
+  motus::ConstraintProjection p(2, Vector::Ones(2), {0, 0}, {{0, 1, 1.0}}, {{0, {100, 5, 0}}}, box, 4);
+  Vector x(4);
+  x << 100, 5, 5, 5;
+  p.project(x);
+  EXPECT_EQ(p.near_wall_builds(), 1);
+  EXPECT_EQ(p.near_wall_tests(), 0);  // no body listed: the sweeps did not see it in the wall
+  EXPECT_EQ(x[2], 10.0);              // but it did not end there
+  EXPECT_EQ(x[3], 5.0);
+  EXPECT_EQ(x[0], 100.0);  // the pin
+  // The next projection lists it (now on the wall's surface), and the sweeps test it there.
+  p.project(x);
+  EXPECT_GT(p.near_wall_tests(), 0);
+  EXPECT_EQ(x[2], 10.0);
+}
+
+TEST(WallLists, NoBodyEndsAStepInsideAWall) {
+  // A heap: the dense gas (300 balls in 2-D, 216 in 3-D; radii 0.35 to 0.5 m, up to 3 m/s), its
+  // balls paired into dumbbells, 2j with 2j + 1, by sticks of their start distance (1.1 m: the rows,
+  // of 18 and 6 balls, are even, so no pair straddles two), falling under gravity onto its box's
+  // floor for 240 steps (4 s).
+  // After every step, every body against every wall, checked here: none is inside one by more
+  // than rounding.
+  for (const int d : {2, 3}) {
+    Gas g = lattice_gas(d, d == 2 ? 300 : 216, 1.1, 3, 0.3, false);
+    const auto n = static_cast<int>(g.radius.size());
+    std::vector<motus::StickConstraint> sticks;
+    for (int i = 0; i + 1 < n; i += 2)
+      sticks.push_back({i, i + 1, (g.x.segment(d * (i + 1), d) - g.x.segment(d * i, d)).norm()});
+    motus::ConstraintProjection p(d, g.inverse_mass, g.radius, sticks, {}, g.box, 10);
+    const Walls walls = p.walls();
+    p.project(g.x);
+    double lowest = INFINITY;
+    for (int step = 0; step < 240; ++step) {
+      predict(g);
+      for (int i = 0; i < n; ++i) g.next[d * i + 1] -= kG * kDt * kDt;
+      p.project(g.next);
+      for (int i = 0; i < n; ++i) {
+        const double height = lowest_height(walls, g.next, g.radius, d, i);
+        lowest = std::min(lowest, height);
+        ASSERT_GE(height, -1e-12) << d << "-D, body " << i << ", step " << step;
+      }
+      advance(g);
+    }
+    const long every_body_every_sweep = 241L * 10 * static_cast<long>(walls.size()) * n;
+    std::printf("  %d-D heap of %d balls in dumbbells, 240 steps: lowest height above a wall %.3g m, the lists made "
+                "%ld times, %.1f %% of the body-wall tests of every body in every sweep\n",
+                d, n, lowest, p.near_wall_builds(),
+                100.0 * static_cast<double>(p.near_wall_tests()) / static_cast<double>(every_body_every_sweep));
+    EXPECT_LT(lowest, 1e-12);  // the heap lies on the floor
+    EXPECT_LT(p.near_wall_tests(), every_body_every_sweep);
+  }
+}
+
+TEST(WallLists, ABodyPushedOutOfOneWallIntoAnotherIsAsBefore) {
+  // A wedge of two planes: the floor y ≥ 0 and an overhanging wall x + y ≤ 1 (normal (−1, −1)/√2),
+  // meeting at (1, 0) at 45°. A point 3 m deep in the floor at x = 1.5, 1.77 m from the overhang,
+  // which it is not inside: pushed up out of the floor, it lands 0.35 m inside the overhang, whose
+  // push sends it back down into the floor, and the sweeps take it towards the corner in turns.
+  // Near the floor, whose push may send a body into the overhang, it is on the overhang's list too
+  // and tested against both walls in every sweep, as before the lists: the same numbers as every
+  // body against every wall, to the last bit. (Listed by its distance to each wall alone, it would
+  // meet the overhang only in the last pass, and end there, 0.25 m inside the floor.)
+  motus::Colliders wedge;
+  wedge.planes.push_back(ground());
+  wedge.planes.push_back({{-1, -1, 0}, -1, 1});  // −x − y ≥ −1
+  Gas g;
+  g.d = 2;
+  g.x.resize(2);
+  g.x << 1.5, -3;
+  g.inverse_mass = Vector::Ones(1);
+  g.radius = {0};
+  motus::ConstraintProjection p(2, g.inverse_mass, g.radius, {}, {}, wedge, 10);
+  Vector reference = g.x;
+  p.project(g.x);
+  every_wall_projection(g, p.walls(), reference, 10);
+  EXPECT_EQ(g.x, reference);
+  EXPECT_EQ(p.near_wall_tests(), 10 * 2);  // on both lists, in all ten sweeps
+  EXPECT_NEAR(g.x[0], 1.0, 1e-3);  // near the corner, and all but out of both walls
+  EXPECT_GT(lowest_height(p.walls(), g.x, g.radius, 2, 0), -1e-3);
+}
+
+TEST(WallLists, ATiltedFloorInABoxIsExactlyEveryBodyAgainstEveryWall) {
+  // The dense gas of above in its box, over a floor tilted across it, y − 0.005·x ≥ −0.05: below
+  // the box's own floor left of the middle, above it to the right, 0.049 m at the right wall (the
+  // bottom row's balls clear it at the start). Its push has a part along −x, towards the left wall,
+  // and it points against the ceiling: a body near it is on those walls' lists too. Planes and box
+  // faces together, for 120 steps, the same numbers as every body against every wall.
+  Gas g = lattice_gas(2, 300, 1.1, 3, 0.4, true);
+  g.box.planes.push_back({{-0.005, 1, 0}, -0.05, 1});
+  motus::ConstraintProjection p = projection_of(g, true);
+  const Walls walls = p.walls();
+  ASSERT_EQ(walls.size(), 5u);
+  Vector reference = g.x;
+  p.project(g.x);
+  every_wall_projection(g, walls, reference, 10);
+  ASSERT_EQ(g.x, reference) << "the start";
+  int touches = 0;  // balls that ended a step on the tilted floor
+  for (int step = 0; step < 120; ++step) {
+    predict(g);
+    reference = g.next;
+    p.project(g.next);
+    every_wall_projection(g, walls, reference, 10);
+    ASSERT_EQ(g.next, reference) << "step " << step;
+    for (size_t i = 0; i < g.radius.size(); ++i)
+      touches += lowest_height({walls[0]}, g.next, g.radius, 2, static_cast<int>(i)) < 1e-12;
+    advance(g);
+  }
+  std::printf("  gas of 300 over a tilted floor, 120 steps: %d touches of it\n", touches);
+  EXPECT_GT(touches, 100);  // the tilted floor was hit
+}
+
 }  // namespace

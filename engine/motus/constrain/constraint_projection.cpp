@@ -54,6 +54,13 @@ constexpr double kSkinPerRadius = 2;
 // its capacity from then on.
 constexpr size_t kNeighboursPerBall = 12;
 
+// The near-wall lists' skin, in margins (the margin: how far a body may move during one
+// projection's sweeps; find_bodies_near_walls). The lists hold the bodies within margin + skin of
+// a wall and serve until some body has moved the skin. Any skin is correct; with this one
+// ball_gas (margin 0.5 m, balls up to 1.4 m/s, 0.024 m a step) makes its lists once in 20 steps
+// (400 balls: 6 times in 121 projections), and they hold little more than the outer rows.
+constexpr double kWallSkinPerMargin = 1;
+
 // Cells of the ball pairs' hash are numbered within ±this along each axis (1e6 cells: over
 // 100 km for the shipped ragdoll's balls), so that a neighbour's index, ±1, never overflows.
 constexpr double kFarthestCell = 1e6;
@@ -172,6 +179,20 @@ ConstraintProjection::ConstraintProjection(int dimensions, const Vector& inverse
   // the skin, how far they may move between the list's builds.
   margin_ = max_radius_;
   skin_ = kSkinPerRadius * max_radius_;
+
+  // The walls' broad phase (find_bodies_near_walls): a list holds at most every body, so none
+  // grows in a step.
+  double longest_stick = 0;
+  for (const auto& s : sticks_) longest_stick = std::max(longest_stick, s.length);
+  wall_margin_ = margin_ + longest_stick;
+  wall_skin_ = kWallSkinPerMargin * wall_margin_;
+  if (!walls_.empty()) {
+    find_walls_pushing_into_each_wall();
+    near_wall_.assign(walls_.size(), {});
+    for (auto& list : near_wall_) list.reserve(static_cast<size_t>(n));
+    listed_at_.resize(static_cast<size_t>(n) * static_cast<size_t>(d_));
+    near_.resize(walls_.size());
+  }
 }
 
 bool ConstraintProjection::pinned(int body) const { return inverse_mass_[body] == 0; }
@@ -181,19 +202,28 @@ void ConstraintProjection::project(VectorRef x) {
   if (balls_.size() >= 2) find_ball_pairs(x);
   // Once the chains are exact, a sweep with nothing else to do would change nothing.
   const bool only_chains = sweep_sticks_.empty() && walls_.empty() && colliders_.segments.empty() && pairs_.empty();
+  // Walls win: the projection's last wall pass tests every body against every wall, so that no
+  // body ends it inside a wall, whatever the sweeps did; while a stick a little off its length is
+  // only stretchiness, a body seen through the floor is a bug. (Sweeps are what make sticks and
+  // contacts agree; this only settles who is last.) Ball pushes, segments or a second wall may
+  // move a body after a sweep's wall pass: then that last pass comes after the sweeps. With no
+  // ball pairs and a single plane (a cloth's floor) the last sweep's own wall pass is the last,
+  // and it is the one over every body. The sweeps' other wall passes test only the bodies listed
+  // near each wall (find_bodies_near_walls).
+  const bool wall_pass_after_sweeps = !pairs_.empty() || !colliders_.segments.empty() || walls_.size() > 1;
+  const int sweeps_near_walls = wall_pass_after_sweeps ? iterations_ : iterations_ - 1;
+  if (sweeps_near_walls > 0) find_bodies_near_walls(x);
   for (int sweep = 0; sweep < iterations_; ++sweep) {
     project_sticks(x);
     const bool chains_exact = chains_.iterate(x.data(), kChainTolerance);
     if (only_chains && chains_exact) break;
-    project_walls(x);
+    if (sweep < sweeps_near_walls)
+      project_bodies_near_walls(x);
+    else
+      project_walls(x);
     project_ball_pairs(x);
   }
-  // Walls win: a sweep's last ball pushes may have nudged a body into a wall, and while a
-  // stick a little off its length is only stretchiness, a body seen through the floor is
-  // a bug. (Sweeps are what make sticks and contacts agree; this only settles who is last.)
-  // With no ball pairs and a single plane the sweep's own wall pass was already last, and a
-  // second would change nothing.
-  if (!pairs_.empty() || !colliders_.segments.empty() || walls_.size() > 1) project_walls(x);
+  if (wall_pass_after_sweeps) project_walls(x);
   place_pins(x);  // last, exactly: nothing above moves a body of inverse mass 0, but be sure
   remember_segment_sides(x);
 }
@@ -294,33 +324,211 @@ void ConstraintProjection::project_sticks(VectorRef x) const {
 
 namespace {
 
-// Every free body against every wall, wall by wall, with the dimension known at compile time
-// (a cloth's floor: 400 bodies, every sweep). Each body meets the walls in the scene's order.
+// n·x − offset − r: how far body i's surface is out of the wall (< 0: inside it).
 template <int D, class Wall>
-void project_planes_in(const std::vector<Wall>& walls, const Vector& inverse_mass, const std::vector<double>& radius,
-                       double* x) {
-  const auto n = static_cast<size_t>(radius.size());
-  for (const Wall& wall : walls)
-    for (size_t i = 0; i < n; ++i) {
-      if (inverse_mass[static_cast<Eigen::Index>(i)] == 0) continue;  // pinned: the pin wins
-      double* xi = x + D * i;
-      double height = -wall.offset - radius[i];  // n·x − offset − r: < 0 means inside the wall
-      for (int k = 0; k < D; ++k) height += wall.normal[k] * xi[k];
-      if (height < 0)
-        for (int k = 0; k < D; ++k) xi[k] -= height * wall.normal[k];
-    }
+inline double height_above(const Wall& wall, double r, const double* xi) {
+  double height = -wall.offset - r;
+  for (int k = 0; k < D; ++k) height += wall.normal[k] * xi[k];
+  return height;
+}
+
+// A body inside the wall moves along the normal back to its surface; one outside stays, untouched.
+template <int D, class Wall>
+inline void push_out_of_wall(const Wall& wall, double r, double* xi) {
+  const double height = height_above<D>(wall, r, xi);
+  if (height < 0)
+    for (int k = 0; k < D; ++k) xi[k] -= height * wall.normal[k];
+}
+
+// Every free body against every wall, body by body, with the dimension known at compile time
+// (a gas in its box: 10,000 balls against 4 walls, every step). Each body meets the walls in the
+// scene's order; a body's corrections move no other body, so this is the same to the last bit as
+// going wall by wall.
+template <int D, class Wall>
+void project_every_body_in(const std::vector<Wall>& walls, const Vector& inverse_mass,
+                           const std::vector<double>& radius, double* x) {
+  const auto n = static_cast<int>(radius.size());
+  for (int i = 0; i < n; ++i) {
+    if (inverse_mass[i] == 0) continue;  // pinned: the pin wins
+    const double r = radius[static_cast<size_t>(i)];
+    for (const Wall& wall : walls) push_out_of_wall<D>(wall, r, x + D * i);
+  }
+}
+
+// Wall w against the bodies of list w only, wall by wall: each listed body meets the walls in the
+// scene's order, as in a pass over every body.
+template <int D, class Wall>
+void project_listed_bodies_in(const std::vector<Wall>& walls, const std::vector<std::vector<int>>& lists,
+                              const std::vector<double>& radius, double* x) {
+  for (size_t w = 0; w < walls.size(); ++w)
+    for (const int i : lists[w]) push_out_of_wall<D>(walls[w], radius[static_cast<size_t>(i)], x + D * i);
+}
+
+// Whether a push out of wall a, along its normal, may move a body into wall b. It brings the body
+// nearer to b when their normals point against each other (n_a·n_b < 0) — but not into it when
+// the two are opposite faces (n_a = −n_b, like a box's two faces along one axis) more than
+// `clearance` apart: the push leaves the body on a's surface, and a body on one face is then more
+// than clearance − 2r from the other. (Perpendicular faces, n_a·n_b = 0, leave its height above b
+// as it was.)
+template <class Wall>
+bool may_push_into(const Wall& a, const Wall& b, double clearance) {
+  double cosine = 0;
+  bool opposite = true;
+  for (size_t k = 0; k < a.normal.size(); ++k) {
+    cosine += a.normal[k] * b.normal[k];
+    opposite = opposite && a.normal[k] == -b.normal[k];
+  }
+  if (!(cosine < 0)) return false;
+  const double apart = -b.offset - a.offset;  // opposite: the free slab a.offset ≤ n_a·x ≤ −b.offset
+  return !(opposite && apart > clearance);
 }
 
 }  // namespace
 
+// The projection's last wall pass: every free body against every wall, then every segment.
 void ConstraintProjection::project_walls(VectorRef x) const {
-  if (!walls_.empty()) {
+  switch (d_) {
+    case 1: project_every_body_in<1>(walls_, inverse_mass_, radius_, x.data()); break;
+    case 2: project_every_body_in<2>(walls_, inverse_mass_, radius_, x.data()); break;
+    default: project_every_body_in<3>(walls_, inverse_mass_, radius_, x.data()); break;
+  }
+  project_segments(x);
+}
+
+// The walls' broad phase, at the start of a projection: for each wall (plane or box face), the
+// free bodies that may meet it during the sweeps. Within the sweeps a body moves by their
+// corrections: ball pushes, which the ball pairs' margin (the largest radius) covers as it does for
+// the pairs (find_ball_pairs); stick corrections, each by its stick's error, which in a scene whose
+// sticks hold stays well under the stick's rest length; and the walls' own pushes, by however deep
+// the body was in. So wall w's list holds the bodies whose height above it, n·x − offset − r, is
+// under that margin plus the longest stick (wall_margin_), and those near a wall whose push may
+// send them into w (a wedge of two planes; find_walls_pushing_into_each_wall): tested against w in
+// every sweep as before, not only in the last pass.
+//
+// Making the lists costs a pass over every body and wall, so they are kept across projections as
+// the ball pairs' list is: they hold the bodies within wall_margin_ + wall_skin_, and serve until
+// some body has moved the skin since they were made (one pass over the bodies, a quarter of a pass
+// over a 2-D box's four walls). Walls do not move, so a body left off a wall's list, then at least
+// margin + skin from it, is still at least the margin from it after moving less than the skin.
+//
+// What is guaranteed, and what is the same as testing every body in every pass:
+// - No body ends a projection inside a wall: the last wall pass tests every body (project()), as
+//   before (in a wedge, the second wall's push may still leave a body a little in the first, as
+//   before).
+// - The positions are the same to the last bit whenever no body is inside a wall whose list it is
+//   not on at one of the sweeps' wall passes: testing a body that is outside a wall changes
+//   nothing, so leaving it out changes nothing, and each listed body meets the walls in the same
+//   order.
+// - They differ only when sticks or ball pushes carry a body more than the margin into a wall
+//   within one projection (a stick stretched to many times its length, a ball flung through a
+//   packed heap): the sweeps leave it in the wall and the last pass puts it on the surface, so the
+//   sweeps' sticks and contacts after it went in have not seen it there. That is no worse than what
+//   the sweeps already allow (the contacts and sticks after the last sweep's wall pass never see
+//   the walls either), and the lists of a later projection hold it, there on the surface.
+void ConstraintProjection::find_bodies_near_walls(ConstVectorRef x) {
+  if (walls_.empty()) return;
+  bool still_hold = have_near_wall_lists_;
+  if (still_hold) {
     switch (d_) {
-      case 1: project_planes_in<1>(walls_, inverse_mass_, radius_, x.data()); break;
-      case 2: project_planes_in<2>(walls_, inverse_mass_, radius_, x.data()); break;
-      default: project_planes_in<3>(walls_, inverse_mass_, radius_, x.data()); break;
+      case 1: still_hold = near_wall_lists_still_hold<1>(x.data()); break;
+      case 2: still_hold = near_wall_lists_still_hold<2>(x.data()); break;
+      default: still_hold = near_wall_lists_still_hold<3>(x.data()); break;
     }
   }
+  if (!still_hold) list_bodies_near_walls(x);
+}
+
+// Whether every body is still closer than the skin to where it was when the lists were made.
+// (Written so that a NaN position, which compares false, makes them again.)
+template <int D>
+bool ConstraintProjection::near_wall_lists_still_hold(const double* x) const {
+  const double limit2 = wall_skin_ * wall_skin_;
+  const double* then = listed_at_.data();
+  const size_t coordinates = listed_at_.size();
+  for (size_t c = 0; c < coordinates; c += D) {
+    double moved2 = 0;
+    for (int k = 0; k < D; ++k) {
+      const double step = x[c + k] - then[c + k];
+      moved2 += step * step;
+    }
+    if (!(moved2 < limit2)) return false;
+  }
+  return true;
+}
+
+// The lists from scratch, and every body's position now.
+void ConstraintProjection::list_bodies_near_walls(ConstVectorRef x) {
+  switch (d_) {
+    case 1: list_bodies_near_walls_in<1>(x.data()); break;
+    case 2: list_bodies_near_walls_in<2>(x.data()); break;
+    default: list_bodies_near_walls_in<3>(x.data()); break;
+  }
+  std::copy(x.begin(), x.end(), listed_at_.begin());
+  have_near_wall_lists_ = true;
+  ++near_wall_builds_;
+}
+
+// Wall w's list: the free bodies, in index order, within margin + skin of wall w or of a wall whose
+// push may move them into it.
+template <int D>
+void ConstraintProjection::list_bodies_near_walls_in(const double* x) {
+  const double reach = wall_margin_ + wall_skin_;
+  for (auto& list : near_wall_) list.clear();
+  const auto n = static_cast<int>(radius_.size());
+  for (int i = 0; i < n; ++i) {
+    if (inverse_mass_[i] == 0) continue;
+    const double r = radius_[static_cast<size_t>(i)];
+    for (size_t w = 0; w < walls_.size(); ++w) near_[w] = height_above<D>(walls_[w], r, x + D * i) < reach;
+    for (size_t w = 0; w < walls_.size(); ++w) {
+      bool listed = near_[w];
+      for (const int a : pushed_in_by_[w]) listed = listed || near_[static_cast<size_t>(a)];
+      if (listed) near_wall_[w].push_back(i);
+    }
+  }
+}
+
+// For each wall b, the other walls whose push may move a body into it (may_push_into), directly or
+// through other walls (a pushes into c, which pushes into b). A body near one of them may be pushed
+// into b during the sweeps from however far, so b's list holds it too. A box's faces push into
+// none of each other, so a box alone has none; the opposite faces' clearance is a ball's diameter
+// and the margin, the farthest a body on one face may still move towards the other.
+void ConstraintProjection::find_walls_pushing_into_each_wall() {
+  const double clearance = 2 * max_radius_ + wall_margin_;
+  const size_t walls = walls_.size();
+  pushed_in_by_.assign(walls, {});
+  for (size_t b = 0; b < walls; ++b)
+    for (size_t a = 0; a < walls; ++a)
+      if (a != b && may_push_into(walls_[a], walls_[b], clearance)) pushed_in_by_[b].push_back(static_cast<int>(a));
+  for (bool grew = true; grew;) {
+    grew = false;
+    for (size_t b = 0; b < walls; ++b)
+      for (size_t u = 0; u < pushed_in_by_[b].size(); ++u) {
+        const auto a = static_cast<size_t>(pushed_in_by_[b][u]);
+        for (const int c : pushed_in_by_[a]) {
+          auto& into_b = pushed_in_by_[b];
+          if (static_cast<size_t>(c) != b && std::find(into_b.begin(), into_b.end(), c) == into_b.end()) {
+            into_b.push_back(c);
+            grew = true;
+          }
+        }
+      }
+  }
+}
+
+// A sweep's wall pass: each wall against the bodies listed near it, then every segment (every
+// body: segments have no broad phase).
+void ConstraintProjection::project_bodies_near_walls(VectorRef x) {
+  switch (d_) {
+    case 1: project_listed_bodies_in<1>(walls_, near_wall_, radius_, x.data()); break;
+    case 2: project_listed_bodies_in<2>(walls_, near_wall_, radius_, x.data()); break;
+    default: project_listed_bodies_in<3>(walls_, near_wall_, radius_, x.data()); break;
+  }
+  for (const auto& list : near_wall_) near_wall_tests_ += static_cast<long>(list.size());
+  project_segments(x);
+}
+
+// Every free body against every segment (2-D).
+void ConstraintProjection::project_segments(VectorRef x) const {
   if (colliders_.segments.empty()) return;
   const int n = static_cast<int>(radius_.size());
   for (int i = 0; i < n; ++i) {

@@ -6,9 +6,10 @@
 //                masses, until it has its rest length (in groups that share no body:
 //                sweep_order.hpp); a chain of sticks instead gets one Newton iteration
 //                on all its sticks at once, until it is exact (chain_solver.hpp);
-//   each wall:   push a body that is inside a wall back to its surface;
+//   each wall:   push a body that is inside a wall back to its surface (in the sweeps, only
+//                the bodies listed near the wall: a broad phase kept across projections);
 //   each pair of overlapping balls: push them apart, mass-weighted;
-//   then the walls once more (no body ends a step inside a wall), and
+//   then the walls once more, every body (no body ends a step inside a wall), and
 //   each pin:    put the body back on its point (pins go last, so they never move).
 // The sweeps stop early when only chains are left and they are exact. The velocity is then
 // the backward difference the positions imply, (x_{n+1} − x_n)/Δt (not the central one of an
@@ -52,6 +53,13 @@ public:
   // How many times the neighbour list of the ball pairs was built (the first projection with two
   // balls or more, then each one that finds a ball moved more than half the skin since the last).
   long ball_pair_builds() const { return ball_pair_builds_; }
+  // Body–wall tests made by the sweeps' wall passes over the near-wall lists (planes and box faces),
+  // over every projection so far; the pass over every body that ends a projection is not counted.
+  // Without the lists it would be (walls × free bodies) for each of those passes.
+  long near_wall_tests() const { return near_wall_tests_; }
+  // How many times the near-wall lists were made (the first projection whose sweeps use them, then
+  // each one that finds a body moved farther than the lists' skin since the last).
+  long near_wall_builds() const { return near_wall_builds_; }
 
   // A wall in the one form the sweep needs: the free half-space n·x ≥ offset, |n| = 1.
   struct Wall {
@@ -65,6 +73,15 @@ private:
   void place_pins(VectorRef x) const;
   void project_sticks(VectorRef x) const;
   void project_walls(VectorRef x) const;
+  void find_bodies_near_walls(ConstVectorRef x);
+  template <int D>
+  bool near_wall_lists_still_hold(const double* x) const;
+  void list_bodies_near_walls(ConstVectorRef x);
+  template <int D>
+  void list_bodies_near_walls_in(const double* x);
+  void find_walls_pushing_into_each_wall();
+  void project_bodies_near_walls(VectorRef x);
+  void project_segments(VectorRef x) const;
   void project_segment(size_t j, int i, VectorRef xi) const;
   void remember_segment_sides(ConstVectorRef x);
   void find_ball_pairs(ConstVectorRef x);
@@ -104,6 +121,22 @@ private:
   std::vector<int> balls_;   // bodies with radius > 0
   double max_radius_ = 0;
   std::vector<signed char> side_;  // body i's side of segment j (+1, −1; 0: not yet seen)
+
+  // The walls' broad phase (sized in the constructor), kept across projections like the ball
+  // pairs' list: for wall w, the free bodies whose surface was within wall_margin_ + wall_skin_ of
+  // it, or of a wall whose push may move a body into it (pushed_in_by_[w]; none for a box's faces),
+  // when the lists were made, in index order (near_wall_[w]); every body's position then
+  // (listed_at_); and which walls the body being listed is near (near_). The sweeps' wall passes
+  // test only the listed bodies. The margin: how far a body may move during one projection's
+  // sweeps (constraint_projection.cpp, find_bodies_near_walls).
+  double wall_margin_ = 0, wall_skin_ = 0;
+  std::vector<std::vector<int>> pushed_in_by_;
+  bool have_near_wall_lists_ = false;
+  std::vector<std::vector<int>> near_wall_;
+  std::vector<double> listed_at_;
+  std::vector<char> near_;
+  long near_wall_tests_ = 0;
+  long near_wall_builds_ = 0;
 
   // Broad phase (sized in the constructor). A neighbour ("Verlet") list kept across projections:
   // the pairs closer than r_a + r_b + margin + skin when it was built, sorted by (i, k), and each
