@@ -3,6 +3,9 @@
 // loading shipped scenes, building an engine through the Backend interface, stepping it,
 // and the one-body scenes of tests/reference/peers.md. MOTUS_SCENES_DIR comes from
 // tests/CMakeLists.txt.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <memory>
 #include <string>
 #include <vector>
@@ -103,6 +106,31 @@ inline const motus::UniformGravity kPeersGravity{{0, -10, 0}};
 inline SceneDescription with_peers_gravity(SceneDescription scene) {
   scene.mechanical->forces.gravity.push_back(kPeersGravity);
   return scene;
+}
+
+// How far rounding alone can move motus's kinetic energy in `steps` steps of a 2-D gas of equal
+// balls with e = 1, relative to it (both peers' gas tests bound motus's drift by it). A bounce off a box's wall flips one velocity component: exact. A
+// collision of two balls moves their energy by at most some 24 roundings (u = 2⁻⁵³) of it — the
+// closing speed, the impulse, the normal's length, the new velocities' components — and a pair
+// holds at most f = 2·v_max²/Σv² of the gas's energy, v_max the fastest ball of the run. So
+// COLLISIONS × 24u·f, and 2·N·u for the two sums (N balls) that make the energy before and after.
+inline double motus_gas_rounding_bound(const SceneDescription& scene, long steps) {
+  motus::Simulation sim(scene, Integrator::SymplecticEuler);  // (the motus backend's run)
+  const auto& bodies = scene.mechanical->bodies;
+  double sum_v2 = 0, fastest2 = 0;
+  for (const auto& b : bodies) sum_v2 += b.velocity[0] * b.velocity[0] + b.velocity[1] * b.velocity[1];
+  const double t0 = sim.time();
+  for (long i = 1; i <= steps; ++i) {
+    sim.advance(t0 + static_cast<double>(i) * scene.dt, scene.dt, {});  // (as the backend steps)
+    const motus::Vector v = sim.state().tail(static_cast<Eigen::Index>(2 * bodies.size()));
+    for (size_t j = 0; j < bodies.size(); ++j) fastest2 = std::max(fastest2, v[2 * j] * v[2 * j] + v[2 * j + 1] * v[2 * j + 1]);
+  }
+  const auto counted = sim.world()->collision_counters();
+  const double u = 0x1p-53, f = 2 * fastest2 / sum_v2, n = static_cast<double>(bodies.size());
+  const double bound = (24 * static_cast<double>(counted.ball_collisions) * f + 2 * n) * u;
+  std::printf("  motus: %ld ball and %ld wall collisions in %ld steps, the fastest ball %.3f m/s (f = %.3f): bound %.2e\n",
+              counted.ball_collisions, counted.wall_collisions, steps, std::sqrt(fastest2), f, bound);
+  return bound;
 }
 
 }  // namespace motus_test

@@ -1033,10 +1033,9 @@ TEST(BallPairs, AFastBallThroughBallsAtRestIsCaughtAtEveryStep) {
   EXPECT_LT(kept.ball_pair_builds(), steps);
 }
 
-// The projection of balls alone (no sticks, walls or pins) with its candidates found by looking
-// at all N²/2 pairs: those closer than r_a + r_b + margin (margin: the largest radius), in (i, k)
-// order, then `sweeps` sweeps of pushes — constraint_projection.cpp's arithmetic, written out.
-void all_pairs_projection(const Gas& g, Vector& x, int sweeps) {
+// The candidates found by looking at all N²/2 pairs: those closer than r_a + r_b + margin (margin:
+// the largest radius), in (i, k) order.
+std::vector<std::array<int, 2>> all_pairs_within_reach(const Gas& g, const Vector& x) {
   const int d = g.d;
   const auto n = static_cast<int>(g.radius.size());
   const double margin = *std::max_element(g.radius.begin(), g.radius.end());
@@ -1049,23 +1048,38 @@ void all_pairs_projection(const Gas& g, Vector& x, int sweeps) {
       const double reach = g.radius[at(i)] + g.radius[at(k)] + margin;
       if (distance2 < reach * reach) pairs.push_back({i, k});
     }
-  for (int sweep = 0; sweep < sweeps; ++sweep)
-    for (const auto& [i, k] : pairs) {
-      const double wi = g.inverse_mass[i], wk = g.inverse_mass[k], w = wi + wk;
-      double delta[3] = {0, 0, 0}, distance2 = 0;
-      for (int c = 0; c < d; ++c) {
-        delta[c] = x[d * k + c] - x[d * i + c];
-        distance2 += delta[c] * delta[c];
-      }
-      const double touching = g.radius[at(i)] + g.radius[at(k)];
-      if (distance2 >= touching * touching) continue;
-      const double distance = std::sqrt(distance2);
-      const double depth = (touching - distance) / distance;  // (no coincident centres in this gas)
-      for (int c = 0; c < d; ++c) {
-        x[d * i + c] -= depth * wi / w * delta[c];
-        x[d * k + c] += depth * wk / w * delta[c];
-      }
+  return pairs;
+}
+
+// One sweep of pushes over `pairs`, in their order: two overlapping balls move apart along the line
+// of their centres until they touch, shared by inverse mass.
+void push_pairs_apart(const Gas& g, const std::vector<std::array<int, 2>>& pairs, Vector& x) {
+  const int d = g.d;
+  auto at = [&](int i) { return static_cast<size_t>(i); };
+  for (const auto& [i, k] : pairs) {
+    const double wi = g.inverse_mass[i], wk = g.inverse_mass[k], w = wi + wk;
+    double delta[3] = {0, 0, 0}, distance2 = 0;
+    for (int c = 0; c < d; ++c) {
+      delta[c] = x[d * k + c] - x[d * i + c];
+      distance2 += delta[c] * delta[c];
     }
+    const double touching = g.radius[at(i)] + g.radius[at(k)];
+    if (distance2 >= touching * touching) continue;
+    const double distance = std::sqrt(distance2);
+    const double depth = (touching - distance) / distance;  // (no coincident centres in this gas)
+    const double move_i = depth * wi / w, move_k = depth * wk / w;
+    for (int c = 0; c < d; ++c) {
+      x[d * i + c] -= move_i * delta[c];
+      x[d * k + c] += move_k * delta[c];
+    }
+  }
+}
+
+// The projection of balls alone (no sticks, walls or pins) with its candidates from all N²/2
+// pairs, then `sweeps` sweeps of pushes — constraint_projection.cpp's arithmetic, written out.
+void all_pairs_projection(const Gas& g, Vector& x, int sweeps) {
+  const auto pairs = all_pairs_within_reach(g, x);
+  for (int sweep = 0; sweep < sweeps; ++sweep) push_pairs_apart(g, pairs, x);
 }
 
 TEST(BallPairs, PushesGoInTheOrderOfThePairsNotOfTheHash) {
@@ -1125,16 +1139,8 @@ double lowest_height(const Walls& walls, const Vector& x, const std::vector<doub
 void every_wall_projection(const Gas& g, const Walls& walls, Vector& x, int sweeps) {
   const int d = g.d;
   const auto n = static_cast<int>(g.radius.size());
-  const double margin = *std::max_element(g.radius.begin(), g.radius.end());
   auto at = [&](int i) { return static_cast<size_t>(i); };
-  std::vector<std::array<int, 2>> pairs;
-  for (int i = 0; i < n; ++i)
-    for (int k = i + 1; k < n; ++k) {
-      double distance2 = 0;
-      for (int c = 0; c < d; ++c) distance2 += (x[d * k + c] - x[d * i + c]) * (x[d * k + c] - x[d * i + c]);
-      const double reach = g.radius[at(i)] + g.radius[at(k)] + margin;
-      if (distance2 < reach * reach) pairs.push_back({i, k});
-    }
+  const auto pairs = all_pairs_within_reach(g, x);
   auto every_body_against_every_wall = [&] {
     for (const auto& wall : walls)
       for (int i = 0; i < n; ++i) {
@@ -1146,23 +1152,7 @@ void every_wall_projection(const Gas& g, const Walls& walls, Vector& x, int swee
   };
   for (int sweep = 0; sweep < sweeps; ++sweep) {
     every_body_against_every_wall();
-    for (const auto& [i, k] : pairs) {
-      const double wi = g.inverse_mass[i], wk = g.inverse_mass[k], w = wi + wk;
-      double delta[3] = {0, 0, 0}, distance2 = 0;
-      for (int c = 0; c < d; ++c) {
-        delta[c] = x[d * k + c] - x[d * i + c];
-        distance2 += delta[c] * delta[c];
-      }
-      const double touching = g.radius[at(i)] + g.radius[at(k)];
-      if (distance2 >= touching * touching) continue;
-      const double distance = std::sqrt(distance2);
-      const double depth = (touching - distance) / distance;  // (no coincident centres in this gas)
-      const double move_i = depth * wi / w, move_k = depth * wk / w;
-      for (int c = 0; c < d; ++c) {
-        x[d * i + c] -= move_i * delta[c];
-        x[d * k + c] += move_k * delta[c];
-      }
-    }
+    push_pairs_apart(g, pairs, x);
   }
   every_body_against_every_wall();
 }
