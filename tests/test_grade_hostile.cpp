@@ -467,7 +467,7 @@ TEST(Grade, CtrlCInABatchKeepsTheSubmissionsGradedSoFar) {
   ASSERT_TRUE(graded) << "a_correct was not graded within 120 s: " << read_file(dir / "err.txt");
   EXPECT_TRUE(WIFEXITED(raw) && WEXITSTATUS(raw) == 130) << raw << ": " << read_file(dir / "err.txt");
   ASSERT_TRUE(fs::exists(dir / "graded/a_correct.json")) << read_file(dir / "err.txt");
-  EXPECT_EQ(json::parse(read_file(dir / "graded/a_correct.json"))["score"], 24);  // (the solution's full marks)
+  EXPECT_EQ(json::parse(read_file(dir / "graded/a_correct.json"))["score"], 25);  // (the solution's full marks: its public tests' 25 points)
   EXPECT_FALSE(fs::exists(dir / "graded/b_loops.json"));
   EXPECT_FALSE(fs::exists(dir / "graded/scores.csv"));
   EXPECT_NE(read_file(dir / "err.txt").find("the 1 submission graded so far has its results in"), std::string::npos)
