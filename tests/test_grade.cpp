@@ -1424,6 +1424,50 @@ TEST(Grade, AnOrderCheckWhoseRunBlowsUpSaysWhereAndFails) {
   EXPECT_EQ(output.find("global order"), std::string::npos) << output;
 }
 
+// An order check reads the order at the two finest halvings, not at the finest alone, and names
+// each with its step sizes. Velocityless Verlet with h for h² (seeded_bugs.json) steps x'' = a/h:
+// its error at the end is of order 1 and does not shrink, and the ratios of its errors are chance
+// — at verlet.order's step sizes, 2^−2.57 and then 2^2.55 at the finest pair. With a tolerance of
+// 0.6 the finest pair alone would pass it (and at 0.15 its message was that of a wrong start).
+TEST(Grade, AnOrderCheckReadsTheTwoFinestHalvingsAndNamesEachOrder) {
+  NEEDS_SANDBOX();
+  TempDir dir;
+  const auto defs = definitions("integrators");
+  json wide = defs.at("verlet.order");
+  ASSERT_EQ(wide["dt"], 0.05);
+  ASSERT_EQ(wide["halvings"], 3);
+  wide["tolerance"] = 0.6;
+  const fs::path assignment = integrators_with_tests(dir, "wide", json::array({wide, defs.at("velocity-verlet.order")}));
+  const fs::path submission = dir / "h-not-squared";
+  fs::create_directories(submission);
+  write_file(submission / "integrators.cpp", solution_with({"verlet-h-not-squared"}, {}));
+  const auto r = run_motus(dir, {"grade", assignment.string(), submission.string(), "--results", (dir / "results.json").string()});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const json result = read_json(dir / "results.json");  // (kept: test_named points into it)
+  EXPECT_EQ(failed(result), (std::set<std::string>{"verlet.order"})) << result.dump(2);
+  const json* verlet = test_named(result, "verlet.order");
+  const json* velocity_verlet = test_named(result, "velocity-verlet.order");
+  ASSERT_TRUE(verlet && velocity_verlet);
+  const std::string number = "(-?[0-9.]+(?:e-?[0-9]+)?)";
+  const std::regex two_orders("global orders " + number + R"( \(h = 0\.025 to 0\.0125\) and )" + number +
+                              R"( \(h = 0\.0125 to 0\.00625\) between successive halvings, from the errors at the end \(h = 0\.05: error)");
+  std::smatch m;
+  const std::string output = (*verlet)["output"].get<std::string>();
+  ASSERT_TRUE(std::regex_search(output, m, two_orders)) << output;
+  EXPECT_GT(std::abs(std::stod(m[1].str()) - 2), 0.6) << output;  // the pair that fails it
+  EXPECT_LE(std::abs(std::stod(m[2].str()) - 2), 0.6) << output;  // the finest, which alone passed it
+  EXPECT_NE(output.find("Expected: order 2 ± 0.6 at each of the 2 finest halvings"), std::string::npos) << output;
+  // An order below 0.5 among those read: the step itself is wrong (hint_no_order), said with where.
+  EXPECT_NE(output.find("the error does not shrink as h does (order " + m[1].str() + " from h = 0.025 to 0.0125): the step itself is wrong"),
+            std::string::npos)
+      << output;
+  // A test that passes says the orders it read too.
+  const std::string passed = (*velocity_verlet)["output"].get<std::string>();
+  ASSERT_TRUE(std::regex_search(passed, m, two_orders)) << passed;
+  EXPECT_NEAR(std::stod(m[1].str()), 2, 0.01) << passed;
+  EXPECT_NEAR(std::stod(m[2].str()), 2, 0.01) << passed;
+}
+
 // A stability check whose run's limit is far from the expected one still measures it: that number
 // is what tells the student which mistake they made. It said only "at ωh = 1 the run blows up, at
 // ωh = 3 it blows up". Symplectic Euler written as explicit Euler (drift with the old velocity)

@@ -378,29 +378,60 @@ public:
       hs.push_back(h);
       errors.push_back(error);
     }
-    // The order of the finest pair whose errors stand above rounding; none when a run blew up
-    // (an order from the coarser pairs would pass code that fails at small steps).
+    // The orders of the finest kReadPairs pairs of successive step sizes whose errors both stand
+    // above rounding (1e-12), each within the tolerance; none when a run blew up (an order from
+    // the coarser pairs would pass code that fails at small steps). One pair is not enough: a
+    // wrong step whose error does not shrink at all (velocityless Verlet with h for h²) has
+    // errors of order 1 whose ratios are chance, and one of them may look like the right order.
     const auto blew_up = std::find_if(errors.begin(), errors.end(), [](double e) { return !std::isfinite(e); });
-    double order = NAN;
-    for (size_t k = errors.size() - 1; blew_up == errors.end() && k >= 1 && std::isnan(order); --k)
-      if (errors[k] > 1e-12) order = std::log2(errors[k - 1] / errors[k]);
-    std::string what = fmt::format("global order {}", num(order));
+    struct Pair {
+      size_t fine;  // the pair of hs[fine - 1] and hs[fine]
+      double order;
+    };
+    std::vector<Pair> read;  // from the coarser to the finer
+    for (size_t k = errors.size() - 1; blew_up == errors.end() && k >= 1 && read.size() < kReadPairs; --k)
+      if (errors[k] > kRounding && errors[k - 1] > kRounding)
+        read.insert(read.begin(), {k, std::log2(errors[k - 1] / errors[k])});
+    std::vector<std::string> orders;
+    for (const auto& p : read)
+      orders.push_back(fmt::format("{} (h = {} to {})", num(p.order), num(hs[p.fine - 1]), num(hs[p.fine])));
+    std::string what;
     if (blew_up != errors.end())
       what = fmt::format("no order: the error at h = {} is not finite (the run blew up, or gave NaN)",
                          num(hs[static_cast<size_t>(blew_up - errors.begin())]));
-    else if (std::isnan(order))
+    else if (read.empty() && std::ranges::all_of(errors, [](double e) { return e <= kRounding; }))
       what = "no order: every error is at rounding's level (below 1e-12)";
+    else if (read.empty())
+      what = "no order: no two successive step sizes have errors both above rounding's level (1e-12)";
+    else if (read.size() == 1)
+      what = "global order " + orders.front();
+    else
+      what = fmt::format("global orders {} and {} between successive halvings",
+                         fmt::join(orders.begin(), orders.end() - 1, ", "), orders.back());
     std::vector<std::string> table;
     for (size_t k = 0; k < hs.size(); ++k) table.push_back(fmt::format("h = {}: error {}", num(hs[k]), num(errors[k])));
-    const std::string measured = fmt::format("{} from the errors at the end ({})", what, fmt::join(table, "; "));
-    const std::string expected = fmt::format("order {} ± {}", num(expected_), num(tolerance_));
-    if (std::abs(order - expected_) <= tolerance_) return pass(measured);
-    const bool no_order = std::isfinite(order) && order < 0.5 && !hint_no_order_.empty();  // (one below 0: the error grows)
+    const std::string measured = fmt::format("{}, from the errors at the end ({})", what, fmt::join(table, "; "));
+    const std::string expected =
+        fmt::format("order {} ± {}{}", num(expected_), num(tolerance_),
+                    read.size() > 1 ? fmt::format(" at each of the {} finest halvings", read.size()) : "");
+    const bool ok = !read.empty() && std::ranges::all_of(read, [&](const Pair& p) {
+      return std::abs(p.order - expected_) <= tolerance_;
+    });
+    if (ok) return pass(measured);
+    // (An order below 0: the error grows.)
+    const auto lowest = std::ranges::min_element(read, {}, &Pair::order);
+    const bool no_order = lowest != read.end() && lowest->order < 0.5 && !hint_no_order_.empty();
     return fail(measured, expected,
-                no_order ? "the error does not shrink as h does (order " + num(order) + "): " + hint_no_order_ : hint_);
+                no_order ? fmt::format("the error does not shrink as h does (order {} from h = {} to {}): {}", num(lowest->order),
+                                       num(hs[lowest->fine - 1]), num(hs[lowest->fine]), hint_no_order_)
+                         : hint_);
   }
 
 private:
+  // Pairs read: two, not all (of halvings = 3's three, the reference RK4 on the Lorenz system
+  // gives 5.24 at the coarsest, before its error settles into h⁴; 3.86 and 3.87 at the two finest).
+  static constexpr size_t kReadPairs = 2;
+  static constexpr double kRounding = 1e-12;  // an error at or below this is rounding's
   CheckScene scene_;
   std::string integrator_, which_;
   double dt_, duration_, expected_, tolerance_;
