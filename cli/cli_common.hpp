@@ -18,6 +18,7 @@
 
 namespace motus {
 class Simulation;
+class World;
 }
 
 namespace motus::cli {
@@ -160,6 +161,19 @@ void load_plugins(const std::vector<std::string>& files, bool data_on_standard_o
 Method method_for(const std::string& path, const SceneDescription& scene, const std::optional<std::string>& requested);
 // {"euler", "midpoint", ..., "student:euler", ...}: the built-in integrators and the plug-ins', for messages.
 std::vector<std::string> known_integrators();
+// Names joined by ", " in at most `budget` bytes, each whole: those that do not fit are counted at
+// the end ("euler, midpoint, …and 12 more"). (main prints a message as one line of at most 400
+// bytes, cut in its middle: a long list of integrators was cut inside a name, "symplectic-eule…verlet".)
+std::string whole_names(const std::vector<std::string>& names, size_t budget);
+// What a loaded plug-in brings, in words: "8 integrators (student:euler, student:midpoint, …)",
+// "collision rules", "a constraint projection", joined by "and"; "nothing" when it brings none.
+std::string what_plugin_brings(const LoadedPlugin& plugin);
+// One line for standard error ("note: the plug-in cloth.so brings a constraint projection, and spring
+// has no sticks or pins: it is not used in this run"), for each loaded plug-in of which a run uses
+// nothing: not its integrator (`method` is not one of its), nor its collision rules or its
+// projection (the scene's `world` runs no such pass; null for a first-order system). Nothing when
+// no plug-in is loaded or every one is used. `scene_name` names the scene in the note.
+std::vector<std::string> unused_plugin_notes(const std::string& scene_name, const Method& method, const World* world);
 
 // What the scene's time is counted in, for people: "s", or "years" for World2 (the system
 // catalog's time_unit).

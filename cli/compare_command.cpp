@@ -203,8 +203,16 @@ int compare_command(const CompareOptions& o) {
   const bool motus_runs = among_engines("motus");
   // Fail before any engine runs if motus cannot run this scene with this integrator.
   if (motus_runs) Simulation check(scene, options.method);
-  if (options.plugin && among_engines(plugin))
+  if (options.plugin && among_engines(plugin)) {
     Simulation check(scene, options.plugin->method.value_or(options.method), options.plugin->parts);
+    // A plug-in of which its column uses nothing (collision rules on kepler) says so, on standard
+    // error (--json's object is standard output's): the column is motus's own code under its name.
+    for (const auto& note : unused_plugin_notes(scene.name, check.method(), check.world())) tell("{}\n", note);
+  } else {
+    for (const auto& p : plugins().plugins())
+      tell("note: the plug-in {} brings {}, and --engines leaves out its column ({}): it is not used in this run\n",
+           p.file, what_plugin_brings(p), plugin);
+  }
 
   const bool default_folder = o.out.empty();
   const std::string folder = default_folder ? default_run_folder("compare", scene.name) : o.out;
@@ -224,6 +232,7 @@ int compare_command(const CompareOptions& o) {
   context.scene_file = path;
   context.description = scene.description;
   context.integrator = integrator_name;
+  context.method = options.method.name();
   context.scene = &scene;
   context.dt = options.dt;
   context.duration = options.duration;

@@ -405,12 +405,19 @@ int grade_command(const GradeCommandOptions& o) {
     const grade::Assignment assignment = load(o, folder);  // checked before it is packed
     const int status = write_gradescope_package(folder, assignment.name, o.hidden, o.out, o.no_sandbox, o.time_limit,
                                                 o.memory_limit, o.overwrite);
-    if (!o.hidden && assignment.hidden_not_given > 0)
-      tell(
-                 "motus: note: no --hidden: the autograder grades the public tests only; the rubric's {} hidden test{} "
-                 "{} left out, and scores are out of {} points\n",
-                 assignment.hidden_not_given, assignment.hidden_not_given == 1 ? "" : "s",
-                 assignment.hidden_not_given == 1 ? "is" : "are", assignment.max_score());
+    // In the words of the grading's summary ("11 of the instructor's tests not run here: 9 shown
+    // after the due date, 2 never shown"): "the rubric's 11 hidden tests" read as 11 of visibility
+    // hidden, where the rubric has 2 (and 9 after_due_date).
+    if (!o.hidden && assignment.hidden_not_given > 0) {
+      const long later = assignment.hidden_shown_later, never = assignment.hidden_not_given - later;
+      const std::string when = later == 0  ? fmt::format("{} never shown", never)
+                               : never == 0 ? fmt::format("{} shown after the due date", later)
+                                            : fmt::format("{} shown after the due date, {} never shown", later, never);
+      tell("motus: note: no --hidden: the autograder grades the public tests only; {} of the rubric's tests {} not "
+           "among them (the instructor's, given with --hidden: {}) and {} left out; the scores are then out of {} points\n",
+           assignment.hidden_not_given, assignment.hidden_not_given == 1 ? "is" : "are", when,
+           assignment.hidden_not_given == 1 ? "is" : "are", assignment.max_score());
+    }
     return status;
   }
   if (!o.batch.empty()) return grade_batch(o, folder);

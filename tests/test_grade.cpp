@@ -11,6 +11,7 @@
 #include <sys/wait.h>
 
 #include <cmath>
+#include <csignal>
 #include <functional>
 #include <sstream>
 #include <regex>
@@ -1381,6 +1382,90 @@ TEST(Grade, ATimeoutNamesTheStudentsFunctionAndTheAssignmentsHint) {
   EXPECT_GT(with_hint, 0) << sheet.dump(2);
 }
 
+// Found by a student-and-instructor audit: one printf("stick %g\n", length) in the cloth solution's
+// project_stick timed scene.cloth out (10.4 to 11.2 million lines, 124 to 132 MB, in its 10 s of
+// CPU: the server's standard output is unbuffered, each print a write), and the message blamed a
+// sweep that never ends, with no word of the printing. It says how much the code printed first,
+// counted whole (not the 64 KB the sandbox keeps), and gives the timeout_hint after it as the other
+// cause. At --time-limit 1 the same print floods scene.cloth in seconds.
+TEST(Grade, ATimeoutAfterAFloodOfPrintsSaysThePrintingFirst) {
+  NEEDS_SANDBOX();
+  TempDir dir;
+  const fs::path submission = copy_solution(dir, "cloth", "cloth-prints");
+  std::string source = read_file(submission / "cloth.cpp");
+  const std::string find = "const double w = w_a + w_b;";
+  const size_t at = source.find(find);
+  ASSERT_NE(at, std::string::npos);
+  ASSERT_LT(at, source.find("void project_wall"));  // (in project_stick, called for every stick in every sweep)
+  source.replace(at, find.size(), "std::printf(\"stick %g\\n\", length);\n  " + find);
+  write_file(submission / "cloth.cpp", "#include <cstdio>\n" + source);
+  const auto r = run_motus(dir, {"grade", "cloth", submission.string(), "--time-limit", "1", "--results",
+                                 (dir / "results.json").string()});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const json result = read_json(dir / "results.json");
+  const json* cloth = test_named(result, "scene.cloth");
+  ASSERT_NE(cloth, nullptr);
+  EXPECT_EQ((*cloth)["status"], "failed");
+  const std::string output = (*cloth)["output"].get<std::string>();
+  std::smatch said;
+  ASSERT_TRUE(std::regex_search(output, said, std::regex("^Your code printed ([0-9.]+) (MB|kB) \\(([0-9,]+) lines\\) and timed "
+                                                          "out after 1 s of CPU during a run of the scene\\.")))
+      << output;
+  // All it printed, not what was kept: more than the 100,000 lines a second of the limit that make
+  // a flood, and more than the sandbox's 64 KB.
+  const long lines = std::stol(std::regex_replace(said[3].str(), std::regex(","), ""));
+  EXPECT_GE(lines, 100000) << output;
+  EXPECT_EQ(said[2].str(), "MB") << output;
+  const std::string hint = read_json(fs::path(kAssignments) / "cloth/assignment.json").at("timeout_hint").get<std::string>();
+  const std::string advice = "Printing that much is slow (each print is written out at once, to be shown if the code crashes): "
+                             "print less (or only once) and grade again. If it still times out, this usually means: " + hint;
+  EXPECT_NE(output.find(advice), std::string::npos) << output;
+  EXPECT_EQ(output.find("This usually means"), std::string::npos) << output;  // (the hint only as the other cause)
+  // The end of what it printed is still shown, between the two.
+  const size_t shown = output.find("The end of its output:\n");
+  EXPECT_NE(shown, std::string::npos) << output;
+  EXPECT_LT(shown, output.find(advice)) << output;
+  EXPECT_NE(output.find("stick 0.1\n", shown), std::string::npos) << output;
+}
+
+// The rule itself: a flood is 100,000 lines or 1 MB for each second of the CPU limit, said only of
+// an ending out of time (a crash's output is shown, not weighed), and never of a server the busy
+// machine starved (the grader's failure, whatever the code printed).
+TEST(Grade, OnlyATimeoutAfterAFloodOfPrintsIsSaidToHavePrinted) {
+  using namespace motus::grade;
+  Limits one, ten;
+  one.cpu_seconds = 0.5;  // (counted as 1 s)
+  ten.cpu_seconds = 10;
+  Ending out;
+  out.signal = SIGXCPU;
+  out.printed_lines = 99999;
+  out.printed_bytes = 99999 * 10;
+  EXPECT_EQ(out.describe(one, 1), "timed out after 1 s of CPU");
+  out.printed_lines = 100000;
+  EXPECT_EQ(out.describe(one, 1), "printed 977 kB (100,000 lines) and timed out after 1 s of CPU");
+  EXPECT_EQ(out.describe(ten, 10), "timed out after 10 s of CPU");
+  out.printed_lines = 1000000;
+  out.printed_bytes = 132u << 20;
+  EXPECT_EQ(out.describe(ten, 10), "printed 132 MB (1,000,000 lines) and timed out after 10 s of CPU");
+  Ending no_breaks = out;  // (std::cout << x << ' ': many writes, no line break)
+  no_breaks.printed_lines = 0;
+  no_breaks.printed_bytes = 10u << 20;
+  EXPECT_EQ(no_breaks.describe(ten, 10), "printed 10 MB (all on one line) and timed out after 10 s of CPU");
+  no_breaks.printed_bytes = (10u << 20) - 1;
+  EXPECT_EQ(no_breaks.describe(ten, 10), "timed out after 10 s of CPU");
+  Ending waiting = out;
+  waiting.signal = SIGKILL;
+  waiting.timed_out = true;
+  waiting.verdict = WallVerdict::waiting;
+  EXPECT_EQ(waiting.describe(ten, 25).rfind("printed 132 MB (1,000,000 lines) and timed out after 25 s waiting, not computing", 0), 0u)
+      << waiting.describe(ten, 25);
+  waiting.verdict = WallVerdict::starved;
+  EXPECT_EQ(waiting.describe(ten, 25).rfind("was not given its 10 s of CPU", 0), 0u) << waiting.describe(ten, 25);
+  Ending crash = out;
+  crash.signal = SIGSEGV;
+  EXPECT_EQ(crash.describe(ten, 3), "was killed by SIGSEGV");
+}
+
 // A student's exception is no wrong number: the test's hint (explicit Euler's "moves x with the
 // new velocity") followed "threw std::runtime_error: ...", about something else. Numbers the engine
 // refused keep theirs (AStepSizeThatShrinksWithoutEndIsTheStudentsErrorWithItsHint). Found by an audit.
@@ -1641,6 +1726,46 @@ TEST(Grade, AnInternalFailureStillLeavesAValidResultThatSaysSo) {
   EXPECT_NE(result["output"].get<std::string>().find("could not finish"), std::string::npos);
 }
 
+// Found by an audit: without --hidden the package said "the rubric's 11 hidden tests are left out",
+// where the rubric has 2 of visibility hidden and 9 after_due_date ("hidden" in two senses; the
+// grading's summary says "9 shown after the due date, 2 never shown"). It counts them as that does.
+TEST(Grade, APackageWithoutHiddenSaysWhichTestsItLeavesOutAndWhenTheyAreShown) {
+  TempDir dir;
+  std::set<std::string> public_tests;
+  for (const auto& entry : fs::directory_iterator(fs::path(kAssignments) / "integrators/tests"))
+    if (entry.path().extension() == ".json") {
+      const json file = read_json(entry.path());
+      for (const auto& t : file["tests"]) public_tests.insert(t["name"].get<std::string>());
+    }
+  long left_out = 0, later = 0;
+  double out_of = 0;
+  const json rubric = read_json(fs::path(kAssignments) / "integrators/rubric.json");
+  for (const auto& t : rubric["tests"]) {
+    if (public_tests.count(t["name"].get<std::string>())) {
+      out_of += t["points"].get<double>();
+      continue;
+    }
+    ++left_out;
+    later += t["visibility"] == "after_due_date" || t["visibility"] == "after_published";
+  }
+  ASSERT_GT(later, 0);
+  ASSERT_GT(left_out - later, 0);
+  const auto r = run_motus(dir, {"grade", "integrators", "--package", "gradescope", "--out", (dir / "autograder.zip").string()});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.err, "motus: note: no --hidden: the autograder grades the public tests only; " + std::to_string(left_out) +
+                       " of the rubric's tests are not among them (the instructor's, given with --hidden: " + std::to_string(later) +
+                       " shown after the due date, " + std::to_string(left_out - later) +
+                       " never shown) and are left out; the scores are then out of " + fmt_points(out_of) + " points\n");
+  // The grading's own summary counts them the same way.
+  if (!sandbox_available()) return;
+  fs::create_directories(dir / "empty");
+  const auto graded = run_motus(dir, {"grade", "integrators", (dir / "empty").string()});
+  EXPECT_NE(graded.out.find("(" + std::to_string(left_out) + " of the instructor's tests not run here: " + std::to_string(later) +
+                            " shown after the due date, " + std::to_string(left_out - later) + " never shown)"),
+            std::string::npos)
+      << graded.out;
+}
+
 TEST(Grade, TheGradescopeZipGradesTheSolutionToFullMarks) {
   NEEDS_SANDBOX();
   TempDir dir;
@@ -1656,6 +1781,50 @@ TEST(Grade, TheGradescopeZipGradesTheSolutionToFullMarks) {
                         "assignment/rubric.json", "hidden/hidden.json"})
     EXPECT_TRUE(fs::exists(root / "source" / f)) << f;
   EXPECT_NE(read_file(root / "source/setup.sh").find("debian-packages.txt"), std::string::npos);
+  // setup.sh installs debian-packages.txt (the one list) but the packages only motus's tests,
+  // benchmarks and fuzzers need: it ran with stand-ins for apt-get and cmake first on PATH, which
+  // write down what they were asked. (It installed chromium, clang, libFuzzer, GoogleTest… for a
+  // build that finds none of them.)
+  {
+    const fs::path bin = dir / "stand-ins", asked = dir / "asked.txt";
+    fs::create_directories(bin);
+    for (const char* program : {"apt-get", "cmake"}) {
+      write_file(bin / program, "#!/bin/sh\necho \"" + std::string(program) + " $*\" >> '" + asked.string() + "'\n");
+      fs::permissions(bin / program, fs::perms::owner_all);
+    }
+    const auto setup = run_program(dir, (root / "source/setup.sh").string(), {}, {"PATH=" + bin.string() + ":/usr/bin:/bin"});
+    ASSERT_EQ(setup.status, 0) << setup.out << setup.err;
+    std::vector<std::string> listed, installed;
+    {
+      std::istringstream list(read_file(root / "source/motus/debian-packages.txt")), line(read_file(asked));
+      for (std::string name; list >> name;) listed.push_back(name);
+      std::string words;
+      for (std::string l; std::getline(line, l);)
+        if (l.starts_with("apt-get install ")) words = l;
+      std::istringstream install(words);
+      for (std::string word; install >> word;)
+        if (word != "apt-get" && word != "install" && !word.starts_with("-")) installed.push_back(word);
+    }
+    const std::set<std::string> test_only = {"chromium",     "clang",        "libfuzzer-14-dev", "libclang-rt-14-dev",
+                                             "libgtest-dev", "libgmock-dev", "libbenchmark-dev", "python3-jsonschema"};
+    std::vector<std::string> expected;
+    for (const auto& name : listed)
+      if (!test_only.count(name)) expected.push_back(name);
+    EXPECT_EQ(installed, expected) << read_file(asked);
+    for (const auto& name : test_only)  // (each is in the list: a rename there would install it again)
+      EXPECT_NE(std::find(listed.begin(), listed.end(), name), listed.end()) << name;
+    // What the motus target's configuration finds (find_package, pkg_check_modules), and grading needs.
+    for (const char* needed : {"build-essential", "cmake", "pkg-config", "libeigen3-dev", "libcli11-dev", "nlohmann-json3-dev",
+                               "libfmt-dev", "libbox2d-dev", "libbullet-dev", "libosmesa6-dev", "libpng-dev", "libfreetype-dev",
+                               "libboost-dev", "libmuparser-dev", "bubblewrap"})
+      EXPECT_NE(std::find(installed.begin(), installed.end(), needed), installed.end()) << needed;
+    EXPECT_NE(read_file(asked).find("cmake --build motus/build"), std::string::npos) << read_file(asked);
+    // A warning, not a failure, on an image other than Debian 12, the only one it was tried on.
+    const std::string os = read_file("/etc/os-release");
+    const bool debian_12 = os.find("\nID=debian\n") != std::string::npos && os.find("\nVERSION_ID=\"12\"\n") != std::string::npos;
+    EXPECT_EQ(setup.err.find("setup.sh: warning: this image is "), debian_12 ? std::string::npos : 0u) << setup.err;
+    EXPECT_NE(read_file(root / "source/setup.sh").find("not Debian 12 (bookworm), the only"), std::string::npos);
+  }
   // No reference solution and no hidden tests but the ones it grades with (a student's code may
   // run in this image without the sandbox).
   for (const auto& e : fs::recursive_directory_iterator(root / "source"))
@@ -2170,4 +2339,183 @@ TEST(Grade, AnEmptyTmpdirIsTheSystemsTemporaryFolder) {
   EXPECT_EQ(fs::path(folder).parent_path(), fs::path("/tmp"));
   EXPECT_TRUE(fs::is_directory(folder));
   if (!folder.empty()) fs::remove(folder);
+}
+
+// ---------------------------------------------------------------------------------------------------
+// A student's walkthrough (an audit): compare's advice, a plug-in that does nothing, the wrong plug-in,
+// the list of integrators, and a grader's velocities.
+
+namespace {
+
+// compare kepler with the student's symplectic Euler ended "motus integrated with symplectic-euler
+// (student:symplectic-euler in student), Box2D and Bullet with symplectic Euler (their own): part of
+// any difference is the method's" — the same method, all four 0.058 m from the orbit: the annotated
+// integrator was compared with "symplectic-euler". The position-first symplectic-euler-x is another
+// method than the peers' (velocity first), and the sentence says which is which.
+TEST(Plugins, CompareCallsTheStudentsSymplecticEulerThePeersMethod) {
+  TempDir dir;
+  const std::string plugin = kAssignmentPlugins + "/integrators-solution.so";
+  auto notice = [&](const std::string& integrator) {
+    const auto r = run_motus(dir, {"compare", "kepler", "--plugin", plugin, "--integrator", integrator, "--engines",
+                                   "motus,student,box2d", "--repeats", "1", "--json", "--out",
+                                   (dir / integrator.substr(integrator.find(':') + 1)).string()});
+    EXPECT_EQ(r.status, 0) << r.err;
+    const json summary = json::parse(r.out, nullptr, false);
+    return summary.is_object() && summary.contains("notice") ? summary["notice"].get<std::string>() : std::string();
+  };
+  const std::string same = notice("student:symplectic-euler");
+  EXPECT_NE(same.find("Kepler's orbit"), std::string::npos) << same;
+  EXPECT_EQ(same.find("motus integrated with"), std::string::npos) << same;
+  EXPECT_EQ(same.find("like with like"), std::string::npos) << same;
+  const std::string other = notice("student:symplectic-euler-x");
+  EXPECT_NE(other.find("motus integrated with symplectic-euler-x (student:symplectic-euler-x in student), symplectic "
+                       "Euler position first (x += v h, then v += a h), Box2D and Bullet with symplectic Euler velocity "
+                       "first (v += a h, then x += v h; their own)"),
+            std::string::npos)
+      << other;
+  EXPECT_NE(other.find("--integrator symplectic-euler compares like with like."), std::string::npos) << other;
+}
+
+// `run spring --plugin cloth.so` and `run kepler --plugin collisions.so` said nothing of the plug-in
+// having no part in the run. One note on standard error says so (standard output stays the JSON's),
+// in run and in compare; a plug-in that is used has none.
+TEST(Plugins, APluginOfWhichTheRunUsesNothingSaysSoOnStandardError) {
+  TempDir dir;
+  const std::string cloth = kAssignmentPlugins + "/cloth-solution.so";
+  const std::string collisions = kAssignmentPlugins + "/collisions-solution.so";
+  const std::string integrators = kAssignmentPlugins + "/integrators-solution.so";
+  struct Case {
+    std::vector<std::string> args;
+    std::string note;  // "": none
+  };
+  const std::vector<Case> cases = {
+      {{"run", "spring", "--plugin", cloth, "--json"},
+       "note: the plug-in " + cloth + " brings a constraint projection, and spring has no sticks or pins: it is not used in this run\n"},
+      {{"run", "kepler", "--plugin", collisions, "--json"},
+       "note: the plug-in " + collisions + " brings collision rules, and kepler has no collisions: it is not used in this run\n"},
+      {{"run", "kepler", "--plugin", integrators, "--json"},
+       "note: the plug-in " + integrators + " brings 8 integrators (student:euler, student:midpoint, …), and this run "
+       "integrates with velocity-verlet (--integrator student:NAME runs one of them): it is not used in this run\n"},
+      {{"run", "lorenz", "--plugin", cloth, "--json"},
+       "note: the plug-in " + cloth + " brings a constraint projection, and lorenz is a first-order system, with no "
+       "bodies: it is not used in this run\n"},
+      {{"compare", "kepler", "--plugin", collisions, "--json", "--out", (dir / "kepler").string()},
+       "note: the plug-in " + collisions + " brings collision rules, and kepler has no collisions: it is not used in this run\n"},
+      {{"compare", "kepler", "--plugin", collisions, "--engines", "motus,box2d", "--json", "--out", (dir / "left-out").string()},
+       "note: the plug-in " + collisions + " brings collision rules, and --engines leaves out its column (student): it is "
+       "not used in this run\n"},
+      {{"run", "bouncing_balls", "--plugin", collisions, "--json"}, ""},
+      {{"run", "cloth", "--plugin", cloth, "--json"}, ""},
+      {{"run", "kepler", "--plugin", integrators, "--integrator", "student:symplectic-euler", "--json"}, ""},
+      {{"compare", "newtons_cradle", "--plugin", collisions, "--json", "--out", (dir / "cradle").string()}, ""},
+  };
+  for (auto c : cases) {
+    c.args.insert(c.args.end(), {"--repeats", "1"});
+    const auto r = run_motus(dir, c.args);
+    SCOPED_TRACE(c.args[1] + " " + c.args[3]);
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_FALSE(json::parse(r.out, nullptr, false).is_discarded()) << r.out;  // (the note is not in it)
+    if (c.note.empty()) {
+      EXPECT_EQ(r.err.find("note: the plug-in"), std::string::npos) << r.err;
+    } else {
+      EXPECT_NE(r.err.find(c.note), std::string::npos) << r.err;
+    }
+  }
+}
+
+// `run spring --plugin collisions.so --integrator student:euler` said only `unknown integrator
+// "student:euler"`: which plug-in brings student: integrators was for the student to guess.
+TEST(Plugins, AStudentIntegratorNotInThePluginSaysWhatThePluginBrings) {
+  TempDir dir;
+  const std::string collisions = kAssignmentPlugins + "/collisions-solution.so";
+  const std::string integrators = kAssignmentPlugins + "/integrators-solution.so";
+  struct Case {
+    std::vector<std::string> args;
+    std::string says;
+  };
+  const std::vector<Case> cases = {
+      {{"run", "spring", "--plugin", collisions, "--integrator", "student:euler"},
+       "unknown integrator \"student:euler\": the plug-in " + collisions +
+           " brings no integrators (it brings collision rules); the integrators assignment's plug-in does\n"},
+      {{"run", "spring", "--plugin", kAssignmentPlugins + "/cloth-solution.so", "--integrator", "student:euler"},
+       "brings no integrators (it brings a constraint projection); the integrators assignment's plug-in does\n"},
+      {{"compare", "spring", "--plugin", collisions, "--integrator", "student:euler", "--out", (dir / "c").string()},
+       "brings no integrators (it brings collision rules)"},
+      {{"run", "spring", "--integrator", "student:euler"},
+       "; student:NAME integrators come from a plug-in, and none is loaded: load its plug-in with --plugin FILE.so\n"},
+      {{"run", "spring", "--plugin", integrators, "--integrator", "student:rk45"},
+       "unknown integrator \"student:rk45\", did you mean student:rk4? (" + integrators +
+           " brings student:euler, student:midpoint, student:rk4, student:rk4-doubling, student:symplectic-euler, "
+           "student:symplectic-euler-x, student:velocity-verlet, student:verlet); motus's own is --integrator rk45\n"},
+      {{"run", "spring", "--plugin", collisions, "--integrator", "bad:euler"},
+       "; no loaded plug-in is named \"bad\" (loaded: \"student\" from " + collisions + ")\n"},
+  };
+  for (const auto& c : cases) {
+    const auto r = run_motus(dir, c.args);
+    EXPECT_EQ(r.status, 2) << r.err;
+    EXPECT_EQ(count_lines(r.err), 1) << r.err;
+    EXPECT_NE(r.err.find(c.says), std::string::npos) << r.err;
+  }
+}
+
+// The unknown integrator's list, with a plug-in's eight names, was longer than an error's line and
+// was cut in its middle, inside a name: "symplectic-eule…verlet". The names are whole, and those
+// that do not fit are counted: "…and 6 more". (Also behind a long name, which the line's cut takes.)
+TEST(Plugins, TheListOfKnownIntegratorsHasOnlyWholeNames) {
+  TempDir dir;
+  const std::string integrators = kAssignmentPlugins + "/integrators-solution.so";
+  std::set<std::string> known;
+  {
+    const auto r = run_motus(dir, {"list", "--plugin", integrators});
+    ASSERT_EQ(r.status, 0) << r.err;
+    std::stringstream lines(r.out.substr(r.out.find("\nintegrators:\n") + 14));
+    for (std::string line; std::getline(lines, line) && line.rfind("  ", 0) == 0;)
+      known.insert(line.substr(2, line.find(' ', 2) - 2));
+    ASSERT_EQ(known.size(), 19u) << r.out;
+  }
+  for (const std::string& name : {std::string("studen:euler"), std::string("no-such-integrator"), std::string(300, 'x')}) {
+    const auto r = run_motus(dir, {"run", "spring", "--plugin", integrators, "--integrator", name});
+    SCOPED_TRACE(name);
+    EXPECT_EQ(r.status, 2) << r.err;
+    ASSERT_EQ(count_lines(r.err), 1) << r.err;
+    const size_t from = r.err.find("(known: ");
+    ASSERT_NE(from, std::string::npos) << r.err;
+    const std::string list = r.err.substr(from + 8, r.err.find(')', from) - from - 8);
+    std::stringstream items(list);
+    size_t listed = 0, more = 0;
+    for (std::string item; std::getline(items, item, ',');) {
+      if (item.front() == ' ') item.erase(0, 1);
+      std::smatch m;
+      if (std::regex_match(item, m, std::regex("…and ([0-9]+) more"))) {
+        more = std::stoul(m[1]);
+        continue;
+      }
+      EXPECT_EQ(more, 0u) << "a name after the count: " << r.err;
+      EXPECT_TRUE(known.count(item)) << "\"" << item << "\" is no integrator's whole name: " << r.err;
+      ++listed;
+    }
+    EXPECT_EQ(listed + more, known.size()) << r.err;
+  }
+}
+
+}  // namespace
+
+// Newton's cradle's velocities were 10 numbers in a row for 5 balls in 2-D, "(1, 0, 0, 0, 0, 0, 0, 0,
+// 0, 0)": which ball had which was the student's to count out. They are said body by body, measured and
+// expected alike.
+TEST(Grade, FinalVelocitiesAreSaidBodyByBody) {
+  NEEDS_SANDBOX();
+  TempDir dir;
+  const auto r = run_motus(dir, {"grade", "collisions", (fs::path(kAssignments) / "collisions/starter").string(),
+                                 "--results", (dir / "results.json").string()});
+  ASSERT_TRUE(fs::exists(dir / "results.json")) << r.err;
+  const json result = read_json(dir / "results.json");
+  const json* cradle = test_named(result, "scene.newtons-cradle");
+  ASSERT_NE(cradle, nullptr) << result.dump(2);
+  const std::string output = (*cradle)["output"];
+  EXPECT_NE(output.find("Measured: velocities at t = 3: body 0 (1, 0), body 1 (0, 0), body 2 (0, 0), body 3 (0, 0), "
+                        "body 4 (0, 0).\nExpected: body 0 (0, 0), body 1 (0, 0), body 2 (0, 0), body 3 (0, 0), body 4 "
+                        "(1, 0) (to 1e-09)."),
+            std::string::npos)
+      << output;
 }

@@ -302,9 +302,17 @@ nlohmann::json summary_json(const ReportContext& c, const std::vector<EngineRun>
     });
     // (Not with sticks or pins: motus projects them on Verlet only, so there is no like to compare with.)
     const bool projected = !c.scene->mechanical->sticks.empty() || !c.scene->mechanical->pins.empty();
-    if (motus_ran && peer_ran && !projected && !c.integrator.empty() && c.integrator != "symplectic-euler")
+    // The method by its name: the integrator shown may be annotated ("symplectic-euler (student:symplectic-euler
+    // in student)": motus's own symplectic Euler beside the student's, the peers' method, which an audit saw
+    // called another one). symplectic-euler-x is the other symplectic Euler, position first: not the peers'.
+    const std::string method = c.method.empty() ? c.integrator : c.method;
+    if (motus_ran && peer_ran && !projected && !method.empty() && method != "symplectic-euler")
       notice += " motus integrated with " + c.integrator +
-                ", Box2D and Bullet with symplectic Euler (their own): part of any difference is the method's; "
+                (method == "symplectic-euler-x"
+                     ? ", symplectic Euler position first (x += v h, then v += a h), Box2D and Bullet with symplectic "
+                       "Euler velocity first (v += a h, then x += v h; their own): another method, and part of any "
+                       "difference is the method's; "
+                     : ", Box2D and Bullet with symplectic Euler (their own): part of any difference is the method's; ") +
                 "--integrator symplectic-euler compares like with like.";
     j["notice"] = notice;
     if (exact) {

@@ -25,7 +25,8 @@ struct MachineLoad {
 struct ReportContext {
   const SceneDescription* scene = nullptr;  // what was run (the definitions, the exact answer, the replay)
   std::string scene_name, scene_file, description;
-  std::string integrator;
+  std::string integrator;  // as shown: "symplectic-euler (student:symplectic-euler in student)" for a plug-in's
+  std::string method;      // what motus's own column ran, by its name alone ("symplectic-euler"; "": as integrator)
   double dt = 0, duration = 0;
   long samples = 0;  // metric samples over the run
   int dimensions = 2;

@@ -44,6 +44,20 @@ std::string nums(const std::vector<double>& xs) {
   return fmt::format("({})", fmt::join(parts, ", "));  // (one format: GCC 12 warns falsely on "(" + string, PR105651)
 }
 
+// A body's numbers at a time, d of them each, body by body: "body 0 (1, 0), body 1 (0, 0)" (a
+// newtons-cradle's 10 numbers in a row, "(1, 0, 0, 0, 0, 0, 0, 0, 0, 0)", left the reader to count
+// out which ball had which). Numbers that are not whole bodies' are listed as they are.
+std::string per_body(const std::vector<double>& xs, int d) {
+  if (d < 1 || xs.empty() || xs.size() % static_cast<size_t>(d) != 0) return nums(xs);
+  std::vector<std::string> bodies;
+  for (size_t i = 0; i * static_cast<size_t>(d) < xs.size(); ++i) {
+    std::vector<std::string> parts;
+    for (size_t k = 0; k < static_cast<size_t>(d); ++k) parts.push_back(num(xs[i * static_cast<size_t>(d) + k]));
+    bodies.push_back(fmt::format("body {} ({})", i, fmt::join(parts, ", ")));
+  }
+  return fmt::format("{}", fmt::join(bodies, ", "));
+}
+
 CheckResult pass(std::string measured) { return {true, "Measured: " + measured + "."}; }
 
 CheckResult fail(const std::string& measured, const std::string& expected, const std::string& hint) {
@@ -1094,8 +1108,10 @@ private:
       const bool velocities = m.kind == "final_velocities";
       const Vector got = velocities ? last.tail(half) : last.head(half);
       const bool good = all_close(to_std(got), m.values, m.tolerance);
-      return {good, fmt::format("{} at t = {}: {}", velocities ? "velocities" : "positions", num(out.t.back()), nums(to_std(got))),
-              fmt::format("{} (to {})", nums(m.values), num(m.tolerance))};
+      return {good,
+              fmt::format("{} at t = {}: {}", velocities ? "velocities" : "positions", num(out.t.back()),
+                          per_body(to_std(got), d)),
+              fmt::format("{} (to {})", per_body(m.values, d), num(m.tolerance))};
     }
     if (m.kind == "energy" || m.kind == "momentum" || m.kind == "stick_error" || m.kind == "pins" ||
         m.kind == "inside_walls" || m.kind == "no_overlap") {

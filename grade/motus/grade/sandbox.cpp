@@ -268,8 +268,38 @@ bool Ending::out_of_time(const Limits& limits, double wall_seconds) const {
          (signal == SIGKILL && limits.cpu_seconds > 0 && wall_seconds >= limits.cpu_seconds);
 }
 
+bool Ending::printed_a_lot(const Limits& limits) const {
+  const auto seconds = static_cast<size_t>(std::max(1.0, cpu_limit_seconds(limits.cpu_seconds)));
+  return printed_bytes >= kSlowPrintBytes * seconds || printed_lines >= kSlowPrintLines * seconds;
+}
+
+std::string printed_amount(size_t bytes, size_t lines) {
+  auto grouped = [](size_t n) {  // 11,159,655
+    std::string digits = std::to_string(n), text;
+    for (size_t i = 0; i < digits.size(); ++i) {
+      if (i > 0 && (digits.size() - i) % 3 == 0) text += ',';
+      text += digits[i];
+    }
+    return text;
+  };
+  char size[32];
+  const double mb = static_cast<double>(bytes) / (1 << 20);
+  if (mb >= 10) std::snprintf(size, sizeof size, "%.0f MB", mb);
+  else if (mb >= 1) std::snprintf(size, sizeof size, "%.1f MB", mb);
+  else if (bytes >= 1024) std::snprintf(size, sizeof size, "%.0f kB", static_cast<double>(bytes) / 1024);
+  else std::snprintf(size, sizeof size, "%zu bytes", bytes);
+  return std::string(size) + (lines == 0 ? " (all on one line)" : " (" + grouped(lines) + (lines == 1 ? " line)" : " lines)"));
+}
+
 std::string Ending::describe(const Limits& limits, double wall_seconds) const {
   const std::string cpu = format_seconds(cpu_limit_seconds(limits.cpu_seconds));
+  // Out of time after a flood of prints: the prints first, the likelier cause (a machine too busy
+  // to give it its CPU is not the code's, whatever it printed).
+  if (printed_a_lot(limits) && out_of_time(limits, wall_seconds) && !(timed_out && verdict == WallVerdict::starved)) {
+    Ending quiet = *this;
+    quiet.printed_bytes = quiet.printed_lines = 0;
+    return kPrintedALot + printed_amount(printed_bytes, printed_lines) + " and " + quiet.describe(limits, wall_seconds);
+  }
   if (timed_out && verdict) {
     switch (*verdict) {
       case WallVerdict::used_its_cpu: return "timed out after " + cpu + " s of CPU";
@@ -531,11 +561,16 @@ Ending SandboxProcess::reap(bool killed) {
   errors_.append(errors_tail_, errors_tail_.size() > tail_room ? errors_tail_.size() - tail_room : 0);
   errors_tail_.clear();
   errors_cut_ = false;
+  e.printed_bytes = printed_bytes_;
+  e.printed_lines = printed_lines_;
   ending_ = e;
   return e;
 }
 
 void SandboxProcess::keep_errors(const char* data, size_t n) {
+  // Counted whole, what is dropped too (how much it printed is the message of a test out of time).
+  printed_bytes_ += n;
+  printed_lines_ += static_cast<size_t>(std::count(data, data + n, '\n'));
   // The cap's first half as it comes, then its last half: the newest bytes, the oldest read and
   // dropped (a flood must not block the sandbox or fill memory). The tail is trimmed once it is
   // twice its room, so that each byte is moved a bounded number of times.

@@ -132,12 +132,33 @@ struct Ending {
   TimeUse use;             // when timed out: what it did with its time, measured before it was killed
   // When timed out at the backstop: the caller's judgement of it (judge_wall_timeout), for describe.
   std::optional<WallVerdict> verdict;
+  // All it wrote on standard error (where the probe server's standard output goes too), the bytes
+  // past the cap that were read and dropped included, and the line breaks among them.
+  size_t printed_bytes = 0, printed_lines = 0;
   // One phrase: "exited with status 3", "killed by SIGSEGV", "timed out after 10 s of CPU",
-  // "timed out after 25 s waiting, not computing", "ran out of its 512 MB".
+  // "timed out after 25 s waiting, not computing", "ran out of its 512 MB". Out of time after
+  // printing a lot (printed_a_lot), it begins with that: "printed 132 MB (11,159,655 lines) and
+  // timed out after 10 s of CPU" (kPrintedALot: the grader then says that printing is slow).
   std::string describe(const Limits& limits, double wall_seconds) const;
   // Whether it ended for want of time: its deadline, or its CPU limit.
   bool out_of_time(const Limits& limits, double wall_seconds) const;
+  // Whether it printed kSlowPrintLines lines or kSlowPrintBytes bytes, or more, for each second of
+  // its CPU limit (cpu_limit_seconds: 1,000,000 lines or 10 MB at the default 10 s).
+  bool printed_a_lot(const Limits& limits) const;
 };
+
+// How much printing the message of a test out of time names first, as the likelier cause, per
+// second of the CPU limit. The probe server's standard output is unbuffered (a printf just before a
+// crash is not lost), so each print is a write to a pipe that the grader reads: the cloth solution
+// with one printf in project_stick printed 11.2 million lines (132 MB) in its 10 s of CPU, about
+// 0.9 µs a line (its 120 steps wanted 17.8 million), and timed out. 100,000 lines a second of the
+// limit is then about a tenth of the CPU the test had, and far more than anyone reads; 1 MB is as
+// many prints of 10 bytes with no line break (std::cout << x << ' ' writes each piece at once).
+constexpr size_t kSlowPrintBytes = size_t(1) << 20, kSlowPrintLines = 100000;
+// How describe's phrase of such an ending begins.
+constexpr const char* kPrintedALot = "printed ";
+// "132 MB (11,159,655 lines)", "977 kB (100,000 lines)", "12 bytes (1 line)", "10 MB (all on one line)".
+std::string printed_amount(size_t bytes, size_t lines);
 
 class SandboxProcess {
 public:
@@ -195,6 +216,7 @@ private:
   bool write_failed_ = false;
   size_t error_cap_;
   bool errors_cut_ = false;
+  size_t printed_bytes_ = 0, printed_lines_ = 0;  // (all it wrote on standard error: Ending's)
   bool timed_out_ = false;
   std::function<bool()> stop_;
   bool interrupted_ = false;
