@@ -15,7 +15,6 @@
 #include <filesystem>
 #include <fstream>
 #include <optional>
-#include <string_view>
 
 #include "motus/grade/probe.hpp"
 
@@ -346,11 +345,10 @@ GradeResult grade_submission(const Assignment& a, const std::string& submission,
         // An assignment may say what running out of time usually means there (a cloth's sweeps that
         // run until the sticks are exact, rather than constraints.iterations times).
         const std::string& hint = e.out_of_time() && !a.timeout_hint.empty() ? a.timeout_hint : t.hint;
-        // Out of time after a flood of prints (the sandbox's describe then begins "printed N MB (L
+        // Out of time after a flood of prints (the message then begins "your code printed N MB (L
         // lines)"): the prints are the likelier cause, said first; the hint is the other. The cloth
         // solution with one printf in project_stick timed out so, blamed on a loop alone.
-        const bool printed_a_lot = e.out_of_time() && std::string_view(e.what()).starts_with(std::string("your code ") + kPrintedALot);
-        if (printed_a_lot)
+        if (e.printed_a_lot())
           r.output += "\nPrinting that much is slow (each print is written out at once, to be shown if the code crashes): "
                       "print less (or only once) and grade again." +
                       (hint.empty() ? std::string() : " If it still times out, this usually means: " + hint);

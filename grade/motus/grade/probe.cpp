@@ -121,7 +121,7 @@ void Probe::died(const std::string& while_doing) {
   const std::string shown = shown_output(server_->errors(), "its output");
   if (!shown.empty()) what += ". " + shown;
   server_.reset();  // the next request starts a new one
-  throw ProbeFailure(what, out_of_time);
+  throw ProbeFailure(what, out_of_time, false, out_of_time && ending.printed_a_lot(setup_.limits));
 }
 
 nlohmann::json Probe::ask(nlohmann::json request, std::chrono::steady_clock::time_point deadline, ReplySize size) {

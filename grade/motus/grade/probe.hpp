@@ -17,16 +17,21 @@ namespace motus::grade {
 
 class ProbeFailure : public std::runtime_error {
 public:
-  explicit ProbeFailure(const std::string& what, bool out_of_time = false, bool stopped_the_run = false)
-      : std::runtime_error(what), out_of_time_(out_of_time), stopped_the_run_(stopped_the_run) {}
+  explicit ProbeFailure(const std::string& what, bool out_of_time = false, bool stopped_the_run = false,
+                        bool printed_a_lot = false)
+      : std::runtime_error(what), out_of_time_(out_of_time), stopped_the_run_(stopped_the_run),
+        printed_a_lot_(printed_a_lot) {}
   // It timed out or used up its CPU (rather than crashed, threw or ran out of memory).
   bool out_of_time() const { return out_of_time_; }
+  // It ran out of time after printing a lot (Ending::printed_a_lot): the likelier cause, which
+  // `what` names first.
+  bool printed_a_lot() const { return printed_a_lot_; }
   // The run ended with an error, the process did not: a step of 0 or NaN, a step-size control
   // that never shrinks, an exception — wrong numbers, which the test's hint is about.
   bool stopped_the_run() const { return stopped_the_run_; }
 
 private:
-  bool out_of_time_, stopped_the_run_;
+  bool out_of_time_, stopped_the_run_, printed_a_lot_;
 };
 
 // A reply that has not the shape its request asks for — not JSON, a key missing or of the wrong

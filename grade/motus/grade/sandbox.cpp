@@ -298,7 +298,7 @@ std::string Ending::describe(const Limits& limits, double wall_seconds) const {
   if (printed_a_lot(limits) && out_of_time(limits, wall_seconds) && !(timed_out && verdict == WallVerdict::starved)) {
     Ending quiet = *this;
     quiet.printed_bytes = quiet.printed_lines = 0;
-    return kPrintedALot + printed_amount(printed_bytes, printed_lines) + " and " + quiet.describe(limits, wall_seconds);
+    return "printed " + printed_amount(printed_bytes, printed_lines) + " and " + quiet.describe(limits, wall_seconds);
   }
   if (timed_out && verdict) {
     switch (*verdict) {

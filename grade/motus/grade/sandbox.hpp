@@ -138,7 +138,7 @@ struct Ending {
   // One phrase: "exited with status 3", "killed by SIGSEGV", "timed out after 10 s of CPU",
   // "timed out after 25 s waiting, not computing", "ran out of its 512 MB". Out of time after
   // printing a lot (printed_a_lot), it begins with that: "printed 132 MB (11,159,655 lines) and
-  // timed out after 10 s of CPU" (kPrintedALot: the grader then says that printing is slow).
+  // timed out after 10 s of CPU" (the grader then says that printing is slow: ProbeFailure::printed_a_lot).
   std::string describe(const Limits& limits, double wall_seconds) const;
   // Whether it ended for want of time: its deadline, or its CPU limit.
   bool out_of_time(const Limits& limits, double wall_seconds) const;
@@ -155,8 +155,6 @@ struct Ending {
 // limit is then about a tenth of the CPU the test had, and far more than anyone reads; 1 MB is as
 // many prints of 10 bytes with no line break (std::cout << x << ' ' writes each piece at once).
 constexpr size_t kSlowPrintBytes = size_t(1) << 20, kSlowPrintLines = 100000;
-// How describe's phrase of such an ending begins.
-constexpr const char* kPrintedALot = "printed ";
 // "132 MB (11,159,655 lines)", "977 kB (100,000 lines)", "12 bytes (1 line)", "10 MB (all on one line)".
 std::string printed_amount(size_t bytes, size_t lines);
 
