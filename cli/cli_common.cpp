@@ -252,6 +252,12 @@ std::string whole_names(const std::vector<std::string>& names, size_t budget) {
   return list;
 }
 
+size_t room_for_list(const std::string& before, const std::string& after) {
+  constexpr size_t line = 400, least = 120;
+  const size_t used = before.size() + after.size();
+  return used + least > line ? least : line - used;
+}
+
 namespace {
 
 std::string joined_with_and(const std::vector<std::string>& items) {
@@ -268,14 +274,6 @@ std::string plugin_parts_in_words(const LoadedPlugin& p) {
   return joined_with_and(parts);
 }
 
-// The room a list has in a message that is `before` it and `after` it: what keeps the whole within
-// main's one line of 400 bytes, and at least 120 bytes (a path or a name that takes the rest is
-// what main then cuts, in the middle, and the list at the end is kept).
-size_t room_for_list(const std::string& before, const std::string& after) {
-  constexpr size_t line = 400, least = 120;
-  const size_t used = before.size() + after.size();
-  return used + least > line ? least : line - used;
-}
 
 // The message for an integrator that is neither built in nor a loaded plug-in's.
 std::string unknown_integrator(const std::string& path, const std::string& name) {

@@ -165,6 +165,10 @@ std::vector<std::string> known_integrators();
 // the end ("euler, midpoint, …and 12 more"). (main prints a message as one line of at most 400
 // bytes, cut in its middle: a long list of integrators was cut inside a name, "symplectic-eule…verlet".)
 std::string whole_names(const std::vector<std::string>& names, size_t budget);
+// The room a list has in a message that is `before` it and `after` it: what keeps the whole within
+// main's one line of 400 bytes, and at least 120 bytes (a path or a name that takes the rest is
+// what main then cuts, in the middle, and the list at the end is kept).
+size_t room_for_list(const std::string& before, const std::string& after);
 // What a loaded plug-in brings, in words: "8 integrators (student:euler, student:midpoint, …)",
 // "collision rules", "a constraint projection", joined by "and"; "nothing" when it brings none.
 std::string what_plugin_brings(const LoadedPlugin& plugin);

@@ -350,6 +350,9 @@ int render_command(const RenderOptions& o) {
   const std::vector<std::string> names = render_names(frames, video_name);
   check_folder(o.out, o.overwrite, names);
   RenderInProgress rendering(o.out, made_folder);
+  // A plug-in of which this render uses nothing (cloth's projection on spring) says so, on standard
+  // error, once nothing is left to refuse: its frames are motus's own code's.
+  for (const auto& note : unused_plugin_notes(scene.name, method, sim.world())) tell("{}\n", note);
 
   // Simulate: mechanical scenes keep one state per frame; first-order ones every step
   // too (an attractor's curve is drawn through all of them), and so do bodies drawn with trails

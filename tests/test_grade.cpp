@@ -2519,3 +2519,107 @@ TEST(Grade, FinalVelocitiesAreSaidBodyByBody) {
             std::string::npos)
       << output;
 }
+
+namespace {
+
+// `render spring --plugin cloth.so` and `bench precision spring --plugin collisions.so` said nothing of
+// the plug-in having no part in them, as run and compare now do. bench precision takes only
+// integrators from a plug-in: collision rules or a projection are never used there, and a plug-in's
+// integrators only when --integrators names one (or is not given). One note on standard error;
+// standard output (the render's summary, the sweep's table) has none.
+TEST(Plugins, RenderAndBenchPrecisionSayAPluginTheyDoNotUseOnStandardError) {
+  TempDir dir;
+  const std::string cloth = kAssignmentPlugins + "/cloth-solution.so";
+  const std::string collisions = kAssignmentPlugins + "/collisions-solution.so";
+  const std::string integrators = kAssignmentPlugins + "/integrators-solution.so";
+  const std::vector<std::string> render = {"--duration", "0.1", "--size", "64x48"};
+  const std::vector<std::string> sweep = {"--levels", "1", "--per-decade", "1", "--repeats", "1"};
+  struct Case {
+    std::vector<std::string> args;
+    std::string note;  // "": none
+  };
+  const std::vector<Case> cases = {
+      {{"render", "spring", "--plugin", cloth, "--out", (dir / "spring").string()},
+       "note: the plug-in " + cloth + " brings a constraint projection, and spring has no sticks or pins: it is not used in this run\n"},
+      {{"render", "lorenz", "--plugin", collisions, "--out", (dir / "lorenz").string()},
+       "note: the plug-in " + collisions + " brings collision rules, and lorenz is a first-order system, with no bodies: "
+       "it is not used in this run\n"},
+      {{"render", "kepler", "--plugin", integrators, "--out", (dir / "kepler").string()},
+       "note: the plug-in " + integrators + " brings 8 integrators (student:euler, student:midpoint, …), and this run "
+       "integrates with velocity-verlet (--integrator student:NAME runs one of them): it is not used in this run\n"},
+      {{"bench", "precision", "spring", "--plugin", collisions, "--integrators", "rk4", "--out", (dir / "p1").string()},
+       "note: the plug-in " + collisions + " brings collision rules, and bench precision takes only integrators from a "
+       "plug-in: it is not used in this run\n"},
+      {{"bench", "precision", "spring", "--plugin", cloth, "--out", (dir / "p2").string()},
+       "note: the plug-in " + cloth + " brings a constraint projection, and bench precision takes only integrators from "
+       "a plug-in: it is not used in this run\n"},
+      {{"bench", "precision", "spring", "--plugin", integrators, "--integrators", "rk4", "--out", (dir / "p3").string()},
+       "note: the plug-in " + integrators + " brings 8 integrators (student:euler, student:midpoint, …), and "
+       "--integrators names none of its integrators (without --integrators each is swept): it is not used in this run\n"},
+      {{"render", "cloth", "--plugin", cloth, "--out", (dir / "cloth").string()}, ""},
+      {{"render", "kepler", "--plugin", integrators, "--integrator", "student:verlet", "--out", (dir / "k2").string()}, ""},
+      {{"bench", "precision", "spring", "--plugin", integrators, "--integrators", "rk4,student:rk4", "--out",
+        (dir / "p4").string()},
+       ""},
+      {{"bench", "precision", "spring", "--plugin", integrators, "--out", (dir / "p5").string()}, ""},
+  };
+  for (auto c : cases) {
+    const bool renders = c.args[0] == "render";
+    c.args.insert(c.args.end(), renders ? render.begin() : sweep.begin(), renders ? render.end() : sweep.end());
+    const auto r = run_motus(dir, c.args);
+    SCOPED_TRACE(c.args[0] + " " + c.args[renders ? 1 : 2] + " " + c.args[renders ? 3 : 4]);
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(r.out.find("note:"), std::string::npos) << r.out;  // (standard output stays clean)
+    if (c.note.empty()) {
+      EXPECT_EQ(r.err.find("note: the plug-in"), std::string::npos) << r.err;
+    } else {
+      EXPECT_NE(r.err.find(c.note), std::string::npos) << r.err;
+      EXPECT_EQ(r.err.find("note: the plug-in"), r.err.rfind("note: the plug-in")) << "said more than once: " << r.err;
+    }
+  }
+}
+
+// bench precision's unknown integrator listed every known one, a plug-in's eight included: behind a
+// long name the list passed main's line of 400 bytes and was cut inside a name
+// ("xxx…verlet, velocity-verlet"), or lost its "(known: " altogether. The names are whole, and those
+// that do not fit are counted, as method_for's list does (TheListOfKnownIntegratorsHasOnlyWholeNames).
+TEST(Plugins, BenchPrecisionsListOfKnownIntegratorsHasOnlyWholeNames) {
+  TempDir dir;
+  const std::string integrators = kAssignmentPlugins + "/integrators-solution.so";
+  std::set<std::string> known;
+  {
+    const auto r = run_motus(dir, {"list", "--plugin", integrators});
+    ASSERT_EQ(r.status, 0) << r.err;
+    std::stringstream lines(r.out.substr(r.out.find("\nintegrators:\n") + 14));
+    for (std::string line; std::getline(lines, line) && line.rfind("  ", 0) == 0;)
+      known.insert(line.substr(2, line.find(' ', 2) - 2));
+    ASSERT_EQ(known.size(), 19u) << r.out;
+  }
+  for (const std::string& name : {std::string("studen:euler"), std::string(100, 'y'), std::string(300, 'x')}) {
+    const auto r = run_motus(dir, {"bench", "precision", "spring", "--plugin", integrators, "--integrators", name,
+                                   "--out", (dir / "never").string()});
+    SCOPED_TRACE(name);
+    EXPECT_EQ(r.status, 2) << r.err;
+    ASSERT_EQ(count_lines(r.err), 1) << r.err;
+    const size_t from = r.err.find("(known: ");
+    ASSERT_NE(from, std::string::npos) << r.err;
+    const std::string list = r.err.substr(from + 8, r.err.find(')', from) - from - 8);
+    std::stringstream items(list);
+    size_t listed = 0, more = 0;
+    for (std::string item; std::getline(items, item, ',');) {
+      if (item.front() == ' ') item.erase(0, 1);
+      std::smatch m;
+      if (std::regex_match(item, m, std::regex("…and ([0-9]+) more"))) {
+        more = std::stoul(m[1]);
+        continue;
+      }
+      EXPECT_EQ(more, 0u) << "a name after the count: " << r.err;
+      EXPECT_TRUE(known.count(item)) << "\"" << item << "\" is no integrator's whole name: " << r.err;
+      ++listed;
+    }
+    EXPECT_EQ(listed + more, known.size()) << r.err;
+  }
+  EXPECT_FALSE(fs::exists(dir / "never"));
+}
+
+}  // namespace
