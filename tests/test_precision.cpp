@@ -611,6 +611,12 @@ TEST(BenchPrecisionCommand, ThePageSaysOnlyThePeersThatRanAndHowBusyTheMachineWa
   EXPECT_NE(html.find("<strong>Warning:</strong> the timings were taken on a busy machine"), std::string::npos) << html;
   EXPECT_NE(r.out.find(load), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("warning: the timings were taken on a busy machine"), std::string::npos) << r.out;
+  // (Found by an audit: the targets' paragraph had lost words — "the smallest error any of the  from the
+  // fastest runs". The page's prose has no doubled space where a word went missing.)
+  EXPECT_NE(html.find("the smallest error any of the engine's points reached is given in brackets"), std::string::npos);
+  const std::string prose = html.substr(0, html.find("<table"));
+  EXPECT_EQ(prose.find(" the  "), std::string::npos) << prose;
+  EXPECT_EQ(html.find(" of the  "), std::string::npos);
 }
 
 }  // namespace

@@ -212,8 +212,9 @@ std::string write_precision_report(const std::string& folder, const ReportContex
   auto header = [](const std::string& text) { return "<th scope=\"col\">" + text + "</th>"; };
   html += "<h2 id=\"targets\">Targets: the fastest method at each target error</h2>\n<p>Each method's curve read at "
           "the target, interpolated on log–log axes between the two points that bracket it (≤: the method's cheapest "
-          "point is already below the target; not reached: no point of its sweep is, with the smallest error any of the  from the fastest runs of each "
-          "point, the median runs' in brackets; the ratios likewise. –: no number, as there is no method to time.</p>\n"
+          "point is already below the target; not reached: no point of its sweep is, and the smallest error any of the "
+          "engine's points reached is given in brackets). The times are from the fastest runs of each point, the median "
+          "runs' in brackets; the ratios likewise. –: no number, as there is no method to time.</p>\n"
           "<table aria-labelledby=\"targets\"><tr>" + header("target error");
   for (const auto& e : engines) html += header(html_escape(e) + " fastest") + header(html_escape(e) + " µs");
   for (size_t k = 1; k < engines.size(); ++k) html += header("motus ÷ " + html_escape(engines[k]));
