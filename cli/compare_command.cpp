@@ -214,6 +214,11 @@ int compare_command(const CompareOptions& o) {
            p.file, what_plugin_brings(p), plugin);
   }
 
+  // A scene that starts overlapping is moved apart before the first step (docs/scene-format.md,
+  // "Overlap"): said on standard error (--json's object is standard output's), and in the report.
+  if (const std::string start = compare::initial_overlap_note(scene, true); !start.empty())
+    tell("note: {}: {}\n", path, start);
+
   const bool default_folder = o.out.empty();
   const std::string folder = default_folder ? default_run_folder("compare", scene.name) : o.out;
   if (!default_folder && output_exists(folder)) throw InputError(folder + ": already exists; compare never overwrites a report (choose another --out)");

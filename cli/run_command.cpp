@@ -17,6 +17,7 @@
 
 #include "cli_common.hpp"
 #include "interrupt.hpp"
+#include "motus/compare/explanations.hpp"
 #include "motus/compare/timing.hpp"
 #include "motus/message_number.hpp"
 #include "motus/plot/write_failure.hpp"
@@ -286,6 +287,11 @@ int run_command(const RunOptions& o) {
   // A plug-in of which this run uses nothing (cloth's projection on spring) says so, on standard
   // error (--json's object is standard output's): its run is motus's own code.
   for (const auto& note : unused_plugin_notes(scene.name, method, sim.world())) tell("{}\n", note);
+  // A scene that starts overlapping (two balls, or a body and a wall) is moved apart before the
+  // first step, as documented; said on standard error, so that a typo in a position does not make a
+  // plausible run without a word.
+  if (const std::string start = compare::initial_overlap_note(scene, false); !start.empty())
+    tell("note: {}: {}\n", path, start);
   const auto energy0 = sim.energy();
   const Vector momentum0 = sim.momentum(), angular0 = sim.angular_momentum();
   const Vector state0 = sim.state();

@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -52,7 +53,7 @@ const std::string kGoodBody = R"({"mass": 2, "position": [1]})";
 const std::vector<BadInput> kBadInputs = {
     {"malformed_json", "{\n  \"dimensions\": 1,\n  \"bodies\": [{\"mass\": 1 \"position\": [0]}],\n  \"dt\": 1\n}", {},
      "bodies[0].mass", "malformed JSON at line 3"},
-    {"trailing_comma", two_bodies(kGoodBody + ",", ""), {}, "bodies[1]", "malformed JSON"},
+    {"trailing_comma", two_bodies(kGoodBody + ",", ""), {}, "bodies", "malformed JSON"},
     {"nan_literal_in_file", two_bodies(R"({"mass": NaN, "position": [1]})"), {}, "bodies[1].mass",
      "malformed JSON at line 1"},
     {"unknown_body_field", two_bodies(R"({"mass": 2, "position": [1], "velocty": [0]})"), {}, "bodies[1].velocty",
@@ -759,3 +760,102 @@ TEST(CliStart, ACommandLoadsOnlyTheLibrariesItUses) {
 }
 
 }  // namespace
+
+// Found by an audit: compare's metrics run noticed Ctrl-C only at a metric sample, steps/200
+// apart, so ball_gas with --duration 1e6 (3e5 steps between samples) waited 30 s for the
+// backstop ("no safe point came within 30 s") and left its .partial folder. Interrupted after a
+// second, it now stops within a fraction of one (the 5 s is a bound on a hang), exit 130, and
+// leaves nothing.
+TEST(CliCompare, AnInterruptedLongCompareStopsAtOnceAndLeavesNothing) {
+  TempDir dir;
+  const fs::path out = dir / "x16";
+  const pid_t pid = start_motus_with({"compare", "ball_gas", "--duration", "1e6", "--out", out.string()},
+                                     {.err = (dir / "err.txt").string(), .folder = dir.path().string()});
+  ASSERT_GT(pid, 0);
+  ASSERT_TRUE(wait_until_catching(pid, SIGINT)) << read_file(dir / "err.txt");
+  ::usleep(1000000);
+  const auto asked = std::chrono::steady_clock::now();
+  ::kill(pid, SIGINT);
+  int raw = 0;
+  const bool ended = ended_within(pid, 8, raw);
+  const double waited = std::chrono::duration<double>(std::chrono::steady_clock::now() - asked).count();
+  ASSERT_TRUE(ended) << "still running 8 s after Ctrl-C: " << read_file(dir / "err.txt");
+  EXPECT_EQ(WEXITSTATUS(raw), 130) << read_file(dir / "err.txt");
+  EXPECT_LT(waited, 5.0) << read_file(dir / "err.txt");
+  EXPECT_EQ(read_file(dir / "err.txt").find("no safe point"), std::string::npos) << read_file(dir / "err.txt");
+  EXPECT_FALSE(fs::exists(out));
+  for (const auto& e : fs::directory_iterator(dir.path()))
+    EXPECT_EQ(e.path().filename().string().find("partial"), std::string::npos) << "left behind: " << e.path();
+}
+
+// Found by an audit: a misspelt required field read as missing ("mas" gave bodies[0].mass: missing
+// (required)), though a misspelt optional one was named with its guess; and a trailing comma after
+// a scene's last field was blamed on that field ("duration: malformed JSON"), which was read whole.
+TEST(CliErrors, AMisspeltRequiredFieldAndATrailingCommaAreNamedAsWhatTheyAre) {
+  TempDir dir;
+  const auto line_for = [&](const std::string& name, const std::string& text) {
+    const std::string file = (dir / name).string();
+    write_file(file, text);
+    const Result r = run_motus(dir, {"run", file});
+    EXPECT_EQ(r.status, 2) << r.err;
+    EXPECT_EQ(count_lines(r.err), 1) << r.err;
+    EXPECT_TRUE(r.out.empty()) << r.out;
+    const std::string prefix = "motus: error: " + file + ": ";
+    EXPECT_EQ(r.err.rfind(prefix, 0), 0u) << r.err;
+    return r.err.substr(std::min(prefix.size(), r.err.size()));
+  };
+  EXPECT_EQ(line_for("mas.json", R"({"dimensions": 1, "bodies": [{"mas": 1, "position": [0]}], "dt": 0.1, "duration": 1})"),
+            "bodies[0].mas: unknown field, did you mean mass? (mass is required)\n");
+  EXPECT_EQ(line_for("duratoin.json", R"({"dimensions": 1, "bodies": [{"mass": 1, "position": [0]}], "dt": 0.1, "duratoin": 1})"),
+            "duratoin: unknown field, did you mean duration? (duration is required)\n");
+  EXPECT_EQ(line_for("variabels.json", R"({"system": {"type": "equations", "variabels": ["x"], "equations": {"x": "1"},
+      "initial": [1]}, "dt": 0.1, "duration": 1})"),
+            "system.variabels: unknown field, did you mean variables? (variables is required)\n");
+  // A field far from the missing one is no slip for it: still missing.
+  EXPECT_EQ(line_for("no_mass.json", R"({"dimensions": 1, "bodies": [{"position": [0], "weight": 1}], "dt": 0.1, "duration": 1})"),
+            "bodies[0].mass: missing (required)\n");
+  EXPECT_EQ(line_for("bad_trailing_comma.json",
+                     R"({"dimensions": 1, "bodies": [{"mass": 1, "position": [0]}], "dt": 0.1, "duration": 1,})"),
+            "malformed JSON at line 1, column 86: syntax error while parsing object key - unexpected '}'; expected string "
+            "literal\n");
+  EXPECT_EQ(line_for("body_trailing_comma.json",
+                     R"({"dimensions": 1, "bodies": [{"mass": 1, "position": [0],}], "dt": 0.1, "duration": 1})"),
+            "bodies[0]: malformed JSON at line 1, column 58: syntax error while parsing object key - unexpected '}'; "
+            "expected string literal\n");
+  // (A missing comma is still at the field it follows: the parser stopped right after its value.)
+  EXPECT_EQ(line_for("no_comma.json", R"({"dimensions": 1, "bodies": [{"mass": 1 "position": [0]}], "dt": 0.1, "duration": 1})"),
+            "bodies[0].mass: malformed JSON at line 1, column 50: syntax error while parsing object - unexpected string "
+            "literal; expected '}'\n");
+}
+
+// A scene that starts overlapping (two balls, or a ball outside its box) is moved apart before the
+// first step, as documented (docs/scene-format.md, "Overlap"): said in one note on standard error,
+// never standard output (--json's object is there), so that a typo in a position does not give a
+// plausible run without a word. A scene without overlap — every shipped one — gets no note.
+TEST(CliRun, AStartThatOverlapsIsSaidInOneNoteOnStandardError) {
+  TempDir dir;
+  const std::string two = (dir / "two.json").string();
+  write_file(two, R"({"dimensions": 2, "bodies": [{"mass": 1, "radius": 0.5, "position": [0, 0], "velocity": [1, 0]},
+      {"mass": 1, "radius": 0.5, "position": [0.9, 0], "velocity": [-1, 0]}], "integrator": "symplectic-euler",
+      "dt": 0.01, "duration": 0.1})");
+  const Result pair = run_motus(dir, {"run", two, "--json"});
+  ASSERT_EQ(pair.status, 0) << pair.err;
+  EXPECT_EQ(pair.err, "note: " + two + ": bodies 0 and 1 start overlapping by 0.1 m; motus moves them apart before the "
+                      "first step\n");
+  EXPECT_NO_THROW((void)nlohmann::json::parse(pair.out)) << pair.out;
+  const std::string outside = (dir / "outside.json").string();
+  write_file(outside, R"({"dimensions": 2, "bodies": [{"mass": 1, "radius": 0.5, "position": [8, 1], "velocity": [0, 0]}],
+      "colliders": [{"type": "box", "min": [0, 0], "max": [5, 5]}], "integrator": "symplectic-euler", "dt": 0.01,
+      "duration": 0.1})");
+  const Result out = run_motus(dir, {"run", outside});
+  ASSERT_EQ(out.status, 0) << out.err;
+  EXPECT_EQ(out.err, "note: " + outside + ": body 0 starts outside box 0, 3.5 m into its wall; motus moves it into the box "
+                     "before the first step\n");
+  EXPECT_EQ(out.out.find("note"), std::string::npos) << out.out;
+  for (const auto& e : fs::directory_iterator(kScenes)) {
+    if (e.path().extension() != ".json") continue;
+    const Result r = run_motus(dir, {"run", e.path().string(), "--duration", "0.01"});
+    EXPECT_EQ(r.status, 0) << e.path() << ": " << r.err;
+    EXPECT_EQ(r.err.find("note:"), std::string::npos) << e.path() << ": " << r.err;
+  }
+}

@@ -672,3 +672,45 @@ TEST(Compare, BadInputIsOneLineAndExitTwo) {
 }
 
 }  // namespace
+
+// A scene that starts overlapping is moved apart by motus before the first step (docs/scene-format.md,
+// "Overlap"), and every engine's penetration column counts that start: one note on standard error
+// (never standard output, --json's), the same in the summary and at the top of index.html, and the
+// penetration column's meaning does not claim that nothing overlaps. A scene without overlap: none.
+TEST(Compare, AStartThatOverlapsIsSaidOnStandardErrorAndInTheReport) {
+  TempDir dir;
+  const std::string head_on = scene("head_on"), two = (dir / "two.json").string();
+  write_file(two, R"({"dimensions": 2, "bodies": [{"mass": 1, "radius": 0.5, "position": [0, 0], "velocity": [0, 0]},
+      {"mass": 1, "radius": 0.5, "position": [0.1, 0], "velocity": [0, 0]}], "integrator": "symplectic-euler",
+      "dt": 0.01, "duration": 0.1})");
+  const std::string note = "bodies 0 and 1 start overlapping by 0.9 m; motus moves them apart before the first step, "
+                           "and the penetration column counts that start";
+  const fs::path out = dir / "pair";
+  const Result pair = run_motus(dir, {"compare", two, "--out", out.string(), "--json"});
+  ASSERT_EQ(pair.status, 0) << pair.err;
+  EXPECT_EQ(pair.err, "note: " + two + ": " + note + "\n");
+  const auto j = nlohmann::json::parse(pair.out);
+  EXPECT_EQ(j.value("initial_overlap", ""), note);
+  EXPECT_NEAR(engine(j, "motus")->at("max_penetration").get<double>(), 0.9, 1e-9);
+  const std::string html = read_file(out / "index.html");
+  EXPECT_NE(html.find("<b>Note:</b> " + note + "."), std::string::npos);
+  EXPECT_EQ(html.find("Exact collisions never overlap"), std::string::npos);
+  EXPECT_NE(html.find("This scene starts overlapping"), std::string::npos);
+
+  const std::string outside = (dir / "outside.json").string();
+  write_file(outside, R"({"dimensions": 2, "bodies": [{"mass": 1, "radius": 0.5, "position": [8, 1], "velocity": [0, 0]}],
+      "colliders": [{"type": "box", "min": [0, 0], "max": [5, 5]}], "integrator": "symplectic-euler", "dt": 0.01,
+      "duration": 0.1})");
+  const Result box = run_motus(dir, {"compare", outside, "--engines", "motus", "--out", (dir / "box").string()});
+  ASSERT_EQ(box.status, 0) << box.err;
+  EXPECT_EQ(box.err, "note: " + outside + ": body 0 starts outside box 0, 3.5 m into its wall; motus moves it into the "
+                     "box before the first step, and the penetration column counts that start\n");
+  EXPECT_EQ(box.out.find("starts outside"), std::string::npos) << box.out;
+
+  const fs::path plain = dir / "plain";
+  const Result none = run_motus(dir, {"compare", head_on, "--duration", "0.1", "--out", plain.string(), "--json"});
+  ASSERT_EQ(none.status, 0) << none.err;
+  EXPECT_EQ(none.err.find("note:"), std::string::npos) << none.err;
+  EXPECT_FALSE(nlohmann::json::parse(none.out).contains("initial_overlap"));
+  EXPECT_NE(read_file(plain / "index.html").find("Exact collisions never overlap"), std::string::npos);
+}

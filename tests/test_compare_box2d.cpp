@@ -11,7 +11,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <unistd.h>
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
 #include <memory>
 #include <string>
 
@@ -542,3 +545,33 @@ TEST(Box2dBackend, VersionAndFairSettings) {
 }
 
 }  // namespace
+
+TEST(Box2dLimits, TheCapIsReportedWhenTheCappedBallAlsoHitsSomethingWithinItsStep) {
+  // Found by an audit (its scene): three balls in a 10 m box under gravity, one at 1e5 m/s (1000 m a
+  // step at 0.01 s: the cap, 2 m, slows it from the first step). The capped ball hit something
+  // within its step, so no step ended at the cap's speed, none was counted, and the note said
+  // "b2_maxTranslation not reached in 500 steps (… 5e+04% of it …)" while Box2D lost all the energy.
+  const std::filesystem::path file =
+      std::filesystem::temp_directory_path() / ("motus_fast_ball_" + std::to_string(::getpid()) + ".json");
+  {
+    std::ofstream out(file);
+    out << R"({"name": "three_balls", "dimensions": 2,
+      "bodies": [
+        {"mass": 1, "radius": 0.5, "position": [2, 5], "velocity": [100000, 0]},
+        {"mass": 2, "radius": 0.7, "position": [5, 5], "velocity": [0, 1]},
+        {"mass": 1, "radius": 0.5, "position": [8, 5], "velocity": [-3, 2]}],
+      "forces": [{"type": "gravity", "g": [0, -9.81]}],
+      "colliders": [{"type": "box", "min": [0, 0], "max": [10, 10]}],
+      "integrator": "symplectic-euler", "dt": 0.01, "duration": 5})";
+  }
+  const SceneDescription scene = motus::load_scene(file.string());
+  std::filesystem::remove(file);
+  auto box2d = built("box2d", scene, scene.dt);
+  run(*box2d, 500);
+  const auto notes = box2d->notes();
+  std::string all;
+  for (const auto& n : notes) all += n + "\n";
+  EXPECT_FALSE(has_line_containing(notes, "not reached")) << all;
+  EXPECT_TRUE(has_line_containing(notes, "(first at step 1,")) << all;
+  EXPECT_TRUE(has_line_containing(notes, "Box2D will slow it to the cap")) << all;
+}

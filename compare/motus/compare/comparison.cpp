@@ -26,6 +26,11 @@ Timings EngineRun::microseconds_per_step() const {
 }
 
 namespace {
+
+// How often the metrics run reports its progress (where Ctrl-C is noticed): every this many steps.
+constexpr long kProgressEvery = 64;
+// About how long a block of a long timed run lasts between two reports of its progress.
+constexpr double kTimedBlockSeconds = 0.1;
 // The run whose start decides the columns' units: motus's, else the first that ran.
 const EngineRun* unit_reference(const std::vector<EngineRun>& runs) {
   const EngineRun* reference = nullptr;
@@ -191,15 +196,24 @@ std::vector<EngineRun> run_comparison(const SceneDescription& scene, const Compa
       // Step to the next sample (or frame).
       long batch = next_sample - i;
       if (options.frame_every > 0) batch = std::min(batch, options.frame_every - i % options.frame_every);
-      if (sticks || contacts) {  // (the stick error and the overlap every step: this run is not timed)
-        for (long b = 0; b < batch; ++b) {
-          backend->step();
-          backend->read(s);
-          if (sticks) run.stick_error_every_step = worse(run.stick_error_every_step, metrics.stick_error(s));
-          if (contacts) run.penetration_every_step = worse(run.penetration_every_step, metrics.deepest_penetration(s.x));
+      // The progress, where a Ctrl-C is noticed, every kProgressEvery steps too, not only at a
+      // sample: samples came steps/200 apart (3e5 steps of ball_gas in a long run, tens of
+      // seconds), and a Ctrl-C waited for the 30 s backstop. (A call per 64 steps costs nothing
+      // next to them: the bar reads the clock only now and then.)
+      for (long b = 0; b < batch;) {
+        const long chunk = std::min(kProgressEvery, batch - b);
+        if (sticks || contacts) {  // (the stick error and the overlap every step: this run is not timed)
+          for (long c = 0; c < chunk; ++c) {
+            backend->step();
+            backend->read(s);
+            if (sticks) run.stick_error_every_step = worse(run.stick_error_every_step, metrics.stick_error(s));
+            if (contacts) run.penetration_every_step = worse(run.penetration_every_step, metrics.deepest_penetration(s.x));
+          }
+        } else {
+          for (long c = 0; c < chunk; ++c) backend->step();
         }
-      } else {
-        for (long b = 0; b < batch; ++b) backend->step();
+        b += chunk;
+        if (progress && b < batch) progress((done + static_cast<double>(i + b)) / total_steps);
       }
       i += batch;
       backend->read(s);
@@ -241,8 +255,15 @@ std::vector<EngineRun> run_comparison(const SceneDescription& scene, const Compa
       backend->build(scene, method_of(run.engine), options.dt);
       backend->watch_for_notes(false);  // (the metrics run took the notes)
       // One block of steps; a long run (a quarter of a second or more) in twenty, to show
-      // progress, where reading the clock twenty times costs nothing next to the blocks.
-      const long blocks = progress && metrics_seconds[e] > 0.25 ? 20 : 1;
+      // progress, where reading the clock twenty times costs nothing next to the blocks; and a
+      // longer one in blocks of about kTimedBlockSeconds (as the metrics run took: the timed one is
+      // faster), so that a Ctrl-C, noticed between blocks, is not kept waiting for a twentieth of
+      // a run of minutes.
+      const long blocks =
+          !progress || metrics_seconds[e] <= 0.25
+              ? 1
+              : static_cast<long>(std::min(static_cast<double>(steps),
+                                           std::max(20.0, std::ceil(metrics_seconds[e] / kTimedBlockSeconds))));
       const long block_steps = std::max(1L, (steps + blocks - 1) / blocks);
       double seconds = 0;
       for (long i = 0; i < steps;) {

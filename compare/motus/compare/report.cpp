@@ -246,6 +246,12 @@ nlohmann::json summary_json(const ReportContext& c, const std::vector<EngineRun>
   j["momentum_quantity"] = quantity;  // "momentum", or "m·θ'" (a pendulum's coordinate is its angle)
   j["momentum_conserved"] = c.momentum_conserved;  // else the table marks the column "*"
   j["coordinate_unit"] = c.scene ? coordinate_unit(*c.scene) : "m";
+  // The scene as written overlaps (balls, or a body and a wall): motus moves it apart before the first
+  // step, and the penetration column counts that start. Said, not only done (absent: no overlap).
+  if (c.scene) {
+    const std::string start = initial_overlap_note(*c.scene, true);
+    if (!start.empty()) j["initial_overlap"] = start;
+  }
   const EngineRun* motus = find_motus(runs);
   const Timings motus_time = motus ? motus->microseconds_per_step() : Timings{};
   j["engines"] = nlohmann::json::array();
@@ -413,6 +419,9 @@ void write_report(const std::string& folder, const ReportContext& c, const std::
   }
   const bool exact_known = c.scene && has_exact_solution(*c.scene);
   const std::string unit = c.scene ? coordinate_unit(*c.scene) : "m";
+  if (summary.contains("initial_overlap"))
+    html << "<p class=\"no\"><b>Note:</b> " << html_escape(summary["initial_overlap"].get<std::string>())
+         << ".</p>\n";
   if (summary.contains("notice"))
     html << "<p class=\"notice\"><b>What to notice.</b> " << html_escape(summary["notice"].get<std::string>()) << "</p>\n";
   const int columns = exact_known ? 11 : 10;

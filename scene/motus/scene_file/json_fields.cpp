@@ -26,7 +26,27 @@ JsonFields::JsonFields(const nlohmann::json& object, std::string path) : object_
 std::string JsonFields::path_of(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
 
 void JsonFields::fail(const std::string& key, const std::string& message) const {
+  // A required field that is missing because it was misspelt ("mas" for "mass") is named as the
+  // unknown field it is, with the guess reject_unknown would make, not as missing: the user wrote it.
+  if (message.rfind("missing (required)", 0) == 0)
+    if (const auto slip = misspelling_of(key))
+      throw SceneError(path_of(*slip), "unknown field, did you mean " + key + "? (" + key + " is required)");
   throw SceneError(path_of(key), message);
+}
+
+std::optional<std::string> JsonFields::misspelling_of(const std::string& key) const {
+  // The names asked for so far (and `key`), as reject_unknown lists them: a field of the object is
+  // a slip for `key` when, by the same closeness rule, `key` is the known name nearest to it.
+  std::vector<std::string> names;
+  std::set<std::string> seen;
+  for (const auto& k : asked_)
+    if (seen.insert(k).second) names.push_back(k);
+  if (seen.insert(key).second) names.push_back(key);
+  for (auto it = object_.begin(); it != object_.end(); ++it) {
+    if (used_.count(it.key()) || seen.count(it.key())) continue;
+    if (const auto guess = closest_known(it.key(), names); guess && *guess == key) return it.key();
+  }
+  return std::nullopt;
 }
 
 bool JsonFields::has(const std::string& key) const {

@@ -45,6 +45,8 @@ public:
   const nlohmann::json& raw() const { return object_; }
   void use(const std::string& key) { find(key); }
   std::string path_of(const std::string& key) const;
+  // (A message "missing (required)…" for a field the object has misspelt becomes that field's
+  // "unknown field, did you mean KEY? (KEY is required)".)
   [[noreturn]] void fail(const std::string& key, const std::string& message) const;
 
 private:
@@ -52,6 +54,8 @@ private:
   const nlohmann::json* find(const std::string& key);
   double checked_number(const nlohmann::json& value, const std::string& key) const;
   double checked_positive(const std::string& key, double x) const;
+  // A field of this object, not asked for, that is a likely misspelling of `key` (for a missing required field).
+  std::optional<std::string> misspelling_of(const std::string& key) const;
 
   const nlohmann::json& object_;
   std::string path_;

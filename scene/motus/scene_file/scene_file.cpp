@@ -1,5 +1,6 @@
 #include "motus/scene_file/scene_file.hpp"
 
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -571,6 +572,13 @@ public:
     stack_.back().key = k;
     return true;
   }
+  // The parser stopped between two members of the innermost object or array (after a comma,
+  // at a '}' or ']'): the key or index last read is not where it stopped, so it is not named.
+  void forget_last_member() {
+    if (stack_.empty()) return;
+    stack_.back().key.clear();
+    stack_.back().index = -1;
+  }
   // Why the pass stopped early ("" : it did not, or nlohmann's own error).
   const std::string& problem() const { return problem_; }
   bool end_object() override { return end(); }
@@ -623,6 +631,14 @@ private:
                                     std::size_t byte) {
   FieldPathTracker tracker;
   nlohmann::json::sax_parse(text, &tracker);
+  // A trailing comma ("duration": 1,}) stops the parser at the '}' or ']' after it: the error is the
+  // object's or array's, not the last member's ("duration" was read whole), so FIELD names the
+  // object or array (nothing at the top level).
+  if (byte >= 1 && byte <= text.size() && (text[byte - 1] == '}' || text[byte - 1] == ']')) {
+    size_t i = byte - 1;
+    while (i > 0 && std::isspace(static_cast<unsigned char>(text[i - 1]))) --i;
+    if (i > 0 && text[i - 1] == ',') tracker.forget_last_member();
+  }
   // nlohmann reports a byte offset; people want a line and a column.
   size_t line = 1, column = 1;
   for (size_t i = 0; i + 1 < byte && i < text.size(); ++i) {

@@ -99,8 +99,8 @@ struct Box2dBackend::World {
        has_segments = false;
   double start_fastest = 0;  // the fastest body's speed·dt at the start, m
   double farthest = 0;       // the largest |x| of a body, at the start and after every watched step, m
-  double run_fastest = 0;    // the largest speed·dt after any step, m
-  long capped = 0;           // body-steps that ended at b2_maxTranslation
+  double run_fastest = 0;    // the largest speed·dt before (after the kick) or after any watched step, m
+  long capped = 0;           // body-steps that b2_maxTranslation slowed: see step()
   long bullet_steps = 0;     // body-steps taken as a bullet (moving more than its radius)
   long first_capped_step = -1;
   struct Stick {
@@ -108,6 +108,7 @@ struct Box2dBackend::World {
     double length;
   };
   std::vector<Stick> sticks;
+  std::vector<unsigned char> over_cap;  // scratch: whether a body began the step faster than the cap
   double worst_stick = 0;  // the largest |length − rest| / rest after any step
   long worst_stick_step = 0;
 
@@ -377,13 +378,29 @@ void Box2dBackend::step() {
     w.bodies[i]->SetBullet(fast);
     w.bullet_steps += fast && watching_ ? 1 : 0;
   }
+  // b2_maxTranslation: Box2D scales down a velocity that would carry a body farther than
+  // 2 m in the step, so a capped body ends the step at exactly that speed — unless a contact
+  // then changes it within the step (continuous collision: a ball at 1e5 m/s in a box hits a
+  // wall in every step, and ended none at the cap, so none was counted and the note said "not
+  // reached" of a run the cap had slowed from its first step). So a body-step counts as capped
+  // also when the body began it (after the forces' kick) faster than the cap.
+  const double cap = b2_maxTranslation;
+  if (watching_) {
+    w.over_cap.assign(w.bodies.size(), 0);
+    for (size_t i = 0; i < w.bodies.size(); ++i) {
+      if (w.inverse_mass[i] == 0) continue;
+      const b2Vec2& u = w.bodies[i]->GetLinearVelocity();
+      const b2Vec2 force = w.forces ? w.force_on(i) : b2Vec2(0, 0);
+      const double kick[2] = {w.gravity[0] + force.x * w.inverse_mass[i], w.gravity[1] + force.y * w.inverse_mass[i]};
+      const double travel = std::hypot(u.x + w.dt * kick[0], u.y + w.dt * kick[1]) * w.dt;
+      w.run_fastest = std::max(w.run_fastest, travel);
+      w.over_cap[i] = travel > cap ? 1 : 0;
+    }
+  }
   w.world->Step(static_cast<float>(w.dt), kVelocityIterations, kPositionIterations);
   ++w.steps;
   if (!watching_) return;
 
-  // b2_maxTranslation: Box2D scales down a velocity that would carry a body farther than
-  // 2 m in the step, so a capped body ends the step at exactly that speed.
-  const double cap = b2_maxTranslation;
   for (size_t i = 0; i < w.bodies.size(); ++i) {
     if (w.inverse_mass[i] == 0) continue;
     const b2Vec2& u = w.bodies[i]->GetLinearVelocity();
@@ -391,7 +408,7 @@ void Box2dBackend::step() {
     w.farthest = std::max(w.farthest, std::hypot(static_cast<double>(p.x), static_cast<double>(p.y)));
     const double travel = std::hypot(static_cast<double>(u.x), static_cast<double>(u.y)) * w.dt;
     w.run_fastest = std::max(w.run_fastest, travel);
-    if (travel >= cap * (1 - 1e-5)) {
+    if (w.over_cap[i] || travel >= cap * (1 - 1e-5)) {
       ++w.capped;
       if (w.first_capped_step < 0) w.first_capped_step = w.steps;
     }
