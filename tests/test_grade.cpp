@@ -2458,43 +2458,53 @@ TEST(Plugins, AStudentIntegratorNotInThePluginSaysWhatThePluginBrings) {
   }
 }
 
+// The integrators `motus list --plugin PLUGIN` lists: the built-ins and the plug-in's.
+std::set<std::string> integrators_listed(TempDir& dir, const std::string& plugin) {
+  const auto r = run_motus(dir, {"list", "--plugin", plugin});
+  EXPECT_EQ(r.status, 0) << r.err;
+  std::set<std::string> known;
+  std::stringstream lines(r.out.substr(r.out.find("\nintegrators:\n") + 14));
+  for (std::string line; std::getline(lines, line) && line.rfind("  ", 0) == 0;)
+    known.insert(line.substr(2, line.find(' ', 2) - 2));
+  return known;
+}
+
+// An error's "(known: a, b, …and N more)": every name whole and known, the count last, and together
+// every known name.
+void expect_whole_names(const std::string& err, const std::set<std::string>& known) {
+  const size_t from = err.find("(known: ");
+  ASSERT_NE(from, std::string::npos) << err;
+  const std::string list = err.substr(from + 8, err.find(')', from) - from - 8);
+  std::stringstream items(list);
+  size_t listed = 0, more = 0;
+  for (std::string item; std::getline(items, item, ',');) {
+    if (item.front() == ' ') item.erase(0, 1);
+    std::smatch m;
+    if (std::regex_match(item, m, std::regex("…and ([0-9]+) more"))) {
+      more = std::stoul(m[1]);
+      continue;
+    }
+    EXPECT_EQ(more, 0u) << "a name after the count: " << err;
+    EXPECT_TRUE(known.count(item)) << "\"" << item << "\" is no integrator's whole name: " << err;
+    ++listed;
+  }
+  EXPECT_EQ(listed + more, known.size()) << err;
+}
+
 // The unknown integrator's list, with a plug-in's eight names, was longer than an error's line and
 // was cut in its middle, inside a name: "symplectic-eule…verlet". The names are whole, and those
 // that do not fit are counted: "…and 6 more". (Also behind a long name, which the line's cut takes.)
 TEST(Plugins, TheListOfKnownIntegratorsHasOnlyWholeNames) {
   TempDir dir;
   const std::string integrators = kAssignmentPlugins + "/integrators-solution.so";
-  std::set<std::string> known;
-  {
-    const auto r = run_motus(dir, {"list", "--plugin", integrators});
-    ASSERT_EQ(r.status, 0) << r.err;
-    std::stringstream lines(r.out.substr(r.out.find("\nintegrators:\n") + 14));
-    for (std::string line; std::getline(lines, line) && line.rfind("  ", 0) == 0;)
-      known.insert(line.substr(2, line.find(' ', 2) - 2));
-    ASSERT_EQ(known.size(), 19u) << r.out;
-  }
+  const std::set<std::string> known = integrators_listed(dir, integrators);
+  ASSERT_EQ(known.size(), 19u);
   for (const std::string& name : {std::string("studen:euler"), std::string("no-such-integrator"), std::string(300, 'x')}) {
     const auto r = run_motus(dir, {"run", "spring", "--plugin", integrators, "--integrator", name});
     SCOPED_TRACE(name);
     EXPECT_EQ(r.status, 2) << r.err;
     ASSERT_EQ(count_lines(r.err), 1) << r.err;
-    const size_t from = r.err.find("(known: ");
-    ASSERT_NE(from, std::string::npos) << r.err;
-    const std::string list = r.err.substr(from + 8, r.err.find(')', from) - from - 8);
-    std::stringstream items(list);
-    size_t listed = 0, more = 0;
-    for (std::string item; std::getline(items, item, ',');) {
-      if (item.front() == ' ') item.erase(0, 1);
-      std::smatch m;
-      if (std::regex_match(item, m, std::regex("…and ([0-9]+) more"))) {
-        more = std::stoul(m[1]);
-        continue;
-      }
-      EXPECT_EQ(more, 0u) << "a name after the count: " << r.err;
-      EXPECT_TRUE(known.count(item)) << "\"" << item << "\" is no integrator's whole name: " << r.err;
-      ++listed;
-    }
-    EXPECT_EQ(listed + more, known.size()) << r.err;
+    expect_whole_names(r.err, known);
   }
 }
 
@@ -2586,38 +2596,15 @@ TEST(Plugins, RenderAndBenchPrecisionSayAPluginTheyDoNotUseOnStandardError) {
 TEST(Plugins, BenchPrecisionsListOfKnownIntegratorsHasOnlyWholeNames) {
   TempDir dir;
   const std::string integrators = kAssignmentPlugins + "/integrators-solution.so";
-  std::set<std::string> known;
-  {
-    const auto r = run_motus(dir, {"list", "--plugin", integrators});
-    ASSERT_EQ(r.status, 0) << r.err;
-    std::stringstream lines(r.out.substr(r.out.find("\nintegrators:\n") + 14));
-    for (std::string line; std::getline(lines, line) && line.rfind("  ", 0) == 0;)
-      known.insert(line.substr(2, line.find(' ', 2) - 2));
-    ASSERT_EQ(known.size(), 19u) << r.out;
-  }
+  const std::set<std::string> known = integrators_listed(dir, integrators);
+  ASSERT_EQ(known.size(), 19u);
   for (const std::string& name : {std::string("studen:euler"), std::string(100, 'y'), std::string(300, 'x')}) {
     const auto r = run_motus(dir, {"bench", "precision", "spring", "--plugin", integrators, "--integrators", name,
                                    "--out", (dir / "never").string()});
     SCOPED_TRACE(name);
     EXPECT_EQ(r.status, 2) << r.err;
     ASSERT_EQ(count_lines(r.err), 1) << r.err;
-    const size_t from = r.err.find("(known: ");
-    ASSERT_NE(from, std::string::npos) << r.err;
-    const std::string list = r.err.substr(from + 8, r.err.find(')', from) - from - 8);
-    std::stringstream items(list);
-    size_t listed = 0, more = 0;
-    for (std::string item; std::getline(items, item, ',');) {
-      if (item.front() == ' ') item.erase(0, 1);
-      std::smatch m;
-      if (std::regex_match(item, m, std::regex("…and ([0-9]+) more"))) {
-        more = std::stoul(m[1]);
-        continue;
-      }
-      EXPECT_EQ(more, 0u) << "a name after the count: " << r.err;
-      EXPECT_TRUE(known.count(item)) << "\"" << item << "\" is no integrator's whole name: " << r.err;
-      ++listed;
-    }
-    EXPECT_EQ(listed + more, known.size()) << r.err;
+    expect_whole_names(r.err, known);
   }
   EXPECT_FALSE(fs::exists(dir / "never"));
 }
