@@ -2,6 +2,7 @@
 
 #include "motus/scene_file/spelling.hpp"
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <limits>
@@ -37,16 +38,21 @@ void JsonFields::fail(const std::string& key, const std::string& message) const 
 std::optional<std::string> JsonFields::misspelling_of(const std::string& key) const {
   // The names asked for so far (and `key`), as reject_unknown lists them: a field of the object is
   // a slip for `key` when, by the same closeness rule, `key` is the known name nearest to it.
+  std::vector<std::string> names = known_names();
+  if (std::find(names.begin(), names.end(), key) == names.end()) names.push_back(key);
+  for (auto it = object_.begin(); it != object_.end(); ++it) {
+    if (used_.count(it.key()) || std::find(names.begin(), names.end(), it.key()) != names.end()) continue;
+    if (const auto guess = closest_known(it.key(), names); guess && *guess == key) return it.key();
+  }
+  return std::nullopt;
+}
+
+std::vector<std::string> JsonFields::known_names() const {
   std::vector<std::string> names;
   std::set<std::string> seen;
   for (const auto& k : asked_)
     if (seen.insert(k).second) names.push_back(k);
-  if (seen.insert(key).second) names.push_back(key);
-  for (auto it = object_.begin(); it != object_.end(); ++it) {
-    if (used_.count(it.key()) || seen.count(it.key())) continue;
-    if (const auto guess = closest_known(it.key(), names); guess && *guess == key) return it.key();
-  }
-  return std::nullopt;
+  return names;
 }
 
 bool JsonFields::has(const std::string& key) const {
@@ -180,11 +186,9 @@ std::vector<std::string> JsonFields::keys() const {
 void JsonFields::reject_unknown() const {
   for (auto it = object_.begin(); it != object_.end(); ++it)
     if (!used_.count(it.key())) {
+      const std::vector<std::string> names = known_names();
       std::string known;
-      std::set<std::string> seen;
-      std::vector<std::string> names;
-      for (const auto& k : asked_)
-        if (seen.insert(k).second) known += (known.empty() ? "" : ", ") + k, names.push_back(k);
+      for (const auto& k : names) known += (known.empty() ? "" : ", ") + k;
       fail(it.key(), "unknown field" + did_you_mean(it.key(), names) +
                          (known.empty() ? std::string() : " (expected one of: " + known + ")"));
     }

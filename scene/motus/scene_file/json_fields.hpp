@@ -54,6 +54,8 @@ private:
   const nlohmann::json* find(const std::string& key);
   double checked_number(const nlohmann::json& value, const std::string& key) const;
   double checked_positive(const std::string& key, double x) const;
+  // The names asked for so far, each once, in the order first asked: the fields this object may have.
+  std::vector<std::string> known_names() const;
   // A field of this object, not asked for, that is a likely misspelling of `key` (for a missing required field).
   std::optional<std::string> misspelling_of(const std::string& key) const;
 
