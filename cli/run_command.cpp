@@ -5,6 +5,7 @@
 
 #include <chrono>
 #include <cerrno>
+#include <cstdlib>
 #include <cstring>
 #include <cmath>
 #include <limits>
@@ -13,6 +14,7 @@
 #include <fstream>
 #include <iostream>
 #include <optional>
+#include <utility>
 #include <nlohmann/json.hpp>
 
 #include "cli_common.hpp"
@@ -183,10 +185,15 @@ std::string vec(ConstVectorRef v) {
 }
 
 // A time as a person reads it: "3.2 µs", "5.28 ms", "1.6 s".
+// Three significant digits in every unit, in the largest unit the time still reaches once
+// rounded to them: 999.7 ns reads "1 µs", never "1e+03 ns"; 927 ns reads "927 ns", never
+// "927.0 ns" (a clock that counts whole nanoseconds made a tenth of one look measured).
 std::string duration_text(double seconds) {
-  if (seconds < 1e-6) return fmt::format("{:.1f} ns", seconds * 1e9);
-  if (seconds < 1e-3) return fmt::format("{:.3g} µs", seconds * 1e6);
-  if (seconds < 1) return fmt::format("{:.3g} ms", seconds * 1e3);
+  static constexpr std::pair<double, const char*> kUnits[] = {{1e-9, "ns"}, {1e-6, "µs"}, {1e-3, "ms"}};
+  for (const auto& [scale, unit] : kUnits) {
+    const std::string digits = fmt::format("{:.3g}", seconds / scale);
+    if (std::abs(std::strtod(digits.c_str(), nullptr)) < 1000) return digits + " " + unit;
+  }
   return fmt::format("{:.3g} s", seconds);
 }
 
