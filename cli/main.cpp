@@ -30,6 +30,7 @@
 #include "help_format.hpp"
 #include "list_command.hpp"
 #include "render_command.hpp"
+#include "motus/collide/too_many_collisions.hpp"
 #include "motus/scene_error.hpp"
 #include "grade_command.hpp"
 #include "interrupt.hpp"
@@ -173,6 +174,17 @@ int motus_main(int argc, char** argv) {
                                                                   : precision_options.scene);
     tell("motus: error: {}\n", one_line(scene + ": " + (e.field().empty() ? "" : e.field() + ": ") + e.what()));
     return kExitBadInput;
+  } catch (const motus::TooManyCollisions& e) {
+    // The run itself failed (exit 1), at the step its message names: which scene's, said first
+    // (it read "the run failed: more than 2600 collisions in one step: …" with no file).
+    if (interrupted()) return interrupted_exit();
+    const std::string scene = find_scene_path(run->parsed()       ? run_options.scene
+                                              : compare->parsed() ? compare_options.scene
+                                              : render->parsed()  ? render_options.scene
+                                              : stress->parsed()  ? stress_options.scene
+                                                                  : precision_options.scene);
+    tell("motus: the run failed: {}\n", one_line(scene + ": " + e.what()));
+    return kExitFailure;
   } catch (const InputError& e) {
     tell("motus: error: {}\n", one_line(named_as_final(e.what())));
     return kExitBadInput;

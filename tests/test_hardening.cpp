@@ -374,6 +374,24 @@ TEST(Hardening, ABallWiderThanItsBoxOrASpeedPastEveryDoubleIsRefused) {
   EXPECT_EQ(run_motus(dir, {"run", (dir / "fast.json").string()}).status, 0);
 }
 
+// A step so long that the balls cross many others in it: the run fails (exit 1, the scene is
+// sound at its own dt), and its one line said neither which file nor which dt ("motus: the run
+// failed: more than 2600 collisions in one step: … a smaller step?)"). Found by an audit.
+TEST(Hardening, AStepTooLongForItsContactsNamesTheFileAndTheStep) {
+  TempDir dir;
+  for (const std::vector<std::string>& args :
+       {std::vector<std::string>{"run", "bouncing_balls", "--dt", "100"},
+        std::vector<std::string>{"compare", "bouncing_balls", "--dt", "100", "--out", (dir / "report").string()}}) {
+    const Result r = run_motus(dir, args);
+    EXPECT_EQ(r.status, 1) << r.err;
+    EXPECT_EQ(count_lines(r.err), 1) << r.err;
+    EXPECT_EQ(r.err.rfind("motus: the run failed: ", 0), 0u) << r.err;
+    EXPECT_NE(r.err.find("bouncing_balls.json: more than 2600 collisions in one step: "), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("in one step of dt = 100 s"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("a smaller dt?)"), std::string::npos) << r.err;
+  }
+}
+
 // Scenes that could only fail, or run and mislead, each refused at the field that makes it so.
 // Each one ran before (from an audit): a ball exactly as wide as its box, or a lattice of balls
 // touching wall to wall, failed with "more than N collisions in one step … (overlapping bodies?)";

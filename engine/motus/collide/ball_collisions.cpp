@@ -12,6 +12,7 @@
 #include "motus/collide/sort_by_time.hpp"
 #include "motus/collide/time_of_impact.hpp"
 #include "motus/message_number.hpp"
+#include "motus/collide/too_many_collisions.hpp"
 
 namespace motus {
 namespace {
@@ -242,14 +243,14 @@ void BallCollisions<D>::drift(VectorRef x, VectorRef v, double h, bool kicked) {
               "--integrator verlet, which projects contacts";
       if (radii > kFastRadii)
         why = "the balls are too fast for the step (the fastest moves " + message_number(radii, 3) +
-              " radii in one step, crossing many others: a smaller step?)";
+              " radii in one step of dt = " + message_number(h_, 3) + " s, crossing many others: a smaller dt?)";
       if (rules_ && e.other >= 0)
         why = "with the plug-in's times of impact and impulses, the contacts between balls never end (does its time "
               "of impact of two balls find a contact between balls that are moving apart?)";
       else if (rules_)
         why = "with the plug-in's times of impact and impulses, the contacts between a ball and a wall never end (does "
               "its time of impact with a plane find a contact for a ball moving away from the plane?)";
-      throw std::runtime_error("more than " + std::to_string(limit) + " collisions in one step: " + why);
+      throw TooManyCollisions("more than " + std::to_string(limit) + " collisions in one step: " + why);
     }
     resolve(e);
   }
