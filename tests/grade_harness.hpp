@@ -3,6 +3,8 @@
 // assignments' own numbers — each test's points in rubric.json, the mistakes it names in
 // "catches" — read from their files, and Gradescope's results.json read back.
 #include <gtest/gtest.h>
+#include <fcntl.h>
+#include <sys/file.h>
 #include <sys/socket.h>
 #include <netinet/in.h>
 #include <unistd.h>
@@ -139,7 +141,19 @@ inline fs::path integrators_with_tests(const TempDir& dir, const std::string& na
 
 inline std::string hidden(const std::string& assignment) { return (fs::path(kAssignments) / assignment / "hidden").string(); }
 
-// Processes of the sandbox users (61000 and up) that are still running (zombies excepted).
+// Whether no grader holds sandbox user `uid` now (its lock, as SandboxUser takes it, is free).
+inline bool sandbox_user_free(long uid) {
+  const std::string file = "/run/motus-grade-users/" + std::to_string(uid) + ".lock";
+  const int fd = ::open(file.c_str(), O_RDWR | O_CLOEXEC);
+  if (fd < 0) return true;  // (never taken on this machine)
+  const bool free = ::flock(fd, LOCK_EX | LOCK_NB) == 0;
+  ::close(fd);  // (and the lock with it)
+  return free;
+}
+
+// Processes of the sandbox users (61000 and up) that are still running (zombies excepted), of
+// users no grader holds: another grading on the machine at the same time (a second checkout's
+// tests) keeps its own user's processes, and they are not this test's leftovers.
 inline std::vector<std::string> sandbox_processes_left() {
   std::vector<std::string> left;
   for (const auto& entry : fs::directory_iterator("/proc")) {
@@ -150,7 +164,8 @@ inline std::vector<std::string> sandbox_processes_left() {
     if (uid_at == std::string::npos) continue;
     const long uid = std::strtol(status.c_str() + uid_at + 5, nullptr, 10);
     const bool zombie = status.find("State:\tZ") != std::string::npos;
-    if (uid >= 61000 && uid < 61100 && !zombie) left.push_back(pid + " " + read_file(entry.path() / "comm"));
+    if (uid >= 61000 && uid < 61100 && !zombie && sandbox_user_free(uid))
+      left.push_back(pid + " " + read_file(entry.path() / "comm"));
   }
   return left;
 }

@@ -2108,9 +2108,11 @@ TEST(Grade, AServerStarvedOfItsCpuByABusyMachineIsTheGradersFailure) {
   const fs::path assignment = integrators_with_tests(dir, "one", json::array({definitions("integrators").at("euler.table")}));
   const fs::path submission = solution_with_euler_step_starting(
       dir, "computes",
-      "static bool done = false; if (!done) { done = true; "
+      // (A second's sleep first: the test's head start to find the server and pin it beside the
+      // hog. Spinning at once, a test held off the CPU for half a second found code already done.)
+      "static bool done = false; if (!done) { done = true; ::usleep(1000000); "
       "for (const std::clock_t until = std::clock() + CLOCKS_PER_SEC / 2; std::clock() < until;) {} }",
-      "#include <ctime>\n");
+      "#include <ctime>\n#include <unistd.h>\n");
   ASSERT_FALSE(submission.empty());
   cpu_set_t all, one;
   ASSERT_EQ(::sched_getaffinity(0, sizeof all, &all), 0);

@@ -909,6 +909,8 @@ TEST(Hardening, AnInterruptedBenchStopsBetweenItsTimedRunsAndLeavesNothing) {
   const pid_t pid = start_motus(dir, {"bench", "precision", "oscillator", "--integrators", "symplectic-euler", "--levels",
                                      "1", "--repeats", "100", "--duration", "1000000", "--out", out.string()});
   ASSERT_GT(pid, 0);
+  // (Once motus catches SIGINT: sent before, the signal would end it outright, as no exit 130.)
+  ASSERT_TRUE(wait_until_catching(pid, SIGINT)) << read_file(dir / "err.txt");
   ::usleep(1500000);
   const auto asked = std::chrono::steady_clock::now();
   ::kill(pid, SIGINT);
@@ -1166,7 +1168,7 @@ TEST(Hardening, ASecondInterruptStopsALongStepAtOnce) {
   // 30 s, after which motus stops with another message. So the message below is "at once".
   ASSERT_TRUE(wait_until_catching(pid, SIGINT)) << read_file(dir / "err.txt");
   ::kill(pid, SIGINT);
-  ::usleep(200000);
+  ::usleep(1000000);  // (apart by more than any hold-up of a busy machine, which merged two 0.2 s apart; within the 2 s before the first one says anything)
   ::kill(pid, SIGINT);
   int raw = 0;
   waitpid(pid, &raw, 0);
