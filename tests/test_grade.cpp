@@ -672,6 +672,20 @@ TEST(Plugins, ACrashNamesThePluginThatWasRunning) {
       << r.err;
 }
 
+// Endless recursion dies of SIGSEGV as a null pointer does, and read as one: the line now says the
+// stack overflowed (a null pointer's crash above does not say so).
+TEST(Plugins, AStackOverflowIsCalledOne) {
+  TempDir dir;
+  const auto r = run_motus(dir, {"run", "lorenz", "--plugin", kPlugins + "/misbehaving.so", "--integrator", "bad:recurses"});
+  EXPECT_EQ(r.status, 128 + SIGSEGV) << r.err;
+  EXPECT_NE(r.err.find("the plug-in " + kPlugins + "/misbehaving.so (bad) crashed the process in its own code (SIGSEGV: the "
+                       "stack overflowed, as endless or too deep recursion does)"),
+            std::string::npos)
+      << r.err;
+  const auto null = run_motus(dir, {"run", "lorenz", "--plugin", kPlugins + "/misbehaving.so", "--integrator", "bad:crashes"});
+  EXPECT_EQ(null.err.find("stack overflowed"), std::string::npos) << null.err;
+}
+
 // ---------------------------------------------------------------------------------------------------
 // motus grade itself: bad input, internal failures, no sandbox, the Gradescope zip
 

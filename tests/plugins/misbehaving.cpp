@@ -3,7 +3,8 @@
 // "bad:keeps-h" is step doubling whose controller keeps a rejected step's size, "bad:shrinks-h"
 // one whose controller halves every step, accepted or not (the sum of the steps never reaches the end);
 // "bad:prints" is explicit Euler that prints a line per step, as a student's debugging does;
-// "bad:exits" calls exit(0) at its first step.
+// "bad:exits" calls exit(0) at its first step; "bad:recurses" calls itself without end (a stack
+// overflow).
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
@@ -49,11 +50,22 @@ void prints(const student::FirstOrderSystem& f, double t, double h, student::Vec
 
 void exits(const student::FirstOrderSystem&, double, double, student::VectorInOut) { std::exit(0); }
 
+// A recursion with no base case (a frame of locals the compiler cannot drop, and work after the
+// call, so that the call stays a call).
+void recurses(const student::FirstOrderSystem& f, double t, double h, student::VectorInOut y) {
+  if (h == 0) return;  // (never: each call passes the same h on; only so that it is not "infinite recursion" to the compiler)
+  volatile double frame[32];
+  frame[0] = h;
+  recurses(f, t, frame[0], y);
+  y[0] += frame[0];
+}
+
 }  // namespace
 
 MOTUS_PLUGIN("bad", "integrators that misbehave (test_grade)") {
   plugin.first_order("throws", 1, "throws std::runtime_error", throws);
   plugin.first_order("crashes", 1, "dereferences a null pointer", crashes);
+  plugin.first_order("recurses", 1, "calls itself without end", recurses);
   plugin.first_order("nan", 1, "answers NaN", nan);
   plugin.adaptive("keeps-h", 5, "a controller that keeps a rejected step's size", rejected, keeps_h);
   plugin.adaptive("shrinks-h", 5, "a controller that halves every step", accepted, halves_h);

@@ -223,12 +223,23 @@ void write_all(const char* text) {
   }
 }
 
-void on_crash(int signal, siginfo_t*, void* context) {
-  std::uintptr_t pc = 0;
+// Whether a fault at `address` with the stack pointer at `sp` is the stack running out: a call or
+// a frame's locals written just below the stack pointer, into the guard page past the stack's end.
+// (A student's endless recursion read as a bare "SIGSEGV", like a null pointer's, whose address is
+// far from the stack.)
+bool stack_overflow(std::uintptr_t address, std::uintptr_t sp) {
+  constexpr std::uintptr_t kBelow = 1 << 20, kAbove = 1 << 12;  // (a frame of up to 1 MB of locals)
+  return sp != 0 && address + kBelow >= sp && address <= sp + kAbove;
+}
+
+void on_crash(int signal, siginfo_t* info, void* context) {
+  std::uintptr_t pc = 0, sp = 0;
 #if defined(__x86_64__)
   pc = static_cast<std::uintptr_t>(static_cast<ucontext_t*>(context)->uc_mcontext.gregs[REG_RIP]);
+  sp = static_cast<std::uintptr_t>(static_cast<ucontext_t*>(context)->uc_mcontext.gregs[REG_RSP]);
 #elif defined(__aarch64__)
   pc = static_cast<std::uintptr_t>(static_cast<ucontext_t*>(context)->uc_mcontext.pc);
+  sp = static_cast<std::uintptr_t>(static_cast<ucontext_t*>(context)->uc_mcontext.sp);
 #else
   (void)context;
 #endif
@@ -238,6 +249,8 @@ void on_crash(int signal, siginfo_t*, void* context) {
   write_all(line);
   write_all(" (");
   write_all(signal_name(signal));
+  if (signal == SIGSEGV && info && stack_overflow(reinterpret_cast<std::uintptr_t>(info->si_addr), sp))
+    write_all(": the stack overflowed, as endless or too deep recursion does");
   write_all(")\n");
   ::signal(signal, SIG_DFL);  // and die of it, as the process would have
   ::raise(signal);
