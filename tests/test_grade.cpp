@@ -1780,6 +1780,19 @@ TEST(Grade, APackageWithoutHiddenSaysWhichTestsItLeavesOutAndWhenTheyAreShown) {
       << graded.out;
 }
 
+// One never-shown test not run: "1 hidden test", not "1 hidden tests".
+TEST(Grade, OneHiddenTestNotRunIsSaidInTheSingular) {
+  NEEDS_SANDBOX();
+  TempDir dir;
+  const fs::path assignment = integrators_with_tests(dir, "one", json::array({definitions("integrators").at("euler.table")}));
+  json rubric = read_json(assignment / "rubric.json");
+  rubric["tests"].push_back({{"name", "secret"}, {"points", 1}, {"visibility", "hidden"}});
+  write_file(assignment / "rubric.json", rubric.dump(2));
+  fs::create_directories(dir / "empty");
+  const auto graded = run_motus(dir, {"grade", assignment.string(), (dir / "empty").string()});
+  EXPECT_NE(graded.out.find("(1 hidden test not run here)"), std::string::npos) << graded.out << graded.err;
+}
+
 TEST(Grade, TheGradescopeZipGradesTheSolutionToFullMarks) {
   NEEDS_SANDBOX();
   TempDir dir;

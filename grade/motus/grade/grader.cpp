@@ -420,7 +420,8 @@ GradeResult grade_submission(const Assignment& a, const std::string& submission,
   const long not_shown = static_cast<long>(a.tests.size()) - shown;
   const std::string not_run = a.hidden_not_given == 0 ? ""
                               : a.hidden_shown_later == 0
-                                  ? fmt::format(" ({} hidden tests not run here)", a.hidden_not_given)
+                                  ? fmt::format(" ({} hidden test{} not run here)", a.hidden_not_given,
+                                                a.hidden_not_given == 1 ? "" : "s")
                                   : fmt::format(" ({} of the instructor's tests not run here: {} shown after the due date, {} "
                                                 "never shown)",
                                                 a.hidden_not_given, a.hidden_shown_later,
