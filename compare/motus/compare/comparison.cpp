@@ -86,10 +86,14 @@ double EngineRun::max_penetration() const {
 }
 
 double EngineRun::max_constraint_error() const {
+  // From the first step on: the start is the scene's (a stick written 1 m long between bodies
+  // 0.943 m apart charged every engine alike with 5.7 %, found by an audit).
   double worst = stick_error_every_step;
-  for (const auto& r : rows) worst = worse(worst, r.constraint_error);
+  for (size_t i = 1; i < rows.size(); ++i) worst = worse(worst, rows[i].constraint_error);
   return worst;
 }
+
+double EngineRun::start_constraint_error() const { return rows.empty() ? 0 : rows.front().constraint_error; }
 
 double EngineRun::not_finite_from() const {
   for (const auto& r : rows)

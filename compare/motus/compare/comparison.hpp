@@ -32,7 +32,8 @@ struct EngineRun {
   double momentum_drift() const;     // |p_end − p_0| / momentum_scale()
   double momentum_scale() const;     // max(|p_0|, Σ m|v_0|), or 1 (changes in kg·m/s) when both are 0
   double max_penetration() const;    // m, over every step (penetration_every_step) and every sample
-  double max_constraint_error() const;  // over every step (stick_error_every_step) and every sample
+  double max_constraint_error() const;  // over every step (stick_error_every_step) and every sample after the start
+  double start_constraint_error() const;  // the scene's own, at t = 0, before any engine has stepped
   double not_finite_from() const;    // the first sample's time whose state is not finite; NaN: none
   double max_from_motus() const;     // m
   double max_from_exact() const;     // m; −1 when the scene has no analytic solution
