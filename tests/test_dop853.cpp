@@ -117,6 +117,22 @@ double kepler_error(double x0, double v0, double end, long n) {
   return m;
 }
 
+// A tolerance far below double precision: every step's error, in its units, squares past the
+// largest double, and inf/inf read as an error estimate that is not finite ("the step-size
+// control proposed no number after a rejected step … (an error estimate that is not finite?)",
+// an audit). It is the tolerance, as rk45 already said, and the run says so.
+TEST(Dop853, ATolerancePastDoublePrecisionIsSaidToBeOne) {
+  for (Integrator method : {Integrator::Dop853, Integrator::Rk45}) {
+    motus::Simulation sim(motus_test::kepler(), method);
+    try {
+      sim.advance(1.0, 0.01, motus::Tolerance{1e-200, 1e-200});
+      ADD_FAILURE() << "a tolerance of 1e-200 was met";
+    } catch (const motus::StepSizeUnderflow& e) {
+      EXPECT_NE(std::string(e.what()).find("the tolerance cannot be met in double precision"), std::string::npos) << e.what();
+    }
+  }
+}
+
 TEST(Dop853, OrderEightOnACircularKeplerOrbit) {
   const double order = measured_order("kepler, circular, T = 10", {16, 23, 32, 45, 64, 90, 128}, 10,
                                       [](long n) { return kepler_error(1, 1, 10, n); });

@@ -15,6 +15,7 @@
 // rejection).
 #include <array>
 #include <cmath>
+#include <limits>
 
 #include "motus/integrate/stage_vector.hpp"
 #include "motus/integrate/step_size_control.hpp"
@@ -187,6 +188,11 @@ private:
       sum3 += e3 * e3;
       sum5 += e5 * e5;
     }
+    // A finite step whose error, in units of a tolerance far below double precision (1e-200),
+    // squares past the largest double: inf/inf made the error NaN, and the run blamed "an error
+    // estimate that is not finite" instead of the tolerance. It is too large, which is what a
+    // rejection and a smaller step say, down to the underflow that names the tolerance.
+    if (!std::isfinite(sum5 + sum3) && y_new.allFinite()) return std::numeric_limits<double>::infinity();
     return combined_error(h, sum5, sum3, n);
   }
 
