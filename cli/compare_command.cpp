@@ -216,7 +216,9 @@ int compare_command(const CompareOptions& o) {
 
   // A scene that starts overlapping is moved apart before the first step (docs/scene-format.md,
   // "Overlap"): said on standard error (--json's object is standard output's), and in the report.
-  if (const std::string start = compare::initial_overlap_note(scene, true); !start.empty())
+  const compare::InitialOverlap overlap =
+      scene.mechanical ? compare::initial_overlap(*scene.mechanical) : compare::InitialOverlap{};
+  if (const std::string start = compare::initial_overlap_note(overlap, true); !start.empty())
     tell("note: {}: {}\n", path, start);
 
   const bool default_folder = o.out.empty();
@@ -233,6 +235,7 @@ int compare_command(const CompareOptions& o) {
   const auto runs = compare::run_comparison(scene, options, [&](double f) { progress.update(f); });
 
   compare::ReportContext context;
+  context.initial_overlap = overlap;
   context.scene_name = scene.name;
   context.scene_file = path;
   context.description = scene.description;

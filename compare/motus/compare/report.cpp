@@ -248,10 +248,7 @@ nlohmann::json summary_json(const ReportContext& c, const std::vector<EngineRun>
   j["coordinate_unit"] = c.scene ? coordinate_unit(*c.scene) : "m";
   // The scene as written overlaps (balls, or a body and a wall): motus moves it apart before the first
   // step, and the penetration column counts that start. Said, not only done (absent: no overlap).
-  if (c.scene) {
-    const std::string start = initial_overlap_note(*c.scene, true);
-    if (!start.empty()) j["initial_overlap"] = start;
-  }
+  if (const std::string start = initial_overlap_note(c.initial_overlap, true); !start.empty()) j["initial_overlap"] = start;
   const EngineRun* motus = find_motus(runs);
   const Timings motus_time = motus ? motus->microseconds_per_step() : Timings{};
   j["engines"] = nlohmann::json::array();
@@ -338,7 +335,7 @@ nlohmann::json summary_json(const ReportContext& c, const std::vector<EngineRun>
       j["exact"] = x;
     }
     j["definitions"] = nlohmann::json::array();
-    for (const auto& d : column_definitions(*c.scene, c.samples, c.momentum_conserved, energy_in_joules(runs)))
+    for (const auto& d : column_definitions(*c.scene, c.samples, c.momentum_conserved, energy_in_joules(runs), c.initial_overlap))
       j["definitions"].push_back({{"column", d.column}, {"meaning", d.meaning}});
   }
   return j;

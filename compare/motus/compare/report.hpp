@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "motus/compare/comparison.hpp"
+#include "motus/compare/initial_overlap.hpp"
 
 namespace motus::compare {
 
@@ -38,6 +39,7 @@ struct ReportContext {
   bool momentum_conserved = false;          // the scene keeps it (no walls, no outside force)
   bool angular_momentum_conserved = false;  // about the origin
   MachineLoad load;                         // while the engines were timed (unknown: NaN and 0)
+  InitialOverlap initial_overlap;           // the scene's own, as written (found once: O(N log N))
 };
 
 // Whether a scene keeps its total momentum and its angular momentum about the origin exactly
