@@ -27,6 +27,7 @@
 
 #include "motus/plot/write_failure.hpp"
 #include "motus/scene_file/printable_text.hpp"
+#include "motus/scene_file/scene_file.hpp"
 #include "motus/scene_file/spelling.hpp"
 #include "motus/simulation.hpp"
 
@@ -402,25 +403,8 @@ long checked_step_count(double duration, double dt, const std::string& what) {
 }
 
 void check_position_resolution(const SceneDescription& scene, double dt, const std::string& path) {
-  if (!scene.mechanical) return;
-  double fastest = 0, far = 0;
-  size_t farthest = 0;
-  for (size_t i = 0; i < scene.mechanical->bodies.size(); ++i) {
-    const auto& b = scene.mechanical->bodies[i];
-    double speed2 = 0;
-    for (double c : b.velocity) speed2 += c * c;
-    fastest = std::max(fastest, std::sqrt(speed2));
-    for (double c : b.position)
-      if (std::abs(c) > far) far = std::abs(c), farthest = i;
-  }
-  const double move = fastest * dt;
-  if (!(move > 0) || !std::isfinite(move) || !std::isfinite(far)) return;
-  const double spacing = std::nextafter(far, INFINITY) - far;
-  if (spacing <= 1e-3 * move) return;
-  throw InputError(fmt::format("{}: bodies[{}].position: at {:g} m positions are {:g} m apart, too coarse for the "
-                               "scene's moves of {:g} m a step (its fastest speed times dt): its bodies would move "
-                               "by rounding, or not at all; move the scene nearer the origin",
-                               path, farthest, far, spacing, move));
+  if (const auto coarse = positions_too_coarse(scene, dt))
+    throw InputError(path + ": " + coarse->field() + ": " + coarse->what());
 }
 
 void check_time_resolution(double start_time, double duration, double dt, const std::string& start_what,

@@ -479,6 +479,149 @@ TEST(Hardening, PositionsTooCoarseForTheScenesMovesAreRefused) {
   EXPECT_EQ(run_motus(dir, {"run", (dir / "near.json").string()}).status, 0);
 }
 
+// The same rule counts the moves the forces make, and the walls that keep bodies far. A body at
+// rest at y = 1e17 m under gravity (velocity Verlet, dt = 0.01 s, 1 s) was never checked (its speed
+// is 0): exit 0, and it never fell, where doubles are 16 m apart (its steps move g t dt, 0.0981 m at
+// t = 1 s at the most). A drop from rest near the origin in steps of 1e-6 s, whose first ones move
+// ½ g dt² = 4.9e-12 m where doubles are 2.2e-16 m apart, is a run to make, and runs. A ball
+// at y = 1 below a plane of offset 1e20 is moved to the plane's side, y = 1e20 (doubles 16384 m
+// apart): the plane's offset is what puts it there, and is named; so is a box's corner. At rest with
+// no force a body moves nothing, and is not refused; a plane whose free side holds the origin keeps
+// no body far. A step other than the scene's (--dt) is checked with that step. (From an audit:
+// bad/v16.json, v17.json, v18.json.)
+TEST(Hardening, PositionsTooCoarseForForcedMovesOrFarWallsAreRefused) {
+  TempDir dir;
+  auto scene = [](const json& bodies, const json& rest) {
+    json s = {{"dimensions", 2}, {"bodies", bodies}, {"integrator", "velocity-verlet"}, {"dt", 0.01}, {"duration", 1}};
+    s.update(rest);
+    return s.dump();
+  };
+  const json gravity = {{"forces", {{{"type", "gravity"}, {"g", {0, -9.81}}}}}};
+  write_file(dir / "rest.json", scene({{{"mass", 1}, {"position", {0, 1e17}}}}, gravity));
+  for (const char* command : {"run", "compare", "stress"})
+    expect_one_line_exit_2(run_motus(dir, {command, (dir / "rest.json").string()}),
+                           "rest.json: bodies[0].position: at 1e+17 m positions are 16 m apart, too coarse for the scene's "
+                           "moves of 0.0981 m a step (body 0's speed after 1 s at 9.81 m/s², times dt = 0.01 s)");
+  write_file(dir / "still.json", scene({{{"mass", 1}, {"position", {0, 1e17}}}}, json::object()));
+  EXPECT_EQ(run_motus(dir, {"run", (dir / "still.json").string()}).status, 0);
+  write_file(dir / "drop.json", scene({{{"mass", 1}, {"position", {0, 1}}}}, gravity));
+  EXPECT_EQ(run_motus(dir, {"run", (dir / "drop.json").string(), "--dt", "1e-6", "--duration", "0.01"}).status, 0);
+
+  const json ball = {{{"mass", 1}, {"radius", 0.1}, {"position", {1, 1}}, {"velocity", {1, 0}}}};
+  json plane = gravity;
+  plane["integrator"] = "symplectic-euler";  // (velocity Verlet runs no collisions)
+  plane["colliders"] = {{{"type", "plane"}, {"normal", {0, 1}}, {"offset", 1e20}}};
+  write_file(dir / "plane.json", scene(ball, plane));
+  expect_one_line_exit_2(run_motus(dir, {"run", (dir / "plane.json").string()}),
+                         "plane.json: colliders[0].offset: the plane keeps bodies 1e+20 m or more out, where positions "
+                         "are 16384 m apart");
+  json box = plane;
+  box["colliders"] = {{{"type", "box"}, {"min", {0, 1e20}}, {"max", {10, 2e20}}}};
+  write_file(dir / "box.json", scene(ball, box));
+  expect_one_line_exit_2(run_motus(dir, {"run", (dir / "box.json").string()}),
+                         "box.json: colliders[0].min: the box keeps bodies 1e+20 m or more out, where");
+  plane["colliders"][0]["offset"] = -1e20;  // (a floor far below: the ball falls 5 m in the run)
+  write_file(dir / "floor.json", scene(ball, plane));
+  EXPECT_EQ(run_motus(dir, {"run", (dir / "floor.json").string()}).status, 0);
+
+  // At x = 1e11 m doubles are 1.5e-5 m apart: moves of 0.1 m (dt = 0.1 s at 1 m/s) are enough, of 0.001 m not.
+  write_file(dir / "far.json", R"({"dimensions": 1, "bodies": [{"mass": 1, "position": [1e11], "velocity": [1]}],
+                                  "integrator": "rk4", "dt": 0.1, "duration": 1})");
+  EXPECT_EQ(run_motus(dir, {"run", (dir / "far.json").string()}).status, 0);
+  expect_one_line_exit_2(run_motus(dir, {"run", (dir / "far.json").string(), "--dt", "0.001"}),
+                         "far.json: bodies[0].position: at 1e+11 m positions are 1.52588e-05 m apart, too coarse for the "
+                         "scene's moves of 0.001 m a step (its fastest speed times dt = 0.001 s)");
+}
+
+// A generator's error names the field that is the cause: a rope's segment_length of 1e-160 m (its
+// square is no normal double) was blamed on "rope.origin: is too far from 0" with the origin at 0;
+// and a lattice's spacing of 1e308, which puts its balls at 1.5e308 m, on "bodies[1].position" in a
+// file without "bodies". The origin is named when it is what is far. (From an audit: bad/y06b.json, y08.json.)
+TEST(Hardening, AGeneratorsErrorNamesItsFieldThatIsTheCause) {
+  TempDir dir;
+  auto refused = [&](const std::string& name, const std::string& generator, const std::string& says) {
+    write_file(dir / (name + ".json"), R"({"dimensions": 2, "integrator": "verlet", "dt": 0.01, "duration": 0.05, )" +
+                                           generator + "}");
+    expect_one_line_exit_2(run_motus(dir, {"run", (dir / (name + ".json")).string()}), name + ".json: " + says);
+  };
+  refused("short", R"("rope": {"segment_length": 1e-160, "origin": [0, 0]})",
+          "rope.segment_length: is too small for double precision: a stick's length comes from a squared distance, and "
+          "(1e-160 m)² is below the smallest normal double (2.2e-308)");
+  refused("fine", R"("cloth": {"spacing": 1e-200})", "cloth.spacing: is too small for double precision");
+  refused("far_rope", R"("rope": {"segment_length": 1, "origin": [1e17, 0]})",
+          "rope.origin: is too far from 0 for a segment_length of 1.0 m");
+  refused("wide", R"("lattice": {"count": 4, "spacing": 1e308})", "lattice.spacing: puts body 1 at 1.5e+308 m, where positions are");
+  refused("far_lattice", R"("lattice": {"count": 4, "origin": [1e20, 0]})", "lattice.origin: puts body 0 at 1e+20 m, where");
+}
+
+// A number too small for a double (1e-400) reads as 0 in JSON's reader, without a word: "mass":
+// 1e-400 said "must be > 0 (got 0.0)", a 0 the user never wrote, and a drag coefficient of -1e-400
+// passed as 0. Refused, with the number as written, from the file and from --set; a 0 that is
+// written is still a 0. (From an audit: bad/u01.json, u02.json.)
+TEST(Hardening, ANumberTooSmallForADoubleIsNamedAsWritten) {
+  TempDir dir;
+  write_file(dir / "tiny.json", R"({"dimensions": 2, "integrator": "rk4", "dt": 0.01, "duration": 0.05,
+                                   "bodies": [{"mass": 1e-400, "position": [0, 0]}]})");
+  const std::string tiny = (dir / "tiny.json").string();
+  expect_one_line_exit_2(run_motus(dir, {"run", tiny}),
+                         "tiny.json: bodies[0].mass: 1e-400 is nearer 0 than the smallest double (4.9e-324), and would read as 0");
+  expect_one_line_exit_2(run_motus(dir, {"run", tiny, "--set", "bodies[0].mass=1", "--set", "dt=1e-400"}),
+                         "tiny.json: dt: 1e-400 is nearer 0 than the smallest double");
+  expect_one_line_exit_2(run_motus(dir, {"run", tiny, "--set", R"(bodies[0]={"mass": 1, "position": [0, -2.5E-999]})"}),
+                         "tiny.json: bodies[0].position[1]: -2.5E-999 is nearer 0 than the smallest double");
+  expect_one_line_exit_2(run_motus(dir, {"run", tiny, "--set", "bodies[0].mass=0"}), "bodies[0].mass: must be > 0 (got 0.0)");
+  expect_one_line_exit_2(run_motus(dir, {"run", tiny, "--set", "bodies[0].mass=0e-400"}), "bodies[0].mass: must be > 0 (got 0.0)");
+  EXPECT_EQ(run_motus(dir, {"run", tiny, "--set", "bodies[0].mass=1e-300"}).status, 0);
+}
+
+// --set 'bodies[0].position=[NaN,0,0]' said "must be an array of numbers, not a string": JSON has
+// no NaN, so the value was taken as a word. The NaN is named where it stands, as a lone one is.
+// (From an audit.)
+TEST(Hardening, ANanInAnArrayGivenBySetIsNamed) {
+  TempDir dir;
+  expect_one_line_exit_2(run_motus(dir, {"run", "spring", "--set", "bodies[0].position=[NaN,0,0]"}),
+                         "bodies[0].position[0]: must be a finite number (got NaN): JSON has no NaN or infinity");
+  expect_one_line_exit_2(run_motus(dir, {"run", "head_on", "--set", "bodies[1].velocity=[0, -Infinity]"}),
+                         "bodies[1].velocity[1]: must be a finite number (got -Infinity): JSON has no NaN or infinity");
+  expect_one_line_exit_2(run_motus(dir, {"run", "spring", "--set", "dt=nan"}),
+                         "dt: must be a finite number (got nan): JSON has no NaN or infinity");
+}
+
+// A force's type, a system's and a collider's that are a slip away from a known one get the guess
+// other unknown names get ("gravty", "lorentz" had none); a name called as a function in an equation
+// is an unknown function, not an unknown variable. (From an audit: bad/d09.json.)
+TEST(Hardening, UnknownTypesGetADidYouMeanAndAnUnknownFunctionIsNamedSo) {
+  TempDir dir;
+  auto refused = [&](const std::string& name, const std::string& scene, const std::string& says) {
+    write_file(dir / (name + ".json"), scene);
+    expect_one_line_exit_2(run_motus(dir, {"run", (dir / (name + ".json")).string()}), name + ".json: " + says);
+  };
+  const std::string bodies = R"("dimensions": 2, "integrator": "rk4", "dt": 0.01, "duration": 0.05,
+                                "bodies": [{"mass": 1, "radius": 0.1, "position": [1, 1]}], )";
+  refused("force", "{" + bodies + R"("forces": [{"type": "gravty", "g": [0, -9.81]}]})",
+          "forces[0].type: unknown force \"gravty\", did you mean gravity? (known: gravity, spring,");
+  refused("wall", "{" + bodies + R"("colliders": [{"type": "plan", "normal": [0, 1]}]})",
+          "colliders[0].type: unknown collider \"plan\", did you mean plane? (known: plane, box, segment)");
+  const std::string tail = R"(, "integrator": "rk4", "dt": 0.01, "duration": 0.05})";
+  refused("system", R"({"system": {"type": "lorentz", "initial": [1, 1, 1]})" + tail,
+          "system.type: unknown system \"lorentz\", did you mean lorenz? (known: lorenz,");
+  refused("function", R"j({"system": {"type": "equations", "variables": ["x", "v"], "equations": {"x": "v", "v": "foo (x)"},
+                                      "initial": [1, 0]})j" + tail,
+          "system.equations.v: unknown function \"foo\" at column 1 (functions: abs,");
+}
+
+// Counts out of range say what was given, as the other range messages do: constraint_iterations,
+// constraint_substeps, a rope's segments, a lattice's seed. (From an audit: bad/e22.json, e23.json.)
+TEST(Hardening, ACountOutOfRangeSaysWhatWasGiven) {
+  TempDir dir;
+  for (const auto& [set, says] : std::vector<std::pair<std::string, std::string>>{
+           {"constraint_iterations=0", "constraint_iterations: must be from 1 to 10000 (got 0)"},
+           {"constraint_substeps=10001", "constraint_substeps: must be from 1 to 10000 (got 10001)"},
+           {"rope.segments=0", "rope.segments: must be from 1 to 100000 (got 0)"}})
+    expect_one_line_exit_2(run_motus(dir, {"run", "rope", "--set", set}), says);
+  expect_one_line_exit_2(run_motus(dir, {"run", "ball_gas", "--set", "lattice.seed=-3"}), "lattice.seed: must be >= 0 (got -3)");
+}
+
 // An oscillator blown up past the largest double's energy, its state still finite (1e193 m: its
 // ½ k x² is not), was a run that went well: "total energy 0.5 inf", exit 0, "finite": true. It is
 // a failed run, as a state that stopped being a number is. (From an audit.)

@@ -183,6 +183,12 @@ ExpressionSystem::ExpressionSystem(const Equations& e)
           throw EquationError(index, column,
                               "syntax error at column " + std::to_string(column) + ": the function " + token +
                                   " needs its arguments in parentheses, as " + token + "(x)");
+        // A name followed by '(' is called: an unknown function, not an unknown variable.
+        const size_t after = text.find_first_not_of(" \t", static_cast<size_t>(column - 1) + token.size());
+        if (after != std::string::npos && text[after] == '(')
+          throw EquationError(index, column,
+                              "unknown function \"" + token + "\" at column " + std::to_string(column) +
+                                  " (functions: " + function_names() + ")");
         throw EquationError(index, column,
                             "unknown variable \"" + token + "\" at column " + std::to_string(column) + " (known: " +
                                 known + "; functions: " + function_names() + ")");

@@ -20,7 +20,8 @@ std::string json_type_name(const nlohmann::json& value) {
   }
 }
 
-JsonFields::JsonFields(const nlohmann::json& object, std::string path) : object_(object), path_(std::move(path)) {
+JsonFields::JsonFields(const nlohmann::json& object, std::string path, const NumberTexts* underflows)
+    : object_(object), path_(std::move(path)), underflows_(underflows) {
   if (!object_.is_object()) throw SceneError(path_, "must be an object, not " + json_type_name(object_));
 }
 
@@ -73,16 +74,35 @@ const nlohmann::json& JsonFields::at(const std::string& key) {
   fail(key, "missing (required)");
 }
 
+namespace {
+
+// Whether `text` is a word for a number JSON does not have: nan, inf, infinity (any case, a sign
+// before it or not).
+bool non_finite_word(std::string text) {
+  const auto blank = [](unsigned char c) { return std::isspace(c) != 0; };
+  while (!text.empty() && blank(static_cast<unsigned char>(text.back()))) text.pop_back();
+  text.erase(text.begin(), std::find_if_not(text.begin(), text.end(), blank));
+  if (!text.empty() && (text[0] == '-' || text[0] == '+')) text.erase(0, 1);
+  for (auto& c : text) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return text == "nan" || text == "inf" || text == "infinity";
+}
+
+const char* const kNoSuchJsonNumber = ": JSON has no NaN or infinity";
+
+}  // namespace
+
 double JsonFields::checked_number(const nlohmann::json& value, const std::string& key) const {
   if (value.is_string()) {  // what --set makes of NaN, inf, ... (JSON itself has no such numbers)
-    std::string word = value.get<std::string>();
-    for (auto& c : word) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    if (word == "nan" || word == "inf" || word == "-inf" || word == "infinity" || word == "-infinity")
-      fail(key, "must be a finite number (got " + value.get<std::string>() + ")");
+    if (non_finite_word(value.get<std::string>()))
+      fail(key, "must be a finite number (got " + value.get<std::string>() + ")" + kNoSuchJsonNumber);
   }
   if (!value.is_number()) fail(key, "must be a number, not " + json_type_name(value));
   const double x = value.get<double>();
   if (!std::isfinite(x)) fail(key, "must be a finite number");
+  // (JSON's reader made 0 of a number too small for a double, without a word: the user did not write 0.)
+  if (x == 0 && underflows_)
+    if (const auto text = underflows_->find(path_of(key)); text != underflows_->end())
+      fail(key, text->second + " is nearer 0 than the smallest double (4.9e-324), and would read as 0");
   return x;
 }
 
@@ -146,6 +166,25 @@ std::string JsonFields::string(const std::string& key, const std::string& fallba
 
 std::vector<double> JsonFields::numbers(const std::string& key, int size) {
   const auto& v = at(key);
+  // --set's "[NaN, 0]" is no JSON, and came as that string: its NaN is named, as a number's would be.
+  if (v.is_string()) {
+    const std::string text = v.get<std::string>();
+    const size_t open = text.find_first_not_of(" \t\n\r"), close = text.find_last_not_of(" \t\n\r");
+    if (open != std::string::npos && text[open] == '[' && text[close] == ']') {
+      size_t from = open + 1;
+      for (size_t i = 0;; ++i) {
+        const size_t comma = std::min(text.find(',', from), close);
+        const std::string item = text.substr(from, comma - from);
+        if (non_finite_word(item)) {
+          const size_t begin = item.find_first_not_of(" \t\n\r"), end = item.find_last_not_of(" \t\n\r");
+          fail(key + "[" + std::to_string(i) + "]",
+               "must be a finite number (got " + item.substr(begin, end - begin + 1) + ")" + kNoSuchJsonNumber);
+        }
+        if (comma == close) break;
+        from = comma + 1;
+      }
+    }
+  }
   if (!v.is_array()) fail(key, "must be an array of numbers, not " + json_type_name(v));
   if (size >= 0 && static_cast<int>(v.size()) != size)
     fail(key, "must have " + std::to_string(size) + (size == 1 ? " number" : " numbers") + " (got " +
@@ -161,7 +200,7 @@ std::vector<double> JsonFields::numbers(const std::string& key, int size, const 
 JsonFields JsonFields::object(const std::string& key) {
   const auto& v = at(key);
   if (!v.is_object()) fail(key, "must be an object, not " + json_type_name(v));
-  return JsonFields(v, path_of(key));
+  return JsonFields(v, path_of(key), underflows_);
 }
 
 std::vector<JsonFields> JsonFields::objects(const std::string& key) {
@@ -172,7 +211,7 @@ std::vector<JsonFields> JsonFields::objects(const std::string& key) {
   for (size_t i = 0; i < v->size(); ++i) {
     const std::string item = path_of(key) + "[" + std::to_string(i) + "]";
     if (!(*v)[i].is_object()) throw SceneError(item, "must be an object, not " + json_type_name((*v)[i]));
-    out.emplace_back((*v)[i], item);
+    out.emplace_back((*v)[i], item, underflows_);
   }
   return out;
 }

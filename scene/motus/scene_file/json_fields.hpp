@@ -1,6 +1,7 @@
 #pragma once
 // Reading one JSON object field by field, knowing where we are: every error names the
 // field's path ("bodies[2].mass"), every field nobody asked for is reported as unknown.
+#include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <set>
@@ -11,9 +12,16 @@
 
 namespace motus {
 
+// The numbers of a document that read as 0 though their text is not zero (1e-400: below the smallest
+// double), by field path ("bodies[0].mass") to the text as written: JSON's reader makes them 0 without a
+// word, and the loader refuses them, as it refuses 1e999.
+using NumberTexts = std::map<std::string, std::string>;
+
 class JsonFields {
 public:
-  JsonFields(const nlohmann::json& object, std::string path);
+  // `underflows`, when given, names the numbers that read as 0 though they are not (the fields made by
+  // object() and objects() share it).
+  JsonFields(const nlohmann::json& object, std::string path, const NumberTexts* underflows = nullptr);
 
   // Fields: required ones throw when missing; optional ones return the default.
   double number(const std::string& key);
@@ -61,6 +69,7 @@ private:
 
   const nlohmann::json& object_;
   std::string path_;
+  const NumberTexts* underflows_ = nullptr;
   std::set<std::string> used_;      // keys read
   mutable std::vector<std::string> asked_;  // keys asked for (or tested with has), present or not, in order
 };

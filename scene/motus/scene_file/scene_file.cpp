@@ -15,6 +15,7 @@
 #include "motus/scene_generators.hpp"
 #include "motus/exact/exact_solution.hpp"
 #include "motus/integrator_name.hpp"
+#include "motus/message_number.hpp"
 #include "motus/scene_error.hpp"
 #include "motus/systems/system_catalog.hpp"
 #include "motus/scene_file/printable_text.hpp"
@@ -31,6 +32,20 @@ std::array<double, 3> padded(const std::vector<double>& v) {
   for (size_t k = 0; k < v.size() && k < 3; ++k) a[k] = v[k];
   return a;
 }
+
+// Where a mechanical scene's bodies and walls came from: what a message about where they are names
+// (a generated body is not bodies[i], a file without "bodies" has none).
+struct MechanicalFields {
+  size_t listed = 0;  // bodies[0, listed) are the file's own list
+  struct Generated {
+    size_t first = 0, end = 0;     // its bodies, [first, end)
+    std::string name, spacing_key;  // "lattice", "spacing"
+    std::array<double, 3> origin{0, 0, 0};
+  };
+  std::vector<Generated> generated;
+  size_t planes_generated = 0, boxes_generated = 0;  // (the lattice's container, before the listed ones)
+  std::vector<std::string> plane_paths, box_paths;   // the listed planes' and boxes' paths, "colliders[j]"
+};
 
 int body_index(JsonFields& f, const std::string& key, size_t bodies) {
   const long i = f.integer(key);
@@ -83,7 +98,7 @@ void read_force(JsonFields& f, int d, size_t bodies, ForceSet& forces) {
     p.length = f.positive("length");
     forces.pendulums.push_back(p);
   } else {
-    f.fail("type", "unknown force \"" + type + "\" (known: gravity, spring, drag, central_gravity, mutual_gravity, pendulum)");
+    f.fail("type", unknown_one_of("force", type, {"gravity", "spring", "drag", "central_gravity", "mutual_gravity", "pendulum"}));
   }
   f.reject_unknown();
 }
@@ -107,22 +122,37 @@ void check_generated(JsonFields& f, const MechanicalDescription& m, size_t first
 // A cloth's or a rope's sticks are as long as the particles are apart where they were made:
 // `spacing` (√2 times it across a cloth's squares). Far enough from 0, double precision cannot
 // hold that distance (at 1e17 m, positions are 16 m apart) and a stick would be made shorter,
-// or of length 0.
-void check_generated_sticks(JsonFields& f, const MechanicalDescription& m, size_t first_stick, double spacing,
-                            const std::string& spacing_key) {
+// or of length 0; and anywhere, a spacing whose square is not a normal double (1e-160 m: 1e-320)
+// gives lengths that are not it. `at_zero`: the same generator's sticks with its origin at 0, which
+// tell the two apart (the message named the origin, [0, 0], for a segment_length of 1e-160 m).
+bool sticks_as_made(const MechanicalDescription& m, size_t first_stick, double spacing) {
   for (size_t s = first_stick; s < m.sticks.size(); ++s) {
     const double length = m.sticks[s].length;
-    if (!(length >= (1 - 1e-6) * spacing && length <= (1 + 1e-6) * std::sqrt(2.0) * spacing))
-      f.fail("origin", "is too far from 0 for a " + spacing_key + " of " + nlohmann::json(spacing).dump() +
-                           " m: double precision cannot hold the particles that far apart there");
+    if (!(length >= (1 - 1e-6) * spacing && length <= (1 + 1e-6) * std::sqrt(2.0) * spacing)) return false;
   }
+  return true;
 }
 
-void read_lattice(JsonFields f, MechanicalDescription& m) {
+template <class AtZero>
+void check_generated_sticks(JsonFields& f, const MechanicalDescription& m, size_t first_stick, double spacing,
+                            const std::string& spacing_key, AtZero at_zero) {
+  if (sticks_as_made(m, first_stick, spacing)) return;
+  if (!sticks_as_made(at_zero(), 0, spacing)) {
+    const bool small = spacing < 1;
+    f.fail(spacing_key, "is too " + std::string(small ? "small" : "large") + " for double precision: a stick's length " +
+                            "comes from a squared distance, and (" + message_number(spacing, 6) + " m)² is " +
+                            (small ? "below the smallest normal double (2.2e-308)" : "past the largest double (1.8e308)"));
+  }
+  f.fail("origin", "is too far from 0 for a " + spacing_key + " of " + nlohmann::json(spacing).dump() +
+                       " m: double precision cannot hold the particles that far apart there");
+}
+
+void read_lattice(JsonFields f, MechanicalDescription& m, MechanicalFields& fields) {
   BallLattice lattice;
   lattice.count = f.integer("count");
   if (lattice.count < 1 || lattice.count > kMaxBodies)
-    f.fail("count", "must be from 1 to " + std::to_string(kMaxBodies) + " (the limit of a scene's bodies)");
+    f.fail("count", "must be from 1 to " + std::to_string(kMaxBodies) + ", the limit of a scene's bodies (got " +
+                        std::to_string(lattice.count) + ")");
   lattice.spacing = f.positive("spacing", lattice.spacing);
   lattice.radius = f.positive("radius", lattice.radius);
   // (Touching balls packed wall to wall are jammed: each contact passes its push on to the next, and back
@@ -133,7 +163,7 @@ void read_lattice(JsonFields f, MechanicalDescription& m) {
   lattice.mass = f.positive("mass", lattice.mass);
   lattice.speed = f.non_negative("speed", lattice.speed);
   const long seed = f.integer("seed", 1);
-  if (seed < 0) f.fail("seed", "must be >= 0");
+  if (seed < 0) f.fail("seed", "must be >= 0 (got " + std::to_string(seed) + ")");
   lattice.seed = static_cast<std::uint64_t>(seed);
   lattice.restitution = restitution(f, "restitution");
   lattice.origin = padded(f.numbers("origin", m.dimensions, std::vector<double>(static_cast<size_t>(m.dimensions), 0.0)));
@@ -142,15 +172,16 @@ void read_lattice(JsonFields f, MechanicalDescription& m) {
   const size_t first = m.bodies.size();
   add_ball_lattice(m, lattice);
   check_generated(f, m, first, "spacing");
+  fields.generated.push_back({first, m.bodies.size(), "lattice", "spacing", lattice.origin});
 }
 
 int small_count(JsonFields& f, const std::string& key, long fallback, long max) {
   const long n = f.integer(key, fallback);
-  if (n < 1 || n > max) f.fail(key, "must be from 1 to " + std::to_string(max));
+  if (n < 1 || n > max) f.fail(key, "must be from 1 to " + std::to_string(max) + " (got " + std::to_string(n) + ")");
   return static_cast<int>(n);
 }
 
-void read_cloth(JsonFields f, MechanicalDescription& m) {
+void read_cloth(JsonFields f, MechanicalDescription& m, MechanicalFields& fields) {
   ClothGenerator cloth;
   cloth.rows = small_count(f, "rows", cloth.rows, 1000);
   cloth.columns = small_count(f, "columns", cloth.columns, 1000);
@@ -167,10 +198,18 @@ void read_cloth(JsonFields f, MechanicalDescription& m) {
   const size_t first = m.bodies.size(), first_stick = m.sticks.size();
   add_cloth(m, cloth);  // SceneError("cloth.pin", ...) for values it cannot build
   check_generated(f, m, first, "spacing");
-  check_generated_sticks(f, m, first_stick, cloth.spacing, "spacing");
+  check_generated_sticks(f, m, first_stick, cloth.spacing, "spacing", [&] {
+    MechanicalDescription alone;
+    alone.dimensions = m.dimensions;
+    ClothGenerator at_zero = cloth;
+    at_zero.origin = {0, 0, 0};
+    add_cloth(alone, at_zero);
+    return alone;
+  });
+  fields.generated.push_back({first, m.bodies.size(), "cloth", "spacing", cloth.origin});
 }
 
-void read_rope(JsonFields f, MechanicalDescription& m) {
+void read_rope(JsonFields f, MechanicalDescription& m, MechanicalFields& fields) {
   RopeGenerator rope;
   rope.segments = small_count(f, "segments", rope.segments, 100000);
   rope.segment_length = f.positive("segment_length", rope.segment_length);
@@ -185,7 +224,15 @@ void read_rope(JsonFields f, MechanicalDescription& m) {
   const size_t first = m.bodies.size(), first_stick = m.sticks.size();
   add_rope(m, rope);
   check_generated(f, m, first, "segment_length");
-  check_generated_sticks(f, m, first_stick, rope.segment_length, "segment_length");
+  check_generated_sticks(f, m, first_stick, rope.segment_length, "segment_length", [&] {
+    MechanicalDescription alone;
+    alone.dimensions = m.dimensions;
+    RopeGenerator at_zero = rope;
+    at_zero.origin = {0, 0, 0};
+    add_rope(alone, at_zero);
+    return alone;
+  });
+  fields.generated.push_back({first, m.bodies.size(), "rope", "segment_length", rope.origin});
 }
 
 void read_collider(JsonFields& f, int d, Colliders& colliders) {
@@ -230,7 +277,7 @@ void read_collider(JsonFields& f, int d, Colliders& colliders) {
     s.restitution = restitution(f, "restitution");
     colliders.segments.push_back(s);
   } else {
-    f.fail("type", "unknown collider \"" + type + "\" (known: plane, box, segment)");
+    f.fail("type", unknown_one_of("collider", type, {"plane", "box", "segment"}));
   }
   f.reject_unknown();
 }
@@ -348,7 +395,7 @@ void check_bodies_fit_between_planes(const MechanicalDescription& m, size_t list
     }
 }
 
-MechanicalDescription read_mechanical(JsonFields& scene) {
+MechanicalDescription read_mechanical(JsonFields& scene, MechanicalFields& fields) {
   MechanicalDescription m;
   const long d = scene.integer("dimensions");
   if (d < 1 || d > 3) scene.fail("dimensions", "must be 1, 2 or 3 (got " + std::to_string(d) + ")");
@@ -374,10 +421,11 @@ MechanicalDescription read_mechanical(JsonFields& scene) {
   }
   const size_t listed = m.bodies.size();
   // Generators append their bodies (and walls, sticks, pins) after the listed ones.
-  if (scene.has("lattice")) read_lattice(scene.object("lattice"), m);
-  if (scene.has("cloth")) read_cloth(scene.object("cloth"), m);
+  fields.listed = listed;
+  if (scene.has("lattice")) read_lattice(scene.object("lattice"), m, fields);
+  if (scene.has("cloth")) read_cloth(scene.object("cloth"), m, fields);
   const size_t cloth_pins = m.pins.size();  // (the generators' pins come before the listed ones: named by these)
-  if (scene.has("rope")) read_rope(scene.object("rope"), m);
+  if (scene.has("rope")) read_rope(scene.object("rope"), m, fields);
   const size_t generated_pins = m.pins.size();
   const size_t boxes_generated = m.colliders.boxes.size();
   if (m.bodies.empty()) scene.fail("bodies", "needs at least one body (listed, or from a generator such as \"lattice\")");
@@ -402,6 +450,10 @@ MechanicalDescription read_mechanical(JsonFields& scene) {
   }
   check_balls_fit_their_boxes(m, listed, box_paths);
   check_bodies_fit_between_planes(m, listed, plane_paths);
+  fields.planes_generated = planes_generated;
+  fields.boxes_generated = boxes_generated;
+  fields.plane_paths = plane_paths;
+  fields.box_paths = box_paths;
   for (auto& f : scene.objects("sticks")) {
     StickConstraint stick;
     stick.a = body_index(f, "a", m.bodies.size());
@@ -433,12 +485,107 @@ MechanicalDescription read_mechanical(JsonFields& scene) {
                              ", the limit of a scene");
   check_coincident_under_gravity(m, mutual_gravity_paths);
   const long iterations = scene.integer("constraint_iterations", 10);
-  if (iterations < 1 || iterations > 10000) scene.fail("constraint_iterations", "must be from 1 to 10000");
+  if (iterations < 1 || iterations > 10000)
+    scene.fail("constraint_iterations", "must be from 1 to 10000 (got " + std::to_string(iterations) + ")");
   m.constraint_iterations = static_cast<int>(iterations);
   const long substeps = scene.integer("constraint_substeps", 1);
-  if (substeps < 1 || substeps > 10000) scene.fail("constraint_substeps", "must be from 1 to 10000");
+  if (substeps < 1 || substeps > 10000)
+    scene.fail("constraint_substeps", "must be from 1 to 10000 (got " + std::to_string(substeps) + ")");
   m.constraint_substeps = static_cast<int>(substeps);
   return m;
+}
+
+// Where the bodies are too far for the scene's moves (positions_too_coarse), and what makes the moves.
+struct CoarsePositions {
+  enum class Where { body, plane, box };
+  Where where = Where::body;  // what puts the bodies that far
+  size_t index = 0;           // the body's, or the wall's among the scene's planes or boxes
+  double far = 0;             // m from the origin (the largest coordinate) that the bodies are, or are kept
+  double spacing = 0;         // m between neighbouring doubles there
+  double move = 0;            // m: the scene's largest move in a step
+  size_t mover = 0;           // the body that makes it
+  double acceleration = 0;    // m/s²: the mover's at the start, when its move is its speed after `duration` under it
+  double duration = 0;        // s: the run's
+};
+
+// The description has no room for where its bodies and walls came from, and the commands check the
+// positions after loading, at the step they run: the loader keeps the fields of the scene it loaded
+// last on this thread, with what tells that scene from another (its bodies' storage and the counts).
+struct LoadedFields {
+  const BodyDescription* bodies = nullptr;
+  size_t count = 0, planes = 0, boxes = 0;
+  MechanicalFields fields;
+};
+thread_local LoadedFields loaded_fields;
+
+void remember_fields(const MechanicalDescription& m, MechanicalFields fields) {
+  loaded_fields = {m.bodies.data(), m.bodies.size(), m.colliders.planes.size(), m.colliders.boxes.size(), std::move(fields)};
+}
+
+const MechanicalFields* fields_of(const MechanicalDescription& m) {
+  const LoadedFields& l = loaded_fields;
+  return l.bodies == m.bodies.data() && l.count == m.bodies.size() && l.planes == m.colliders.planes.size() &&
+                 l.boxes == m.colliders.boxes.size()
+             ? &l.fields
+             : nullptr;
+}
+
+// The error for `c`, named by the field that puts the bodies there: a listed body's position; a
+// generator's origin, when that alone is too far, else its spacing; a plane's offset; a box's corner
+// nearest the origin. (`fields`: none for a description the loader did not make.)
+SceneError coarse_positions_error(const MechanicalDescription& m, const MechanicalFields* fields, const CoarsePositions& c,
+                                  double dt) {
+  const std::string step = "dt = " + message_number(dt, 6) + " s";
+  const std::string why = c.acceleration > 0 ? "body " + std::to_string(c.mover) + "'s speed after " +
+                                                   message_number(c.duration, 6) + " s at " +
+                                                   message_number(c.acceleration, 6) + " m/s², times " + step
+                                             : "its fastest speed times " + step;
+  const std::string words = "positions are " + message_number(c.spacing, 6) +
+                            " m apart, too coarse for the scene's moves of " + message_number(c.move, 6) + " m a step (" +
+                            why + ")";
+  const std::string far = message_number(c.far, 6);
+  const std::string rounding = ": they would move by rounding, or not at all; ";
+  if (c.where == CoarsePositions::Where::body) {
+    const size_t i = c.index;
+    if (fields)
+      for (const auto& g : fields->generated) {
+        if (i < g.first || i >= g.end) continue;
+        // The origin alone that far is the origin's fault; else the generator's size took them there.
+        double origin = 0;
+        for (int k = 0; k < m.dimensions; ++k) origin = std::max(origin, std::abs(g.origin[static_cast<size_t>(k)]));
+        const bool by_origin = std::nextafter(origin, INFINITY) - origin > 1e-3 * c.move;
+        return SceneError(g.name + "." + (by_origin ? std::string("origin") : g.spacing_key),
+                          "puts body " + std::to_string(i) + " at " + far + " m, where " + words + rounding +
+                              (by_origin ? "an origin nearer 0" : "a smaller " + g.spacing_key));
+      }
+    return SceneError("bodies[" + std::to_string(i) + "].position",
+                      "at " + far + " m " + words + ": its bodies would move by rounding, or not at all; move the scene "
+                                                    "nearer the origin");
+  }
+  const bool plane = c.where == CoarsePositions::Where::plane;
+  const size_t j = c.index;
+  std::string field = plane ? "colliders (plane " + std::to_string(j) + ")" : "colliders (box " + std::to_string(j) + ")";
+  if (fields) {
+    const size_t generated = plane ? fields->planes_generated : fields->boxes_generated;
+    const auto& paths = plane ? fields->plane_paths : fields->box_paths;
+    if (j < generated && !fields->generated.empty()) field = fields->generated.front().name + ".origin";  // (a lattice's box)
+    if (j >= generated && j - generated < paths.size()) field = paths[j - generated];
+  }
+  if (plane) {
+    if (field.starts_with("colliders[")) field += ".offset";
+  } else {
+    // The box's corner nearest the origin: its min where that is above 0, its max where below.
+    const auto& box = m.colliders.boxes[j];
+    bool by_min = true;
+    double nearest = -1;
+    for (int k = 0; k < m.dimensions; ++k) {
+      const double x = std::clamp(0.0, box.min[static_cast<size_t>(k)], box.max[static_cast<size_t>(k)]);
+      if (std::abs(x) > nearest) nearest = std::abs(x), by_min = x > 0;
+    }
+    if (field.starts_with("colliders[")) field += by_min ? ".min" : ".max";
+  }
+  return SceneError(field, std::string("the ") + (plane ? "plane" : "box") + " keeps bodies " + far +
+                               " m or more out, where " + words + rounding + "move it nearer the origin");
 }
 
 FirstOrderDescription read_first_order(JsonFields system) {
@@ -447,9 +594,10 @@ FirstOrderDescription read_first_order(JsonFields system) {
   if (s.type == "equations") return read_equations_system(system);  // right-hand sides as expressions
   const SystemInfo* info = find_first_order_system(s.type);
   if (!info) {
-    std::string known;
-    for (const auto& i : first_order_systems()) known += (known.empty() ? "" : ", ") + i.type;
-    system.fail("type", "unknown system \"" + s.type + "\" (known: " + known + ", equations)");
+    std::vector<std::string> known;
+    for (const auto& i : first_order_systems()) known.push_back(i.type);
+    known.push_back("equations");
+    system.fail("type", unknown_one_of("system", s.type, known));
   }
   for (const auto& p : info->parameters) s.parameters[p.name] = p.default_value;
   if (system.has("parameters")) {
@@ -463,9 +611,10 @@ FirstOrderDescription read_first_order(JsonFields system) {
   return s;
 }
 
-SceneDescription read_scene(const nlohmann::json& document, const std::string& stem) {
-  JsonFields f(document, "");
+SceneDescription read_scene(const nlohmann::json& document, const std::string& stem, const NumberTexts* texts) {
+  JsonFields f(document, "", texts);
   SceneDescription scene;
+  MechanicalFields fields;
   f.string("$schema", "");  // editors may point at scene/scene.schema.json
   scene.name = f.string("name", stem);
   if (scene.name.empty()) scene.name = stem;  // (a blank title on every output, and folders named "compare-")
@@ -494,7 +643,7 @@ SceneDescription read_scene(const nlohmann::json& document, const std::string& s
   if (f.has("system")) {
     scene.first_order = read_first_order(f.object("system"));
   } else if (f.has("bodies") || f.has("lattice") || f.has("cloth") || f.has("rope")) {
-    scene.mechanical = read_mechanical(f);
+    scene.mechanical = read_mechanical(f, fields);
   } else {
     f.fail("bodies", "missing: a scene needs \"bodies\" (point masses) or \"system\" (a first-order system)");
   }
@@ -530,6 +679,7 @@ SceneDescription read_scene(const nlohmann::json& document, const std::string& s
     f.fail("reference", "a scene has either an \"exact\" solution or \"reference\" states, not both");
   f.reject_unknown();
   check_exact_solution(scene);
+  if (scene.mechanical) remember_fields(*scene.mechanical, std::move(fields));
   return scene;
 }
 
@@ -555,7 +705,16 @@ public:
   bool boolean(bool) override { return value(); }
   bool number_integer(number_integer_t) override { return value(); }
   bool number_unsigned(number_unsigned_t) override { return value(); }
-  bool number_float(number_float_t, const string_t&) override { return value(); }
+  bool number_float(number_float_t x, const string_t& text) override {
+    if (!value()) return false;
+    // (A number whose digits are not all 0 that reads as 0: its exponent is below a double's.)
+    const auto mantissa_end = text.begin() + static_cast<std::ptrdiff_t>(std::min(text.find_first_of("eE"), text.size()));
+    if (x == 0 && underflows_ && std::any_of(text.begin(), mantissa_end, [](char c) { return c >= '1' && c <= '9'; }))
+      (*underflows_)[path()] = text;
+    return true;
+  }
+  // Where number_float writes the numbers that read as 0 though they are not (none: not kept).
+  void keep_underflows(NumberTexts* underflows) { underflows_ = underflows; }
   bool string(string_t&) override { return value(); }
   bool binary(binary_t&) override { return value(); }
   bool start_object(std::size_t) override {
@@ -603,6 +762,7 @@ private:
     return false;
   }
   std::string problem_;
+  NumberTexts* underflows_ = nullptr;
   // One more element of the innermost array. The scene's own lists of bodies and sticks are
   // counted here, before the document is built: a million bodies and one more are refused now,
   // not after a gigabyte of document.
@@ -662,6 +822,93 @@ private:
 
 namespace {
 
+// |x|, scaled by its largest component first (m g of 1e307 kg squares past every double).
+double length(const double* x, int d) {
+  double largest = 0, sum = 0;
+  for (int k = 0; k < d; ++k) largest = std::max(largest, std::abs(x[k]));
+  if (!(largest > 0) || !std::isfinite(largest)) return largest;
+  for (int k = 0; k < d; ++k) sum += (x[k] / largest) * (x[k] / largest);
+  return largest * std::sqrt(sum);
+}
+
+// (The moves are the bodies' speeds times dt, at the start and after the run's `duration` under the
+// acceleration the forces give at the start: the largest a step makes then, had they held. A body at
+// rest under gravity makes none at first and still moves; a run of dt = 1e-6 s from rest near the
+// origin, whose first steps move by 1e-12 m, is one.)
+std::optional<CoarsePositions> coarse_positions(const MechanicalDescription& m, double dt, double duration) {
+  const size_t n = m.bodies.size();
+  const int d = m.dimensions;
+  const auto size = static_cast<Eigen::Index>(n) * d;
+  // Each body's acceleration at the start, from every force (a pinned body is held: none).
+  Vector a = Vector::Zero(size);
+  if (m.forces.acts() && n > 0) {
+    ForceSet forces = m.forces;
+    if (n > 4096) forces.mutual_gravity.clear();
+    Vector masses(static_cast<Eigen::Index>(n)), x(size), v(size);
+    for (size_t i = 0; i < n; ++i) {
+      masses[static_cast<Eigen::Index>(i)] = m.bodies[i].mass;
+      for (int k = 0; k < d; ++k) {
+        x[static_cast<Eigen::Index>(i) * d + k] = m.bodies[i].position[static_cast<size_t>(k)];
+        v[static_cast<Eigen::Index>(i) * d + k] = m.bodies[i].velocity[static_cast<size_t>(k)];
+      }
+    }
+    forces.add_forces(0, d, masses, x, v, a);
+    for (size_t i = 0; i < n; ++i) a.segment(static_cast<Eigen::Index>(i) * d, d) /= m.bodies[i].mass;
+    for (const auto& pin : m.pins)
+      if (pin.body >= 0 && static_cast<size_t>(pin.body) < n) a.segment(static_cast<Eigen::Index>(pin.body) * d, d).setZero();
+  }
+  CoarsePositions c;
+  for (size_t i = 0; i < n; ++i) {
+    const double* accel = a.data() + static_cast<Eigen::Index>(i) * d;
+    double later[3] = {0, 0, 0};
+    for (int k = 0; k < d; ++k) later[k] = m.bodies[i].velocity[static_cast<size_t>(k)] + accel[k] * duration;
+    const double by_speed = length(m.bodies[i].velocity.data(), d) * dt, by_force = length(later, d) * dt;
+    // (A move past every double, or a force that is not a number: no claim; other checks say why.)
+    if (!std::isfinite(by_speed) || !std::isfinite(by_force)) return std::nullopt;
+    if (std::max(by_speed, by_force) > c.move) {
+      c.move = std::max(by_speed, by_force);
+      c.mover = i;
+      c.acceleration = by_force > by_speed ? length(accel, d) : 0;
+    }
+  }
+  c.duration = duration;
+  if (!(c.move > 0)) return std::nullopt;  // nothing moves
+  for (size_t i = 0; i < n; ++i)
+    for (double x : m.bodies[i].position)
+      if (std::abs(x) > c.far) c.far = std::abs(x), c.where = CoarsePositions::Where::body, c.index = i;
+  // Walls keep the bodies away from the origin: on a plane's free side when that side is away from
+  // it (there every point has a coordinate of at least offset / Σ|n_k|), inside every box.
+  for (size_t j = 0; j < m.colliders.planes.size(); ++j) {
+    const auto& plane = m.colliders.planes[j];
+    double l1 = 0;
+    for (int k = 0; k < d; ++k) l1 += std::abs(plane.normal[static_cast<size_t>(k)]);
+    if (plane.offset > 0 && l1 > 0 && plane.offset / l1 > c.far)
+      c.far = plane.offset / l1, c.where = CoarsePositions::Where::plane, c.index = j;
+  }
+  for (size_t j = 0; j < m.colliders.boxes.size(); ++j) {
+    const auto& box = m.colliders.boxes[j];
+    for (int k = 0; k < d; ++k) {
+      const double nearest = std::abs(std::clamp(0.0, box.min[static_cast<size_t>(k)], box.max[static_cast<size_t>(k)]));
+      if (nearest > c.far) c.far = nearest, c.where = CoarsePositions::Where::box, c.index = j;
+    }
+  }
+  if (!std::isfinite(c.far)) return std::nullopt;
+  c.spacing = std::nextafter(c.far, INFINITY) - c.far;
+  if (c.spacing <= 1e-3 * c.move) return std::nullopt;
+  return c;
+}
+
+}  // namespace
+
+std::optional<SceneError> positions_too_coarse(const SceneDescription& scene, double dt) {
+  if (!scene.mechanical) return std::nullopt;
+  const auto coarse = coarse_positions(*scene.mechanical, dt, scene.duration);
+  if (!coarse) return std::nullopt;
+  return coarse_positions_error(*scene.mechanical, fields_of(*scene.mechanical), *coarse, dt);
+}
+
+namespace {
+
 // (an error echoes what the user wrote: printable_text.hpp)
 std::string clip(const std::string& text, size_t limit) { return one_printable_line(text, limit); }
 
@@ -674,7 +921,10 @@ SceneFileError::SceneFileError(const std::string& file_, const std::string& fiel
     : std::runtime_error(clip(file_, 160) + ": " + (field_.empty() ? "" : clip(field_, 100) + ": ") + clip(message_, 360)),
       file(file_), field(field_), message(message_) {}
 
-nlohmann::json parse_strict_json(const std::string& text, const std::string& file) {
+namespace {
+
+// parse_strict_json, keeping in `underflows` (when given) the numbers that read as 0 though they are not.
+nlohmann::json parse_strict_json(const std::string& text, const std::string& file, NumberTexts* underflows) {
   // nlohmann's parser ends its input at a NUL byte, as a C string ends: whatever followed it was
   // never read, and a scene cut short that way ran as if whole.
   if (const size_t nul = text.find('\0'); nul != std::string::npos) {
@@ -685,6 +935,7 @@ nlohmann::json parse_strict_json(const std::string& text, const std::string& fil
   }
   {
     FieldPathTracker checker;  // duplicate keys and deep nesting, before the document is built
+    checker.keep_underflows(underflows);
     if (!nlohmann::json::sax_parse(text, &checker) && !checker.problem().empty())
       throw SceneFileError(file, checker.path(), checker.problem());
   }
@@ -697,8 +948,15 @@ nlohmann::json parse_strict_json(const std::string& text, const std::string& fil
   }
 }
 
+}  // namespace
+
+nlohmann::json parse_strict_json(const std::string& text, const std::string& file) {
+  return parse_strict_json(text, file, nullptr);
+}
+
 SceneDescription parse_scene(const std::string& text, const std::string& file, const std::vector<std::string>& overrides) {
-  nlohmann::json document = parse_strict_json(text, file);
+  NumberTexts underflows;  // (numbers that read as 0 though they are not: the file's, then --set's)
+  nlohmann::json document = parse_strict_json(text, file, &underflows);
   std::string current;
   try {
     for (const auto& o : overrides) {
@@ -706,17 +964,25 @@ SceneDescription parse_scene(const std::string& text, const std::string& file, c
       // The value is held to the file's rules too (a key once per object, the nesting), as if
       // the file had said it.
       if (const auto equals = o.find('='); equals != std::string::npos) {
+        const std::string path = o.substr(0, equals);
+        const auto inside = [&path](const std::string& inner) {
+          return inner.empty() ? path : path + (inner[0] == '[' ? "" : ".") + inner;
+        };
+        // (What the file said there is gone: so are its numbers that read as 0.)
+        std::erase_if(underflows, [&path](const auto& u) {
+          return u.first == path || u.first.starts_with(path + ".") || u.first.starts_with(path + "[");
+        });
+        NumberTexts set_underflows;
         FieldPathTracker checker;
-        if (!nlohmann::json::sax_parse(o.substr(equals + 1), &checker) && !checker.problem().empty()) {
-          std::string field = o.substr(0, equals);
-          if (const std::string inner = checker.path(); !inner.empty()) field.append(inner[0] == '[' ? "" : ".").append(inner);
-          throw SceneError(field, checker.problem());
-        }
+        checker.keep_underflows(&set_underflows);
+        if (!nlohmann::json::sax_parse(o.substr(equals + 1), &checker) && !checker.problem().empty())
+          throw SceneError(inside(checker.path()), checker.problem());
+        for (const auto& [inner, written] : set_underflows) underflows[inside(inner)] = written;
       }
       apply_override(document, o);
     }
     current.clear();
-    return read_scene(document, std::filesystem::path(file).stem().string());
+    return read_scene(document, std::filesystem::path(file).stem().string(), &underflows);
   } catch (const SceneError& e) {
     std::string message = e.what();
     if (!current.empty()) message += " (in --set " + current + ")";

@@ -1,11 +1,13 @@
 #pragma once
 // Scene files: JSON in, a checked SceneDescription out. The format is documented in
 // docs/scene-format.md and scene/scene.schema.json.
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "motus/scene.hpp"
+#include "motus/scene_error.hpp"
 
 namespace motus {
 
@@ -25,6 +27,23 @@ public:
   SceneFileError(const std::string& file, const std::string& field, const std::string& message);
   std::string file, field, message;
 };
+
+// Positions too coarse for a mechanical scene's moves at step dt (docs/scene-format.md, "Limits"):
+// far from the origin doubles are far apart (16 m at 1e17 m), and bodies whose steps are less than
+// a thousand times that move by rounding, or not at all. The scene's moves are its bodies' speeds
+// times dt, at the start and after the scene's duration under the acceleration a the forces give them
+// at the start, had it held (|v| dt and |v + a T| dt: the largest a step makes): a body at rest under
+// gravity moves; one at rest that no force pushes does not, nor does a pinned one; and a run of small
+// steps from rest, whose first ones move little, is not refused for those. Where the bodies are is the
+// farthest one's largest coordinate, or where a wall keeps them if that is farther: on a plane's free
+// side when the origin is not on it, inside a box. What is wrong, and the field that puts the bodies
+// there (SceneError's field), or nothing. The field is as the file says it when `scene` is the one
+// this thread loaded last (load_scene, parse_scene): a generated body's is its generator's origin (when
+// that alone is too far) or spacing, a wall's colliders[k]'s offset, min or max; otherwise (a
+// description made elsewhere) bodies[i].position or the wall's kind.
+// (Mutual gravity is left out of the forces of a scene of more than 4096 bodies: its every pair is
+// more work than a check should be.)
+std::optional<SceneError> positions_too_coarse(const SceneDescription& scene, double dt);
 
 // Reads and checks a scene file, after applying `overrides` ("PATH=VALUE", the
 // command line's --set) to the JSON exactly as if the file had said them.
