@@ -409,10 +409,7 @@ int grade_command(const GradeCommandOptions& o) {
     // after the due date, 2 never shown"): "the rubric's 11 hidden tests" read as 11 of visibility
     // hidden, where the rubric has 2 (and 9 after_due_date).
     if (!o.hidden && assignment.hidden_not_given > 0) {
-      const long later = assignment.hidden_shown_later, never = assignment.hidden_not_given - later;
-      const std::string when = later == 0  ? fmt::format("{} never shown", never)
-                               : never == 0 ? fmt::format("{} shown after the due date", later)
-                                            : fmt::format("{} shown after the due date, {} never shown", later, never);
+      const std::string when = assignment.not_given_when();
       tell("motus: note: no --hidden: the autograder grades the public tests only; {} of the rubric's tests {} not "
            "among them (the instructor's, given with --hidden: {}) and {} left out; the scores are then out of {} points\n",
            assignment.hidden_not_given, assignment.hidden_not_given == 1 ? "is" : "are", when,

@@ -39,6 +39,26 @@ void leave_out_answers(const fs::path& assignment) {
   for (const char* answers : {"solution", "hidden"}) fs::remove_all(assignment / answers);
 }
 
+// The --hidden folder, wherever it lies inside the assignment's folder (under a name of its own,
+// "tests-2025-hidden", or reached by a link): it goes into the zip once, as hidden/, which
+// run_autograder makes root's only. (It went in twice, the second copy readable by all.)
+void leave_out_hidden(const fs::path& assignment, const fs::path& hidden, const fs::path& copy) {
+  std::error_code error;
+  const fs::path target = fs::canonical(hidden, error);
+  if (error) return;
+  std::vector<fs::path> inside;  // relative to the assignment's folder
+  for (auto it = fs::recursive_directory_iterator(assignment, error); !error && it != fs::recursive_directory_iterator();
+       it.increment(error)) {
+    std::error_code ignored;
+    if (!it->is_directory(ignored)) continue;
+    if (fs::canonical(it->path(), ignored) == target) {
+      inside.push_back(it->path().lexically_relative(assignment));
+      it.disable_recursion_pending();
+    }
+  }
+  for (const auto& relative : inside) fs::remove_all(copy / relative, error);
+}
+
 // zip -q -r -X ZIP . in `folder`, started directly (no shell). zip adds ".zip" to a name without an
 // extension: then it writes ZIP.zip, moved to ZIP (--out autograder wrote autograder.zip, and the move
 // of "autograder" into place failed after the work). `shown`: the user's name for the zip, for messages.
@@ -113,7 +133,10 @@ int write_gradescope_package(const std::string& assignment_folder, const std::st
       if (entry.is_directory()) leave_out_answers(entry.path());
   fs::copy(assignment_folder, staging / "assignment", fs::copy_options::recursive);
   leave_out_answers(staging / "assignment");
-  if (hidden) fs::copy(*hidden, staging / "hidden", fs::copy_options::recursive);
+  if (hidden) {
+    fs::copy(*hidden, staging / "hidden", fs::copy_options::recursive);
+    leave_out_hidden(assignment_folder, *hidden, staging / "assignment");
+  }
 
   // The packages of debian-packages.txt (motus's one list, read whole by the README's commands) that
   // only the tests, the benchmarks and the fuzzers need, left out of the autograder's image: the

@@ -693,6 +693,8 @@ TEST(Grade, BadInputIsOneLineAndExitTwo) {
   TempDir dir;
   write_file(dir / "results.json", "{}");
   fs::create_directories(dir / "empty");
+  fs::create_directories(dir / "no-tests");
+  write_file(dir / "no-tests/none.json", R"({"tests": []})");
   const std::string solution = (fs::path(kAssignments) / "integrators/solution").string();
   // A test's shipped scene misspelt: "tests/public.json: sprnig: cannot be read" named neither the
   // test nor its field (found by an audit).
@@ -714,7 +716,8 @@ TEST(Grade, BadInputIsOneLineAndExitTwo) {
       {{"grade", "integrators", solution, "--results", ""}, "an empty path"},
       {{"grade", "integrators", solution, "--time-limit", "1e-9"}, "--time-limit: must be from 0.5"},
       {{"grade", "integrators", solution, "--results", "/proc/results.json"}, "cannot be written there"},  // (before grading)
-      {{"grade", "integrators", solution, "--hidden", (dir / "empty").string()}, "nor in --hidden"},
+      {{"grade", "integrators", solution, "--hidden", (dir / "empty").string()}, "--hidden: holds no .json test files"},
+      {{"grade", "integrators", solution, "--hidden", (dir / "no-tests").string()}, "nor in --hidden"},
       // Options the chosen use would ignore, silently until now.
       {{"grade", "integrators", "--batch", (dir / "empty").string(), "--results", (dir / "r.json").string()},
        "--results: has no use with --batch"},
@@ -777,8 +780,7 @@ TEST(Grade, AFullDiskUnderTheCompilerIsTheGradersFailureNotTheStudents) {
   EXPECT_NE(result["output"].get<std::string>().find("not the submission's fault"), std::string::npos);
 }
 
-// Where grading cannot start (here: an assignment whose hidden folder has none of its hidden
-// tests), --results still gets a valid results.json that says why: on Gradescope a missing one
+// Where grading cannot start (here: a --hidden folder that holds no test file), --results still gets a valid results.json that says why: on Gradescope a missing one
 // shows every student only "the autograder failed" (the likely cause there: no user namespaces).
 TEST(Grade, WhatStopsTheGradingStillLeavesAResultsFileThatSaysWhy) {
   TempDir dir;
@@ -790,7 +792,7 @@ TEST(Grade, WhatStopsTheGradingStillLeavesAResultsFileThatSaysWhy) {
   EXPECT_EQ(count_lines(r.err), 1) << r.err;
   const json result = read_json(dir / "results.json");
   EXPECT_EQ(result["score"], 0);
-  EXPECT_NE(result["output"].get<std::string>().find("nor in --hidden"), std::string::npos) << result.dump(2);
+  EXPECT_NE(result["output"].get<std::string>().find("--hidden: holds no .json test files"), std::string::npos) << result.dump(2);
 }
 
 // --results and --plugin-out spelt two ways (adir/../same.json and same.json) are still one file:
@@ -929,6 +931,34 @@ TEST(Grade, AnAssignmentsOwnFilesAreReadAsStrictlyAsAScene) {
   }
 }
 
+// Each case changes tests/public.json of a fresh copy of its assignment; grading the reference
+// solution with it is refused when the tests are read: one line naming the file and the field,
+// exit 2 — before any student's code runs.
+struct PublicTestsCase {
+  std::string assignment;
+  std::function<void(json&)> change;
+  std::string says;
+};
+
+void expect_public_tests_refused(const std::vector<PublicTestsCase>& cases) {
+  TempDir dir;
+  for (const auto& [name, change, says] : cases) {
+    const fs::path assignment = dir / name;
+    if (!fs::exists(assignment)) fs::copy(fs::path(kAssignments) / name, assignment, fs::copy_options::recursive);
+    const fs::path tests = assignment / "tests/public.json";
+    const std::string original = read_file(tests);
+    json document = json::parse(original);
+    change(document);
+    write_file(tests, document.dump(2));
+    const auto r = run_motus(dir, {"grade", assignment.string(), (fs::path(kAssignments) / name / "solution").string(),
+                                   "--results", (dir / "r.json").string(), "--overwrite"});
+    EXPECT_EQ(r.status, 2) << says << ": " << r.err;
+    EXPECT_EQ(count_lines(r.err), 1) << r.err;
+    EXPECT_NE(r.err.find("public.json: " + says), std::string::npos) << r.err;
+    write_file(tests, original);
+  }
+}
+
 // The sticks, pins and walls of a project test, a bounce_ratio's body and a trajectory's rows are
 // read when the tests are: a stick naming a body the test does not have went to every student's
 // code, which stopped with "a stick names no body" (the student's failed test, for the
@@ -938,13 +968,7 @@ TEST(Grade, AnAssignmentsOwnFilesAreReadAsStrictlyAsAScene) {
 // misspelt output (read as the student's reply lacking it). Each is one line naming the file and
 // the field, exit 2.
 TEST(Grade, ATestFilesSticksPinsWallsBodiesAndRowsAreCheckedWhenRead) {
-  TempDir dir;
-  struct Case {
-    std::string assignment;
-    std::function<void(json&)> change;
-    std::string says;
-  };
-  const std::vector<Case> cases = {
+  expect_public_tests_refused({
       {"cloth", [](json& d) { d["tests"][0]["sticks"] = json::parse("[[0, 5, 1]]"); },
        "tests[0].sticks[0][1]: must name one of the test's 2 bodies, a whole number from 0 to 1, not 5"},
       {"cloth", [](json& d) { d["tests"][0]["sticks"] = json::parse("[[\"a\", 1, 1]]"); },
@@ -982,22 +1006,268 @@ TEST(Grade, ATestFilesSticksPinsWallsBodiesAndRowsAreCheckedWhenRead) {
        "tests[0].expect[1].x: must have 1 number"},
       {"integrators", [](json& d) { d["tests"][0]["expect"][1]["step"] = 1e12; },
        "tests[0].expect[1].step: must be from 0 to 10,000,000"},
-  };
-  for (const auto& [name, change, says] : cases) {
-    const fs::path assignment = dir / name;
-    if (!fs::exists(assignment)) fs::copy(fs::path(kAssignments) / name, assignment, fs::copy_options::recursive);
-    const fs::path tests = assignment / "tests/public.json";
-    const std::string original = read_file(tests);
-    json document = json::parse(original);
-    change(document);
-    write_file(tests, document.dump(2));
-    const auto r = run_motus(dir, {"grade", assignment.string(), (fs::path(kAssignments) / name / "solution").string(),
-                                   "--results", (dir / "r.json").string(), "--overwrite"});
+  });
+}
+
+// A test of the student's integrator that names motus's own ("rk4" for "student:rk4") or none ran
+// motus's integrator: every submission passed it, a wrong RK4 too, and grading the reference
+// could not show it. One that names an integrator the plug-in does not bring ("student:rk5", or
+// "midpoint" in a step test) failed every submission, the reference too ("your code stopped the
+// run: unknown integrator"), exit 0. The plug-in's integrators are read from the assignment's
+// plugin.cpp. (From an instructor's audit.)
+TEST(Grade, ATestOfTheStudentsIntegratorNamesOneThePluginBrings) {
+  expect_public_tests_refused({
+      {"integrators", [](json& d) { d["tests"][5]["integrator"] = "rk4"; },  // rk4.order
+       "tests[5].integrator: \"rk4\" is motus's own integrator; an order test grades the student's code: student:rk4"},
+      {"integrators", [](json& d) { d["tests"][5].erase("integrator"); },
+       "tests[5].integrator: missing (required): an order test grades the student's integrator, one of student:euler, "
+       "student:midpoint, student:rk4,"},
+      {"integrators", [](json& d) { d["tests"][0].erase("integrator"); },  // euler.table
+       "tests[0].integrator: missing (required): a trajectory test grades the student's integrator"},
+      {"integrators", [](json& d) { d["tests"][11].erase("integrator"); },  // symplectic-euler.energy
+       "tests[11].integrator: missing (required): an energy test grades the student's integrator"},
+      {"integrators", [](json& d) { d["tests"][5]["integrator"] = "student:rk5"; },
+       "tests[5].integrator: \"student:rk5\" is none of the student's integrators, did you mean student:rk4?"},
+      {"integrators", [](json& d) { d["tests"][16]["integrator"] = "rk4-doubling"; },  // rk4-doubling.kepler
+       "tests[16].integrator: \"rk4-doubling\" is motus's own integrator; an adaptive test grades the student's code: "
+       "student:rk4-doubling"},
+      {"integrators", [](json& d) { d["tests"][2]["integrator"] = "euler"; },  // euler.step-time
+       "tests[2].integrator: \"euler\" is motus's own integrator; a step test grades the student's code: student:euler"},
+      {"integrators", [](json& d) { d["tests"][2]["integrator"] = "student:euler-x"; },
+       "tests[2].integrator: \"student:euler-x\" is none of the student's integrators, did you mean student:euler?"},
+      // What the student's integrator is: a fixed-step one in an adaptive test, a step of bodies on
+      // a first-order system or given y, an output its kind does not give.
+      {"integrators", [](json& d) { d["tests"][16]["integrator"] = "student:rk4"; },
+       "tests[16].integrator: student:rk4 takes fixed steps; an adaptive test needs an adaptive integrator of the "
+       "student's: student:rk4-doubling"},
+      {"integrators", [](json& d) { d["tests"][6]["integrator"] = "student:velocity-verlet"; },  // rk4.stage-time: y' = f(t)
+       "tests[6].integrator: student:velocity-verlet steps bodies (x and v), and the test's scene is a first-order system (y)"},
+      {"integrators", [](json& d) { d["tests"][17]["integrator"] = "student:euler"; },  // rk4-doubling.step-time: y
+       "tests[17].y: student:euler steps bodies: give x and v (one number each), not y"},
+      {"integrators", [](json& d) { d["tests"][2]["expect"]["x_start"] = 0; },
+       "tests[2].expect.x_start: is no output of a step of student:euler (it gives x and v)"},
+      // An assignment whose plug-in brings no integrators: no test may grade one.
+      {"collisions", [](json& d) { d["tests"][9]["kind"] = "order"; },
+       "tests[9].kind: an order test grades the student's integrator, and the assignment's plug-in (plugin.cpp) brings "
+       "none (it brings collision rules)"},
+      {"cloth", [](json& d) { d["tests"][6]["integrator"] = "student:verlet"; },
+       "tests[6].integrator: \"student:verlet\" is none of the student's integrators: the assignment's plug-in "
+       "(plugin.cpp) brings none (it brings a constraint projection)"},
+  });
+}
+
+// A scene test runs the scene's own integrator, motus's, with the student's collision rules or
+// projection in it — unless none of them runs there: motus's verlet projects a collision scene
+// with motus's own projection (every submission passed), a scene the integrator cannot run
+// stopped every student's run ("rk4 cannot run collisions"), and a scene test in an assignment of
+// integrators without one of the student's ran motus alone. A call or project test needs the
+// plug-in's collision rules or projection.
+TEST(Grade, ASceneTestRunsTheStudentsPartsOrIsRefused) {
+  expect_public_tests_refused({
+      {"collisions", [](json& d) { d["tests"][9]["integrator"] = "verlet"; },  // newtons-cradle
+       "tests[9].integrator: \"verlet\" is motus's and runs none of the student's code here (under verlet, motus's "
+       "projection resolves the scene's contacts and sticks; plugin.cpp brings no projection)"},
+      {"collisions", [](json& d) { d["tests"][9]["integrator"] = "rk4"; },
+       "tests[9].integrator: rk4 cannot run collisions"},
+      {"collisions", [](json& d) { d["tests"][9]["integrator"] = "student:rk4"; },
+       "tests[9].integrator: \"student:rk4\" is none of the student's integrators: the assignment's plug-in (plugin.cpp) "
+       "brings none (it brings collision rules)"},
+      {"integrators",
+       [](json& d) {
+         d["tests"][11]["kind"] = "scene";  // symplectic-euler.energy, as a scene test of bouncing balls
+         d["tests"][11]["scene"] = "bouncing_balls";
+         d["tests"][11]["measure"] = json::parse(R"([{"kind": "energy", "max": 1}])");
+         for (const char* key : {"integrator", "dt", "steps", "expect"}) d["tests"][11].erase(key);
+       },
+       "tests[11].integrator: missing (required): the scene's own, \"symplectic-euler\", is motus's and runs none of "
+       "the student's code here (motus's collision rules resolve the scene's contacts; plugin.cpp brings none)"},
+      {"integrators",
+       [](json& d) {
+         d["tests"][11]["kind"] = "scene";
+         d["tests"][11]["scene"] = "bouncing_balls";
+         d["tests"][11]["measure"] = json::parse(R"([{"kind": "energy", "max": 1}])");
+         for (const char* key : {"dt", "steps", "expect"}) d["tests"][11].erase(key);
+       },
+       "tests[11].integrator: student:symplectic-euler cannot run the scene's contacts"},
+      {"integrators", [](json& d) { d["tests"][11]["scene"] = "bouncing_balls"; },  // an energy test
+       "tests[11].integrator: student:symplectic-euler cannot run the scene's contacts"},
+      {"integrators",
+       [](json& d) {
+         d["tests"][11]["kind"] = "scene";  // a scene without contacts: the student's integrator is what runs
+         d["tests"][11]["measure"] = json::parse(R"([{"kind": "energy", "max": 1}])");
+         for (const char* key : {"integrator", "dt", "steps", "expect"}) d["tests"][11].erase(key);
+       },
+       "tests[11].integrator: missing (required): the scene's own, \"velocity-verlet\", is motus's and runs none of "
+       "the student's code here (the scene has no contacts, sticks or pins); name the student's integrator, one of "
+       "student:euler, student:midpoint, …"},
+      {"cloth", [](json& d) { d["tests"][0]["kind"] = "call"; },
+       "tests[0].kind: a call test calls the student's collision functions, and the assignment's plug-in (plugin.cpp) "
+       "brings none (it brings a constraint projection)"},
+      {"collisions", [](json& d) { d["tests"][0]["kind"] = "project"; },
+       "tests[0].kind: a project test calls the student's constraint projection, and the assignment's plug-in "
+       "(plugin.cpp) brings none (it brings collision rules)"},
+  });
+}
+
+// A final_velocities or final_positions list of another length than the scene's bodies ×
+// dimensions, and a max of 0 for a measure that rounding alone makes larger (energy, momentum,
+// stick lengths), failed every submission, the reference too ("Expected: (-2, 0, 0)"; 1.58e-16
+// against "at most 0"); one halving gave the order check one pair of step sizes, where it reads
+// two. Each is refused when the tests are read. (From an instructor's audit.)
+TEST(Grade, AScenesExpectedValuesAndBoundsAndAnOrdersHalvingsAreCheckedWhenRead) {
+  expect_public_tests_refused({
+      {"collisions",  // newtons-cradle: 5 balls in 2-D
+       [](json& d) {
+         json& expect = d["tests"][9]["measure"][0]["expect"];
+         expect.erase(expect.size() - 1);
+       },
+       "tests[9].measure[0].expect: has 9 numbers; the scene has 5 bodies in 2-D: 10 numbers, body by body"},
+      {"collisions", [](json& d) { d["tests"][9]["measure"][0]["kind"] = "final_positions"; d["tests"][9]["measure"][0]["expect"] = {1, 2}; },
+       "tests[9].measure[0].expect: has 2 numbers; the scene has 5 bodies in 2-D: 10 numbers"},
+      {"collisions", [](json& d) { d["tests"][11]["measure"][1]["max"] = 0; },  // cluster's energy
+       "tests[11].measure[1].max: must be > 0 (got 0"},
+      {"collisions", [](json& d) { d["tests"][11]["measure"][0]["max"] = -1e-12; },  // its momentum
+       "tests[11].measure[0].max: must be > 0"},
+      {"cloth", [](json& d) { d["tests"][6]["measure"][0]["max"] = 0; },  // cloth's stick_error
+       "tests[6].measure[0].max: must be > 0"},
+      {"integrators", [](json& d) { d["tests"][5]["halvings"] = 1; },
+       "tests[5].halvings: must be from 2 to 16 (got 1): the order is read at the two finest pairs of successive step "
+       "sizes, and 1 halving makes one pair"},
+  });
+}
+
+// A test file, or the hidden tests' folder, that is not what it should be is named as it is: a
+// --hidden folder with no test file in it was only the rubric's "defined in no test file"; a scene
+// beside the test files was "tests: must be an array of tests"; a misspelt "tests" was the same; a
+// name defined twice in one file named one of its two places. (From an instructor's audit.)
+TEST(Grade, ATestFileAndTheHiddenFolderAreNamedForWhatTheyAre) {
+  TempDir dir;
+  const fs::path assignment = dir / "integrators";
+  fs::copy(fs::path(kAssignments) / "integrators", assignment, fs::copy_options::recursive);
+  const fs::path hidden = dir / "hidden";
+  fs::create_directories(hidden / "scenes");
+  const std::string solution = (fs::path(kAssignments) / "integrators/solution").string();
+  const std::string tests = read_file(fs::path(kAssignments) / "integrators/hidden/hidden.json");
+  auto refused = [&](const std::string& says) {
+    const auto r = run_motus(dir, {"grade", assignment.string(), solution, "--hidden", hidden.string()});
     EXPECT_EQ(r.status, 2) << says << ": " << r.err;
     EXPECT_EQ(count_lines(r.err), 1) << r.err;
-    EXPECT_NE(r.err.find("public.json: " + says), std::string::npos) << r.err;
-    write_file(tests, original);
+    EXPECT_NE(r.err.find(says), std::string::npos) << r.err;
+  };
+  write_file(hidden / "scenes/spring.json", read_file(scene("spring")));  // (a subfolder is not read)
+  refused(hidden.string() + ": --hidden: holds no .json test files (every .json directly in it is read as a file of tests)");
+  write_file(hidden / "hidden.json", tests);
+  write_file(hidden / "spring.json", read_file(scene("spring")));
+  refused("spring.json: tests: missing (required): every .json directly in " + hidden.string() +
+          " is read as a file of tests, {\"tests\": [...]} (a test's scene files go in a subfolder, such as scenes/");
+  fs::remove(hidden / "spring.json");
+  json document = json::parse(tests);
+  document["test"] = document["tests"];
+  document.erase("tests");
+  write_file(hidden / "hidden.json", document.dump(2));
+  refused("hidden.json: test: unknown field, did you mean tests? (tests is required)");
+  document = json::parse(tests);
+  document["tests"].push_back(document["tests"][1]);
+  write_file(hidden / "hidden.json", document.dump(2));
+  refused("hidden.json: tests[" + std::to_string(document["tests"].size() - 1) + "].name: \"" +
+          document["tests"][1]["name"].get<std::string>() + "\" is defined twice (also as tests[1] of this file)");
+}
+
+// The plug-in an assignment provides, read from its source: the integrators it brings (by the
+// names a test gives them, and their kinds), and its collision rules or projection. One whose
+// names are made at run time is not known, and then only motus's own names and a test without an
+// integrator are refused.
+TEST(Grade, WhatAnAssignmentsPluginBringsIsReadFromItsSource) {
+  using motus::grade::read_plugin_parts;
+  const auto integrators = read_plugin_parts((fs::path(kAssignments) / "integrators").string(), {"integrators.hpp", "plugin.cpp"});
+  ASSERT_TRUE(integrators.known);
+  EXPECT_EQ(integrators.file, "plugin.cpp");
+  EXPECT_EQ(integrators.prefix, "student");
+  std::map<std::string, std::string> kinds;
+  for (const auto& i : integrators.integrators) kinds[i.name] = i.kind;
+  EXPECT_EQ(kinds, (std::map<std::string, std::string>{{"student:euler", "mechanical"},
+                                                       {"student:midpoint", "first_order"},
+                                                       {"student:rk4", "first_order"},
+                                                       {"student:rk4-doubling", "adaptive"},
+                                                       {"student:symplectic-euler", "mechanical"},
+                                                       {"student:symplectic-euler-x", "mechanical"},
+                                                       {"student:velocity-verlet", "mechanical"},
+                                                       {"student:verlet", "position_verlet"}}));
+  EXPECT_FALSE(integrators.collisions || integrators.constraints);
+  const auto collisions = read_plugin_parts((fs::path(kAssignments) / "collisions").string(), {"collisions.hpp", "plugin.cpp"});
+  EXPECT_TRUE(collisions.known && collisions.collisions && !collisions.constraints && collisions.integrators.empty());
+  const auto cloth = read_plugin_parts((fs::path(kAssignments) / "cloth").string(), {"cloth.hpp", "plugin.cpp"});
+  EXPECT_TRUE(cloth.known && cloth.constraints && !cloth.collisions && cloth.integrators.empty());
+
+  // Names in comments are none; a name made at run time leaves the plug-in unknown.
+  TempDir dir;
+  const fs::path assignment = dir / "integrators";
+  fs::copy(fs::path(kAssignments) / "integrators", assignment, fs::copy_options::recursive);
+  std::string plugin = read_file(assignment / "plugin.cpp");
+  write_file(assignment / "plugin.cpp", "// plugin.first_order(\"commented\", 1, \"\", f);\n/* plugin.collisions({}); */\n" + plugin);
+  auto parts = read_plugin_parts(assignment.string(), {"integrators.hpp", "plugin.cpp"});
+  EXPECT_TRUE(parts.known);
+  EXPECT_EQ(parts.integrators.size(), 8u);
+  EXPECT_FALSE(parts.collisions);
+  const std::string rk4 = "plugin.first_order(\"rk4\",";
+  ASSERT_NE(plugin.find(rk4), std::string::npos);
+  plugin.replace(plugin.find(rk4), rk4.size(), "plugin.first_order(std::string(\"rk\").append(\"4\").c_str(),");
+  write_file(assignment / "plugin.cpp", "#include <string>\n" + plugin);
+  parts = read_plugin_parts(assignment.string(), {"integrators.hpp", "plugin.cpp"});
+  EXPECT_FALSE(parts.known);
+  json document = read_json(assignment / "tests/public.json");
+  document["tests"][5]["integrator"] = "rk4";
+  write_file(assignment / "tests/public.json", document.dump(2));
+  const auto r = run_motus(dir, {"grade", assignment.string(), (fs::path(kAssignments) / "integrators/solution").string()});
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_EQ(count_lines(r.err), 1) << r.err;
+  EXPECT_NE(r.err.find("public.json: tests[5].integrator: \"rk4\" is motus's own integrator; an order test grades the "
+                       "student's code: the plug-in's own, PLUGIN:NAME"),
+            std::string::npos)
+      << r.err;
+}
+
+// Hidden tests kept inside the assignment's folder under a name of their own went into the
+// Gradescope zip twice: as hidden/, which run_autograder makes root's only, and again inside the
+// assignment's copy, readable by all. They go in once, as hidden/. (From an instructor's audit.)
+TEST(Grade, APackageTakesHiddenTestsInsideTheAssignmentOnce) {
+  TempDir dir;
+  const fs::path assignment = dir / "integrators";
+  fs::copy(fs::path(kAssignments) / "integrators", assignment, fs::copy_options::recursive);
+  fs::copy(fs::path(kAssignments) / "integrators/hidden", assignment / "tests-2025-hidden", fs::copy_options::recursive);
+  fs::create_directory_symlink("tests-2025-hidden", assignment / "hidden-link");
+  const auto r = run_motus(dir, {"grade", assignment.string(), "--package", "gradescope", "--out", (dir / "a.zip").string(),
+                                 "--hidden", (assignment / "tests-2025-hidden").string()});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto listed = run_program(dir, "/usr/bin/unzip", {"-l", (dir / "a.zip").string()});
+  ASSERT_EQ(listed.status, 0) << listed.err;
+  long copies = 0;
+  std::istringstream lines(listed.out);
+  for (std::string line; std::getline(lines, line);) {
+    copies += line.find("hidden.json") != std::string::npos;
+    EXPECT_EQ(line.find("assignment/tests-2025-hidden"), std::string::npos) << line;
+    EXPECT_EQ(line.find("assignment/hidden-link"), std::string::npos) << line;
   }
+  EXPECT_EQ(copies, 1) << listed.out;
+  EXPECT_NE(listed.out.find(" hidden/hidden.json"), std::string::npos) << listed.out;
+  EXPECT_NE(listed.out.find(" assignment/tests/public.json"), std::string::npos) << listed.out;
+}
+
+// The rubric's tests not given (no --hidden) are counted by their visibility: a visible test in
+// the hidden folder was counted "never shown", an after_published one "shown after the due date".
+TEST(Grade, TheTestsNotGivenAreCountedByTheirVisibility) {
+  TempDir dir;
+  const fs::path assignment = integrators_with_tests(dir, "some", json::array({definitions("integrators").at("euler.table")}));
+  json rubric = read_json(assignment / "rubric.json");
+  const std::pair<const char*, const char*> left_out[] = {
+      {"a", "after_due_date"}, {"b", "after_published"}, {"c", "hidden"}, {"d", "hidden"}, {"e", "visible"}};
+  for (const auto& [name, visibility] : left_out) rubric["tests"].push_back({{"name", name}, {"points", 1}, {"visibility", visibility}});
+  write_file(assignment / "rubric.json", rubric.dump(2));
+  motus::grade::SceneSource scenes;
+  scenes.shipped = [](const std::string& name) { return scene(name); };
+  const auto a = motus::grade::load_assignment(assignment.string(), std::nullopt, scenes);
+  EXPECT_EQ(a.hidden_not_given, 5);
+  EXPECT_EQ(a.not_given_when(), "1 shown at once, 1 shown after the due date, 1 shown once the grades are published, 2 never shown");
 }
 
 // As root, motus's own files out of the sandbox's user's reach — root's clone in /root, 0700 as

@@ -1,10 +1,13 @@
 #include "motus/grade/assignment.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <regex>
 #include <set>
 #include <sstream>
 
@@ -110,14 +113,28 @@ void read_definitions(const fs::path& folder, bool hidden, std::map<std::string,
   for (const auto& entry : fs::directory_iterator(folder))
     if (entry.path().extension() == ".json") files.push_back(entry.path());
   std::sort(files.begin(), files.end());
+  // (An empty folder, or the wrong one, read as no hidden tests at all: the error was the rubric's,
+  // "defined in no test file", for its first hidden test.)
+  if (hidden && files.empty())
+    throw AssignmentError(folder.string() + ": --hidden: holds no .json test files (every .json directly in it is read "
+                                            "as a file of tests); is that the hidden tests' folder?");
+  // What a file there is: every one is read as a file of tests (a test's scene files go in a
+  // folder of their own beside them, scenes/, and are named by scene_file).
+  const std::string every = "every .json directly in " + folder.string() +
+                            " is read as a file of tests, {\"tests\": [...]} (a test's scene files go in a "
+                            "subfolder, such as scenes/, and are named by scene_file)";
   for (const auto& file : files) {
     const json document = read_json(file);
-    if (!document.is_object() || !document.contains("tests") || !document.at("tests").is_array())
-      throw AssignmentError(file.string() + ": tests: must be an array of tests");
+    if (!document.is_object())
+      throw AssignmentError(file.string() + ": must be an object, not " + json_type_name(document) + ": " + every);
     // A test file holds its tests and nothing else: a misspelt "tests" beside the real one (or a
     // second list, "hidden_tests") would otherwise be skipped without a word.
     try {
       JsonFields top(document, "");
+      // (A misspelt "test" is named as such by fail: "unknown field, did you mean tests?".)
+      if (!document.contains("tests")) top.fail("tests", "missing (required): " + every);
+      if (!document.at("tests").is_array())
+        top.fail("tests", "must be an array of tests, not " + json_type_name(document.at("tests")));
       top.use("tests");
       top.reject_unknown();
     } catch (const SceneError& e) {
@@ -129,15 +146,95 @@ void read_definitions(const fs::path& folder, bool hidden, std::map<std::string,
       if (!tests[i].is_object() || !tests[i].contains("name") || !tests[i].at("name").is_string())
         throw AssignmentError(file.string() + ": " + path + ".name: every test needs a name");
       const std::string name = tests[i].at("name").get<std::string>();
-      if (into.count(name))
-        throw AssignmentError(file.string() + ": " + path + ".name: \"" + name + "\" is defined twice (also in " +
-                              into.at(name).file + ")");
+      if (into.count(name)) {
+        const Definition& first = into.at(name);
+        throw AssignmentError(file.string() + ": " + path + ".name: \"" + name + "\" is defined twice (also as " +
+                              first.path + (first.file == file.string() ? " of this file" : " in " + first.file) + ")");
+      }
       into[name] = {tests[i], file.string(), path, hidden};
     }
   }
 }
 
+// C++ source with its comments blanked out (string and character literals kept as they are).
+std::string without_comments(const std::string& s) {
+  std::string out;
+  out.reserve(s.size());
+  for (size_t i = 0; i < s.size();) {
+    if (s.compare(i, 2, "//") == 0) {
+      while (i < s.size() && s[i] != '\n') ++i;
+    } else if (s.compare(i, 2, "/*") == 0) {
+      const size_t end = s.find("*/", i + 2);
+      i = end == std::string::npos ? s.size() : end + 2;
+      out += ' ';
+    } else if (s[i] == '"' || s[i] == '\'') {
+      const char quote = s[i];
+      out += s[i++];
+      while (i < s.size() && s[i] != quote && s[i] != '\n') {
+        if (s[i] == '\\' && i + 1 < s.size()) out += s[i++];
+        out += s[i++];
+      }
+      if (i < s.size()) out += s[i++];
+    } else {
+      out += s[i++];
+    }
+  }
+  return out;
+}
+
 }  // namespace
+
+StudentParts read_plugin_parts(const std::string& folder, const std::vector<std::string>& provided) {
+  StudentParts parts;
+  static const std::set<std::string> sources = {".cpp", ".cc", ".cxx", ".hpp", ".h", ".hh", ".hxx", ".ipp"};
+  static const std::regex plugin(R"re(\bMOTUS_PLUGIN\s*\()re"), named(R"re(^\s*"([^"\\]*)")re");
+  static const std::regex call(
+      R"re((\.|->)\s*(first_order|mechanical|position_verlet|adaptive|collisions|constraints)\s*\()re");
+  int plugins = 0;
+  bool whole = true;
+  for (const auto& name : provided) {
+    if (!sources.count(fs::path(name).extension().string())) continue;
+    std::ifstream in(fs::path(folder) / name, std::ios::binary);
+    std::stringstream text;
+    text << in.rdbuf();
+    const std::string source = without_comments(text.str());
+    for (auto it = std::sregex_iterator(source.begin(), source.end(), plugin); it != std::sregex_iterator(); ++it) {
+      ++plugins;
+      std::smatch m;
+      const std::string after = source.substr(static_cast<size_t>(it->position() + it->length()), 200);
+      if (std::regex_search(after, m, named)) parts.prefix = m[1];
+      else whole = false;
+      parts.file = name;
+    }
+    for (auto it = std::sregex_iterator(source.begin(), source.end(), call); it != std::sregex_iterator(); ++it) {
+      const std::string kind = (*it)[2];
+      if (kind == "collisions") parts.collisions = true;
+      else if (kind == "constraints") parts.constraints = true;
+      else {
+        std::smatch m;
+        const std::string after = source.substr(static_cast<size_t>(it->position() + it->length()), 200);
+        if (std::regex_search(after, m, named)) parts.integrators.push_back({m[1].str(), kind});
+        else whole = false;  // a name made at run time: not known here
+      }
+    }
+  }
+  // (Named as a test names them, PREFIX:NAME, once the file that holds MOTUS_PLUGIN has been read.)
+  for (auto& i : parts.integrators) i.name = parts.prefix + ":" + i.name;
+  parts.known = plugins == 1 && whole && !parts.prefix.empty();
+  return parts;
+}
+
+std::string Assignment::not_given_when() const {
+  static const std::pair<const char*, const char*> words[] = {{"visible", "shown at once"},
+                                                               {"after_due_date", "shown after the due date"},
+                                                               {"after_published", "shown once the grades are published"},
+                                                               {"hidden", "never shown"}};
+  std::string when;
+  for (const auto& [visibility, shown] : words)
+    if (const auto it = not_given_by_visibility.find(visibility); it != not_given_by_visibility.end() && it->second > 0)
+      when += fmt::format("{}{} {}", when.empty() ? "" : ", ", it->second, shown);
+  return when;
+}
 
 double Assignment::max_score() const {
   double total = 0;
@@ -179,6 +276,9 @@ Assignment load_assignment(const std::string& folder, const std::optional<std::s
     if (flag.empty() || flag[0] != '-' || flag.find("-o") == 0 || flag.find("-fplugin") == 0 || flag.find('@') != std::string::npos)
       throw AssignmentError(manifest_file + ": flags: \"" + flag + "\" is not a compiler flag motus passes on");
 
+  // What the tests may run of the student's: the plug-in's integrators, collision rules, projection.
+  a.parts = read_plugin_parts(folder, a.provided);
+
   std::map<std::string, Definition> definitions;
   read_definitions(root / "tests", false, definitions);
   if (hidden) read_definitions(*hidden, true, definitions);
@@ -196,6 +296,7 @@ Assignment load_assignment(const std::string& folder, const std::optional<std::s
       if (!hidden) {
         ++a.hidden_not_given;  // a hidden test, and the hidden tests were not given
         if (visibility == "after_due_date" || visibility == "after_published") ++a.hidden_shown_later;
+        ++a.not_given_by_visibility[visibility];
         continue;
       }
       throw AssignmentError(where + ".name: \"" + name + "\" is defined in no test file: not in " + (root / "tests").string() +
@@ -220,7 +321,7 @@ Assignment load_assignment(const std::string& folder, const std::optional<std::s
         if (t.counts_with_one_of.empty())
           throw AssignmentError(d.file + ": " + d.path + ".counts_with_one_of: names no test (leave it out instead)");
       }
-      t.check = make_check(f, scenes, t.hint);
+      t.check = make_check(f, scenes, a.parts, t.hint);
       f.reject_unknown();
     } catch (const SceneFileError& e) {
       throw AssignmentError(d.file + ": " + d.path + ": " + e.what());

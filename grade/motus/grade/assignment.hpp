@@ -9,6 +9,7 @@
 //   tests/*.json     the public tests; hidden/*.json (or --hidden DIR) the instructor's others
 // Each test: {"name", "title", "kind", "hint", "catches": [mistakes], "counts_with_one_of": [public
 // tests], ...its kind's fields}.
+#include <map>
 #include <memory>
 #include <optional>
 #include <stdexcept>
@@ -49,8 +50,19 @@ struct Assignment {
   std::vector<TestCase> tests;        // in rubric order; only those whose definitions were given
   long hidden_not_given = 0;          // rubric entries skipped because no hidden tests were given
   long hidden_shown_later = 0;        // of those, the ones students see after the due date (or publishing)
+  // Of those, how many of each visibility: visible, after_due_date, after_published, hidden.
+  std::map<std::string, long> not_given_by_visibility;
+  StudentParts parts;                 // what the assignment's plug-in brings (its plugin.cpp)
   double max_score() const;
+  // When students see the tests not given, by visibility: "2 shown after the due date, 1 once the
+  // grades are published, 2 never shown" ("" when every test was given).
+  std::string not_given_when() const;
 };
+
+// What the plug-in the assignment provides brings (its MOTUS_PLUGIN's registrations, read from
+// the source of the `provided` files in `folder`); not known when no provided file holds one, or
+// its calls are not all of plain string literals.
+StudentParts read_plugin_parts(const std::string& folder, const std::vector<std::string>& provided);
 
 // Reads the folder; `hidden` is the folder of hidden tests (none: only the public ones run).
 // Throws AssignmentError.

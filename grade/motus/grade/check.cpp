@@ -17,6 +17,7 @@
 #include "motus/grade/wire.hpp"
 #include "motus/scene_file/scene_file.hpp"
 #include "motus/scene_file/scene_overrides.hpp"
+#include "motus/scene_file/spelling.hpp"
 #include "motus/scene_error.hpp"
 #include "motus/simulation.hpp"
 #include "motus/systems/mechanical_system.hpp"
@@ -265,8 +266,159 @@ double energy(const MechanicalSystem& system, const Vector& y) {
   return system.kinetic_energy(y.tail(n)) + system.potential_energy(y.head(n));
 }
 
-std::string integrator_field(JsonFields& f, const SceneDescription& scene) {
-  return f.string("integrator", scene.integrator);
+// ---- The student's code a test runs --------------------------------------------------------------
+
+// "a, b or c" (`last`: "or", "and").
+std::string listed(const std::vector<std::string>& xs, const char* last) {
+  if (xs.size() <= 1) return xs.empty() ? std::string() : xs.front();
+  return fmt::format("{} {} {}", fmt::join(xs.begin(), xs.end() - 1, ", "), last, xs.back());
+}
+
+std::vector<std::string> student_names(const StudentParts& parts) {
+  std::vector<std::string> names;
+  for (const auto& i : parts.integrators) names.push_back(i.name);
+  return names;
+}
+
+const StudentIntegrator* student_named(const StudentParts& parts, const std::string& name) {
+  for (const auto& i : parts.integrators)
+    if (i.name == name) return &i;
+  return nullptr;
+}
+
+// What the plug-in brings, for a message: "integrators (student:euler, …)", "collision rules", ...
+std::string brings(const StudentParts& parts) {
+  std::vector<std::string> what;
+  if (!parts.integrators.empty()) what.push_back(fmt::format("integrators ({})", listed(student_names(parts), "and")));
+  if (parts.collisions) what.push_back("collision rules");
+  if (parts.constraints) what.push_back("a constraint projection");
+  return what.empty() ? "nothing a test can run" : listed(what, "and");
+}
+
+// "student:rk4", "one of student:euler, …": the integrators a test may name, for a message
+// (`brief`: the first two of them only, in a message long already — one line is 400 characters).
+std::string choices(const StudentParts& parts, bool brief = false) {
+  if (!parts.known) return "the plug-in's own, PLUGIN:NAME as its MOTUS_PLUGIN names it";
+  const auto names = student_names(parts);
+  if (names.size() == 1) return names.front();
+  if (brief && names.size() > 2) return fmt::format("one of {}, {}, …", names[0], names[1]);
+  return "one of " + listed(names, "or");
+}
+
+struct RunsStudent {
+  std::string name, kind;  // kind: StudentIntegrator's, or "" when the plug-in's source was not read whole
+};
+
+// A name given as `integrator` that is no built-in's: one of the student's, or refused (a name
+// the plug-in does not bring made every student's run stop: "unknown integrator", exit 0).
+RunsStudent student_named_in(JsonFields& f, const StudentParts& parts, const std::string& name) {
+  if (!parts.known) {
+    if (name.find(':') == std::string::npos)
+      f.fail("integrator", "\"" + name + "\" is neither motus's integrator nor a plug-in's (a plug-in's is PLUGIN:NAME)");
+    return {name, ""};
+  }
+  const StudentIntegrator* s = student_named(parts, name);
+  if (!s) {
+    const auto names = student_names(parts);
+    const std::string guess = did_you_mean(name, names);
+    f.fail("integrator", names.empty()   ? fmt::format("\"{}\" is none of the student's integrators: the assignment's "
+                                                       "plug-in ({}) brings none (it brings {})",
+                                                       name, parts.file, brings(parts))
+                         : guess.empty() ? fmt::format("\"{}\" is none of the student's integrators (the assignment's "
+                                                       "plug-in, {}, brings {})",
+                                                       name, parts.file, listed(names, "and"))
+                                         : fmt::format("\"{}\" is none of the student's integrators{}", name, guess));
+  }
+  return {s->name, s->kind};
+}
+
+// The integrator of a test that grades the student's integrator (`what`: "an order test"):
+// required, and one the plug-in brings. A test without one, or with motus's own ("rk4" for
+// "student:rk4"), ran motus's integrator: every submission passed it, a wrong RK4 too.
+// (make_check has refused such a test where the plug-in brings no integrator at all.)
+RunsStudent student_integrator(JsonFields& f, const StudentParts& parts, const std::string& what) {
+  // (A misspelt field is named as such: JsonFields::fail turns "missing (required)" into its
+  // "unknown field, did you mean integrator?".)
+  if (!f.has("integrator"))
+    f.fail("integrator", fmt::format("missing (required): {} grades the student's integrator, {}", what, choices(parts)));
+  const std::string name = f.string("integrator");
+  if (integrator_from_name(name)) {
+    const std::string same = parts.prefix + ":" + name;
+    f.fail("integrator", fmt::format("\"{}\" is motus's own integrator; {} grades the student's code: {}", name, what,
+                                     parts.known && student_named(parts, same) ? same : choices(parts)));
+  }
+  return student_named_in(f, parts, name);
+}
+
+// Whether the student's integrator can run the test's scene, as motus's World decides it
+// (engine/motus/world.cpp): contacts and sticks are resolved only within motus's own
+// symplectic-euler or verlet, and a step of bodies (x and v) cannot run a first-order system.
+// Where it cannot, every student's run stopped ("student:rk4 cannot run collisions").
+void check_runs_scene(JsonFields& f, const RunsStudent& integrator, const SceneDescription& scene,
+                      const StudentParts& parts) {
+  if (const auto& m = scene.mechanical) {
+    const long balls = std::count_if(m->bodies.begin(), m->bodies.end(), [](const auto& b) { return b.radius > 0; });
+    if (!m->sticks.empty() || !m->pins.empty())
+      f.fail("integrator", integrator.name + " cannot run the scene's sticks and pins: they are projected within "
+                                             "motus's own verlet only");
+    if (!m->colliders.empty() || balls >= 2)
+      f.fail("integrator", integrator.name + " cannot run the scene's contacts (walls, or two balls or more): they are "
+                                             "resolved within motus's own symplectic-euler or verlet only");
+    return;
+  }
+  if (integrator.kind != "mechanical" && integrator.kind != "position_verlet") return;
+  std::vector<std::string> first_order;
+  for (const auto& i : parts.integrators)
+    if (i.kind == "first_order" || i.kind == "adaptive") first_order.push_back(i.name);
+  f.fail("integrator", fmt::format("{} steps bodies (x and v), and the test's scene is a first-order system (y): {}",
+                                   integrator.name,
+                                   first_order.empty() ? std::string("the plug-in brings no integrator that steps one")
+                                                       : "use " + listed(first_order, "or")));
+}
+
+// A scene test's integrator: the scene's own unless given. motus's own runs only where the
+// student's collision rules or constraint projection run in it — as motus's World decides
+// (engine/motus/world.cpp): sticks and pins, and contacts under verlet, are projected; other
+// contacts are resolved by the collision rules. Otherwise the test graded none of the student's
+// code, and every submission passed it.
+std::string scene_integrator(JsonFields& f, const SceneDescription& scene, const StudentParts& parts) {
+  const bool given = f.has("integrator");
+  const std::string name = f.string("integrator", scene.integrator);
+  const auto builtin = integrator_from_name(name);
+  if (!builtin) {
+    const RunsStudent student = student_named_in(f, parts, name);
+    check_runs_scene(f, student, scene, parts);
+    return student.name;
+  }
+  // One the scene cannot run ("rk4 cannot run collisions") stopped every student's run.
+  if (given) try {
+      const Simulation can_run(scene, *builtin);
+    } catch (const SceneError& e) {
+      f.fail("integrator", e.what());
+    }
+  if (!parts.known) return name;
+  const auto& m = *scene.mechanical;
+  const long balls = std::count_if(m.bodies.begin(), m.bodies.end(), [](const auto& b) { return b.radius > 0; });
+  const bool contacts = !m.colliders.empty() || balls >= 2, constrained = !m.sticks.empty() || !m.pins.empty();
+  const bool projected = constrained || (contacts && *builtin == Integrator::Verlet);
+  // (Short: one line is 400 characters, the file's path with it.)
+  std::string why;
+  if (projected && !parts.constraints)
+    why = "under verlet, motus's projection resolves the scene's contacts and sticks; " + parts.file +
+          " brings no projection";
+  else if (!projected && contacts && !parts.collisions)
+    why = "motus's collision rules resolve the scene's contacts; " + parts.file + " brings none";
+  else if (!projected && !contacts)
+    why = "the scene has no contacts, sticks or pins";
+  if (!why.empty())
+    f.fail("integrator",
+           fmt::format("{} motus's and runs none of the student's code here ({}){}",
+                       given ? "\"" + name + "\" is" : "missing (required): the scene's own, \"" + name + "\", is", why,
+                       // (Only where one can run the scene: no student's integrator runs contacts or sticks.)
+                       parts.integrators.empty() || contacts || constrained
+                           ? ""
+                           : "; name the student's integrator, " + choices(parts, true)));
+  return name;
 }
 
 // The part of a state a check compares: x (positions), v, or all of it.
@@ -290,9 +442,11 @@ std::vector<double> to_std(const Vector& v) { return {v.data(), v.data() + v.siz
 
 class TrajectoryCheck final : public Check {
 public:
-  TrajectoryCheck(JsonFields& f, const json& test, const SceneSource& source, std::string hint)
+  TrajectoryCheck(JsonFields& f, const json& test, const SceneSource& source, const StudentParts& parts, std::string hint)
       : scene_(load_check_scene(f, test, source)), hint_(std::move(hint)) {
-    request_.integrator = integrator_field(f, scene_.description);
+    const RunsStudent integrator = student_integrator(f, parts, "a trajectory test");
+    check_runs_scene(f, integrator, scene_.description, parts);
+    request_.integrator = integrator.name;
     request_.dt = f.positive("dt", scene_.description.dt);
     tolerance_ = f.positive("tolerance", 1e-9);
     // The state's size: x and v are half of it each, y all of it (a row of another size could only fail).
@@ -358,15 +512,23 @@ private:
 
 class OrderCheck final : public Check {
 public:
-  OrderCheck(JsonFields& f, const json& test, const SceneSource& source, std::string hint)
+  OrderCheck(JsonFields& f, const json& test, const SceneSource& source, const StudentParts& parts, std::string hint)
       : scene_(load_check_scene(f, test, source)), hint_(std::move(hint)) {
     if (!has_exact_solution(scene_.description))
       throw SceneError(f.path_of("scene"), "an order check needs a scene with an exact solution or reference states");
-    integrator_ = integrator_field(f, scene_.description);
+    const RunsStudent integrator = student_integrator(f, parts, "an order test");
+    check_runs_scene(f, integrator, scene_.description, parts);
+    integrator_ = integrator.name;
     dt_ = f.positive("dt", scene_.description.dt);
     duration_ = f.positive("duration", scene_.description.duration);
+    // (At least two: the order is read at the two finest pairs of step sizes, and one halving
+    // makes one pair — where a step whose error does not shrink at all can show any order.)
     halvings_ = static_cast<int>(f.integer("halvings", 4));
-    if (halvings_ < 1 || halvings_ > 16) f.fail("halvings", "must be from 1 to 16");
+    if (halvings_ < 2 || halvings_ > 16)
+      f.fail("halvings", fmt::format("must be from 2 to 16 (got {}): the order is read at the two finest pairs of "
+                                     "successive step sizes, and {} halving{} make{} {}",
+                                     halvings_, halvings_, halvings_ == 1 ? "" : "s", halvings_ == 1 ? "s" : "",
+                                     halvings_ == 1 ? "one pair" : halvings_ < 1 ? "none" : "too many runs"));
     which_ = read_part(f, scene_.description);
     expected_ = f.positive("expect");
     tolerance_ = f.positive("tolerance", 0.2);
@@ -457,12 +619,14 @@ private:
 
 class StabilityCheck final : public Check {
 public:
-  StabilityCheck(JsonFields& f, const json& test, const SceneSource& source, std::string hint)
+  StabilityCheck(JsonFields& f, const json& test, const SceneSource& source, const StudentParts& parts, std::string hint)
       : scene_(load_check_scene(f, test, source)), hint_(std::move(hint)) {
     const auto& m = scene_.description.mechanical;
     if (!m || m->dimensions != 1 || m->bodies.size() != 1)
       throw SceneError(f.path_of("scene"), "a stability check runs one body in 1-D (an oscillator)");
-    integrator_ = integrator_field(f, scene_.description);
+    const RunsStudent integrator = student_integrator(f, parts, "a stability test");
+    check_runs_scene(f, integrator, scene_.description, parts);
+    integrator_ = integrator.name;
     omega_ = f.positive("omega", 1);
     steps_ = f.integer("steps", 10000);
     if (steps_ < 100 || steps_ > 10'000'000) f.fail("steps", "must be from 100 to 10,000,000");
@@ -523,10 +687,12 @@ private:
 
 class EnergyCheck final : public Check {
 public:
-  EnergyCheck(JsonFields& f, const json& test, const SceneSource& source, std::string hint)
+  EnergyCheck(JsonFields& f, const json& test, const SceneSource& source, const StudentParts& parts, std::string hint)
       : scene_(load_check_scene(f, test, source)), hint_(std::move(hint)) {
     if (!scene_.description.mechanical) throw SceneError(f.path_of("scene"), "an energy check needs a scene of bodies");
-    integrator_ = integrator_field(f, scene_.description);
+    const RunsStudent integrator = student_integrator(f, parts, "an energy test");
+    check_runs_scene(f, integrator, scene_.description, parts);
+    integrator_ = integrator.name;
     dt_ = f.positive("dt", scene_.description.dt);
     steps_ = f.integer("steps");
     if (steps_ < 1 || steps_ > 10'000'000) f.fail("steps", "must be from 1 to 10,000,000");
@@ -590,10 +756,23 @@ class AdaptiveCheck final : public Check {
 public:
   // (Its failures say what each failed condition usually means; the test's hint is for a run that
   // stops or runs out of time, which the grader shows.)
-  AdaptiveCheck(JsonFields& f, const json& test, const SceneSource& source) : scene_(load_check_scene(f, test, source)) {
+  AdaptiveCheck(JsonFields& f, const json& test, const SceneSource& source, const StudentParts& parts)
+      : scene_(load_check_scene(f, test, source)) {
     if (!has_exact_solution(scene_.description))
       throw SceneError(f.path_of("scene"), "an adaptive check needs a scene with an exact solution");
-    integrator_ = integrator_field(f, scene_.description);
+    const RunsStudent integrator = student_integrator(f, parts, "an adaptive test");
+    // (A fixed-step one never changes its step: every submission failed "its step size changes".)
+    if (!integrator.kind.empty() && integrator.kind != "adaptive") {
+      std::vector<std::string> adaptive;
+      for (const auto& i : parts.integrators)
+        if (i.kind == "adaptive") adaptive.push_back(i.name);
+      f.fail("integrator", fmt::format("{} takes fixed steps; an adaptive test needs an adaptive integrator of the "
+                                       "student's: {}",
+                                       integrator.name,
+                                       adaptive.empty() ? "the plug-in brings none" : listed(adaptive, "or")));
+    }
+    check_runs_scene(f, integrator, scene_.description, parts);
+    integrator_ = integrator.name;
     tolerance_ = f.positive("tolerance");
     first_step_ = f.positive("first_step", scene_.description.dt);
     duration_ = f.positive("duration", scene_.description.duration);
@@ -743,7 +922,11 @@ const CallSignature& call_signature(const std::string& op) {
 
 class CallCheck final : public Check {
 public:
-  CallCheck(JsonFields& f, const json& test, std::string hint) : hint_(std::move(hint)) {
+  CallCheck(JsonFields& f, const json& test, const StudentParts& parts, std::string hint) : hint_(std::move(hint)) {
+    if (parts.known && !parts.collisions)
+      f.fail("kind", fmt::format("a call test calls the student's collision functions, and the assignment's plug-in ({}) "
+                                 "brings none (it brings {})",
+                                 parts.file, brings(parts)));
     op_ = f.string("op");
     if (std::none_of(std::begin(kCallSignatures), std::end(kCallSignatures), [&](const auto& s) { return op_ == s.op; }))
       f.fail("op", "must be one of collide_balls, bounce_off_wall, balls_impact, plane_impact");
@@ -843,8 +1026,9 @@ private:
 // what it being wrong usually means: a failure shows the first of them whose output is wrong.
 class StepCheck final : public Check {
 public:
-  StepCheck(JsonFields& f, const json& test, std::string hint) : hint_(std::move(hint)) {
-    integrator_ = f.string("integrator");
+  StepCheck(JsonFields& f, const json& test, const StudentParts& parts, std::string hint) : hint_(std::move(hint)) {
+    const RunsStudent integrator = student_integrator(f, parts, "a step test");
+    integrator_ = integrator.name;
     of_time_ = f.numbers("of_time", -1);
     if (of_time_.empty() || of_time_.size() > 8) f.fail("of_time", "needs 1 to 8 coefficients c0, c1, … of c0 + c1 t + …");
     request_ = {{"op", "step"}, {"integrator", integrator_}, {"of_time", of_time_}, {"t", f.number("t")},
@@ -853,6 +1037,18 @@ public:
       if (f.has(key)) request_[key] = f.numbers(key, 1);
     if (f.has("y") == (f.has("x") || f.has("v")) || f.has("x") != f.has("v"))
       f.fail("y", "needs y (a first-order or adaptive integrator) or x and v (point masses), one number each");
+    // What the integrator's kind takes and gives (cli/serve_command.cpp, step): a step of bodies
+    // given y, or an output its kind does not give, stopped every student's run.
+    const bool first_order = integrator.kind == "first_order" || integrator.kind == "adaptive";
+    if (!integrator.kind.empty() && first_order != f.has("y"))
+      f.fail(first_order ? "x" : "y", first_order ? integrator_ + " steps y' = f(t, y): give y (one number), not x and v"
+                                                  : integrator_ + " steps bodies: give x and v (one number each), not y");
+    static const std::map<std::string, std::vector<std::string>> gives = {
+        {"first_order", {"y"}},
+        {"adaptive", {"y", "accepted", "h"}},
+        {"mechanical", {"x", "v"}},
+        {"position_verlet", {"x_start", "x", "x_previous"}}};
+    const auto given = gives.find(integrator.kind);
     if (f.has("y")) {
       request_["atol"] = f.positive("atol", 1);
       request_["rtol"] = f.positive("rtol", 1);
@@ -866,6 +1062,9 @@ public:
       static const std::vector<std::string> outputs = {"x", "v", "y", "x_start", "x_previous", "accepted", "h"};
       if (std::find(outputs.begin(), outputs.end(), key) == outputs.end())
         throw SceneError(f.path_of("expect") + "." + key, "is no output of a step (x, v, y, x_start, x_previous, accepted, h)");
+      if (given != gives.end() && std::find(given->second.begin(), given->second.end(), key) == given->second.end())
+        throw SceneError(f.path_of("expect") + "." + key,
+                         fmt::format("is no output of a step of {} (it gives {})", integrator_, listed(given->second, "and")));
       const json& number = value.is_array() && value.size() == 1 ? value[0] : value;
       if (!number.is_number() || !std::isfinite(number.get<double>()))
         throw SceneError(f.path_of("expect") + "." + key, "must be one finite number (a step moves one coordinate), not " + value.dump());
@@ -936,10 +1135,10 @@ private:
 
 class SceneCheck final : public Check {
 public:
-  SceneCheck(JsonFields& f, const json& test, const SceneSource& source, std::string hint)
+  SceneCheck(JsonFields& f, const json& test, const SceneSource& source, const StudentParts& parts, std::string hint)
       : scene_(load_check_scene(f, test, source)), hint_(std::move(hint)) {
     if (!scene_.description.mechanical) throw SceneError(f.path_of("scene"), "a scene check needs a scene of bodies");
-    request_.integrator = integrator_field(f, scene_.description);
+    request_.integrator = scene_integrator(f, scene_.description, parts);
     request_.dt = f.positive("dt", scene_.description.dt);
     const double duration = f.positive("duration", scene_.description.duration);
     request_.steps = f.integer("steps", fixed_step_count(duration, request_.dt));
@@ -950,10 +1149,22 @@ public:
       Measure measure;
       measure.kind = m.string("kind");
       if (measure.kind == "final_velocities" || measure.kind == "final_positions") {
+        // One number per body and dimension of the test's scene (its sets applied): a list of
+        // another length failed every submission, the reference too ("Expected: (-2, 0, 0)").
+        const auto& scene = *scene_.description.mechanical;
+        const size_t bodies = scene.bodies.size(), d = static_cast<size_t>(scene.dimensions);
         measure.values = m.numbers("expect", -1);
+        if (measure.values.size() != bodies * d)
+          m.fail("expect", fmt::format("has {} number{}; the scene has {} bod{} in {}-D: {} numbers, body by body",
+                                       measure.values.size(), measure.values.size() == 1 ? "" : "s", bodies,
+                                       bodies == 1 ? "y" : "ies", d, bodies * d));
         measure.tolerance = m.positive("tolerance", 1e-9);
-      } else if (measure.kind == "energy" || measure.kind == "momentum" || measure.kind == "stick_error" ||
-                 measure.kind == "pins" || measure.kind == "inside_walls" || measure.kind == "no_overlap") {
+      } else if (measure.kind == "energy" || measure.kind == "momentum" || measure.kind == "stick_error") {
+        // > 0, as every tolerance: these are measured in floating point, and rounding alone gives
+        // about 1e-16 (a bound of 0 failed every submission, the reference's 1.58e-16 too).
+        measure.tolerance = m.positive("max");
+        measure.motus_times = m.non_negative("motus_times", 0);
+      } else if (measure.kind == "pins" || measure.kind == "inside_walls" || measure.kind == "no_overlap") {
         measure.tolerance = m.non_negative("max");
         // The bound may instead be this many times what motus's own parts give on the same run
         // (measured in the same check), with `max` as the floor.
@@ -1171,7 +1382,11 @@ private:
 
 class ProjectCheck final : public Check {
 public:
-  ProjectCheck(JsonFields& f, const json& test, std::string hint) : hint_(std::move(hint)) {
+  ProjectCheck(JsonFields& f, const json& test, const StudentParts& parts, std::string hint) : hint_(std::move(hint)) {
+    if (parts.known && !parts.constraints)
+      f.fail("kind", fmt::format("a project test calls the student's constraint projection, and the assignment's plug-in "
+                                 "({}) brings none (it brings {})",
+                                 parts.file, brings(parts)));
     for (const char* key : {"sticks", "pins", "walls"}) f.use(key);  // read by hand below
     d_ = static_cast<int>(f.integer("dimensions"));
     if (d_ < 1 || d_ > 3) f.fail("dimensions", "must be 1, 2 or 3");
@@ -1291,18 +1506,28 @@ std::string scene_for_the_sandbox(const std::string& text, const std::vector<std
   return document.dump();
 }
 
-std::unique_ptr<Check> make_check(JsonFields& test, const SceneSource& scenes, const std::string& hint) {
+std::unique_ptr<Check> make_check(JsonFields& test, const SceneSource& scenes, const StudentParts& parts,
+                                  const std::string& hint) {
   const std::string kind = test.string("kind");
   const json& raw = test.raw();
-  if (kind == "trajectory") return std::make_unique<TrajectoryCheck>(test, raw, scenes, hint);
-  if (kind == "order") return std::make_unique<OrderCheck>(test, raw, scenes, hint);
-  if (kind == "stability") return std::make_unique<StabilityCheck>(test, raw, scenes, hint);
-  if (kind == "energy") return std::make_unique<EnergyCheck>(test, raw, scenes, hint);
-  if (kind == "adaptive") return std::make_unique<AdaptiveCheck>(test, raw, scenes);
-  if (kind == "call") return std::make_unique<CallCheck>(test, raw, hint);
-  if (kind == "scene") return std::make_unique<SceneCheck>(test, raw, scenes, hint);
-  if (kind == "project") return std::make_unique<ProjectCheck>(test, raw, hint);
-  if (kind == "step") return std::make_unique<StepCheck>(test, raw, hint);
+  // (Before the kind's own fields: an order test's scene without an exact solution is no matter
+  // in an assignment whose plug-in brings no integrator to measure.)
+  static const std::map<std::string, std::string> of_integrators = {
+      {"trajectory", "a trajectory test"}, {"order", "an order test"},       {"stability", "a stability test"},
+      {"energy", "an energy test"},         {"adaptive", "an adaptive test"}, {"step", "a step test"}};
+  if (const auto it = of_integrators.find(kind); it != of_integrators.end() && parts.known && parts.integrators.empty())
+    test.fail("kind", fmt::format("{} grades the student's integrator, and the assignment's plug-in ({}) brings none (it "
+                                  "brings {})",
+                                  it->second, parts.file, brings(parts)));
+  if (kind == "trajectory") return std::make_unique<TrajectoryCheck>(test, raw, scenes, parts, hint);
+  if (kind == "order") return std::make_unique<OrderCheck>(test, raw, scenes, parts, hint);
+  if (kind == "stability") return std::make_unique<StabilityCheck>(test, raw, scenes, parts, hint);
+  if (kind == "energy") return std::make_unique<EnergyCheck>(test, raw, scenes, parts, hint);
+  if (kind == "adaptive") return std::make_unique<AdaptiveCheck>(test, raw, scenes, parts);
+  if (kind == "call") return std::make_unique<CallCheck>(test, raw, parts, hint);
+  if (kind == "scene") return std::make_unique<SceneCheck>(test, raw, scenes, parts, hint);
+  if (kind == "project") return std::make_unique<ProjectCheck>(test, raw, parts, hint);
+  if (kind == "step") return std::make_unique<StepCheck>(test, raw, parts, hint);
   test.fail("kind", "must be trajectory, order, stability, energy, adaptive, call, scene, project or step");
 }
 

@@ -41,6 +41,27 @@ struct SceneSource {
   std::string tests_folder;
 };
 
+// What the assignment's plug-in brings, as its source registers it (the MOTUS_PLUGIN of a file
+// the assignment provides, read when the tests are: assignment.cpp, read_plugin_parts): the
+// student's integrators a test may run ("student:rk4") and their kinds, and whether the student's
+// collision rules or constraint projection take motus's place in a run. A test that names an
+// integrator the plug-in does not bring failed every submission ("unknown integrator"); one that
+// names motus's own, or none, graded motus's code and passed every submission.
+struct StudentIntegrator {
+  std::string name;  // as a test names it: "student:rk4"
+  std::string kind;  // "first_order", "mechanical", "position_verlet" or "adaptive" (plugin.hpp's calls)
+};
+struct StudentParts {
+  // Whether the plug-in's source was found and read whole (every registration a plain string
+  // literal): only then is a name checked against those it brings. Otherwise a test of the
+  // student's integrator still needs one, and one that is no built-in's.
+  bool known = false;
+  std::string file;    // where it was read ("plugin.cpp"), for messages
+  std::string prefix;  // its MOTUS_PLUGIN name ("student"): "PREFIX:NAME" names its integrators
+  std::vector<StudentIntegrator> integrators;
+  bool collisions = false, constraints = false;
+};
+
 // A scene a check runs: the JSON text sent to the student's side (scene_for_the_sandbox) and
 // its description (for the grader's own measurements).
 struct CheckScene {
@@ -62,7 +83,10 @@ public:
 };
 
 // The check a test's definition asks for. Throws SceneError (field path within the test) or
-// SceneFileError (a scene it names) when the definition cannot be used.
-std::unique_ptr<Check> make_check(JsonFields& test, const SceneSource& scenes, const std::string& hint);
+// SceneFileError (a scene it names) when the definition cannot be used — among them a test that
+// would grade none of the student's code (motus's own integrator, or none, where the student's is
+// what is graded) or code the plug-in does not bring (`parts`).
+std::unique_ptr<Check> make_check(JsonFields& test, const SceneSource& scenes, const StudentParts& parts,
+                                  const std::string& hint);
 
 }  // namespace motus::grade

@@ -418,14 +418,14 @@ GradeResult grade_submission(const Assignment& a, const std::string& submission,
     ++shown, shown_passed += t.passed, shown_score += t.score, shown_max += t.max_score;
   }
   const long not_shown = static_cast<long>(a.tests.size()) - shown;
+  // (Counted by visibility: a visible test among the hidden ones was counted "never shown", an
+  // after_published one "shown after the due date".)
+  const bool all_hidden = a.not_given_by_visibility.size() == 1 && a.not_given_by_visibility.count("hidden");
   const std::string not_run = a.hidden_not_given == 0 ? ""
-                              : a.hidden_shown_later == 0
-                                  ? fmt::format(" ({} hidden test{} not run here)", a.hidden_not_given,
-                                                a.hidden_not_given == 1 ? "" : "s")
-                                  : fmt::format(" ({} of the instructor's tests not run here: {} shown after the due date, {} "
-                                                "never shown)",
-                                                a.hidden_not_given, a.hidden_shown_later,
-                                                a.hidden_not_given - a.hidden_shown_later);
+                              : all_hidden ? fmt::format(" ({} hidden test{} not run here)", a.hidden_not_given,
+                                                         a.hidden_not_given == 1 ? "" : "s")
+                                           : fmt::format(" ({} of the instructor's tests not run here: {})",
+                                                         a.hidden_not_given, a.not_given_when());
   if (not_shown == 0) {
     result.output = fmt::format("{}: {} of {} points; {} of {} tests passed{}.", a.title, result.score, result.max_score,
                                 passed, a.tests.size(), not_run);
