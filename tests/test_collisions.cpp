@@ -8,8 +8,11 @@
 #include <cstdint>
 #include <limits>
 #include <numbers>
+#include <string>
+#include <vector>
 
 #include "motus/ball_lattice.hpp"
+#include "motus/integrator_name.hpp"
 #include "motus/scene_error.hpp"
 #include "motus/simulation.hpp"
 #include "motus/scene_file/scene_file.hpp"
@@ -435,6 +438,84 @@ TEST(Containment, SmallBallsBesideABigOneNeverOverlapAndKeepTheirEnergy) {
     EXPECT_LT(std::abs(sim.energy()->kinetic - e0) / e0, 4 * impulses * std::numeric_limits<double>::epsilon())
         << d << "-D: " << impulses << " impulses";
   }
+}
+
+// ---- a start that overlaps
+
+// Balls of radius 0.5 at rest on the line y = 2.5 of the box [0, 5]², at the x given, unit masses,
+// e = 1, no forces, dt = 0.01 (docs/scene-format.md, "Overlap": motus moves them apart before the
+// first step).
+SceneDescription row_in_a_box(const std::vector<double>& xs) {
+  SceneDescription scene;
+  MechanicalDescription m;
+  m.dimensions = 2;
+  for (const double x : xs) m.bodies.push_back({1, {x, 2.5}, {0, 0}, 0.5, 1});
+  motus::BoxCollider box;
+  box.min = {0, 0, 0};
+  box.max = {5, 5, 0};
+  m.colliders.boxes.push_back(box);
+  scene.mechanical = m;
+  scene.dt = 0.01;
+  return scene;
+}
+
+// No ball's centre closer to a wall than its radius, and no two closer than r_a + r_b (1e-9).
+void expect_nothing_overlaps(const Simulation& sim, const std::string& what) {
+  const auto& bodies = sim.scene().mechanical->bodies;
+  const auto& box = sim.scene().mechanical->colliders.boxes[0];
+  const int n = static_cast<int>(bodies.size());
+  for (int i = 0; i < n; ++i) {
+    const double r = bodies[static_cast<size_t>(i)].radius;
+    const Vector p = position_of(sim, i);
+    for (int k = 0; k < 2; ++k) {
+      EXPECT_GE(p[k] - box.min[k], r - 1e-9) << what << ": ball " << i << " in the wall, t = " << sim.time();
+      EXPECT_GE(box.max[k] - p[k], r - 1e-9) << what << ": ball " << i << " in the wall, t = " << sim.time();
+    }
+    for (int j = i + 1; j < n; ++j) {
+      const double R = r + bodies[static_cast<size_t>(j)].radius;
+      EXPECT_GE((position_of(sim, j) - p).norm(), R - 1e-9)
+          << what << ": balls " << i << " and " << j << " overlap, t = " << sim.time();
+    }
+  }
+}
+
+// The audit's scenes: three balls at x = 0.5, 1.4, 2.3 (each pair 0.1 m into the other, ball 0
+// touching the wall x = 0), and two at 0.5 and 0.6 (0.9 m into each other), run for the first step,
+// the tenth, and 1 s: no ball in the wall or in another, and the balls, moved apart at rest, still
+// at rest (kinetic energy 0, and no ball moves after the tenth step), ball 0 against the wall.
+void expect_moved_apart_at_rest(Integrator integrator) {
+  for (const auto& xs : {std::vector<double>{0.5, 1.4, 2.3}, std::vector<double>{0.5, 0.6}}) {
+    const SceneDescription scene = row_in_a_box(xs);
+    const std::string what = std::string(motus::info(integrator).name) + ", " + std::to_string(xs.size()) + " balls";
+    Simulation sim(scene, integrator);
+    sim.advance(scene.dt, scene.dt, {});
+    ASSERT_EQ(sim.steps(), 1);
+    expect_nothing_overlaps(sim, what + ", after 1 step");
+    sim.advance(10 * scene.dt, scene.dt, {});
+    ASSERT_EQ(sim.steps(), 10);
+    expect_nothing_overlaps(sim, what + ", after 10 steps");
+    const Vector after_ten = sim.state();
+    sim.advance(1, scene.dt, {});
+    expect_nothing_overlaps(sim, what + ", after 1 s");
+    EXPECT_LT(sim.energy()->kinetic, 1e-12) << what;
+    EXPECT_LT((sim.state() - after_ten).cwiseAbs().maxCoeff(), 1e-9) << what;
+    EXPECT_NEAR(position_of(sim, 0)[0], 0.5, 1e-9) << what;
+  }
+}
+
+// Symplectic Euler's start pushed the balls out of the walls, then the pairs apart, and did not
+// look at the walls again: moving a pair apart pushed ball 0 into the wall, 0.05 m after the first
+// step (0.45 m with two balls), and only a step at a time out of it and its neighbour (0.4937 and
+// 0.003 m of overlap after 10 steps).
+TEST(StartOverlap, SymplecticEulerMovesBallsOutOfEachOtherAndTheWallsBeforeTheFirstStep) {
+  expect_moved_apart_at_rest(Integrator::SymplecticEuler);
+}
+
+// Verlet's start was one projection of constraint_iterations (10) sweeps: the overlap it left was
+// removed by the first step's projection, and Verlet read that move as velocity (the three balls at
+// rest ended with 0.784 J, two of them leaving at 0.886 m/s; energy from nothing).
+TEST(StartOverlap, VerletMovesBallsApartBeforeTheFirstStepWithoutGivingThemSpeed) {
+  expect_moved_apart_at_rest(Integrator::Verlet);
 }
 
 // ---- only what the scene needs, by counting

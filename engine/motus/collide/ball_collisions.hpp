@@ -26,6 +26,9 @@
 //      restitution, is settled at once with every ball touching it: contact_cluster.hpp.)
 // Overlap found at the start of a step (from the scene, or rounding) is removed by
 // moving positions apart along the normal, mass-weighted; velocities are not touched.
+// The scene's own overlap (at a drift's first build of the lists on its positions) is removed
+// whole before that step: walls and listed pairs are swept in turn until nothing overlaps
+// (settle_overlaps), for a pair moved apart may push a ball into a wall or into another ball.
 // The lists assume that only this drift moves the bodies: a drift given other arrays
 // builds them again.
 #include <array>
@@ -132,7 +135,10 @@ private:
   }
   double fastest_slow_speed(double h);
   bool lists_hold() const;
-  void build_lists();
+  // (least_skin: the settling's lists, which must hold while the balls are pushed about.)
+  void build_lists(double least_skin = 0);
+  void build_lists_at_start();
+  bool settle_overlaps();
   void list_pairs(int until);
   void sort_by_gap(bool last);
   void find_initial_events();
@@ -143,6 +149,10 @@ private:
   void test_pair(int i, int k, double t);
   void separate(int i, int k);
   void separate_from_walls(int i);
+  // The moves alone (counted as position corrections): how far each body moved, 0 if not.
+  std::array<double, 2> push_apart(int i, int k);
+  double push_out_of_plane(int i, int wall);
+  double push_off_segment(int i, const Segment& s);
   void moved_apart(int i, double distance);
   void make_fast(int i);
   double segment_impact(const Segment& s, const Point& p, const Point& u, double r, double horizon, Point* normal) const;
