@@ -2462,6 +2462,111 @@ TEST(Grade, AServerStarvedOfItsCpuByABusyMachineIsTheGradersFailure) {
   EXPECT_NE(result["output"].get<std::string>().find("the machine was too busy"), std::string::npos) << result.dump(2);
 }
 
+// A process that waited for a core and ended before the deadline: its wait counts. The sandbox
+// runs a shell whose child spins for 6 s of wall time on a core that a process of nice -20 holds
+// (so it gets about 1 % of it, and waits the rest), then ends and is reaped, and the shell sleeps
+// on to the deadline (7 s, a CPU limit of 1 s's backstop). The deadline sees a sleeping shell; the
+// child's wait left /proc with it, and the verdict was "waiting, not computing": the student's 0
+// for a compile that a machine busy with two builds held up (cc1plus waits, ends, is reaped by
+// g++; the assembler is what is left at the deadline). Sampled while it runs, it is a busy machine.
+TEST(Grade, AWaitForACoreByAProcessThatHasEndedCountsAtTheDeadline) {
+  NEEDS_SANDBOX();
+  if (::geteuid() != 0) GTEST_SKIP() << "needs root, for a process of nice -20 that the sandbox cannot outrun";
+  using namespace motus::grade;
+  cpu_set_t all, one;
+  ASSERT_EQ(::sched_getaffinity(0, sizeof all, &all), 0);
+  int core = -1;
+  for (int c = 0; c < CPU_SETSIZE; ++c)
+    if (CPU_ISSET(c, &all)) core = c;
+  CPU_ZERO(&one);
+  CPU_SET(core, &one);
+  const pid_t hog = ::fork();
+  if (hog == 0) {
+    ::sched_setaffinity(0, sizeof one, &one);
+    ::setpriority(PRIO_PROCESS, 0, -20);
+    std::ofstream("/proc/self/autogroup") << "-20";
+    volatile long spin = 0;
+    for (;;) spin = spin + 1;
+  }
+  ASSERT_GT(hog, 0);
+  ::usleep(200000);  // (the hog on its core first)
+  Ending ending;
+  {
+    ASSERT_EQ(::sched_setaffinity(0, sizeof one, &one), 0);  // (the sandbox inherits it)
+    SandboxUser user;
+    SandboxSpec spec;
+    spec.argv = {"/usr/bin/sh", "-c", "timeout 6 sh -c 'while :; do :; done'; exec sleep 100"};
+    spec.uid = user.uid();
+    Limits limits;
+    limits.cpu_seconds = 1;
+    SandboxProcess process(spec, limits);
+    ::sched_setaffinity(0, sizeof all, &all);
+    ending = process.finish(std::chrono::steady_clock::now() + std::chrono::seconds(7));
+  }
+  ::kill(hog, SIGKILL);
+  ::waitpid(hog, nullptr, 0);
+  ASSERT_TRUE(ending.timed_out);
+  ASSERT_TRUE(ending.use.run_delay_known) << "no schedstat on this kernel";
+  // The child waited nearly all its 6 s (the sleeping shell and sleep wait for nothing).
+  EXPECT_GT(ending.use.run_delay, 4.0) << "cpu " << ending.use.cpu << " s, wall " << ending.use.wall << " s";
+  EXPECT_EQ(judge_wall_timeout(ending.use, 1), WallVerdict::starved)
+      << "cpu " << ending.use.cpu << " s, waited " << ending.use.run_delay << " s, wall " << ending.use.wall << " s";
+}
+
+// A process's threads waiting for each other's cores are its own doing: each process counts its
+// longest-waiting thread, and processes one after another (a compile's) each their own.
+TEST(Grade, AProcesssThreadsWaitingForEachOtherCountAsOneWait) {
+  using namespace motus::grade;
+  TaskWaits waits;
+  waits[10] = {10, 2.0};  // a process of three threads, 3 s the longest wait
+  waits[11] = {10, 3.0};
+  waits[12] = {10, 1.0};
+  waits[20] = {20, 1.5};  // and one of one thread, ended before the deadline
+  EXPECT_DOUBLE_EQ(waited_for_a_core(waits), 3.0 + 1.5);
+  EXPECT_DOUBLE_EQ(waited_for_a_core({}), 0.0);
+}
+
+// The audit's submission: 50 threads that wake together every 0.5 s for 0.5 ms of work each (so a
+// queue for the cores each time), SIGXCPU ignored. Its 0.4 s of CPU in 9 s summed 24.4 s of waits
+// over its threads, and the grader called it starved by a busy machine: exit 1, the grader's
+// failure, every grading of it again the same, where it is the student's time-out.
+TEST(Grade, ThreadsThatQueueForTheCoresTogetherAreTheCodesOwnTimeOut) {
+  NEEDS_SANDBOX();
+  TempDir dir;
+  const fs::path assignment = integrators_with_tests(dir, "one", json::array({definitions("integrators").at("euler.table")}));
+  const fs::path submission = solution_with_euler_step_starting(
+      dir, "queues", "look_starved();",
+      "#include <chrono>\n#include <condition_variable>\n#include <csignal>\n#include <mutex>\n#include <thread>\n"
+      "namespace {\n"
+      "void look_starved() {\n"
+      "  std::signal(SIGXCPU, SIG_IGN);\n"
+      "  static std::mutex m; static std::condition_variable cv; static long generation = 0;\n"
+      "  for (int i = 0; i < 50; ++i)\n"
+      "    std::thread([] {\n"
+      "      long seen = 0;\n"
+      "      for (;;) {\n"
+      "        { std::unique_lock<std::mutex> l(m); cv.wait(l, [&] { return generation != seen; }); seen = generation; }\n"
+      "        const auto until = std::chrono::steady_clock::now() + std::chrono::microseconds(500);\n"
+      "        while (std::chrono::steady_clock::now() < until) {}\n"
+      "      }\n"
+      "    }).detach();\n"
+      "  for (;;) {\n"
+      "    std::this_thread::sleep_for(std::chrono::milliseconds(500));\n"
+      "    { std::lock_guard<std::mutex> l(m); ++generation; }\n"
+      "    cv.notify_all();\n"
+      "  }\n"
+      "}\n"
+      "}  // namespace\n");
+  ASSERT_FALSE(submission.empty());
+  const auto r = run_motus(dir, {"grade", assignment.string(), submission.string(), "--time-limit", "1", "--results",
+                                 (dir / "results.json").string()});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const json result = read_json(dir / "results.json");
+  expect_valid_gradescope(result);
+  EXPECT_EQ(failed(result), std::set<std::string>{"euler.table"}) << result.dump(2);
+  EXPECT_NE(result.dump().find("timed out after 7 s waiting, not computing"), std::string::npos) << result.dump(2);
+}
+
 // bubblewrap that cannot start the test's server (the audit's "bwrap: execvp /motus/motus:
 // Permission denied", while motus was being relinked) read as the student's code exiting with
 // status 1, every test lost. It is the grader's failure: exit 1, and a results file that says so.

@@ -138,8 +138,13 @@ double field_number(const std::vector<std::string>& fields, size_t number) {  //
 }
 
 // What `root` and every process under it did with their time. (Its descendants by their parents in
-// /proc/*/stat: /proc/PID/task/*/children is not on every kernel.)
-TimeUse measure_tree(pid_t root, double wall) {
+// /proc/*/stat: /proc/PID/task/*/children is not on every kernel.) `run_delays` holds each task's
+// (thread's) wait for a core as last seen, by its id, from call to call: a process that ended
+// before the deadline takes its schedstat with it, and its wait counts all the same. (A compile's
+// cc1plus, waiting for a core on a machine busy with two builds, ended and was reaped by g++; the
+// deadline saw only the assembler's wait: "timed out after 125 s waiting, not computing", and the
+// reference solution scored 0.) Its CPU time is in its parent's (cutime, cstime) once reaped.
+TimeUse measure_tree(pid_t root, double wall, TaskWaits& run_delays) {
   TimeUse use;
   use.wall = wall;
   std::vector<std::pair<pid_t, pid_t>> parents;  // (pid, its parent)
@@ -175,7 +180,9 @@ TimeUse measure_tree(pid_t root, double wall) {
       FILE* file = std::fopen((task.path().string() + "/schedstat").c_str(), "re");
       unsigned long long on_cpu = 0, delay = 0;
       if (file && std::fscanf(file, "%llu %llu", &on_cpu, &delay) == 2) {
-        use.run_delay += static_cast<double>(delay) * 1e-9;
+        TaskWait& seen = run_delays[static_cast<pid_t>(std::strtol(task.path().filename().c_str(), nullptr, 10))];
+        seen.process = pid;
+        seen.delay = std::max(seen.delay, static_cast<double>(delay) * 1e-9);  // (an id used again starts from 0)
         delay_seen = true;
       } else {
         delay_missing = true;
@@ -183,11 +190,20 @@ TimeUse measure_tree(pid_t root, double wall) {
       if (file) std::fclose(file);
     }
   }
+  use.run_delay = waited_for_a_core(run_delays);
   use.run_delay_known = delay_seen && !delay_missing;
   return use;
 }
 
 }  // namespace
+
+double waited_for_a_core(const TaskWaits& waits) {
+  std::unordered_map<pid_t, double> longest;  // by process
+  for (const auto& [task, wait] : waits) longest[wait.process] = std::max(longest[wait.process], wait.delay);
+  double sum = 0;
+  for (const auto& [process, delay] : longest) sum += delay;
+  return sum;
+}
 
 int available_cores() {
   cpu_set_t set;
@@ -462,6 +478,10 @@ void SandboxProcess::pump(std::chrono::steady_clock::time_point deadline, Until 
       interrupted_ = true;
       return;
     }
+    if (now - sampled_at_ >= kSampleEvery) {  // (its processes' waits for a core, before they end)
+      measure_tree(pid_, 0, run_delays_);
+      sampled_at_ = now;
+    }
     const int wait_ms = static_cast<int>(std::min<long long>(
         std::chrono::duration_cast<std::chrono::milliseconds>(deadline - now).count() + 1, stop_ ? 100 : 1000));
     pollfd fds[3] = {{out_, POLLIN, 0}, {err_, POLLIN, 0}, {writing() ? in_ : -1, POLLOUT, 0}};
@@ -613,7 +633,8 @@ Ending SandboxProcess::kill() {
   // At its deadline: what it did with its time, while it is there to be looked at (the caller
   // judges whether it was too slow, waiting, or starved by a busy machine).
   TimeUse use;
-  if (timed_out_) use = measure_tree(pid_, std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count());
+  if (timed_out_)
+    use = measure_tree(pid_, std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count(), run_delays_);
   ::kill(-pid_, SIGKILL);  // its process group (without bubblewrap, what it started)
   ::kill(pid_, SIGKILL);   // and bubblewrap, whose namespace ends with it
   Ending e = reap(true);

@@ -16,6 +16,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 namespace motus::grade {
@@ -90,11 +91,27 @@ double cpu_limit_seconds(double cpu_seconds);
 struct TimeUse {
   double wall = 0;       // seconds since it started
   double cpu = 0;        // seconds of CPU it used (user and system, with its reaped children's)
-  double run_delay = 0;  // seconds its threads were runnable but waiting for a core (/proc/…/schedstat)
+  double run_delay = 0;  // seconds it waited for a core, runnable (/proc/…/schedstat; waited_for_a_core)
   bool run_delay_known = false;  // false: no schedstat on this kernel
   bool runnable_now = false;     // one of its threads was runnable (state R) when measured
   bool lowered_priority = false; // it made itself nicer than the grader, or SCHED_IDLE
 };
+
+// A task's (a thread's) wait for a core as last seen (/proc/…/schedstat's run_delay, s), and the
+// process it is in; TaskWaits holds them by task id.
+struct TaskWait {
+  pid_t process = 0;
+  double delay = 0;
+};
+using TaskWaits = std::unordered_map<pid_t, TaskWait>;
+
+// How long a process tree waited for a core: each process's longest wait of one of its threads,
+// summed over its processes. A process's threads are not summed: threads waiting for each other's
+// cores are the code's own doing, not a busy machine's (a submission of 50 threads that woke
+// together every 0.5 s for 0.5 ms of work each, 0.4 s of CPU in 9 s, summed 24.4 s of waits and
+// was called starved: the grader's failure, where it is the student's time-out). Processes one
+// after another (a compile: g++, cc1plus, as) each wait their own.
+double waited_for_a_core(const TaskWaits& waits);
 
 // Why the wall-clock backstop fired, from what the process did (a pure function of its numbers):
 // - used_its_cpu: it used `cpu_limit` seconds of CPU or more (too slow: the student's);
@@ -220,6 +237,11 @@ private:
   bool interrupted_ = false;
   std::optional<Ending> ending_;
   std::chrono::steady_clock::time_point started_;
+  // Each of its tasks' wait for a core as last seen (by task id), sampled while the grader waits
+  // for it (kSampleEvery): the deadline's measure counts the waits of processes already ended.
+  static constexpr std::chrono::milliseconds kSampleEvery{250};
+  TaskWaits run_delays_;
+  std::chrono::steady_clock::time_point sampled_at_;
 };
 
 // Why the user `uid` (no supplementary groups) cannot reach `host` — a folder on the way, as given
