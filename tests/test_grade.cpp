@@ -2513,6 +2513,36 @@ TEST(Grade, AWaitForACoreByAProcessThatHasEndedCountsAtTheDeadline) {
       << "cpu " << ending.use.cpu << " s, waited " << ending.use.run_delay << " s, wall " << ending.use.wall << " s";
 }
 
+// The sandbox's root is bubblewrap's own tmpfs, unsized: writable, code in the test's server wrote
+// 960 MB of files beside /box/student.so, past its memory limit of 512 MB (and a million empty
+// files there would hold the kernel's memory as they did in /tmp). Only /tmp and the mounts made
+// writable can be written.
+TEST(Grade, TheSandboxsRootCannotBeWritten) {
+  NEEDS_SANDBOX();
+  using namespace motus::grade;
+  TempDir dir;
+  fs::create_directories(dir / "out");
+  SandboxUser user;
+  if (!unreachable_for(user.uid(), (dir / "out").string()).empty()) GTEST_SKIP() << "the sandbox's user cannot reach " << dir.path();
+  if (::geteuid() == 0) ::chown((dir / "out").c_str(), user.uid(), static_cast<gid_t>(-1));
+  // Each write, in a shell of its own, and its exit status: 0 written, else refused.
+  auto write_in_sandbox = [&](const std::string& file) {
+    SandboxSpec spec;
+    spec.argv = {"/usr/bin/sh", "-c", "echo x > " + file};
+    spec.mounts = {{(dir / "out").string(), "/out", true}};
+    spec.uid = user.uid();
+    SandboxProcess process(spec, Limits{});
+    const Ending e = process.finish(std::chrono::steady_clock::now() + std::chrono::seconds(20));
+    EXPECT_TRUE(e.exited) << file;
+    return e.status;
+  };
+  EXPECT_NE(write_in_sandbox("/x"), 0) << "the root";
+  EXPECT_NE(write_in_sandbox("/out2"), 0) << "the root, beside a mount";
+  EXPECT_EQ(write_in_sandbox("/tmp/x"), 0) << "/tmp";
+  EXPECT_EQ(write_in_sandbox("/out/x"), 0) << "a writable mount";
+  EXPECT_TRUE(fs::exists(dir / "out/x"));
+}
+
 // A process's threads waiting for each other's cores are its own doing: each process counts its
 // longest-waiting thread, and processes one after another (a compile's) each their own.
 TEST(Grade, AProcesssThreadsWaitingForEachOtherCountAsOneWait) {
