@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <cstring>
 #include <iostream>
+#include <string>
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
@@ -265,6 +266,10 @@ int serve_command(const ServeOptions& o) {
     tell("motus serve: {} (this machine's, not the submission's)\n", e.what());
     return kExitFailure;
   }
+  // Said before the student's code runs (its constructors run as the plug-in loads): how the grader
+  // knows that a failure after it is not bubblewrap's (see probe.cpp).
+  if (std::fprintf(out, "%s\n", std::string(grade::wire::kServing).c_str()) < 0 || std::fflush(out) != 0)
+    return failed_write();
   load_plugins(o.plugins);
   std::string line;
   while (std::getline(std::cin, line)) {

@@ -21,6 +21,7 @@
 #include "grade_harness.hpp"
 #include "motus/grade/grader.hpp"
 #include "motus/grade/sandbox.hpp"
+#include "motus/grade/wire.hpp"
 
 namespace {
 
@@ -2212,7 +2213,10 @@ TEST(Serve, RequestsInMoreThanThreeDimensionsAreRefused) {
     files.err = (dir / "err.txt").string();
     const int raw = run_motus_with({"serve", "--plugin", kAssignmentPlugins + "/" + plugin}, files);
     EXPECT_TRUE(WIFEXITED(raw) && WEXITSTATUS(raw) == 0) << read_file(dir / "err.txt");
-    return read_file(dir / "answer.txt");
+    const std::string said = read_file(dir / "answer.txt");  // (its first line: it serves)
+    const std::string serving = std::string(motus::grade::wire::kServing) + "\n";
+    EXPECT_EQ(said.substr(0, serving.size()), serving);
+    return said.substr(std::min(said.size(), serving.size()));
   };
   std::string many = "[0";
   for (int k = 1; k < 64; ++k) many += ",0";
@@ -2595,6 +2599,29 @@ TEST(Grade, ThreadsThatQueueForTheCoresTogetherAreTheCodesOwnTimeOut) {
   expect_valid_gradescope(result);
   EXPECT_EQ(failed(result), std::set<std::string>{"euler.table"}) << result.dump(2);
   EXPECT_NE(result.dump().find("timed out after 7 s waiting, not computing"), std::string::npos) << result.dump(2);
+}
+
+// Code that says what bubblewrap says when it cannot start the server ("bwrap: …", exit 1) as it
+// loads: it made its grading the grader's failure (exit 1, no score), every grading of it again
+// the same. The server says it serves before it loads the student's code; after that, an exit is
+// the code's, whatever it printed.
+TEST(Grade, CodeThatPretendsToBeBubblewrapFailingIsTheStudentsFailure) {
+  NEEDS_SANDBOX();
+  TempDir dir;
+  const fs::path assignment = integrators_with_tests(dir, "one", json::array({definitions("integrators").at("euler.table")}));
+  const fs::path submission = solution_with_euler_step_starting(
+      dir, "pretends", "",
+      "#include <unistd.h>\n"
+      "namespace { struct Pretend { Pretend() { static const char m[] = \"bwrap: execvp /motus/motus: Permission denied\\n\";"
+      " (void)!::write(2, m, sizeof m - 1); ::_exit(1); } } pretend; }\n");
+  ASSERT_FALSE(submission.empty());
+  const auto r = run_motus(dir, {"grade", assignment.string(), submission.string(), "--time-limit", "1", "--results",
+                                 (dir / "results.json").string()});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const json result = read_json(dir / "results.json");
+  expect_valid_gradescope(result);
+  EXPECT_EQ(failed(result), std::set<std::string>{"euler.table"}) << result.dump(2);
+  EXPECT_NE(result.dump().find("exited with status 1"), std::string::npos) << result.dump(2);
 }
 
 // bubblewrap that cannot start the test's server (the audit's "bwrap: execvp /motus/motus:

@@ -4,6 +4,8 @@
 #include <cctype>
 #include <filesystem>
 
+#include "motus/grade/wire.hpp"
+
 namespace motus::grade {
 namespace {
 // The most of a student's error message a test's output keeps (of what their code printed: kShownBytes).
@@ -66,7 +68,7 @@ void Probe::start() {
   }
   server_ = std::make_unique<SandboxProcess>(spec, setup_.limits);
   started_ = std::chrono::steady_clock::now();
-  answered_ = false;
+  serving_ = false;
 }
 
 void Probe::stop() {
@@ -104,14 +106,16 @@ void Probe::died(const std::string& while_doing) {
     }
     seconds = wall_backstop(setup_.limits.cpu_seconds);  // (as the result says it: the same on any machine)
   }
-  // bubblewrap's own failure to start the server (it says "bwrap: …" and exits 1; the server never
-  // answered): the sandbox's, not the student's code's, as for the compiler (build.cpp). (Code that
-  // itself prints "bwrap: " first and exits 1 before any answer is taken for it too: the grading
-  // stops as the grader's failure, which a grading again shows up, and gains no point.)
-  if (!answered_ && !at_deadline && ending.exited && ending.status == 1 && server_->errors().rfind("bwrap: ", 0) == 0) {
-    const std::string line = server_->errors().substr(0, server_->errors().find('\n'));
+  // Before the server said it serves (wire::kServing), none of the student's code had run: what
+  // ended it is the sandbox's or the server's, never the code's. (bubblewrap's own failure says
+  // "bwrap: …" and exits 1; it read as the student's code exiting with status 1. That alone, not
+  // the moment, was the rule before, and a submission that printed "bwrap: " and exited 1 itself
+  // made its grading the grader's failure, every time.)
+  if (!serving_) {
+    const std::string& said = server_->errors();
+    const std::string why = !said.empty() ? said.substr(0, said.find('\n')) : "it " + ending.describe(setup_.limits, seconds);
     server_.reset();
-    throw std::runtime_error("the sandbox could not start the student's code's server: " + line);
+    throw std::runtime_error("the sandbox could not start the student's code's server: " + why);
   }
   const bool out_of_time = ending.out_of_time(setup_.limits, seconds);
   std::string what = "your code " + ending.describe(setup_.limits, seconds);
@@ -139,6 +143,22 @@ nlohmann::json Probe::ask(nlohmann::json request, std::chrono::steady_clock::tim
                             : op == "plane_impact" ? "time_of_impact_with_plane"
                                                    : op;
   const std::string whose = op == "run" ? "the run's reply" : "the reply of " + doing;
+  if (!serving_) {  // (its first line, written before the student's code was loaded: wire.hpp)
+    const auto hello = server_->read_line(deadline, wire::kServing.size() + 1);
+    if (!hello && server_->interrupted()) {
+      server_->kill();
+      server_.reset();
+      throw GradingInterrupted();
+    }
+    if (!hello) died(doing);
+    if (*hello != wire::kServing) {
+      server_->kill();
+      server_.reset();
+      throw std::runtime_error("the student's code's server began with \"" + hello->substr(0, 80) + "\", not " +
+                               std::string(wire::kServing));
+    }
+    serving_ = true;
+  }
   const bool written =
       server_->write_line(request.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace), deadline);
   // (Read as far as a failure's reply may go: it carries the student's exception's message, of any
@@ -158,7 +178,6 @@ nlohmann::json Probe::ask(nlohmann::json request, std::chrono::steady_clock::tim
     malformed_reply(whose, "longer than " + std::to_string(most_bytes) + " bytes, more than this request can need");
   }
   if (!line) died(doing);
-  answered_ = true;
   // Parsed with a count of its values: within the bytes, a reply of 0s would still make a document
   // 16 times its size.
   nlohmann::json reply;

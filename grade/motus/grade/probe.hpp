@@ -88,7 +88,7 @@ private:
   std::unique_ptr<SandboxProcess> server_;
   std::string printed_;  // (as SandboxProcess::errors keeps it: at most Limits::output_bytes, its first and last halves)
   std::chrono::steady_clock::time_point started_;
-  bool answered_ = false;  // the current server has answered a request
+  bool serving_ = false;  // the current server has said wire::kServing (the student's code is loaded after)
 };
 
 }  // namespace motus::grade

@@ -23,13 +23,19 @@
 //       {"ok": true, "x", "v"} (bodies), {"ok": true, "x_start", "x", "x_previous"} (velocityless Verlet)
 //   anything that fails → {"ok": false, "error": "one line"}
 // Numbers that are not finite travel as the strings "inf", "-inf" and "nan".
+// Before it loads the student's plug-in (before any of the student's code has run) the server
+// says kServing, once: a server that fails without it never got as far as the student's code.
 #include <cmath>
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace motus::grade::wire {
+
+// The server's first line (see above).
+constexpr std::string_view kServing = R"({"serving":true})";
 
 // The most numbers one run's reply records, rows × (the state's size + 1): the server stops a run
 // past them with an error of its own (a step-size control that shrinks the step without end
