@@ -248,7 +248,7 @@ CLI::App* add_render_command(CLI::App& app, RenderOptions& o) {
   render->add_option("--video", o.video, "Also assemble the frames into SCENE.mp4 or SCENE.gif with ffmpeg")
       ->check(CLI::IsMember({"mp4", "gif"}));
   render->add_flag("--overwrite", o.overwrite, "Reuse an existing --out folder (the frames and video an earlier render wrote there are replaced; nothing else is touched)");
-  render->add_flag("--trails", o.trails, "Draw each body's recent path (scenes with at most 64 bodies)");
+  render->add_flag("--trails", o.trails, fmt::format("Draw each body's recent path (scenes with at most {} bodies)", draw::RenderJob::kMostTrailedBodies));
   render->add_flag("--arrows", o.arrows, "Draw velocity arrows (where each body will be in 0.25 s)");
   add_plugin_option(render, o.plugins);
   render->add_option("--supersample", o.supersample, "Anti-aliasing: render N times larger and average (1-4)")
@@ -366,7 +366,7 @@ int render_command(const RenderOptions& o) {
     recording.states.emplace_back(s.state().data(), s.state().data() + s.state().size());
     if (const auto e = s.energy()) recording.energies.push_back(e->total);
   };
-  const bool trails_drawn = o.trails && scene.is_mechanical() && scene.mechanical->bodies.size() <= 64;
+  const bool trails_drawn = o.trails && scene.is_mechanical() && scene.mechanical->bodies.size() <= draw::RenderJob::kMostTrailedBodies;
   const bool every_step = !scene.is_mechanical() || trails_drawn;
   const double min_gap = scene.is_mechanical()       ? 0.999 / (fps * kTrailPointsPerFrame)
                          : scene.output_interval > 0 ? scene.output_interval * 0.999
@@ -447,8 +447,8 @@ int render_command(const RenderOptions& o) {
 
   if (!plugin_parts.empty()) fmt::print("passes       {}\n", plugin_parts);
   if (o.trails && scene.is_mechanical() && !trails_drawn)
-    fmt::print("trails       none drawn: --trails draws scenes of at most 64 bodies, and this one has {}\n",
-               scene.mechanical->bodies.size());
+    fmt::print("trails       none drawn: --trails draws scenes of at most {} bodies, and this one has {}\n",
+               draw::RenderJob::kMostTrailedBodies, scene.mechanical->bodies.size());
   // (A first-order system is drawn as its curve, or its variables against time: no bodies to trail
   // or to give arrows. Both were taken without a word.)
   if ((o.trails || o.arrows) && !scene.is_mechanical())

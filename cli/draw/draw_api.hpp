@@ -42,6 +42,9 @@ struct RenderJob {
   std::vector<size_t> frame_index;
   int width = 640, height = 480, supersample = 2;
   bool trails = false, arrows = false;
+  // Trails are drawn for scenes of at most this many bodies (render::kMostTrailedBodies: the same
+  // number, checked where both are seen, draw_module.cpp).
+  static constexpr size_t kMostTrailedBodies = 64;
   std::string note;    // the overlay's last line (integrator, --set overrides)
   std::string folder;  // frame_00000.png, ... are written here (it exists)
   std::function<void(long)> frame_done;  // after each frame is written (progress)

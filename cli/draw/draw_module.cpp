@@ -16,6 +16,9 @@
 #include "motus/render/text.hpp"
 #include "motus/render/video.hpp"
 
+static_assert(motus::draw::RenderJob::kMostTrailedBodies == motus::render::kMostTrailedBodies,
+              "motus render says which scenes get trails; the drawing draws them");
+
 namespace fs = std::filesystem;
 
 namespace motus::draw {

@@ -32,11 +32,15 @@ struct Recording {
   size_t size() const { return times.size(); }
 };
 
+// Trails are drawn for scenes of at most this many bodies: beyond, paths cross each other and the
+// picture is a tangle, not a path (and every body's trail is a line per recorded frame).
+constexpr size_t kMostTrailedBodies = 64;
+
 struct DrawOptions {
   Color background{250, 250, 247, 255};
   bool velocity_arrows = false;
   double arrow_seconds = 0.25;  // an arrow points to where the body would be this much later
-  bool trails = false;
+  bool trails = false;          // drawn for scenes of at most kMostTrailedBodies bodies
   int trail_frames = 90;        // a trail shows the recorded states of this many frames' time (frame_interval)
   bool ground_grid = true;      // 3-D scenes
   // Where the 3-D ground grid lies (centre x, height y, centre z) and its half width; by

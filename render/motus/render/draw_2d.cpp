@@ -65,7 +65,7 @@ void draw_mechanical_2d(Canvas& canvas, const Viewport& v, const MechanicalDescr
     const Vec3 c = project(cam, v, {g.centre[0], g.centre[1], 0});
     disc(c[0], c[1], 9, {240, 170, 40, 255}, ss);
   }
-  if (o.trails && !f.trail.empty() && n <= 64) {
+  if (o.trails && !f.trail.empty() && static_cast<size_t>(n) <= kMostTrailedBodies) {
     const size_t count = f.trail.size();
     for (int i = 0; i < n; ++i)
       for (size_t k = 1; k < count; ++k) {

@@ -149,7 +149,7 @@ void draw_mechanical_3d(Canvas& canvas, const Viewport& v, const MechanicalDescr
   }
   gl_color(kWall);
   for (const auto& box : m.colliders.boxes) box_edges({box.min[0], box.min[1], box.min[2]}, {box.max[0], box.max[1], box.max[2]});
-  if (o.trails && !f.trail.empty() && n <= 64)
+  if (o.trails && !f.trail.empty() && static_cast<size_t>(n) <= kMostTrailedBodies)
     for (int i = 0; i < n; ++i) {
       gl_color(mix(body_color(i), o.background, 0.4));
       glBegin(GL_LINE_STRIP);
