@@ -133,6 +133,17 @@ bool sticks_as_made(const MechanicalDescription& m, size_t first_stick, double s
   return true;
 }
 
+// A generator's particles and sticks made alone, with its origin at 0 (check_generated_sticks'
+// `at_zero`): `add` is add_cloth or add_rope.
+template <class Generator, class Add>
+MechanicalDescription built_at_origin(const MechanicalDescription& m, Generator generator, Add add) {
+  MechanicalDescription alone;
+  alone.dimensions = m.dimensions;
+  generator.origin = {0, 0, 0};
+  add(alone, generator);
+  return alone;
+}
+
 template <class AtZero>
 void check_generated_sticks(JsonFields& f, const MechanicalDescription& m, size_t first_stick, double spacing,
                             const std::string& spacing_key, AtZero at_zero) {
@@ -198,14 +209,7 @@ void read_cloth(JsonFields f, MechanicalDescription& m, MechanicalFields& fields
   const size_t first = m.bodies.size(), first_stick = m.sticks.size();
   add_cloth(m, cloth);  // SceneError("cloth.pin", ...) for values it cannot build
   check_generated(f, m, first, "spacing");
-  check_generated_sticks(f, m, first_stick, cloth.spacing, "spacing", [&] {
-    MechanicalDescription alone;
-    alone.dimensions = m.dimensions;
-    ClothGenerator at_zero = cloth;
-    at_zero.origin = {0, 0, 0};
-    add_cloth(alone, at_zero);
-    return alone;
-  });
+  check_generated_sticks(f, m, first_stick, cloth.spacing, "spacing", [&] { return built_at_origin(m, cloth, add_cloth); });
   fields.generated.push_back({first, m.bodies.size(), "cloth", "spacing", cloth.origin});
 }
 
@@ -224,14 +228,7 @@ void read_rope(JsonFields f, MechanicalDescription& m, MechanicalFields& fields)
   const size_t first = m.bodies.size(), first_stick = m.sticks.size();
   add_rope(m, rope);
   check_generated(f, m, first, "segment_length");
-  check_generated_sticks(f, m, first_stick, rope.segment_length, "segment_length", [&] {
-    MechanicalDescription alone;
-    alone.dimensions = m.dimensions;
-    RopeGenerator at_zero = rope;
-    at_zero.origin = {0, 0, 0};
-    add_rope(alone, at_zero);
-    return alone;
-  });
+  check_generated_sticks(f, m, first_stick, rope.segment_length, "segment_length", [&] { return built_at_origin(m, rope, add_rope); });
   fields.generated.push_back({first, m.bodies.size(), "rope", "segment_length", rope.origin});
 }
 
