@@ -20,6 +20,7 @@
 #include "cli_common.hpp"
 #include "interrupt.hpp"
 #include "motus/compare/explanations.hpp"
+#include "motus/compare/metrics.hpp"
 #include "motus/compare/timing.hpp"
 #include "motus/message_number.hpp"
 #include "motus/plot/write_failure.hpp"
@@ -361,9 +362,10 @@ int run_command(const RunOptions& o) {
   const double t0 = sim.time();
   ProgressBar progress(0, duration, scene.name);
   const auto began = std::chrono::steady_clock::now();
-  // The largest of a run's errors, a NaN kept (std::max would drop it: a stick or pin error that
-  // stopped being a number read as the last finite one).
-  auto worse = [](double worst, double x) { return std::isnan(worst) || std::isnan(x) ? NAN : std::max(worst, x); };
+  // The largest of a run's errors, as `motus compare`'s column takes it (compare::worse): an error
+  // that stopped being a number is the worst of all, inf (std::max would drop it, and a stick or pin
+  // error would read as the last finite one; kept as NaN, run said "nan" where compare said inf).
+  using compare::worse;
   double worst_constraint_error = sim.constraint_error();
   const bool constrained = sim.has_sticks();
   // Pins: motus's projection places them exactly, a plug-in's may not (its bodies then fall away
@@ -546,10 +548,10 @@ int run_command(const RunOptions& o) {
                collisions.pair_tests, collisions.position_corrections);
   if (constrained)
     fmt::print(out, "constraints  largest stick-length error {:.3e} over the run, {:.3e} at the end\n", worst_constraint_error,
-               sim.constraint_error());
+               unsigned_nan(sim.constraint_error()));
   if (pinned && worst_pin_error != 0)  // (never after motus's own projection: no line to read past)
     fmt::print(out, "pins         a pinned body was up to {:.3e} m off its pin over the run, {:.3e} m at the end\n",
-               worst_pin_error, sim.pin_error());
+               worst_pin_error, unsigned_nan(sim.pin_error()));
   if (!o.trajectory.empty()) fmt::print(out, "trajectory   {}\n", o.trajectory == "-" ? "standard output" : o.trajectory);
   return finite ? 0 : report_non_finite(std::isnan(non_finite_by) ? sim.time() : non_finite_by, sim, method);
 }

@@ -224,6 +224,16 @@ TEST(CliErrors, AnEquationThatGivesNaNIsNamedWhenTheStateIsNoLongerFinite) {
   EXPECT_NE(unstable.err.find("the integrator is unstable at this step"), std::string::npos) << unstable.err;
 }
 
+// A run whose sticks' lengths stop being numbers (the rope under g = 1e300 m/s² blows up) says its
+// largest stick-length error is inf, as `motus compare`'s constraint column says it (it said "nan
+// over the run, -nan at the end": kept as NaN, and printed with its meaningless sign).
+TEST(CliErrors, ARunThatBlewUpSaysItsStickErrorIsInfAsCompareDoes) {
+  TempDir dir;
+  const Result r = run_motus(dir, {"run", scene("rope"), "--set", "forces[0].g=[0,-1e300]", "--steps", "50"});
+  EXPECT_EQ(r.status, 1) << r.err;
+  EXPECT_NE(r.out.find("constraints  largest stick-length error inf over the run, nan at the end"), std::string::npos) << r.out;
+}
+
 // A small state is looked at after every step: "no longer finite by t" is the first row of the
 // trajectory that is not finite (the oscillator's explicit Euler at dt = 10: its amplitude grows by
 // √101 a step and passes the largest double in step 308; the look every 16 steps said t = 3200). A

@@ -451,6 +451,16 @@ TEST(Box2dLimits, StickPendulumKeepsItsStickAndPin) {
   EXPECT_TRUE(has_line_containing(box2d->notes(), "sticks: the worst length error so far"));
 }
 
+// A run that blows up (the rope unpinned under a gravity of 1e300 m/s², past float): its sticks' lengths stop being
+// numbers, which the table's constraint column shows as inf. The note said "the worst length error
+// so far is 0% of the rest length (after step 0 …)": NaN > worst is false, and it kept the start.
+TEST(Box2dLimits, TheSticksNoteOfARunThatBlewUpSaysItsErrorIsNotFinite) {
+  const SceneDescription scene = load("rope", {"forces[0].g=[0,-1e300]", "rope.pin_first=false"});
+  auto box2d = built("box2d", scene, scene.dt, Integrator::Verlet);
+  for (int i = 0; i < 5; ++i) box2d->step();
+  EXPECT_TRUE(has_line_containing(box2d->notes(), "sticks: the worst length error so far is inf% of the rest length (after step 1;"));
+}
+
 // The float note's scale is the farthest a body came, not where the bodies started: a body thrown
 // at 300 m/s from the origin was "0 m from the origin" (about 1e-7 m of rounding) while it flew
 // 400 m, where float rounds to some 5e-5 m.

@@ -384,6 +384,20 @@ TEST(CompareBullet, TheSticksNoteSaysTheWorstLengthErrorAsAPercentage) {
       << expected;
 }
 
+// A run that blows up (the rope unpinned, g = 1e308 m/s², dt = 100 s: every body at −inf after the
+// first step, and each stick's length inf − inf, not a number): the worst length error is inf, as
+// the table's column has it. The note said "0% of the rest length (after step 0)": a NaN is never
+// greater than the worst, and was dropped.
+TEST(CompareBullet, TheSticksNoteOfARunThatBlewUpSaysItsErrorIsNotFinite) {
+  const SceneDescription scene = load("rope", {"forces[0].g=[0,-1e308]", "rope.pin_first=false", "dt=100"});
+  auto bullet = built("bullet", scene, scene.dt);
+  run(*bullet, 5);
+  const auto notes = bullet->notes();
+  EXPECT_TRUE(std::any_of(notes.begin(), notes.end(), [](const std::string& n) {
+    return n.find("the worst length error so far is inf% of the rest length (after step 1)") != std::string::npos;
+  })) << ::testing::PrintToString(notes);
+}
+
 TEST(CompareBullet, HeadOnIn1DRunsAlongX) {
   // head_on as a 1-D scene: bodies on the x axis (linear factor (1, 0, 0)), one number
   // per body read back; the same outcome as in 2-D (measured: −2.00000000000004, 1.3e-14).

@@ -16,6 +16,7 @@
 #include "motus/compare/backends/note_format.hpp"
 #include "motus/compare/backends/peer_forces.hpp"
 #include "motus/compare/backends/starting_outside.hpp"
+#include "motus/compare/metrics.hpp"
 
 // Box2D does not check its allocations either (b2BlockAllocator writes into the chunk b2Alloc gave
 // it): with malloc refusing (a memory limit, `ulimit -v`) it would write through a null pointer.
@@ -418,8 +419,10 @@ void Box2dBackend::step() {
     const b2Vec2 d = w.bodies[stick.a]->GetPosition() - w.bodies[stick.b]->GetPosition();
     const double error =
         std::abs(std::hypot(static_cast<double>(d.x), static_cast<double>(d.y)) - stick.length) / stick.length;
-    if (error > w.worst_stick) {
-      w.worst_stick = error;
+    // (worse: a length that is not a number is the worst of all, as in the table's column; with
+    // `error > worst` a run that blew up read "0% … after step 0" beside the column's inf.)
+    if (const double worst = worse(w.worst_stick, error); worst != w.worst_stick) {
+      w.worst_stick = worst;
       w.worst_stick_step = w.steps;
     }
   }

@@ -18,6 +18,7 @@
 #include "motus/compare/backends/note_format.hpp"
 #include "motus/compare/backends/peer_forces.hpp"
 #include "motus/compare/backends/starting_outside.hpp"
+#include "motus/compare/metrics.hpp"
 
 namespace motus::compare {
 namespace {
@@ -363,8 +364,8 @@ void BulletBackend::step() {
                           w.bodies[w.stick_bodies[j].first]->getCenterOfMassPosition())
                              .length();
     const double error = std::abs(len - w.stick_lengths[j]) / w.stick_lengths[j];
-    if (error > w.worst_stick_error) {
-      w.worst_stick_error = error;
+    if (const double worst = worse(w.worst_stick_error, error); worst != w.worst_stick_error) {  // (NaN: the worst)
+      w.worst_stick_error = worst;
       w.worst_stick_step = w.steps;
     }
   }
