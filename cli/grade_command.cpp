@@ -125,10 +125,22 @@ std::string new_folder(const std::string& prefix) {
   return path;
 }
 
-// The assignment and the machine, checked before a submission is graded. With --results, what
-// stops the grading here still leaves a results.json that says why: on Gradescope a missing
-// one shows every student only "the autograder failed" (a container without user namespaces,
-// where bubblewrap cannot make a sandbox, is the likely cause there).
+// What stops the grading of one submission before it starts still leaves --results a results.json
+// that says why, once that file is known to be writable: on Gradescope a missing one shows every
+// student only "the autograder failed" (a container without user namespaces, where bubblewrap
+// cannot make a sandbox, is the likely cause there).
+void write_not_graded(const GradeCommandOptions& o, const std::string& assignment, const std::string& why) {
+  if (o.results.empty() || o.results == "-") return;
+  try {
+    check_can_replace(o.results, o.overwrite);
+    write_whole_file(o.results, grade::results_text(grade::failed_json(assignment, why)), o.overwrite);
+  } catch (const std::exception&) {
+    // (the error that stopped the grading is the one to tell)
+  }
+}
+
+// The assignment and the machine, checked before a submission is graded; what stops it here
+// still leaves a results.json (write_not_graded).
 grade::Assignment ready_to_grade(const GradeCommandOptions& o, const std::string& folder) {
   try {
     const auto submission = looked_at(o.submission);
@@ -146,15 +158,7 @@ grade::Assignment ready_to_grade(const GradeCommandOptions& o, const std::string
     check_limits(o);
     return assignment;
   } catch (const InputError& e) {
-    if (!o.results.empty()) {
-      try {
-        write_whole_file(o.results,
-                         grade::results_text(grade::failed_json(fs::path(folder).filename().string(), e.what())),
-                         o.overwrite);
-      } catch (const std::exception&) {
-        // (the error that stopped the grading is the one to tell)
-      }
-    }
+    write_not_graded(o, fs::path(folder).filename().string(), e.what());
     throw;
   }
 }
@@ -379,7 +383,16 @@ CLI::App* add_grade_command(CLI::App& app, GradeCommandOptions& o) {
 }
 
 int grade_command(const GradeCommandOptions& o) {
-  const std::string folder = assignment_folder(o.assignment);
+  std::string folder;
+  try {
+    folder = assignment_folder(o.assignment);
+  } catch (const InputError& e) {
+    // An unknown assignment is bad input like a missing submission folder: one submission's
+    // --results still says so (it wrote none).
+    if (!o.submission.empty() && o.batch.empty() && o.package.empty())
+      write_not_graded(o, without_trailing_separators(o.assignment).filename().string(), e.what());
+    throw;
+  }
   const int modes = !o.submission.empty() + !o.batch.empty() + !o.package.empty();
   if (modes > 1)
     throw InputError("grade: a SUBMISSION_DIR, --batch and --package are three ways to use it: give one of them, not " +

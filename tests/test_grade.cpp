@@ -2624,6 +2624,25 @@ TEST(Grade, CodeThatPretendsToBeBubblewrapFailingIsTheStudentsFailure) {
   EXPECT_NE(result.dump().find("exited with status 1"), std::string::npos) << result.dump(2);
 }
 
+// The compiler's messages begin with a file's name, which #line sets: code whose error looked like
+// bubblewrap failing to start the compiler made its grading the grader's failure (exit 1, no
+// score), every time. It does not compile: the student's 0, with the compiler's words.
+TEST(Grade, ACompileErrorThatPretendsToBeBubblewrapFailingIsTheStudentsFailure) {
+  NEEDS_SANDBOX();
+  TempDir dir;
+  const fs::path assignment = integrators_with_tests(dir, "one", json::array({definitions("integrators").at("euler.table")}));
+  const fs::path submission = solution_with_euler_step_starting(
+      dir, "pretends", "", "#line 1 \"bwrap: execvp /usr/bin/g++: Permission denied\"\n#error pretending\n");
+  ASSERT_FALSE(submission.empty());
+  const auto r = run_motus(dir, {"grade", assignment.string(), submission.string(), "--results", (dir / "results.json").string()});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const json result = read_json(dir / "results.json");
+  expect_valid_gradescope(result);
+  EXPECT_EQ(result["score"].get<double>(), 0) << result.dump(2);
+  EXPECT_NE(result.dump().find("does not compile"), std::string::npos) << result.dump(2);
+  EXPECT_NE(result.dump().find("#error pretending"), std::string::npos) << result.dump(2);
+}
+
 // bubblewrap that cannot start the test's server (the audit's "bwrap: execvp /motus/motus:
 // Permission denied", while motus was being relinked) read as the student's code exiting with
 // status 1, every test lost. It is the grader's failure: exit 1, and a results file that says so.
@@ -2649,6 +2668,30 @@ TEST(Grade, BubblewrapFailingToStartTheServerIsTheGradersFailure) {
   EXPECT_EQ(result["extra_data"]["internal_error"], true) << result.dump(2);
   EXPECT_NE(result["output"].get<std::string>().find("This is a fault of the grader, not of the submission"), std::string::npos)
       << result.dump(2);
+}
+
+// bubblewrap that cannot start the compiler (it says so and exits 1, for the compile and for the
+// look at the compiler's version that then tells it from a compile error that says the same): the
+// grader's failure, exit 1, and a results file that says so.
+TEST(Grade, BubblewrapFailingToStartTheCompilerIsTheGradersFailure) {
+  NEEDS_SANDBOX();
+  TempDir dir;
+  const fs::path bwrap = dir / "bwrap";
+  write_file(bwrap,
+             "#!/bin/sh\n"
+             "for a in \"$@\"; do if [ \"$a\" = /usr/bin/g++ ]; then echo 'bwrap: execvp /usr/bin/g++: Permission denied' >&2; exit 1; fi; done\n"
+             "exec /usr/bin/bwrap \"$@\"\n");
+  fs::permissions(bwrap, fs::perms::owner_all | fs::perms::group_read | fs::perms::group_exec | fs::perms::others_read |
+                             fs::perms::others_exec);
+  const fs::path assignment = integrators_with_tests(dir, "one", json::array({definitions("integrators").at("euler.table")}));
+  const fs::path submission = copy_solution(dir, "integrators", "solution");
+  const auto r = run_motus(dir, {"grade", assignment.string(), submission.string(), "--results", (dir / "results.json").string()},
+                           {"MOTUS_BWRAP=" + bwrap.string()});
+  EXPECT_EQ(r.status, 1) << r.err << r.out;
+  EXPECT_NE(r.err.find("the sandbox could not start the compiler: bwrap: execvp /usr/bin/g++: Permission denied"), std::string::npos)
+      << r.err;
+  const json result = read_json(dir / "results.json");
+  EXPECT_EQ(result["extra_data"]["internal_error"], true) << result.dump(2);
 }
 
 // --jobs above the cores is allowed, with one line that says the tests will wait for a core.

@@ -1,5 +1,8 @@
 #include "motus/grade/build.hpp"
 
+#include <fmt/format.h>
+
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 
@@ -19,6 +22,60 @@ std::string cut(const std::string& text, size_t lines, size_t bytes) {
   size_t left = 0;
   for (size_t i = end; i < text.size(); ++i) left += text[i] == '\n';
   return text.substr(0, end) + "… (" + std::to_string(left) + " more lines left out)\n";
+}
+
+namespace {
+
+// Whether the driver reported a process of its own killed by the CPU limit (RLIMIT_CPU's SIGXCPU):
+// "g++: internal compiler error: CPU time limit exceeded signal terminated program cc1plus", on a
+// line of its own that begins with the program's name (no path, no space: the student's words only
+// come in lines that begin with a file's path or with spaces), and the internal compiler error's
+// exit status, 4 (a student's #error with the same words exits with 1).
+bool driver_reports_cpu_limit(const std::string& errors, const Ending& ending) {
+  if (!ending.exited || ending.status != 4) return false;
+  for (size_t start = 0; start < errors.size();) {
+    const size_t end = std::min(errors.find('\n', start), errors.size());
+    const std::string line = errors.substr(start, end - start);
+    const size_t colon = line.find(": ");
+    if (colon != std::string::npos && colon > 0 && line.find_first_of("/ \t") > colon &&
+        line.find("CPU time limit exceeded") != std::string::npos)
+      return true;
+    start = end + 1;
+  }
+  return false;
+}
+
+// Whether `spec`'s sandbox (its mounts, user and limits) starts the compiler: g++ --version, ended
+// by itself with status 0 within 30 s.
+bool starts_the_compiler(SandboxSpec spec, const Limits& limits) {
+  spec.argv = {"/usr/bin/g++", "--version"};
+  SandboxProcess compiler(spec, limits);
+  const Ending ending = compiler.finish(std::chrono::steady_clock::now() + std::chrono::seconds(30));
+  return ending.exited && ending.status == 0;
+}
+
+}  // namespace
+
+std::string compiler_messages(const std::string& errors, const Ending& ending, const Limits& limits, double wall_seconds) {
+  // Stopped by its CPU limit: said first, on a line of its own that no cut removes. The driver
+  // reports its killed cc1plus as "internal compiler error ... Please submit a full bug report", and
+  // that alone (past the 40 lines shown when a flood of errors came first) told a student to
+  // report a bug in GCC, with no word of the grader's limit.
+  const bool reported = driver_reports_cpu_limit(errors, ending);
+  const bool out_of_cpu = reported || (!ending.timed_out && ending.out_of_time(limits, wall_seconds)) ||
+                          (ending.timed_out && ending.verdict == WallVerdict::used_its_cpu);
+  std::string output;
+  if (out_of_cpu)
+    output = fmt::format("Compiling used up the {:g} s of CPU the grader gives a compile, and the grader stopped the "
+                         "compiler: code that makes the compiler work that long (a heavy constexpr evaluation or template "
+                         "instantiation) cannot be graded; make that work lighter.{}\n",
+                         cpu_limit_seconds(limits.cpu_seconds),
+                         reported ? " The compiler's \"internal compiler error\" (and its \"bug report\") is that stop, not "
+                                    "a bug in GCC to report."
+                                  : "");
+  output += "The compiler said:\n" + cut(errors, 40, 6000);
+  if (!ending.exited || ending.status != 0) output += "(the compiler " + ending.describe(limits, wall_seconds) + ")\n";
+  return output;
 }
 
 std::vector<std::string> folders_in_sight(const ApiHeaders& headers) {
@@ -91,13 +148,14 @@ BuildResult build_plugin(const Assignment& a, const std::string& provided, const
         throw MachineTooBusy(starved_message("the compiler", ending.use, cpu_limit_seconds(limits.cpu_seconds)));
       wall = backstop;  // (as the submission's result says it: the same on any machine)
     }
-    result.output = cut(compiler.errors(), 40, 6000);
+    result.output = compiler_messages(compiler.errors(), ending, limits, wall);
     result.ok = ending.exited && ending.status == 0 && fs::is_regular_file(fs::path(out) / "student.so");
-    if (!ending.exited || ending.status != 0)
-      result.output += "(the compiler " + ending.describe(limits, wall) + ")\n";
     // bubblewrap's own failure (it prints "bwrap: …" and exits 1) is the sandbox's, not the code's.
-    // (The compiler's words start with a file's name, and only the handout's names are taken.)
-    if (!result.ok && !interrupted && compiler.errors().rfind("bwrap: ", 0) == 0)
+    // The compiler's words start with a file's name, which the code can choose (#line 1 "bwrap:
+    // execvp /usr/bin/g++: Permission denied" and an #error made a grading the grader's failure,
+    // every time): so the same sandbox is asked to start the compiler once more, for its version,
+    // and only when that fails too is it the sandbox's.
+    if (!result.ok && !interrupted && compiler.errors().rfind("bwrap: ", 0) == 0 && !starts_the_compiler(spec, limits))
       throw std::runtime_error("the sandbox could not start the compiler: " +
                                compiler.errors().substr(0, compiler.errors().find('\n')));
   }

@@ -41,4 +41,9 @@ BuildResult build_plugin(const Assignment& assignment, const std::string& provid
 // was left out.
 std::string cut(const std::string& text, size_t lines, size_t bytes);
 
+// What the build test shows of a compile that ended as `ending`: a line of the grader's first when
+// the compile used up its CPU limit, then "The compiler said:" and its messages (`errors`) cut,
+// and how it ended.
+std::string compiler_messages(const std::string& errors, const Ending& ending, const Limits& limits, double wall_seconds);
+
 }  // namespace motus::grade

@@ -713,6 +713,26 @@ public:
     const RunOutput out = grade::run(probe, scene_, r, deadline);
     const MechanicalSystem system = measuring_system(scene_.description);
     const double e0 = energy(system, out.y.front());
+    // A state that is not a number (or infinite) is said to be one, and where it was first seen: a
+    // run of NaN read as one whose "state changed by at most 0 of its size" (std::max(moved, NaN) is
+    // moved). The state is looked at every r.every steps, so it went wrong after the last finite one.
+    for (size_t k = 0; k < out.y.size(); ++k) {
+      if (out.y[k].allFinite()) continue;
+      auto step_at = [&](size_t i) { return std::lround((out.t[i] - out.t.front()) / dt_); };
+      const std::string became = out.y[k].hasNaN() ? "not a number (NaN)" : "infinite";
+      const std::string measured =
+          k == 0 ? fmt::format("the state was {} at the start", became)
+                 : fmt::format("the state became {} by step {} (t = {}): it is looked at every {} of the {} steps, and was "
+                               "finite at step {} (t = {})",
+                               became, step_at(k), num(out.t[k]), r.every, out.steps, step_at(k - 1), num(out.t[k - 1]));
+      const std::string want = !std::isnan(growth_)
+                                   ? fmt::format("energy × {}^{}, from states that are numbers", num(growth_), out.steps)
+                                   : "a run whose states are numbers, and whose energy stays within " + num(bounded_);
+      return fail(measured, want,
+                  "an operation that gives NaN — 0/0, ∞ − ∞, the square root of a negative number — or a variable used "
+                  "before it is set; a state that becomes infinite first grew without bound. Print x and v in your step "
+                  "to see where they first go wrong.");
+    }
     if (!std::isnan(growth_)) {
       const double ratio = energy(system, out.y.back()) / e0;
       const double expected = std::pow(growth_, static_cast<double>(out.steps));

@@ -296,7 +296,7 @@ GradeResult grade_submission(const Assignment& a, const std::string& submission,
                                  "): not the submission's fault; free some space (or set TMPDIR) and grade again");
     build.passed = built.ok;
     build.output = built.ok ? fmt::format("Compiled in {:.1f} s.", built.seconds)
-                            : "Not graded: the submission does not compile. The compiler said:\n" + built.output;
+                            : "Not graded: the submission does not compile.\n" + built.output;  // (build.hpp's compiler_messages)
   } else {
     build.output = "Not built: a handed-in file is missing or cannot be taken (see \"files\").";
   }

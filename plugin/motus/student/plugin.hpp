@@ -15,10 +15,12 @@
 #include <cxxabi.h>
 
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <deque>
 #include <exception>
 #include <new>
+#include <stdexcept>
 #include <string>
 #include <typeinfo>
 #include <vector>
@@ -64,6 +66,21 @@ inline std::string type_name(const std::type_info& type) {
   return name;
 }
 
+// What the student's code gave that motus cannot take (an error estimate that is not a number),
+// said in motus's words: its message is not "threw ...", since the student's code threw nothing.
+struct Refused : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// "NaN", "∞", "0.1": a number in a message, as the grader writes one.
+inline std::string number(double x) {
+  if (std::isnan(x)) return "NaN";
+  if (std::isinf(x)) return x > 0 ? "∞" : "−∞";
+  char text[32];
+  std::snprintf(text, sizeof text, "%.6g", x);
+  return text;
+}
+
 // Runs the student's code: 0 when it returned, 1 (and the message) when it threw. Out of memory,
 // the message itself may not fit: then a fixed one, which needs no allocation (a bad_alloc out of
 // this noexcept function ended the process: "terminate called after throwing std::bad_alloc").
@@ -81,6 +98,8 @@ int guarded(Work&& work) noexcept {
     return 0;
   } catch (const std::bad_alloc&) {
     say([] { return std::string("ran out of memory (std::bad_alloc)"); });
+  } catch (const Refused& e) {
+    say([&] { return std::string(e.what()); });
   } catch (const std::exception& e) {
     say([&] { return "threw " + type_name(typeid(e)) + ": " + e.what(); });
   } catch (...) {
@@ -122,7 +141,8 @@ public:
   }
   // Adaptive steps by step doubling: `doubling` returns the new state and its error estimate,
   // `next` the step to try next from error_ratio = max_i |error_i| / tolerance_i (accepted
-  // when ≤ 1; tolerance_i = atol + rtol·max(|y_i|, |y_new_i|)).
+  // when ≤ 1; tolerance_i = atol + rtol·max(|y_i|, |y_new_i|)). An error or a new state that is
+  // NaN rejects the step and stops the run, as it does motus's own adaptive integrators.
   void adaptive(const char* name, int order, const char* description, DoublingStep doubling, NextStepSize next) {
     auto& slot = slots_.emplace_back();
     slot.doubling = doubling;
@@ -179,8 +199,28 @@ private:
         throw std::length_error("returned " + std::to_string(y1.size()) + " numbers and an error of " +
                                 std::to_string(error.size()) + " for a state of " + std::to_string(f->size));
       double ratio = 0;
-      for (int i = 0; i < f->size; ++i)
-        ratio = std::fmax(ratio, std::abs(error[i]) / (atol + rtol * std::fmax(std::abs(y0[i]), std::abs(y1[i]))));
+      for (int i = 0; i < f->size; ++i) {
+        const double part = std::abs(error[i]) / (atol + rtol * std::fmax(std::abs(y0[i]), std::abs(y1[i])));
+        // A NaN is no error of 0 (std::fmax(0, NaN) is 0: such a step was kept as exact). motus's own
+        // adaptive integrators reject a step whose error is NaN — theirs is NaN too when the new state
+        // is — and their controller proposes no step after it (h · NaN), which stops the run: so here,
+        // whatever `next` makes of a NaN.
+        if (std::isnan(part) || std::isnan(y1[i])) {
+          *accepted = 0;
+          const std::string at = "[" + std::to_string(i) + "] = ";
+          const std::string what =
+              std::isnan(error[i]) ? "the error estimate your step set is not a number: error" + at + "NaN"
+              : std::isnan(y1[i])  ? "the state your step gave is not a number: y" + at + "NaN (with an error estimate of " +
+                                        detail::number(error[i]) + ")"
+                                   : "the error estimate your step set is infinite, and so is the state: error" + at +
+                                        detail::number(error[i]) + ", y" + at +
+                                        detail::number(std::isinf(y1[i]) ? y1[i] : y0[i]);
+          throw detail::Refused(what + " (at t = " + detail::number(t) + " with h = " + detail::number(*h) +
+                                "). Such a step is rejected, as motus's own adaptive integrators reject one, and no "
+                                "next step size follows from it: the run stops here");
+        }
+        ratio = std::fmax(ratio, part);
+      }
       *accepted = ratio <= 1;
       *h = slot(self).next_step(*h, ratio);
       if (*accepted) detail::view(y, f->size) = y1;
