@@ -2547,6 +2547,19 @@ TEST(Grade, TheSandboxsRootCannotBeWritten) {
   EXPECT_TRUE(fs::exists(dir / "out/x"));
 }
 
+// `submission` graded against a copy of the integrators assignment whose one test is euler.table,
+// with a CPU limit of 1 s: its valid results.json (the grading ends with exit status 0).
+json graded_on_the_euler_table(const TempDir& dir, const fs::path& submission) {
+  const fs::path assignment = integrators_with_tests(dir, "one", json::array({definitions("integrators").at("euler.table")}));
+  const auto r = run_motus(dir, {"grade", assignment.string(), submission.string(), "--time-limit", "1", "--results",
+                                 (dir / "results.json").string()});
+  EXPECT_EQ(r.status, 0) << r.err;
+  if (r.status != 0 || !fs::exists(dir / "results.json")) return json::object();
+  const json result = read_json(dir / "results.json");
+  expect_valid_gradescope(result);
+  return result;
+}
+
 // A process's threads waiting for each other's cores are its own doing: each process counts its
 // longest-waiting thread, and processes one after another (a compile's) each their own.
 TEST(Grade, AProcesssThreadsWaitingForEachOtherCountAsOneWait) {
@@ -2567,7 +2580,6 @@ TEST(Grade, AProcesssThreadsWaitingForEachOtherCountAsOneWait) {
 TEST(Grade, ThreadsThatQueueForTheCoresTogetherAreTheCodesOwnTimeOut) {
   NEEDS_SANDBOX();
   TempDir dir;
-  const fs::path assignment = integrators_with_tests(dir, "one", json::array({definitions("integrators").at("euler.table")}));
   const fs::path submission = solution_with_euler_step_starting(
       dir, "queues", "look_starved();",
       "#include <chrono>\n#include <condition_variable>\n#include <csignal>\n#include <mutex>\n#include <thread>\n"
@@ -2592,11 +2604,7 @@ TEST(Grade, ThreadsThatQueueForTheCoresTogetherAreTheCodesOwnTimeOut) {
       "}\n"
       "}  // namespace\n");
   ASSERT_FALSE(submission.empty());
-  const auto r = run_motus(dir, {"grade", assignment.string(), submission.string(), "--time-limit", "1", "--results",
-                                 (dir / "results.json").string()});
-  ASSERT_EQ(r.status, 0) << r.err;
-  const json result = read_json(dir / "results.json");
-  expect_valid_gradescope(result);
+  const json result = graded_on_the_euler_table(dir, submission);
   EXPECT_EQ(failed(result), std::set<std::string>{"euler.table"}) << result.dump(2);
   EXPECT_NE(result.dump().find("timed out after 7 s waiting, not computing"), std::string::npos) << result.dump(2);
 }
@@ -2608,18 +2616,13 @@ TEST(Grade, ThreadsThatQueueForTheCoresTogetherAreTheCodesOwnTimeOut) {
 TEST(Grade, CodeThatPretendsToBeBubblewrapFailingIsTheStudentsFailure) {
   NEEDS_SANDBOX();
   TempDir dir;
-  const fs::path assignment = integrators_with_tests(dir, "one", json::array({definitions("integrators").at("euler.table")}));
   const fs::path submission = solution_with_euler_step_starting(
       dir, "pretends", "",
       "#include <unistd.h>\n"
       "namespace { struct Pretend { Pretend() { static const char m[] = \"bwrap: execvp /motus/motus: Permission denied\\n\";"
       " (void)!::write(2, m, sizeof m - 1); ::_exit(1); } } pretend; }\n");
   ASSERT_FALSE(submission.empty());
-  const auto r = run_motus(dir, {"grade", assignment.string(), submission.string(), "--time-limit", "1", "--results",
-                                 (dir / "results.json").string()});
-  ASSERT_EQ(r.status, 0) << r.err;
-  const json result = read_json(dir / "results.json");
-  expect_valid_gradescope(result);
+  const json result = graded_on_the_euler_table(dir, submission);
   EXPECT_EQ(failed(result), std::set<std::string>{"euler.table"}) << result.dump(2);
   EXPECT_NE(result.dump().find("exited with status 1"), std::string::npos) << result.dump(2);
 }
@@ -2630,15 +2633,11 @@ TEST(Grade, CodeThatPretendsToBeBubblewrapFailingIsTheStudentsFailure) {
 TEST(Grade, ACompileErrorThatPretendsToBeBubblewrapFailingIsTheStudentsFailure) {
   NEEDS_SANDBOX();
   TempDir dir;
-  const fs::path assignment = integrators_with_tests(dir, "one", json::array({definitions("integrators").at("euler.table")}));
   const fs::path submission = solution_with_euler_step_starting(
       dir, "pretends", "", "#line 1 \"bwrap: execvp /usr/bin/g++: Permission denied\"\n#error pretending\n");
   ASSERT_FALSE(submission.empty());
-  const auto r = run_motus(dir, {"grade", assignment.string(), submission.string(), "--results", (dir / "results.json").string()});
-  ASSERT_EQ(r.status, 0) << r.err;
-  const json result = read_json(dir / "results.json");
-  expect_valid_gradescope(result);
-  EXPECT_EQ(result["score"].get<double>(), 0) << result.dump(2);
+  const json result = graded_on_the_euler_table(dir, submission);
+  EXPECT_EQ(result.value("score", -1.0), 0) << result.dump(2);
   EXPECT_NE(result.dump().find("does not compile"), std::string::npos) << result.dump(2);
   EXPECT_NE(result.dump().find("#error pretending"), std::string::npos) << result.dump(2);
 }
