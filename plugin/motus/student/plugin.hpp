@@ -207,7 +207,9 @@ private:
         // whatever `next` makes of a NaN.
         if (std::isnan(part) || std::isnan(y1[i])) {
           *accepted = 0;
-          const std::string at = "[" + std::to_string(i) + "] = ";
+          std::string at(1, '[');  // "[i] = " (built by appending: GCC 12 warns, wrongly, of "[" + a string)
+          at += std::to_string(i);
+          at += "] = ";
           const std::string what =
               std::isnan(error[i]) ? "the error estimate your step set is not a number: error" + at + "NaN"
               : std::isnan(y1[i])  ? "the state your step gave is not a number: y" + at + "NaN (with an error estimate of " +
