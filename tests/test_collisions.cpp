@@ -518,6 +518,27 @@ TEST(StartOverlap, VerletMovesBallsApartBeforeTheFirstStepWithoutGivingThemSpeed
   expect_moved_apart_at_rest(Integrator::Verlet);
 }
 
+// A ball whose centre is on a segment (the box [0, 5]², the segment (0, 1)–(5, 1), a ball of r = 0.5
+// at rest at (2, 1)): the push out of a segment goes along the centre's distance from it, and at
+// distance 0 there was none: the ball stayed in the segment, whole, step after step, though the
+// run's note said motus moves it out before the first step (a review's find). Out to the side the
+// segment's normal points to, (−(b − a)_y, (b − a)_x) = (0, 5): (2, 1.5), at rest.
+TEST(StartOverlap, ABallCentredOnASegmentIsMovedOutOfIt) {
+  for (const Integrator integrator : {Integrator::SymplecticEuler, Integrator::Verlet}) {
+    SceneDescription scene = row_in_a_box({2});
+    scene.mechanical->bodies[0].position = {2, 1};
+    scene.mechanical->colliders.segments.push_back({{0, 1, 0}, {5, 1, 0}, 1});
+    Simulation sim(scene, integrator);
+    sim.advance(scene.dt, scene.dt, {});
+    const std::string what = motus::info(integrator).name;
+    EXPECT_NEAR(position_of(sim, 0)[0], 2, 1e-12) << what;
+    EXPECT_NEAR(position_of(sim, 0)[1], 1.5, 1e-12) << what;
+    sim.advance(1, scene.dt, {});
+    EXPECT_NEAR(position_of(sim, 0)[1], 1.5, 1e-9) << what << ": at rest on the segment after 1 s";
+    EXPECT_LT(sim.energy()->kinetic, 1e-12) << what;
+  }
+}
+
 // ---- only what the scene needs, by counting
 
 TEST(OnlyWhatItNeeds, NoCollidersNoBroadPhase) {

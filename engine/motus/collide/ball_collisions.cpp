@@ -1372,8 +1372,17 @@ template <int D>
 double BallCollisions<D>::push_off_segment(int i, const Segment& s) {
   const Point d = position(i) - nearest_on(s, position(i));
   const double distance = d.norm();
-  if (!(distance < radius_of(i) && distance > 0)) return 0;
-  position(i) += (radius_of(i) - distance) / distance * d;
+  if (!(distance < radius_of(i))) return 0;
+  if (distance > 0) {
+    position(i) += (radius_of(i) - distance) / distance * d;
+  } else if constexpr (D == 2) {
+    // Its centre on the segment: no side to push it out to, so the one its normal points to,
+    // (−(b − a)_y, (b − a)_x) (a ball set on a segment stayed in it, whole, step after step).
+    const Point along = s.b - s.a;
+    Point normal = Point::UnitX();
+    if (const double length = along.norm(); length > 0) normal << -along[1] / length, along[0] / length;
+    position(i) += radius_of(i) * normal;
+  }
   ++counters_.position_corrections;
   return radius_of(i) - distance;
 }

@@ -578,6 +578,14 @@ void ConstraintProjection::project_segment(size_t j, int i, VectorRef xi) const 
     const Eigen::Vector2d q = closest + (r / distance) * away;
     xi[0] = q.x();
     xi[1] = q.y();
+  } else if (distance == 0 && r > 0) {
+    // Its centre on the segment: out to the side it was on, or (none yet: the start) to the one its
+    // normal points to (a ball set on a segment stayed in it, whole, step after step).
+    const Eigen::Vector2d normal =
+        length2 > 0 ? Eigen::Vector2d(-along.y(), along.x()).normalized() : Eigen::Vector2d::UnitX();
+    const Eigen::Vector2d q = closest + ((before < 0 ? -1.0 : 1.0) * r) * normal;
+    xi[0] = q.x();
+    xi[1] = q.y();
   }
 }
 
