@@ -2402,6 +2402,33 @@ pid_t server_of(pid_t grader) {
   return -1;
 }
 
+// The last of the cores this process may run on, as a set of one (the busy-machine tests' core).
+cpu_set_t last_core() {
+  cpu_set_t all, one;
+  CPU_ZERO(&one);
+  if (::sched_getaffinity(0, sizeof all, &all) != 0) return one;
+  int core = -1;
+  for (int c = 0; c < CPU_SETSIZE; ++c)
+    if (CPU_ISSET(c, &all)) core = c;
+  if (core >= 0) CPU_SET(core, &one);
+  return one;
+}
+
+// A process that spins for ever on `core` at nice -20, in a scheduling autogroup of nice -20 (a
+// sandbox's session is an autogroup of its own): what runs beside it there gets about 1 % of the
+// core. Needs root; the caller kills it (SIGKILL, then waitpid).
+pid_t start_hog(const cpu_set_t& core) {
+  const pid_t hog = ::fork();
+  if (hog == 0) {
+    ::sched_setaffinity(0, sizeof core, &core);
+    ::setpriority(PRIO_PROCESS, 0, -20);
+    std::ofstream("/proc/self/autogroup") << "-20";
+    volatile long spin = 0;
+    for (;;) spin = spin + 1;
+  }
+  return hog;
+}
+
 TEST(Grade, AServerStarvedOfItsCpuByABusyMachineIsTheGradersFailure) {
   NEEDS_SANDBOX();
   if (::geteuid() != 0) GTEST_SKIP() << "needs root, for a process of nice -20 that the server cannot outrun";
@@ -2415,13 +2442,8 @@ TEST(Grade, AServerStarvedOfItsCpuByABusyMachineIsTheGradersFailure) {
       "for (const std::clock_t until = std::clock() + CLOCKS_PER_SEC / 2; std::clock() < until;) {} }",
       "#include <ctime>\n#include <unistd.h>\n");
   ASSERT_FALSE(submission.empty());
-  cpu_set_t all, one;
-  ASSERT_EQ(::sched_getaffinity(0, sizeof all, &all), 0);
-  int core = -1;
-  for (int c = 0; c < CPU_SETSIZE; ++c)
-    if (CPU_ISSET(c, &all)) core = c;
-  CPU_ZERO(&one);
-  CPU_SET(core, &one);
+  const cpu_set_t one = last_core();
+  ASSERT_EQ(CPU_COUNT(&one), 1);
   MotusFiles files;
   files.err = (dir / "err.txt").string();
   files.folder = dir.path().string();
@@ -2436,14 +2458,7 @@ TEST(Grade, AServerStarvedOfItsCpuByABusyMachineIsTheGradersFailure) {
   }
   pid_t hog = -1;
   if (server > 0) {
-    hog = ::fork();
-    if (hog == 0) {
-      ::sched_setaffinity(0, sizeof one, &one);
-      ::setpriority(PRIO_PROCESS, 0, -20);
-      std::ofstream("/proc/self/autogroup") << "-20";
-      volatile long spin = 0;
-      for (;;) spin = spin + 1;
-    }
+    hog = start_hog(one);
     std::error_code error;  // (the server's threads, and the processes it is in)
     for (const auto& task : fs::directory_iterator("/proc/" + std::to_string(server) + "/task", error))
       ::sched_setaffinity(static_cast<pid_t>(std::stoi(task.path().filename().string())), sizeof one, &one);
@@ -2477,21 +2492,11 @@ TEST(Grade, AWaitForACoreByAProcessThatHasEndedCountsAtTheDeadline) {
   NEEDS_SANDBOX();
   if (::geteuid() != 0) GTEST_SKIP() << "needs root, for a process of nice -20 that the sandbox cannot outrun";
   using namespace motus::grade;
-  cpu_set_t all, one;
+  cpu_set_t all;
   ASSERT_EQ(::sched_getaffinity(0, sizeof all, &all), 0);
-  int core = -1;
-  for (int c = 0; c < CPU_SETSIZE; ++c)
-    if (CPU_ISSET(c, &all)) core = c;
-  CPU_ZERO(&one);
-  CPU_SET(core, &one);
-  const pid_t hog = ::fork();
-  if (hog == 0) {
-    ::sched_setaffinity(0, sizeof one, &one);
-    ::setpriority(PRIO_PROCESS, 0, -20);
-    std::ofstream("/proc/self/autogroup") << "-20";
-    volatile long spin = 0;
-    for (;;) spin = spin + 1;
-  }
+  const cpu_set_t one = last_core();
+  ASSERT_EQ(CPU_COUNT(&one), 1);
+  const pid_t hog = start_hog(one);
   ASSERT_GT(hog, 0);
   ::usleep(200000);  // (the hog on its core first)
   Ending ending;
