@@ -31,6 +31,12 @@
 // (settle_overlaps), for a pair moved apart may push a ball into a wall or into another ball.
 // The lists assume that only this drift moves the bodies: a drift given other arrays
 // builds them again.
+//
+// The parts, one file each: the event-driven drift itself (ball_collisions.cpp), the neighbour
+// lists and their grid (neighbour_lists.cpp), the scene's overlap removed at the start
+// (start_overlaps.cpp), the fast balls' searches along their paths (fast_balls.cpp), the walls
+// (wall_contacts.cpp), the contacts' impulses and times of impact, the engine's or a plug-in's
+// (collision_rules.cpp), and the numbers they are tuned with (ball_collisions_tuning.hpp).
 #include <array>
 #include <vector>
 
@@ -118,7 +124,7 @@ private:
 
   void build_grid();
   [[gnu::always_inline]] inline Cell cell_of(const Point& p) const;  // (in every per-ball loop of the grid)
-  int cell_index(const Cell& c) const;
+  inline int cell_index(const Cell& c) const;
   template <class Visit>
   void for_cells_in_box(const Point& low, const Point& high, Visit&& visit);
 
@@ -305,6 +311,28 @@ private:
   std::vector<int> cluster_balls_;
   long cluster_budget_ = 0;  // the work clusters may still take in this step (settle_cluster)
 };
+
+// A ball's grid cell (in every per-ball loop of the grid's build and the fast balls' searches: here,
+// to be inlined in each file of the collisions that walks the grid).
+template <int D>
+typename BallCollisions<D>::Cell BallCollisions<D>::cell_of(const Point& p) const {
+  Cell c;
+  for (int k = 0; k < D; ++k)
+    // Clamped as a double before the conversion: a ball flung far outside the grid (or a
+    // NaN, which std::max(1.0, NaN) turns into 1) must not overflow the int. Truncation,
+    // not floor: the padding cell makes every coordinate ≥ 1, and std::floor is a library
+    // call on baseline x86-64.
+    c[k] = static_cast<int>(
+        std::min(std::max(1.0, (p[k] - origin_[k]) * inverse_cell_size_), static_cast<double>(dims_[k] - 2)));
+  return c;
+}
+
+template <int D>
+int BallCollisions<D>::cell_index(const Cell& c) const {
+  int index = 0;
+  for (int k = 0; k < D; ++k) index += c[k] * stride_[k];
+  return index;
+}
 
 extern template class BallCollisions<1>;
 extern template class BallCollisions<2>;
