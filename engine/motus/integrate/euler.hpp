@@ -5,9 +5,7 @@
 // the step — the course's spring table. (Updating v first and moving x with the new v
 // is symplectic Euler, symplectic_euler.hpp.)
 // Global error O(Δt); on x'' = −ω²x the energy grows by (1 + ω²Δt²) every step.
-// (The Runge–Kutta family is written with plain loops over i: on the course's small
-// systems they beat Eigen's vectorized expressions, which pay set-up costs on three
-// numbers — see bench/bench_integrators.cpp.)
+// (Why the Runge–Kutta family's steps are plain loops over i: stage_vector.hpp.)
 #include "motus/integrate/stage_vector.hpp"
 #include "motus/systems/first_order_system.hpp"
 

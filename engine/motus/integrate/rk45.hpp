@@ -1,8 +1,12 @@
 #pragma once
 // Dormand–Prince 5(4): seven stages give a fifth-order solution and an embedded
 // fourth-order one; their difference is the error estimate that picks the next step
-// (see step_size_control.hpp). The last stage is the next step's first ("first same
-// as last"), so an accepted step costs six derivative evaluations.
+// (see step_size_control.hpp):
+//   k_i     = f(t + c_i h, y_n + h Σ_{j<i} a_ij k_j),   i = 1 … 7
+//   y_{n+1} = y_n + h Σ b_i k_i                (fifth order; b_2 = b_7 = 0)
+//   e       = h Σ (b_i − b̂_i) k_i             (against the fourth-order ŷ_{n+1})
+// k_7 is f at (t + h, y_{n+1}): the next step's k_1 ("first same as last"), so an
+// accepted step costs six derivative evaluations.
 #include <array>
 
 #include "motus/integrate/stage_vector.hpp"

@@ -1,9 +1,9 @@
 #pragma once
 // Adaptive RK4 by step doubling (docs/course.md, section 5):
 //   take one RK4 step of h, and two of h/2, from the same point;
-//   their difference / 15 estimates the error of the two half steps;
+//   e = (y_half − y_full)/15 estimates the error of the two half steps;
 //   keep the step if that error is within tolerance, and then use the extrapolated
-//   y = y_half + (y_half − y_full)/15, which is fifth order;
+//   y = y_half + e, which is fifth order;
 //   h ← h · 0.9 · err^(−1/5), within [h/5, 5h], with no growth right after a rejection
 //   (step_size_control.hpp).
 #include "motus/integrate/rk4.hpp"
@@ -16,7 +16,7 @@ class Rk4Doubling {
 public:
   void resize(int n) {
     rk4_.resize(n);
-    for (Vector* v : {&stages_.y_full, &stages_.y_half, &stages_.difference}) v->resize(n);
+    for (Vector* v : {&stages_.y_full, &stages_.y_half, &stages_.error}) v->resize(n);
   }
   void set_tolerance(Tolerance tol) { tol_ = tol; }
 
@@ -35,24 +35,24 @@ public:
 private:
   template <int N>
   struct Stages {
-    StageVector<N> y_full, y_half, difference;
+    StageVector<N> y_full, y_half, error;  // error: e = (y_half − y_full)/15
   };
 
   template <class System, int N>
   bool try_step(System& f, double& t, double& h, VectorRef y, Stages<N>& s) {
-    auto& [y_full, y_half, difference] = s;
+    auto& [y_full, y_half, error] = s;
     const Eigen::Index n = y_full.size();
     y_full = y;
     rk4_.step(f, t, h, y_full);
     y_half = y;
     rk4_.step(f, t, 0.5 * h, y_half);
     rk4_.step(f, t + 0.5 * h, 0.5 * h, y_half);
-    for (Eigen::Index i = 0; i < n; ++i) difference[i] = (y_half[i] - y_full[i]) / 15;
-    const double err = scaled_error(y, y_half, difference, tol_);
+    for (Eigen::Index i = 0; i < n; ++i) error[i] = (y_half[i] - y_full[i]) / 15;
+    const double err = scaled_error(y, y_half, error, tol_);
     const double h_used = h;
     h = control_.next_step(h, err);
     if (!(err <= 1)) return false;  // too large (or NaN: a state that is no longer finite), try again smaller
-    for (Eigen::Index i = 0; i < n; ++i) y[i] = y_half[i] + difference[i];
+    for (Eigen::Index i = 0; i < n; ++i) y[i] = y_half[i] + error[i];  // y_half + e: fifth order
     t += h_used;
     return true;
   }

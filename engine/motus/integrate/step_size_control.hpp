@@ -16,13 +16,13 @@ struct Tolerance {
   double rtol = 1e-6;
 };
 
-// The scaled RMS norm of an error estimate `difference` between y0 (start of step)
-// and y1 (end of step).
-inline double scaled_error(ConstVectorRef y0, ConstVectorRef y1, ConstVectorRef difference, Tolerance tol) {
+// The scaled RMS norm of a step's error estimate e (err above, with e_i = y1_i − ŷ1_i): y0 (the
+// step's start) and y1 (its end) only set each component's scale sc_i.
+inline double scaled_error(ConstVectorRef y0, ConstVectorRef y1, ConstVectorRef error, Tolerance tol) {
   double sum = 0;
   for (Eigen::Index i = 0; i < y0.size(); ++i) {
     const double scale = tol.atol + tol.rtol * std::max(std::abs(y0[i]), std::abs(y1[i]));
-    const double e = difference[i] / scale;
+    const double e = error[i] / scale;
     sum += e * e;
   }
   return std::sqrt(sum / static_cast<double>(y0.size()));

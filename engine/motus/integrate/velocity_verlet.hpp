@@ -5,7 +5,9 @@
 //   v_{n+1} = v_{n+½} + ½ a_{n+1} Δt
 // The same positions as velocityless Verlet, with velocities. a_{n+1} is kept for
 // the next step, so one force evaluation per step. Second order; on x'' = −ω²x it
-// keeps ½(v² + ω²(1 − ω²Δt²/4) x²) exactly.
+// keeps ½(v² + ω²(1 − ω²Δt²/4) x²) exactly. A force that depends on velocity (drag,
+// a damped spring) sees v_{n+½} in a_{n+1} = a(x_{n+1}, v_{n+½}): v_{n+1} is not known
+// until a_{n+1} is (the slide's formula assumes forces of position alone).
 #include "motus/systems/mechanical_system.hpp"
 
 namespace motus {
@@ -25,7 +27,7 @@ public:
     }
     v += (0.5 * h) * a_;
     x += h * v;
-    s.acceleration(t + h, x, v, a_);
+    s.acceleration(t + h, x, v, a_);  // (v is v_{n+½} here)
     v += (0.5 * h) * a_;
   }
 
