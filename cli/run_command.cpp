@@ -186,7 +186,8 @@ int report_non_finite(double by, const Simulation& sim, const Method& method) {
 // number with a sign; every NaN of a blown-up run is "nan".
 double unsigned_nan(double x) { return std::isnan(x) ? std::numeric_limits<double>::quiet_NaN() : x; }
 
-std::string vec(ConstVectorRef v) {
+// A vector as the summary prints it: (1.5, -2, nan).
+std::string vector_text(ConstVectorRef v) {
   std::vector<std::string> parts;
   for (Eigen::Index i = 0; i < v.size(); ++i) parts.push_back(fmt::format("{:.10g}", unsigned_nan(v[i])));
   return fmt::format("({})", fmt::join(parts, ", "));
@@ -269,10 +270,6 @@ CLI::App* add_run_command(CLI::App& app, RunOptions& o) {
   return run;
 }
 
-namespace {
-bool adaptive_method(const Method& m) { return m.adaptive(); }
-}  // namespace
-
 int run_command(const RunOptions& o) {
   const std::string path = resolve_scene_path(o.scene);
   SceneDescription scene = load_scene(path, o.sets);
@@ -334,7 +331,7 @@ int run_command(const RunOptions& o) {
   std::vector<std::vector<double>> table;
   std::vector<std::string> table_names;
   const bool small_state = sim.is_mechanical() ? sim.mechanical_system()->particles() <= 2 : sim.state().size() <= 6;
-  bool tabulate = small_state && (adaptive_method(method) || fixed_step_count(duration, dt) < static_cast<long>(kTableRows));
+  bool tabulate = small_state && (method.adaptive() || fixed_step_count(duration, dt) < static_cast<long>(kTableRows));
   Vector acceleration(sim.is_mechanical() ? sim.mechanical_system()->size() : 0);
   auto tabulate_row = [&](const Simulation& s) {
     std::vector<double> row = {s.time()};
@@ -515,8 +512,8 @@ int run_command(const RunOptions& o) {
     row("kinetic energy", energy0->kinetic, e1->kinetic);
     row("potential energy", energy0->potential, e1->potential);
     row("total energy", energy0->total, e1->total);
-    fmt::print(out, "{:<18}{}  ->  {}\n", "momentum", vec(momentum0), vec(sim.momentum()));
-    if (angular0.size()) fmt::print(out, "{:<18}{}  ->  {}\n", "angular momentum", vec(angular0), vec(sim.angular_momentum()));
+    fmt::print(out, "{:<18}{}  ->  {}\n", "momentum", vector_text(momentum0), vector_text(sim.momentum()));
+    if (angular0.size()) fmt::print(out, "{:<18}{}  ->  {}\n", "angular momentum", vector_text(angular0), vector_text(sim.angular_momentum()));
     // The final state of a few bodies (--json and --trajectory have all of them).
     const int d = scene.mechanical->dimensions, n = sim.mechanical_system()->size();
     const int bodies = n / d;
@@ -524,7 +521,7 @@ int run_command(const RunOptions& o) {
       fmt::print(out, "\n");
       for (int b = 0; b < bodies; ++b)
         fmt::print(out, "{:<18}x = {}   v = {}\n", bodies == 1 ? "final state" : fmt::format("body {}, end", b),
-                   vec(sim.state().segment(b * d, d)), vec(sim.state().segment(n + b * d, d)));
+                   vector_text(sim.state().segment(b * d, d)), vector_text(sim.state().segment(n + b * d, d)));
     }
   } else {
     const auto names = sim.state_names();

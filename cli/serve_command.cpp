@@ -120,11 +120,11 @@ json plane_impact(const json& r) {
 }
 
 // c0 + c1 t + c2 t² + …: the `step` op's acceleration or derivative, whatever the state.
-struct OfTime {
-  std::vector<double> c;
-  double at(double t) const {
+struct PolynomialOfTime {
+  std::vector<double> coefficients;  // c0, c1, c2, …
+  double value_at(double t) const {  // (Horner's rule)
     double value = 0;
-    for (auto k = c.rbegin(); k != c.rend(); ++k) value = value * t + *k;
+    for (auto k = coefficients.rbegin(); k != coefficients.rend(); ++k) value = value * t + *k;
     return value;
   }
 };
@@ -137,39 +137,39 @@ json step(const json& r) {
   const std::string name = r.at("integrator").get<std::string>();
   const auto method = plugins().integrator(name);
   if (!method || !method->is_external()) throw std::invalid_argument("step: the plug-in brings no integrator \"" + name + "\"");
-  const ExternalIntegrator& in = method->outside();
-  OfTime polynomial{wire::numbers(r.at("of_time"))};
+  const ExternalIntegrator& integrator = method->outside();
+  PolynomialOfTime polynomial{wire::numbers(r.at("of_time"))};
   const double t = wire::number(r.at("t"));
   double h = wire::number(r.at("h"));
   const std::string what = r.value("function", name);
-  auto check = [&](int status) { check_external(status, what.c_str(), in.error, in.self); };
-  if (in.kind == kExternalAdaptive || in.kind == kExternalFirstOrder) {
+  auto check = [&](int status) { check_external(status, what.c_str(), integrator.error, integrator.self); };
+  if (integrator.kind == kExternalAdaptive || integrator.kind == kExternalFirstOrder) {
     std::vector<double> y = wire::numbers(r.at("y"));
     if (y.size() != 1) throw std::invalid_argument("step: y must be one number");
     const ExternalFirstOrder f{1, &polynomial, [](void* self, double time, const double*, double* dydt) {
-                                 dydt[0] = static_cast<const OfTime*>(self)->at(time);
+                                 dydt[0] = static_cast<const PolynomialOfTime*>(self)->value_at(time);
                                }};
-    if (in.kind == kExternalFirstOrder) {
-      check(in.step(in.self, &f, t, h, y.data()));
+    if (integrator.kind == kExternalFirstOrder) {
+      check(integrator.step(integrator.self, &f, t, h, y.data()));
       return {{"y", wire::numbers(y)}};
     }
     int accepted = 0;
-    check(in.try_step(in.self, &f, t, &h, y.data(), wire::number(r.at("atol")), wire::number(r.at("rtol")), &accepted));
+    check(integrator.try_step(integrator.self, &f, t, &h, y.data(), wire::number(r.at("atol")), wire::number(r.at("rtol")), &accepted));
     return {{"y", wire::numbers(y)}, {"accepted", accepted}, {"h", wire::number(h)}};
   }
   std::vector<double> x = wire::numbers(r.at("x")), v = wire::numbers(r.at("v"));
   if (x.size() != 1 || v.size() != 1) throw std::invalid_argument("step: x and v must be one number each");
   const ExternalMechanical s{1, &polynomial, [](void* self, double time, const double*, const double*, double* a) {
-                               a[0] = static_cast<const OfTime*>(self)->at(time);
+                               a[0] = static_cast<const PolynomialOfTime*>(self)->value_at(time);
                              }};
-  if (in.kind == kExternalMechanical) {
-    check(in.step_mechanical(in.self, &s, t, h, x.data(), v.data()));
+  if (integrator.kind == kExternalMechanical) {
+    check(integrator.step_mechanical(integrator.self, &s, t, h, x.data(), v.data()));
     return {{"x", wire::numbers(x)}, {"v", wire::numbers(v)}};
   }
   std::vector<double> previous(1, 0.0);
-  check(in.verlet_start(in.self, &s, t, h, x.data(), v.data(), previous.data()));
+  check(integrator.verlet_start(integrator.self, &s, t, h, x.data(), v.data(), previous.data()));
   const std::vector<double> start = previous;
-  check(in.verlet_step(in.self, &s, t, h, x.data(), previous.data(), v.data()));
+  check(integrator.verlet_step(integrator.self, &s, t, h, x.data(), previous.data(), v.data()));
   return {{"x_start", wire::numbers(start)}, {"x", wire::numbers(x)}, {"x_previous", wire::numbers(previous)}};
 }
 

@@ -25,10 +25,11 @@
 
 namespace motus {
 
-struct Simulation::Steppers {
+// The scene's integrator: one of the engine's, or a plug-in's in one of its three shapes.
+struct Simulation::Stepper {
   std::variant<Euler, Midpoint, Rk4, Rk4Doubling, Rk45, Dop853, SymplecticEuler, SymplecticEulerX, Verlet,
                VelocityVerlet, Yoshida4, ExternalFixedStep, ExternalAdaptiveStep, ExternalMechanicalStep>
-      any;
+      chosen;
 };
 
 namespace {
@@ -94,7 +95,7 @@ long fixed_step_count(double duration, double dt) {
 }
 
 Simulation::Simulation(const SceneDescription& scene, Method method, ExternalParts parts)
-    : scene_(scene), method_(std::move(method)), stepper_(std::make_unique<Steppers>()), t_(scene.start_time) {
+    : scene_(scene), method_(std::move(method)), stepper_(std::make_unique<Stepper>()), t_(scene.start_time) {
   if (scene.mechanical) {
     const auto& m = *scene.mechanical;
     check_mechanical(m);
@@ -145,28 +146,28 @@ Simulation::Simulation(const SceneDescription& scene, Method method, ExternalPar
                                        "first-order system \"" + scene.first_order->type +
                                        "\"; use " + first_order_integrator_names());
 
-  auto& any = stepper_->any;
+  auto& chosen = stepper_->chosen;
   if (method_.is_external()) {
     switch (method_.outside().kind) {
-      case kExternalFirstOrder: any.emplace<ExternalFixedStep>(method_.outside(), method_.name()); break;
-      case kExternalAdaptive: any.emplace<ExternalAdaptiveStep>(method_.outside(), method_.name()); break;
+      case kExternalFirstOrder: chosen.emplace<ExternalFixedStep>(method_.outside(), method_.name()); break;
+      case kExternalAdaptive: chosen.emplace<ExternalAdaptiveStep>(method_.outside(), method_.name()); break;
       case kExternalMechanical:
-      case kExternalPositionVerlet: any.emplace<ExternalMechanicalStep>(method_.outside(), method_.name()); break;
+      case kExternalPositionVerlet: chosen.emplace<ExternalMechanicalStep>(method_.outside(), method_.name()); break;
       default: throw SceneError("integrator", method_.name() + ": unknown kind of integrator");
     }
   } else {
     switch (method_.builtin()) {
-      case Integrator::Euler: any.emplace<Euler>(); break;
-      case Integrator::Midpoint: any.emplace<Midpoint>(); break;
-      case Integrator::Rk4: any.emplace<Rk4>(); break;
-      case Integrator::Rk4Doubling: any.emplace<Rk4Doubling>(); break;
-      case Integrator::Rk45: any.emplace<Rk45>(); break;
-      case Integrator::Dop853: any.emplace<Dop853>(); break;
-      case Integrator::SymplecticEuler: any.emplace<SymplecticEuler>(); break;
-      case Integrator::SymplecticEulerX: any.emplace<SymplecticEulerX>(); break;
-      case Integrator::Verlet: any.emplace<Verlet>(); break;
-      case Integrator::VelocityVerlet: any.emplace<VelocityVerlet>(); break;
-      case Integrator::Yoshida4: any.emplace<Yoshida4>(); break;
+      case Integrator::Euler: chosen.emplace<Euler>(); break;
+      case Integrator::Midpoint: chosen.emplace<Midpoint>(); break;
+      case Integrator::Rk4: chosen.emplace<Rk4>(); break;
+      case Integrator::Rk4Doubling: chosen.emplace<Rk4Doubling>(); break;
+      case Integrator::Rk45: chosen.emplace<Rk45>(); break;
+      case Integrator::Dop853: chosen.emplace<Dop853>(); break;
+      case Integrator::SymplecticEuler: chosen.emplace<SymplecticEuler>(); break;
+      case Integrator::SymplecticEulerX: chosen.emplace<SymplecticEulerX>(); break;
+      case Integrator::Verlet: chosen.emplace<Verlet>(); break;
+      case Integrator::VelocityVerlet: chosen.emplace<VelocityVerlet>(); break;
+      case Integrator::Yoshida4: chosen.emplace<Yoshida4>(); break;
     }
   }
   // Mechanical steppers work on x (or v): half the state. The rest work on all of it.
@@ -179,7 +180,7 @@ Simulation::Simulation(const SceneDescription& scene, Method method, ExternalPar
         else
           s.resize(n);
       },
-      any);
+      chosen);
 }
 
 Simulation::~Simulation() = default;
@@ -203,6 +204,9 @@ void Simulation::advance(double end_time, double dt, Tolerance tolerance,
         const bool landing = h < adaptive_h_;  // shortened to land on end_time
         const double tried = h;
         const bool accepted = stepper.try_step(system, t_, h, y_);
+        // A step cut short to land on end_time says nothing of the step the error allows: after
+        // it is accepted the step chosen before is kept, so that the next advance() does not start
+        // small. (Rejected, even a landing step's shrunk h is what the error asks for.)
         if (!landing || !accepted) adaptive_h_ = h;
         if (!accepted) {
           ++rejected_;
@@ -300,7 +304,7 @@ void Simulation::advance(double end_time, double dt, Tolerance tolerance,
             with_concrete_system(*first_order_, [&](auto& f) { run(stepper, f); });
           }
         },
-        stepper_->any);
+        stepper_->chosen);
   } catch (const ExternalCodeFailed& e) {
     throw ExternalCodeFailed(e.what() + when());
   } catch (const ExternalError& e) {

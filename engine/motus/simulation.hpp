@@ -90,12 +90,12 @@ public:
 private:
   // Throws SceneError when the start's energy or momentum is not a finite number.
   void check_start_is_finite() const;
-  struct Steppers;
+  struct Stepper;
   SceneDescription scene_;
   Method method_;
   std::unique_ptr<FirstOrderSystem> first_order_;
   std::unique_ptr<World> world_;
-  std::unique_ptr<Steppers> stepper_;
+  std::unique_ptr<Stepper> stepper_;
   Vector y_;
   double t_ = 0;
   double adaptive_h_ = 0;  // the step an adaptive integrator would like to take next

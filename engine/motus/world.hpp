@@ -8,7 +8,7 @@
 //                                                        — only with walls or two balls
 //   constraints  sticks and pins by projection (verlet)  — only with sticks or pins
 // A scene without colliders and with fewer than two balls does no collision detection;
-// one without sticks or contacts never projects; with collisions and no forces, the kick
+// one without sticks, pins or contacts never projects; with collisions and no forces, the kick
 // is skipped. (Without any pass the integrator steps the system as it is; an empty force
 // set costs it a zeroed array.)
 #include <memory>

@@ -15,9 +15,16 @@ namespace {
 
 [[noreturn]] void unfit(const std::string& why) { throw SceneError("exact", why); }
 
-bool only(const ForceSet& f, bool gravity, bool springs, bool drag, bool central, bool pendulums) {
-  return (gravity || f.gravity.empty()) && (springs || f.springs.empty()) && (drag || f.drag.empty()) &&
-         (central || f.central_gravity.empty()) && f.mutual_gravity.empty() && (pendulums || f.pendulums.empty());
+// The kinds of force a closed form allows (mutual gravity: none of them).
+struct Allowed {
+  bool gravity = false, springs = false, drag = false, central_gravity = false, pendulums = false;
+};
+
+// Whether f has no force of a kind the closed form does not allow.
+bool only(const ForceSet& f, Allowed a) {
+  return (a.gravity || f.gravity.empty()) && (a.springs || f.springs.empty()) && (a.drag || f.drag.empty()) &&
+         (a.central_gravity || f.central_gravity.empty()) && f.mutual_gravity.empty() &&
+         (a.pendulums || f.pendulums.empty());
 }
 
 // The closed forms of harmonic, kepler, pendulum and projectile-drag know forces alone: a scene with a
@@ -51,7 +58,7 @@ void check_exact_solution(const SceneDescription& scene) {
   const ForceSet& f = m.forces;
   if (e != "free-flight") forces_alone(m, e);
   if (e == "harmonic") {
-    if (m.bodies.size() != 1 || f.springs.size() != 1 || !only(f, false, true, false, false, false) ||
+    if (m.bodies.size() != 1 || f.springs.size() != 1 || !only(f, {.springs = true}) ||
         f.springs[0].b != -1 || f.springs[0].rest_length != 0)
       unfit("\"harmonic\" needs one body tied to an anchor by one zero-length spring and no other force");
     const auto& s = f.springs[0];
@@ -59,7 +66,7 @@ void check_exact_solution(const SceneDescription& scene) {
     if (!(gamma * gamma < omega2)) unfit("\"harmonic\" solves the underdamped spring only (c² < 4km)");
   } else if (e == "kepler") {
     if (m.dimensions != 2 || m.bodies.size() != 1 || f.central_gravity.size() != 1 ||
-        !only(f, false, false, false, true, false) || f.central_gravity[0].softening != 0)
+        !only(f, {.central_gravity = true}) || f.central_gravity[0].softening != 0)
       unfit("\"kepler\" needs one body in 2 dimensions and one unsoftened central gravity, nothing else");
     const auto& b = m.bodies[0];
     const auto& c = f.central_gravity[0];
@@ -67,7 +74,7 @@ void check_exact_solution(const SceneDescription& scene) {
     const double v2 = b.velocity[0] * b.velocity[0] + b.velocity[1] * b.velocity[1];
     if (!(2 / r - v2 / c.mu > 0)) unfit("\"kepler\" solves bound (elliptic) orbits only: this one escapes");
   } else if (e == "pendulum") {
-    if (m.dimensions != 1 || m.bodies.size() != 1 || f.pendulums.size() != 1 || !only(f, false, false, false, false, true))
+    if (m.dimensions != 1 || m.bodies.size() != 1 || f.pendulums.size() != 1 || !only(f, {.pendulums = true}))
       unfit("\"pendulum\" needs one 1-D body and one pendulum force, nothing else");
     const auto& b = m.bodies[0];
     const auto& p = f.pendulums[0];
@@ -78,7 +85,7 @@ void check_exact_solution(const SceneDescription& scene) {
     check_free_flight(scene);
   } else if (e == "projectile-drag") {
     if (f.gravity.size() != 1 || f.drag.size() != 1 || f.drag[0].body != -1 || !(f.drag[0].coefficient > 0) ||
-        !only(f, true, false, true, false, false))
+        !only(f, {.gravity = true, .drag = true}))
       unfit("\"projectile-drag\" needs uniform gravity and one positive linear drag on every body, nothing else");
   }
 }

@@ -32,8 +32,9 @@ struct Spring {
       const double length = std::sqrt(dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2]);
       if (length == 0) return;  // direction undefined: no force rather than NaN
       const double u[3] = {dx[0] / length, dx[1] / length, dx[2] / length};
-      const double closing = dv[0] * u[0] + dv[1] * u[1] + dv[2] * u[2];
-      const double magnitude = -stiffness * (length - rest_length) - damping * closing;
+      // How fast the spring lengthens (> 0 stretching, < 0 shortening): damping resists it.
+      const double stretch_rate = dv[0] * u[0] + dv[1] * u[1] + dv[2] * u[2];
+      const double magnitude = -stiffness * (length - rest_length) - damping * stretch_rate;
       for (int k = 0; k < d; ++k) f[k] = magnitude * u[k];
     }
     for (int k = 0; k < d; ++k) {

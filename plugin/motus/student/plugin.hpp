@@ -36,7 +36,7 @@ using FirstOrderStep = void (*)(const FirstOrderSystem& f, double t, double h, V
 using MechanicalStep = void (*)(const MechanicalSystem& s, double t, double h, VectorInOut x, VectorInOut v);
 using VerletStart = Vector (*)(const MechanicalSystem& s, double t, double h, VectorIn x0, VectorIn v0);
 using VerletStep = void (*)(const MechanicalSystem& s, double t, double h, VectorInOut x, VectorInOut x_previous);
-using DoublingStep = Vector (*)(const FirstOrderSystem& f, double t, double h, VectorIn y, Vector& error);
+using StepWithError = Vector (*)(const FirstOrderSystem& f, double t, double h, VectorIn y, Vector& error);
 using NextStepSize = double (*)(double h, double error_ratio);
 
 struct CollisionFunctions {
@@ -139,13 +139,14 @@ public:
     add({name, description, order, motus::kExternalPositionVerlet, &slot, nullptr, nullptr, nullptr, &verlet_start,
          &verlet_step, &detail::error});
   }
-  // Adaptive steps by step doubling: `doubling` returns the new state and its error estimate,
-  // `next` the step to try next from error_ratio = max_i |error_i| / tolerance_i (accepted
-  // when ≤ 1; tolerance_i = atol + rtol·max(|y_i|, |y_new_i|)). An error or a new state that is
-  // NaN rejects the step and stops the run, as it does motus's own adaptive integrators.
-  void adaptive(const char* name, int order, const char* description, DoublingStep doubling, NextStepSize next) {
+  // Adaptive steps (by step doubling, or any step that estimates its own error): `step` returns
+  // the new state and its error estimate, `next` the step to try next from error_ratio =
+  // max_i |error_i| / tolerance_i (accepted when ≤ 1; tolerance_i = atol + rtol·max(|y_i|,
+  // |y_new_i|)). An error or a new state that is NaN rejects the step and stops the run, as it
+  // does motus's own adaptive integrators.
+  void adaptive(const char* name, int order, const char* description, StepWithError step, NextStepSize next) {
     auto& slot = slots_.emplace_back();
-    slot.doubling = doubling;
+    slot.step_with_error = step;
     slot.next_step = next;
     add({name, description, order, motus::kExternalAdaptive, &slot, nullptr, &adaptive_step, nullptr, nullptr,
          nullptr, &detail::error});
@@ -179,7 +180,7 @@ private:
     MechanicalStep mechanical = nullptr;
     VerletStart verlet_start = nullptr;
     VerletStep verlet_step = nullptr;
-    DoublingStep doubling = nullptr;
+    StepWithError step_with_error = nullptr;
     NextStepSize next_step = nullptr;
   };
   static const Slot& slot(void* self) { return *static_cast<const Slot*>(self); }
@@ -194,7 +195,7 @@ private:
     return detail::guarded([&] {
       const auto y0 = detail::view(y, f->size);
       Vector error = Vector::Zero(f->size);
-      const Vector y1 = slot(self).doubling(FirstOrderSystem(*f), t, *h, y0, error);
+      const Vector y1 = slot(self).step_with_error(FirstOrderSystem(*f), t, *h, y0, error);
       if (y1.size() != f->size || error.size() != f->size)
         throw std::length_error("returned " + std::to_string(y1.size()) + " numbers and an error of " +
                                 std::to_string(error.size()) + " for a state of " + std::to_string(f->size));
