@@ -11,6 +11,13 @@
 #include <string_view>
 
 #include "cli_common.hpp"
+#include "integrator_choice.hpp"
+#include "locations.hpp"
+#include "machine_load.hpp"
+#include "option_values.hpp"
+#include "output_files.hpp"
+#include "plugin_loading.hpp"
+#include "steps_and_times.hpp"
 #include "interrupt.hpp"
 #include "motus/compare/explanations.hpp"
 #include "motus/exact/exact_solution.hpp"

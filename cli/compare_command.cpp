@@ -15,6 +15,13 @@
 
 #include "motus/compare/backends/backend.hpp"
 #include "cli_common.hpp"
+#include "integrator_choice.hpp"
+#include "locations.hpp"
+#include "machine_load.hpp"
+#include "option_values.hpp"
+#include "output_files.hpp"
+#include "plugin_loading.hpp"
+#include "steps_and_times.hpp"
 #include "motus/compare/comparison.hpp"
 #include "motus/compare/explanations.hpp"
 #include "draw_module.hpp"

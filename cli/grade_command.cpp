@@ -12,6 +12,9 @@
 #include <thread>
 
 #include "cli_common.hpp"
+#include "locations.hpp"
+#include "option_values.hpp"
+#include "output_files.hpp"
 #include "interrupt.hpp"
 #include "gradescope_package.hpp"
 #include "motus/grade/grader.hpp"

@@ -7,6 +7,8 @@
 #include <fstream>
 
 #include "cli_common.hpp"
+#include "locations.hpp"
+#include "output_files.hpp"
 #include "motus/grade/grader.hpp"
 #include "motus/process/run_program.hpp"
 

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "cli_common.hpp"
+#include "locations.hpp"
 
 namespace motus::cli {
 

@@ -20,6 +20,12 @@
 #include <cstring>
 
 #include "cli_common.hpp"
+#include "integrator_choice.hpp"
+#include "locations.hpp"
+#include "option_values.hpp"
+#include "output_files.hpp"
+#include "plugin_loading.hpp"
+#include "steps_and_times.hpp"
 #include "draw_module.hpp"
 #include "interrupt.hpp"
 #include "motus/process/run_program.hpp"

@@ -19,15 +19,21 @@
 #include <nlohmann/json.hpp>
 
 #include "cli_common.hpp"
+#include "integrator_choice.hpp"
 #include "interrupt.hpp"
+#include "locations.hpp"
 #include "motus/compare/explanations.hpp"
 #include "motus/compare/metrics.hpp"
 #include "motus/compare/timing.hpp"
 #include "motus/message_number.hpp"
 #include "motus/plot/write_failure.hpp"
 #include "motus/simulation.hpp"
+#include "option_values.hpp"
+#include "output_files.hpp"
+#include "plugin_loading.hpp"
 #include "progress_bar.hpp"
 #include "motus/scene_file/scene_file.hpp"
+#include "steps_and_times.hpp"
 
 namespace motus::cli {
 

@@ -11,8 +11,10 @@
 #include <nlohmann/json.hpp>
 
 #include "cli_common.hpp"
+#include "integrator_choice.hpp"
 #include "motus/grade/server_filter.hpp"
 #include "motus/grade/wire.hpp"
+#include "plugin_loading.hpp"
 #include "motus/scene_file/scene_file.hpp"
 #include "motus/simulation.hpp"
 

@@ -7,6 +7,10 @@
 #include <filesystem>
 
 #include "cli_common.hpp"
+#include "locations.hpp"
+#include "option_values.hpp"
+#include "output_files.hpp"
+#include "steps_and_times.hpp"
 #include "interrupt.hpp"
 #include "motus/scene_error.hpp"
 #include "motus/scene_file/scene_file.hpp"

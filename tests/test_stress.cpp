@@ -644,7 +644,7 @@ TEST(StressErrors, BadInputIsOneLineAndExitTwo) {
 }
 
 // Ctrl-C while the page is being drawn (a stand-in gnuplot that waits): exit 130, and no folder,
-// neither the page nor its partial one (cli/cli_common.hpp, PartialFolder).
+// neither the page nor its partial one (cli/output_files.hpp, PartialFolder).
 TEST(StressErrors, AnInterruptedStressExits130AndLeavesNoFolder) {
   TempDir dir;
   const fs::path out = dir / "page";
