@@ -2,11 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdint>
 #include <string>
 
 #include "motus/constrain/stick_chains.hpp"
 #include "motus/constrain/sweep_order.hpp"
+#include "motus/constrain/wall_height.hpp"
 #include "motus/scene_error.hpp"
 
 // Jakobsen's relaxation ("Advanced Character Physics", 2001), as the course's fabric and
@@ -21,6 +21,10 @@
 // The projection changes positions only. Verlet reads the velocity from the positions
 // (x_{n+1} − x_n)/Δt, so a projected body also gets the velocity that the projection
 // implies: a particle pushed out of the floor stops falling without any impulse.
+//
+// The two broad phases kept across projections are their own parts, as are the 2-D segments:
+// near_wall_lists.cpp, ball_pair_neighbours.cpp and segment_colliders.cpp; the numbers that size
+// the broad phases stay here, with the constructor that sizes them.
 
 namespace motus {
 namespace {
@@ -60,28 +64,6 @@ constexpr size_t kNeighboursPerBall = 12;
 // ball_gas (margin 0.5 m, balls up to 1.4 m/s, 0.024 m a step) makes its lists once in 20 steps
 // (400 balls: 6 times in 121 projections), and they hold little more than the outer rows.
 constexpr double kWallSkinPerMargin = 1;
-
-// Cells of the ball pairs' hash are numbered within ±this along each axis (1e6 cells: over
-// 100 km for the shipped ragdoll's balls), so that a neighbour's index, ±1, never overflows.
-constexpr double kFarthestCell = 1e6;
-
-// The classic spatial-hash primes (Teschner et al., "Optimized Spatial Hashing for
-// Collision Detection of Deformable Objects", 2003).
-std::uint64_t hash_cell(const std::array<std::int64_t, 3>& c) {
-  return static_cast<std::uint64_t>(c[0]) * 73856093u ^ static_cast<std::uint64_t>(c[1]) * 19349663u ^
-         static_cast<std::uint64_t>(c[2]) * 83492791u;
-}
-
-// |x_k − x_i|² for bodies i and k of a D-dimensional position vector.
-template <int D>
-inline double squared_distance(const double* x, int i, int k) {
-  double distance2 = 0;
-  for (int c = 0; c < D; ++c) {
-    const double delta = x[D * k + c] - x[D * i + c];
-    distance2 += delta * delta;
-  }
-  return distance2;
-}
 
 }  // namespace
 
@@ -324,14 +306,6 @@ void ConstraintProjection::project_sticks(VectorRef x) const {
 
 namespace {
 
-// n·x − offset − r: how far body i's surface is out of the wall (< 0: inside it).
-template <int D, class Wall>
-inline double height_above(const Wall& wall, double r, const double* xi) {
-  double height = -wall.offset - r;
-  for (int k = 0; k < D; ++k) height += wall.normal[k] * xi[k];
-  return height;
-}
-
 // A body inside the wall moves along the normal back to its surface; one outside stays, untouched.
 template <int D, class Wall>
 inline void push_out_of_wall(const Wall& wall, double r, double* xi) {
@@ -364,25 +338,6 @@ void project_listed_bodies_in(const std::vector<Wall>& walls, const std::vector<
     for (const int i : lists[w]) push_out_of_wall<D>(walls[w], radius[static_cast<size_t>(i)], x + D * i);
 }
 
-// Whether a push out of wall a, along its normal, may move a body into wall b. It brings the body
-// nearer to b when their normals point against each other (n_a·n_b < 0) — but not into it when
-// the two are opposite faces (n_a = −n_b, like a box's two faces along one axis) more than
-// `clearance` apart: the push leaves the body on a's surface, and a body on one face is then more
-// than clearance − 2r from the other. (Perpendicular faces, n_a·n_b = 0, leave its height above b
-// as it was.)
-template <class Wall>
-bool may_push_into(const Wall& a, const Wall& b, double clearance) {
-  double cosine = 0;
-  bool opposite = true;
-  for (size_t k = 0; k < a.normal.size(); ++k) {
-    cosine += a.normal[k] * b.normal[k];
-    opposite = opposite && a.normal[k] == -b.normal[k];
-  }
-  if (!(cosine < 0)) return false;
-  const double apart = -b.offset - a.offset;  // opposite: the free slab a.offset ≤ n_a·x ≤ −b.offset
-  return !(opposite && apart > clearance);
-}
-
 }  // namespace
 
 // The projection's last wall pass: every free body against every wall, then every segment.
@@ -395,126 +350,6 @@ void ConstraintProjection::project_walls(VectorRef x) const {
   project_segments(x);
 }
 
-// The walls' broad phase, at the start of a projection: for each wall (plane or box face), the
-// free bodies that may meet it during the sweeps. Within the sweeps a body moves by their
-// corrections: ball pushes, which the ball pairs' margin (the largest radius) covers as it does for
-// the pairs (find_ball_pairs); stick corrections, each by its stick's error, which in a scene whose
-// sticks hold stays well under the stick's rest length; and the walls' own pushes, by however deep
-// the body was in. So wall w's list holds the bodies whose height above it, n·x − offset − r, is
-// under that margin plus the longest stick (wall_margin_), and those near a wall whose push may
-// send them into w (a wedge of two planes; find_walls_pushing_into_each_wall): tested against w in
-// every sweep as before, not only in the last pass.
-//
-// Making the lists costs a pass over every body and wall, so they are kept across projections as
-// the ball pairs' list is: they hold the bodies within wall_margin_ + wall_skin_, and serve until
-// some body has moved the skin since they were made (one pass over the bodies, a quarter of a pass
-// over a 2-D box's four walls). Walls do not move, so a body left off a wall's list, then at least
-// margin + skin from it, is still at least the margin from it after moving less than the skin.
-//
-// What is guaranteed, and what is the same as testing every body in every pass:
-// - No body ends a projection inside a wall: the last wall pass tests every body (project()), as
-//   before (in a wedge, the second wall's push may still leave a body a little in the first, as
-//   before).
-// - The positions are the same to the last bit whenever no body is inside a wall whose list it is
-//   not on at one of the sweeps' wall passes: testing a body that is outside a wall changes
-//   nothing, so leaving it out changes nothing, and each listed body meets the walls in the same
-//   order.
-// - They differ only when sticks or ball pushes carry a body more than the margin into a wall
-//   within one projection (a stick stretched to many times its length, a ball flung through a
-//   packed heap): the sweeps leave it in the wall and the last pass puts it on the surface, so the
-//   sweeps' sticks and contacts after it went in have not seen it there. That is no worse than what
-//   the sweeps already allow (the contacts and sticks after the last sweep's wall pass never see
-//   the walls either), and the lists of a later projection hold it, there on the surface.
-void ConstraintProjection::find_bodies_near_walls(ConstVectorRef x) {
-  if (walls_.empty()) return;
-  bool still_hold = have_near_wall_lists_;
-  if (still_hold) {
-    switch (d_) {
-      case 1: still_hold = near_wall_lists_still_hold<1>(x.data()); break;
-      case 2: still_hold = near_wall_lists_still_hold<2>(x.data()); break;
-      default: still_hold = near_wall_lists_still_hold<3>(x.data()); break;
-    }
-  }
-  if (!still_hold) list_bodies_near_walls(x);
-}
-
-// Whether every body is still closer than the skin to where it was when the lists were made.
-// (Written so that a NaN position, which compares false, makes them again.)
-template <int D>
-bool ConstraintProjection::near_wall_lists_still_hold(const double* x) const {
-  const double limit2 = wall_skin_ * wall_skin_;
-  const double* then = listed_at_.data();
-  const size_t coordinates = listed_at_.size();
-  for (size_t c = 0; c < coordinates; c += D) {
-    double moved2 = 0;
-    for (int k = 0; k < D; ++k) {
-      const double step = x[c + k] - then[c + k];
-      moved2 += step * step;
-    }
-    if (!(moved2 < limit2)) return false;
-  }
-  return true;
-}
-
-// The lists from scratch, and every body's position now.
-void ConstraintProjection::list_bodies_near_walls(ConstVectorRef x) {
-  switch (d_) {
-    case 1: list_bodies_near_walls_in<1>(x.data()); break;
-    case 2: list_bodies_near_walls_in<2>(x.data()); break;
-    default: list_bodies_near_walls_in<3>(x.data()); break;
-  }
-  std::copy(x.begin(), x.end(), listed_at_.begin());
-  have_near_wall_lists_ = true;
-  ++near_wall_builds_;
-}
-
-// Wall w's list: the free bodies, in index order, within margin + skin of wall w or of a wall whose
-// push may move them into it.
-template <int D>
-void ConstraintProjection::list_bodies_near_walls_in(const double* x) {
-  const double reach = wall_margin_ + wall_skin_;
-  for (auto& list : near_wall_) list.clear();
-  const auto n = static_cast<int>(radius_.size());
-  for (int i = 0; i < n; ++i) {
-    if (inverse_mass_[i] == 0) continue;
-    const double r = radius_[static_cast<size_t>(i)];
-    for (size_t w = 0; w < walls_.size(); ++w) near_[w] = height_above<D>(walls_[w], r, x + D * i) < reach;
-    for (size_t w = 0; w < walls_.size(); ++w) {
-      bool listed = near_[w];
-      for (const int a : pushed_in_by_[w]) listed = listed || near_[static_cast<size_t>(a)];
-      if (listed) near_wall_[w].push_back(i);
-    }
-  }
-}
-
-// For each wall b, the other walls whose push may move a body into it (may_push_into), directly or
-// through other walls (a pushes into c, which pushes into b). A body near one of them may be pushed
-// into b during the sweeps from however far, so b's list holds it too. A box's faces push into
-// none of each other, so a box alone has none; the opposite faces' clearance is a ball's diameter
-// and the margin, the farthest a body on one face may still move towards the other.
-void ConstraintProjection::find_walls_pushing_into_each_wall() {
-  const double clearance = 2 * max_radius_ + wall_margin_;
-  const size_t walls = walls_.size();
-  pushed_in_by_.assign(walls, {});
-  for (size_t b = 0; b < walls; ++b)
-    for (size_t a = 0; a < walls; ++a)
-      if (a != b && may_push_into(walls_[a], walls_[b], clearance)) pushed_in_by_[b].push_back(static_cast<int>(a));
-  for (bool grew = true; grew;) {
-    grew = false;
-    for (size_t b = 0; b < walls; ++b)
-      for (size_t u = 0; u < pushed_in_by_[b].size(); ++u) {
-        const auto a = static_cast<size_t>(pushed_in_by_[b][u]);
-        for (const int c : pushed_in_by_[a]) {
-          auto& into_b = pushed_in_by_[b];
-          if (static_cast<size_t>(c) != b && std::find(into_b.begin(), into_b.end(), c) == into_b.end()) {
-            into_b.push_back(c);
-            grew = true;
-          }
-        }
-      }
-  }
-}
-
 // A sweep's wall pass: each wall against the bodies listed near it, then every segment (every
 // body: segments have no broad phase).
 void ConstraintProjection::project_bodies_near_walls(VectorRef x) {
@@ -525,206 +360,6 @@ void ConstraintProjection::project_bodies_near_walls(VectorRef x) {
   }
   for (const auto& list : near_wall_) near_wall_tests_ += static_cast<long>(list.size());
   project_segments(x);
-}
-
-// Every free body against every segment (2-D).
-void ConstraintProjection::project_segments(VectorRef x) const {
-  if (colliders_.segments.empty()) return;
-  const int n = static_cast<int>(radius_.size());
-  for (int i = 0; i < n; ++i) {
-    if (inverse_mass_[i] == 0) continue;
-    auto xi = x.segment(i * d_, d_);
-    for (size_t j = 0; j < colliders_.segments.size(); ++j) project_segment(j, i, xi);
-  }
-}
-
-// A 2-D segment has two sides and no inside. A ball closer than its radius to the segment
-// is pushed away from the nearest point. A point (or a ball fast enough to pass through in
-// one step) could end up on the other side, where "away from the nearest point" would
-// push it on through; so each body remembers which side of each segment it was last seen
-// on, and one that turns up on the other side, within the segment's extent, goes back to
-// the side it came from.
-namespace {
-
-// > 0 left of a→b, < 0 right of it, 0 on its line.
-double side_of(const SegmentCollider& s, double x, double y) {
-  return (s.b[0] - s.a[0]) * (y - s.a[1]) - (s.b[1] - s.a[1]) * (x - s.a[0]);
-}
-
-}  // namespace
-
-void ConstraintProjection::project_segment(size_t j, int i, VectorRef xi) const {
-  const SegmentCollider& s = colliders_.segments[j];
-  const Eigen::Vector2d a(s.a[0], s.a[1]), b(s.b[0], s.b[1]);
-  const Eigen::Vector2d along = b - a;
-  const double length2 = along.squaredNorm();
-  const Eigen::Vector2d p(xi[0], xi[1]);
-  const double reach = length2 > 0 ? along.dot(p - a) / length2 : 0.0;
-  const Eigen::Vector2d closest = a + std::clamp(reach, 0.0, 1.0) * along;
-  const double r = radius_[i];
-
-  const signed char before = side_[static_cast<size_t>(i) * colliders_.segments.size() + j];
-  if (before != 0 && reach > 0 && reach < 1 && before * side_of(s, p.x(), p.y()) < 0) {
-    // Crossed: back to the side it came from, at distance r.
-    const Eigen::Vector2d normal = Eigen::Vector2d(-along.y(), along.x()).normalized();
-    const Eigen::Vector2d q = closest + (before * r) * normal;
-    xi[0] = q.x();
-    xi[1] = q.y();
-    return;
-  }
-  const Eigen::Vector2d away = p - closest;
-  const double distance = away.norm();
-  if (distance < r && distance > 0) {
-    const Eigen::Vector2d q = closest + (r / distance) * away;
-    xi[0] = q.x();
-    xi[1] = q.y();
-  } else if (distance == 0 && r > 0) {
-    // Its centre on the segment: out to the side it was on, or (none yet: the start) to the one its
-    // normal points to (a ball set on a segment stayed in it, whole, step after step).
-    const Eigen::Vector2d normal =
-        length2 > 0 ? Eigen::Vector2d(-along.y(), along.x()).normalized() : Eigen::Vector2d::UnitX();
-    const Eigen::Vector2d q = closest + ((before < 0 ? -1.0 : 1.0) * r) * normal;
-    xi[0] = q.x();
-    xi[1] = q.y();
-  }
-}
-
-// After a projection, note each body's side of each segment; a body exactly on a
-// segment's line (a point resting on it) keeps the side it had.
-void ConstraintProjection::remember_segment_sides(ConstVectorRef x) {
-  const size_t segments = colliders_.segments.size();
-  for (size_t i = 0; i * segments < side_.size(); ++i)
-    for (size_t j = 0; j < segments; ++j) {
-      const double side = side_of(colliders_.segments[j], x[2 * i], x[2 * i + 1]);
-      if (side != 0) side_[i * segments + j] = side > 0 ? 1 : -1;
-    }
-}
-
-// The broad phase, at the start of every projection: the candidate pairs are the pairs of balls
-// closer than r_a + r_b + margin; the sweeps then test only those. The margin (the largest
-// radius) covers the distance balls move relative to each other during the sweeps; the few pairs
-// it would miss (balls thrown together by more than a radius within one projection) are found at
-// the next step.
-//
-// Finding them is a neighbour ("Verlet") list kept across projections: the pairs closer than
-// r_a + r_b + margin + skin at the list's build, reused as long as no ball has moved more than
-// skin/2 since (one pass over the balls). Two balls that have each moved at most skin/2 have come
-// at most a skin closer, so a pair closer than r_a + r_b + margin now was closer than
-// r_a + r_b + margin + skin at the build: the candidates are exactly the ones a fresh search would
-// find. ball_gas at 1/60 s builds the list about once in 23 steps, where a spatial hash built at
-// every projection cost most of the step.
-void ConstraintProjection::find_ball_pairs(ConstVectorRef x) {
-  switch (d_) {
-    case 1: find_ball_pairs_in<1>(x.data()); break;
-    case 2: find_ball_pairs_in<2>(x.data()); break;
-    default: find_ball_pairs_in<3>(x.data()); break;
-  }
-}
-
-template <int D>
-void ConstraintProjection::find_ball_pairs_in(const double* x) {
-  if (!have_neighbours_ || !neighbours_still_hold<D>(x)) build_neighbours<D>(x);
-  select_close_pairs<D>(x);
-}
-
-// Whether every ball is still within skin/2 of where it was at the build. (Written so that a NaN
-// position, which compares false, builds again.)
-template <int D>
-bool ConstraintProjection::neighbours_still_hold(const double* x) const {
-  const double limit2 = 0.25 * skin_ * skin_;
-  const double* then = built_at_.data();
-  for (const int i : balls_) {
-    const double* now = x + D * i;
-    double moved2 = 0;
-    for (int k = 0; k < D; ++k) {
-      const double step = now[k] - then[k];
-      moved2 += step * step;
-    }
-    if (!(moved2 <= limit2)) return false;
-    then += D;
-  }
-  return true;
-}
-
-// The neighbour list from scratch: hash every ball into a uniform grid of cells (a spatial hash,
-// so the grid needs no bounds), then look for each ball's partners in its own and the
-// neighbouring cells only — O(N) rather than all N²/2 pairs.
-//
-// The list is sorted by (i, k), the order of the Gauss–Seidel pushes: a push moves the balls the
-// next pair reads, so the order decides the result's last bits. In the hash's order it would
-// depend on which cells the balls were in at the build, and so on when the list was built; in
-// (i, k) order a projection's result depends on its start positions alone — deterministic, and
-// the same whether the list was built by this projection or ten steps ago. (The build visits
-// the balls in index order already; each ball's partners, a handful, are sorted in place.)
-template <int D>
-void ConstraintProjection::build_neighbours(const double* x) {
-  const double cell = 2 * max_radius_ + margin_ + skin_;  // the farthest a listed pair can be apart
-  const auto buckets = static_cast<std::uint64_t>(bucket_start_.size() - 1);
-  auto cell_of = [&](int i) {
-    std::array<std::int64_t, 3> c{0, 0, 0};
-    for (int k = 0; k < D; ++k) {
-      // Clamped as a double before the cast (a cast of a double beyond int64's range, or of
-      // NaN, is undefined behaviour): a ball flung farther than kFarthestCell cells shares the
-      // edge cell with any other out there, which only makes them candidates the exact
-      // distance test then looks at; NaN (a position no step should make) goes to cell 0.
-      const double cell_index = std::floor(x[i * D + k] / cell);
-      c[k] = std::isnan(cell_index) ? 0 : static_cast<std::int64_t>(std::clamp(cell_index, -kFarthestCell, kFarthestCell));
-    }
-    return c;
-  };
-
-  // Counting sort of the balls by bucket.
-  std::fill(bucket_start_.begin(), bucket_start_.end(), 0);
-  for (size_t s = 0; s < balls_.size(); ++s) {
-    bucket_of_[s] = static_cast<int>(hash_cell(cell_of(balls_[s])) & (buckets - 1));
-    ++bucket_start_[static_cast<size_t>(bucket_of_[s]) + 1];
-  }
-  for (size_t b = 0; b + 1 < bucket_start_.size(); ++b) bucket_start_[b + 1] += bucket_start_[b];
-  for (size_t s = 0; s < balls_.size(); ++s) sorted_[static_cast<size_t>(bucket_start_[bucket_of_[s]]++)] = static_cast<int>(s);
-  for (size_t b = bucket_start_.size() - 1; b > 0; --b) bucket_start_[b] = bucket_start_[b - 1];
-  bucket_start_[0] = 0;
-
-  neighbours_.clear();
-  int neighbour_cells = 1;
-  for (int k = 0; k < D; ++k) neighbour_cells *= 3;
-  for (size_t s = 0; s < balls_.size(); ++s) {
-    const int i = balls_[s];
-    const size_t first = neighbours_.size();
-    const auto home = cell_of(i);
-    // Two neighbouring cells may hash to the same bucket: look into each bucket once.
-    std::array<int, 27> seen{};
-    int seen_count = 0;
-    for (int code = 0; code < neighbour_cells; ++code) {
-      auto c = home;
-      for (int k = 0, rest = code; k < D; ++k, rest /= 3) c[k] += rest % 3 - 1;
-      const int bucket = static_cast<int>(hash_cell(c) & (buckets - 1));
-      if (std::find(seen.begin(), seen.begin() + seen_count, bucket) != seen.begin() + seen_count) continue;
-      seen[static_cast<size_t>(seen_count++)] = bucket;
-      ++broad_phase_queries_;
-      for (int u = bucket_start_[bucket]; u < bucket_start_[bucket + 1]; ++u) {
-        const auto other = static_cast<size_t>(sorted_[static_cast<size_t>(u)]);
-        if (other <= s) continue;  // each pair once: from its earlier ball
-        const int k = balls_[other];
-        const double reach = radius_[i] + radius_[k] + margin_ + skin_;
-        if (squared_distance<D>(x, i, k) < reach * reach) neighbours_.push_back({i, k});
-      }
-    }
-    std::sort(neighbours_.begin() + static_cast<std::ptrdiff_t>(first), neighbours_.end());
-    std::copy(x + D * i, x + D * (i + 1), built_at_.begin() + static_cast<std::ptrdiff_t>(D * s));
-  }
-  have_neighbours_ = true;
-  ++ball_pair_builds_;
-}
-
-// The candidates of this projection: the neighbours closer than r_a + r_b + margin now (the set
-// a search from scratch would find, in the list's order).
-template <int D>
-void ConstraintProjection::select_close_pairs(const double* x) {
-  pairs_.clear();
-  for (const auto& [i, k] : neighbours_) {
-    const double reach = radius_[i] + radius_[k] + margin_;
-    if (squared_distance<D>(x, i, k) < reach * reach) pairs_.push_back({i, k});
-  }
 }
 
 namespace {

@@ -128,7 +128,7 @@ private:
   // when the lists were made, in index order (near_wall_[w]); every body's position then
   // (listed_at_); and which walls the body being listed is near (near_). The sweeps' wall passes
   // test only the listed bodies. The margin: how far a body may move during one projection's
-  // sweeps (constraint_projection.cpp, find_bodies_near_walls).
+  // sweeps (near_wall_lists.cpp, find_bodies_near_walls).
   double wall_margin_ = 0, wall_skin_ = 0;
   std::vector<std::vector<int>> pushed_in_by_;
   bool have_near_wall_lists_ = false;
