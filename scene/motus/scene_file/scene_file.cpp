@@ -1,12 +1,10 @@
 #include "motus/scene_file/scene_file.hpp"
 
-#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
-#include <set>
 #include <sstream>
 #include <algorithm>
 
@@ -22,6 +20,8 @@
 #include "motus/scene_file/scene_overrides.hpp"
 #include "motus/scene_file/spelling.hpp"
 #include "motus/scene_file/strict_json.hpp"
+#include "motus/scene_file/position_resolution.hpp"
+#include "motus/scene_file/strict_json_sax.hpp"
 #include "motus/scene_file/equations_system.hpp"
 
 namespace motus {
@@ -32,20 +32,6 @@ std::array<double, 3> padded(const std::vector<double>& v) {
   for (size_t k = 0; k < v.size() && k < 3; ++k) a[k] = v[k];
   return a;
 }
-
-// Where a mechanical scene's bodies and walls came from: what a message about where they are names
-// (a generated body is not bodies[i], a file without "bodies" has none).
-struct MechanicalFields {
-  size_t listed = 0;  // bodies[0, listed) are the file's own list
-  struct Generated {
-    size_t first = 0, end = 0;     // its bodies, [first, end)
-    std::string name, spacing_key;  // "lattice", "spacing"
-    std::array<double, 3> origin{0, 0, 0};
-  };
-  std::vector<Generated> generated;
-  size_t planes_generated = 0, boxes_generated = 0;  // (the lattice's container, before the listed ones)
-  std::vector<std::string> plane_paths, box_paths;   // the listed planes' and boxes' paths, "colliders[j]"
-};
 
 int body_index(JsonFields& f, const std::string& key, size_t bodies) {
   const long i = f.integer(key);
@@ -492,99 +478,6 @@ MechanicalDescription read_mechanical(JsonFields& scene, MechanicalFields& field
   return m;
 }
 
-// Where the bodies are too far for the scene's moves (positions_too_coarse), and what makes the moves.
-struct CoarsePositions {
-  enum class Where { body, plane, box };
-  Where where = Where::body;  // what puts the bodies that far
-  size_t index = 0;           // the body's, or the wall's among the scene's planes or boxes
-  double far = 0;             // m from the origin (the largest coordinate) that the bodies are, or are kept
-  double spacing = 0;         // m between neighbouring doubles there
-  double move = 0;            // m: the scene's largest move in a step
-  size_t mover = 0;           // the body that makes it
-  double acceleration = 0;    // m/s²: the mover's at the start, when its move is its speed after `duration` under it
-  double duration = 0;        // s: the run's
-};
-
-// The description has no room for where its bodies and walls came from, and the commands check the
-// positions after loading, at the step they run: the loader keeps the fields of the scene it loaded
-// last on this thread, with what tells that scene from another (its bodies' storage and the counts).
-struct LoadedFields {
-  const BodyDescription* bodies = nullptr;
-  size_t count = 0, planes = 0, boxes = 0;
-  MechanicalFields fields;
-};
-thread_local LoadedFields loaded_fields;
-
-void remember_fields(const MechanicalDescription& m, MechanicalFields fields) {
-  loaded_fields = {m.bodies.data(), m.bodies.size(), m.colliders.planes.size(), m.colliders.boxes.size(), std::move(fields)};
-}
-
-const MechanicalFields* fields_of(const MechanicalDescription& m) {
-  const LoadedFields& l = loaded_fields;
-  return l.bodies == m.bodies.data() && l.count == m.bodies.size() && l.planes == m.colliders.planes.size() &&
-                 l.boxes == m.colliders.boxes.size()
-             ? &l.fields
-             : nullptr;
-}
-
-// The error for `c`, named by the field that puts the bodies there: a listed body's position; a
-// generator's origin, when that alone is too far, else its spacing; a plane's offset; a box's corner
-// nearest the origin. (`fields`: none for a description the loader did not make.)
-SceneError coarse_positions_error(const MechanicalDescription& m, const MechanicalFields* fields, const CoarsePositions& c,
-                                  double dt) {
-  const std::string step = "dt = " + message_number(dt, 6) + " s";
-  const std::string why = c.acceleration > 0 ? "body " + std::to_string(c.mover) + "'s speed after " +
-                                                   message_number(c.duration, 6) + " s at " +
-                                                   message_number(c.acceleration, 6) + " m/s², times " + step
-                                             : "its fastest speed times " + step;
-  const std::string words = "positions are " + message_number(c.spacing, 6) +
-                            " m apart, too coarse for the scene's moves of " + message_number(c.move, 6) + " m a step (" +
-                            why + ")";
-  const std::string far = message_number(c.far, 6);
-  const std::string rounding = ": they would move by rounding, or not at all; ";
-  if (c.where == CoarsePositions::Where::body) {
-    const size_t i = c.index;
-    if (fields)
-      for (const auto& g : fields->generated) {
-        if (i < g.first || i >= g.end) continue;
-        // The origin alone that far is the origin's fault; else the generator's size took them there.
-        double origin = 0;
-        for (int k = 0; k < m.dimensions; ++k) origin = std::max(origin, std::abs(g.origin[static_cast<size_t>(k)]));
-        const bool by_origin = std::nextafter(origin, INFINITY) - origin > 1e-3 * c.move;
-        return SceneError(g.name + "." + (by_origin ? std::string("origin") : g.spacing_key),
-                          "puts body " + std::to_string(i) + " at " + far + " m, where " + words + rounding +
-                              (by_origin ? "an origin nearer 0" : "a smaller " + g.spacing_key));
-      }
-    return SceneError("bodies[" + std::to_string(i) + "].position",
-                      "at " + far + " m " + words + ": its bodies would move by rounding, or not at all; move the scene "
-                                                    "nearer the origin");
-  }
-  const bool plane = c.where == CoarsePositions::Where::plane;
-  const size_t j = c.index;
-  std::string field = plane ? "colliders (plane " + std::to_string(j) + ")" : "colliders (box " + std::to_string(j) + ")";
-  if (fields) {
-    const size_t generated = plane ? fields->planes_generated : fields->boxes_generated;
-    const auto& paths = plane ? fields->plane_paths : fields->box_paths;
-    if (j < generated && !fields->generated.empty()) field = fields->generated.front().name + ".origin";  // (a lattice's box)
-    if (j >= generated && j - generated < paths.size()) field = paths[j - generated];
-  }
-  if (plane) {
-    if (field.starts_with("colliders[")) field += ".offset";
-  } else {
-    // The box's corner nearest the origin: its min where that is above 0, its max where below.
-    const auto& box = m.colliders.boxes[j];
-    bool by_min = true;
-    double nearest = -1;
-    for (int k = 0; k < m.dimensions; ++k) {
-      const double x = std::clamp(0.0, box.min[static_cast<size_t>(k)], box.max[static_cast<size_t>(k)]);
-      if (std::abs(x) > nearest) nearest = std::abs(x), by_min = x > 0;
-    }
-    if (field.starts_with("colliders[")) field += by_min ? ".min" : ".max";
-  }
-  return SceneError(field, std::string("the ") + (plane ? "plane" : "box") + " keeps bodies " + far +
-                               " m or more out, where " + words + rounding + "move it nearer the origin");
-}
-
 FirstOrderDescription read_first_order(JsonFields system) {
   FirstOrderDescription s;
   s.type = system.string("type");
@@ -680,232 +573,6 @@ SceneDescription read_scene(const nlohmann::json& document, const std::string& s
   return scene;
 }
 
-// Where in the document a parse failed, as a field path: a SAX pass that keeps the
-// path of keys and indices and stops at the error nlohmann reports — or at a key an object
-// already has, or at nesting deeper than kMaxNesting (checked before the document is built,
-// so ten million '[' cost nothing).
-class FieldPathTracker : public nlohmann::json::json_sax_t {
-public:
-  std::string path() const {
-    std::string p;
-    for (const auto& frame : stack_) {
-      if (frame.is_array) {
-        if (frame.index >= 0) p.append(1, '[').append(std::to_string(frame.index)).append(1, ']');
-      } else if (!frame.key.empty()) {
-        if (!p.empty()) p += '.';
-        p += frame.key;
-      }
-    }
-    return p;
-  }
-  bool null() override { return value(); }
-  bool boolean(bool) override { return value(); }
-  bool number_integer(number_integer_t) override { return value(); }
-  bool number_unsigned(number_unsigned_t) override { return value(); }
-  bool number_float(number_float_t x, const string_t& text) override {
-    if (!value()) return false;
-    // (A number whose digits are not all 0 that reads as 0: its exponent is below a double's.)
-    const auto mantissa_end = text.begin() + static_cast<std::ptrdiff_t>(std::min(text.find_first_of("eE"), text.size()));
-    if (x == 0 && underflows_ && std::any_of(text.begin(), mantissa_end, [](char c) { return c >= '1' && c <= '9'; }))
-      (*underflows_)[path()] = text;
-    return true;
-  }
-  // Where number_float writes the numbers that read as 0 though they are not (none: not kept).
-  void keep_underflows(NumberTexts* underflows) { underflows_ = underflows; }
-  bool string(string_t&) override { return value(); }
-  bool binary(binary_t&) override { return value(); }
-  bool start_object(std::size_t) override {
-    if (!advance()) return false;
-    stack_.push_back({false, -1, "", {}});
-    return deep_enough();
-  }
-  bool key(string_t& k) override {
-    if (!stack_.back().keys.insert(k).second) {
-      problem_ = "duplicate key \"" + k + "\": a key may appear once in an object (which one would count?)";
-      stack_.back().key = k;
-      return false;
-    }
-    stack_.back().key = k;
-    return true;
-  }
-  // The parser stopped between two members of the innermost object or array (after a comma,
-  // at a '}' or ']'): the key or index last read is not where it stopped, so it is not named.
-  void forget_last_member() {
-    if (stack_.empty()) return;
-    stack_.back().key.clear();
-    stack_.back().index = -1;
-  }
-  // Why the pass stopped early ("" : it did not, or nlohmann's own error).
-  const std::string& problem() const { return problem_; }
-  bool end_object() override { return end(); }
-  bool start_array(std::size_t) override {
-    if (!advance()) return false;
-    stack_.push_back({true, -1, "", {}});
-    return deep_enough();
-  }
-  bool end_array() override { return end(); }
-  bool parse_error(std::size_t, const std::string&, const nlohmann::json::exception&) override { return false; }
-
-private:
-  struct Frame {
-    bool is_array;
-    long index;
-    std::string key;
-    std::set<std::string> keys;  // an object's keys so far
-  };
-  bool deep_enough() {
-    if (static_cast<int>(stack_.size()) <= kMaxNesting) return true;
-    problem_ = "nested more than " + std::to_string(kMaxNesting) + " arrays or objects deep";
-    return false;
-  }
-  std::string problem_;
-  NumberTexts* underflows_ = nullptr;
-  // One more element of the innermost array. The scene's own lists of bodies and sticks are
-  // counted here, before the document is built: a million bodies and one more are refused now,
-  // not after a gigabyte of document.
-  bool advance() {
-    if (stack_.empty() || !stack_.back().is_array) return true;
-    const long count = ++stack_.back().index + 1;
-    if (stack_.size() == 2 && !stack_[0].is_array) {
-      const std::string& list = stack_[0].key;
-      const long limit = list == "bodies" ? kMaxBodies : list == "sticks" ? kMaxSticks : 0;
-      if (limit > 0 && count > limit) {
-        problem_ = "more than " + std::to_string(limit) + " " + list + " (the limit of a scene's " + list + ")";
-        return false;
-      }
-    }
-    return true;
-  }
-  bool value() { return advance(); }
-  bool end() {
-    stack_.pop_back();
-    return true;
-  }
-  std::vector<Frame> stack_;
-};
-
-[[noreturn]] void throw_parse_error(const std::string& text, const std::string& file, const nlohmann::json::exception& e,
-                                    std::size_t byte) {
-  FieldPathTracker tracker;
-  nlohmann::json::sax_parse(text, &tracker);
-  // A trailing comma ("duration": 1,}) stops the parser at the '}' or ']' after it: the error is the
-  // object's or array's, not the last member's ("duration" was read whole), so FIELD names the
-  // object or array (nothing at the top level).
-  if (byte >= 1 && byte <= text.size() && (text[byte - 1] == '}' || text[byte - 1] == ']')) {
-    size_t i = byte - 1;
-    while (i > 0 && std::isspace(static_cast<unsigned char>(text[i - 1]))) --i;
-    if (i > 0 && text[i - 1] == ',') tracker.forget_last_member();
-  }
-  // nlohmann reports a byte offset; people want a line and a column.
-  size_t line = 1, column = 1;
-  for (size_t i = 0; i + 1 < byte && i < text.size(); ++i) {
-    if (text[i] == '\n') {
-      ++line;
-      column = 1;
-    } else {
-      ++column;
-    }
-  }
-  std::string what = e.what();
-  const auto bracket = what.find("] ");
-  if (bracket != std::string::npos) what = what.substr(bracket + 2);
-  if (const auto colon = what.find(": "); e.id == 101 && colon != std::string::npos) what = what.substr(colon + 2);
-  if (e.id == 406) what += " (numbers must be finite)";
-  const std::string where = byte ? " at line " + std::to_string(line) + ", column " + std::to_string(column) : "";
-  throw SceneFileError(file, tracker.path(), "malformed JSON" + where + ": " + what);
-}
-
-}  // namespace
-
-namespace {
-
-// |x|, scaled by its largest component first (m g of 1e307 kg squares past every double).
-double length(const double* x, int d) {
-  double largest = 0, sum = 0;
-  for (int k = 0; k < d; ++k) largest = std::max(largest, std::abs(x[k]));
-  if (!(largest > 0) || !std::isfinite(largest)) return largest;
-  for (int k = 0; k < d; ++k) sum += (x[k] / largest) * (x[k] / largest);
-  return largest * std::sqrt(sum);
-}
-
-// (The moves are the bodies' speeds times dt, at the start and after the run's `duration` under the
-// acceleration the forces give at the start: the largest a step makes then, had they held. A body at
-// rest under gravity makes none at first and still moves; a run of dt = 1e-6 s from rest near the
-// origin, whose first steps move by 1e-12 m, is one.)
-std::optional<CoarsePositions> coarse_positions(const MechanicalDescription& m, double dt, double duration) {
-  const size_t n = m.bodies.size();
-  const int d = m.dimensions;
-  const auto size = static_cast<Eigen::Index>(n) * d;
-  // Each body's acceleration at the start, from every force (a pinned body is held: none).
-  Vector a = Vector::Zero(size);
-  if (m.forces.acts() && n > 0) {
-    ForceSet forces = m.forces;
-    if (n > 4096) forces.mutual_gravity.clear();
-    Vector masses(static_cast<Eigen::Index>(n)), x(size), v(size);
-    for (size_t i = 0; i < n; ++i) {
-      masses[static_cast<Eigen::Index>(i)] = m.bodies[i].mass;
-      for (int k = 0; k < d; ++k) {
-        x[static_cast<Eigen::Index>(i) * d + k] = m.bodies[i].position[static_cast<size_t>(k)];
-        v[static_cast<Eigen::Index>(i) * d + k] = m.bodies[i].velocity[static_cast<size_t>(k)];
-      }
-    }
-    forces.add_forces(0, d, masses, x, v, a);
-    for (size_t i = 0; i < n; ++i) a.segment(static_cast<Eigen::Index>(i) * d, d) /= m.bodies[i].mass;
-    for (const auto& pin : m.pins)
-      if (pin.body >= 0 && static_cast<size_t>(pin.body) < n) a.segment(static_cast<Eigen::Index>(pin.body) * d, d).setZero();
-  }
-  CoarsePositions c;
-  for (size_t i = 0; i < n; ++i) {
-    const double* accel = a.data() + static_cast<Eigen::Index>(i) * d;
-    double later[3] = {0, 0, 0};
-    for (int k = 0; k < d; ++k) later[k] = m.bodies[i].velocity[static_cast<size_t>(k)] + accel[k] * duration;
-    const double by_speed = length(m.bodies[i].velocity.data(), d) * dt, by_force = length(later, d) * dt;
-    // (A move past every double, or a force that is not a number: no claim; other checks say why.)
-    if (!std::isfinite(by_speed) || !std::isfinite(by_force)) return std::nullopt;
-    if (std::max(by_speed, by_force) > c.move) {
-      c.move = std::max(by_speed, by_force);
-      c.mover = i;
-      c.acceleration = by_force > by_speed ? length(accel, d) : 0;
-    }
-  }
-  c.duration = duration;
-  if (!(c.move > 0)) return std::nullopt;  // nothing moves
-  for (size_t i = 0; i < n; ++i)
-    for (double x : m.bodies[i].position)
-      if (std::abs(x) > c.far) c.far = std::abs(x), c.where = CoarsePositions::Where::body, c.index = i;
-  // Walls keep the bodies away from the origin: on a plane's free side when that side is away from
-  // it (there every point has a coordinate of at least offset / Σ|n_k|), inside every box.
-  for (size_t j = 0; j < m.colliders.planes.size(); ++j) {
-    const auto& plane = m.colliders.planes[j];
-    double l1 = 0;
-    for (int k = 0; k < d; ++k) l1 += std::abs(plane.normal[static_cast<size_t>(k)]);
-    if (plane.offset > 0 && l1 > 0 && plane.offset / l1 > c.far)
-      c.far = plane.offset / l1, c.where = CoarsePositions::Where::plane, c.index = j;
-  }
-  for (size_t j = 0; j < m.colliders.boxes.size(); ++j) {
-    const auto& box = m.colliders.boxes[j];
-    for (int k = 0; k < d; ++k) {
-      const double nearest = std::abs(std::clamp(0.0, box.min[static_cast<size_t>(k)], box.max[static_cast<size_t>(k)]));
-      if (nearest > c.far) c.far = nearest, c.where = CoarsePositions::Where::box, c.index = j;
-    }
-  }
-  if (!std::isfinite(c.far)) return std::nullopt;
-  c.spacing = std::nextafter(c.far, INFINITY) - c.far;
-  if (c.spacing <= 1e-3 * c.move) return std::nullopt;
-  return c;
-}
-
-}  // namespace
-
-std::optional<SceneError> positions_too_coarse(const SceneDescription& scene, double dt) {
-  if (!scene.mechanical) return std::nullopt;
-  const auto coarse = coarse_positions(*scene.mechanical, dt, scene.duration);
-  if (!coarse) return std::nullopt;
-  return coarse_positions_error(*scene.mechanical, fields_of(*scene.mechanical), *coarse, dt);
-}
-
-namespace {
-
 // (an error echoes what the user wrote: printable_text.hpp)
 std::string clip(const std::string& text, size_t limit) { return one_printable_line(text, limit); }
 
@@ -917,39 +584,6 @@ std::string clip(const std::string& text, size_t limit) { return one_printable_l
 SceneFileError::SceneFileError(const std::string& file_, const std::string& field_, const std::string& message_)
     : std::runtime_error(clip(file_, 160) + ": " + (field_.empty() ? "" : clip(field_, 100) + ": ") + clip(message_, 360)),
       file(file_), field(field_), message(message_) {}
-
-namespace {
-
-// parse_strict_json, keeping in `underflows` (when given) the numbers that read as 0 though they are not.
-nlohmann::json parse_strict_json(const std::string& text, const std::string& file, NumberTexts* underflows) {
-  // nlohmann's parser ends its input at a NUL byte, as a C string ends: whatever followed it was
-  // never read, and a scene cut short that way ran as if whole.
-  if (const size_t nul = text.find('\0'); nul != std::string::npos) {
-    const size_t line_start = text.rfind('\n', nul) + 1;  // (npos + 1 = 0: the first line)
-    const auto line = 1 + std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(nul), '\n');
-    throw SceneFileError(file, "", "malformed JSON at line " + std::to_string(line) + ", column " +
-                                       std::to_string(nul - line_start + 1) + ": a NUL byte (a text file has none)");
-  }
-  {
-    FieldPathTracker checker;  // duplicate keys and deep nesting, before the document is built
-    checker.keep_underflows(underflows);
-    if (!nlohmann::json::sax_parse(text, &checker) && !checker.problem().empty())
-      throw SceneFileError(file, checker.path(), checker.problem());
-  }
-  try {
-    return nlohmann::json::parse(text);
-  } catch (const nlohmann::json::parse_error& e) {
-    throw_parse_error(text, file, e, e.byte);
-  } catch (const nlohmann::json::exception& e) {  // e.g. 1e999: number overflow
-    throw_parse_error(text, file, e, 0);
-  }
-}
-
-}  // namespace
-
-nlohmann::json parse_strict_json(const std::string& text, const std::string& file) {
-  return parse_strict_json(text, file, nullptr);
-}
 
 SceneDescription parse_scene(const std::string& text, const std::string& file, const std::vector<std::string>& overrides) {
   NumberTexts underflows;  // (numbers that read as 0 though they are not: the file's, then --set's)
