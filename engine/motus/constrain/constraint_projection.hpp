@@ -28,12 +28,12 @@ namespace motus {
 
 class ConstraintProjection {
 public:
+  // `order`: the sticks swept in the scene's order (its exact numbers) or by colours (for substeps).
   ConstraintProjection(int dimensions, const Vector& inverse_mass, std::vector<double> radius,
                        std::vector<StickConstraint> sticks, std::vector<PinConstraint> pins,
                        const Colliders& colliders, int iterations, SweepOrder order = SweepOrder::scene);
 
-  // `iterations` sweeps over sticks, walls and ball pairs, then the pins. `order`: the scene's
-  // (its exact numbers) or colours (for substeps).
+  // `iterations` sweeps over sticks, walls and ball pairs (in the constructor's order), then the pins.
   void project(VectorRef x);
   // Only the contacts between balls, `iterations` sweeps (after a projection from outside,
   // which moves sticks, pins and walls but not balls against each other).
