@@ -80,7 +80,7 @@ TEST(GradeSubmissions, AnErrorEstimateThatIsNotANumberIsNoErrorOfZero) {
 
 // symplectic_euler_step making x NaN: the energy test said "the state changed by at most 0 of its
 // size" (std::max(moved, NaN) is moved). It says the state became NaN, and where: the energy test
-// looks at the state every steps/200 steps (check.cpp's EnergyCheck), so the first NaN it sees is at
+// looks at the state every steps/200 steps (checks/energy_check.cpp), so the first NaN it sees is at
 // that step, the start (step 0) being the last finite one.
 TEST(GradeSubmissions, AStateThatIsNotANumberInAnEnergyTestIsSaidToBeOne) {
   NEEDS_SANDBOX();

@@ -20,10 +20,14 @@
 #include <filesystem>
 #include <stdexcept>
 
+#include "motus/grade/format_seconds.hpp"
+
 namespace fs = std::filesystem;
 
 namespace motus::grade {
 namespace {
+
+using detail::format_seconds;
 
 // The processes this user has now (RLIMIT_NPROC counts them all, not only the sandbox's).
 long processes_of(uid_t uid) {
@@ -75,12 +79,6 @@ const char* signal_name(int signal) {
     case SIGPIPE: return "SIGPIPE";
     default: return nullptr;
   }
-}
-
-std::string format_seconds(double s) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%g", std::round(s * 10) / 10);
-  return text;
 }
 
 // The first folder on `path` (absolute) the user cannot pass through, or the file at its end it
@@ -197,42 +195,9 @@ TimeUse measure_tree(pid_t root, double wall, TaskWaits& run_delays) {
 
 }  // namespace
 
-double waited_for_a_core(const TaskWaits& waits) {
-  std::unordered_map<pid_t, double> longest;  // by process
-  for (const auto& [task, wait] : waits) longest[wait.process] = std::max(longest[wait.process], wait.delay);
-  double sum = 0;
-  for (const auto& [process, delay] : longest) sum += delay;
-  return sum;
-}
-
-int available_cores() {
-  cpu_set_t set;
-  CPU_ZERO(&set);
-  if (::sched_getaffinity(0, sizeof set, &set) == 0) return std::max(1, CPU_COUNT(&set));
-  const long online = ::sysconf(_SC_NPROCESSORS_ONLN);
-  return online > 0 ? static_cast<int>(online) : 1;
-}
-
-std::string starved_message(const std::string& what, const TimeUse& use, double cpu_limit) {
-  const int cores = available_cores();
-  std::string got = "in " + format_seconds(use.wall) + " s it had " + format_seconds(use.cpu) + " s of CPU";
-  if (use.run_delay_known) got += " and waited " + format_seconds(use.run_delay) + " s for a core";
-  return "the machine was too busy to give " + what + " its " + format_seconds(cpu_limit) + " s of CPU (" + got +
-         "): not the submission's fault; grade it again with fewer --jobs (this machine has " + std::to_string(cores) +
-         " core" + (cores == 1 ? "" : "s") + ") or when the machine is less busy";
-}
-
 double wall_backstop(double cpu_seconds) { return 2 * cpu_seconds + 5; }
 
 double cpu_limit_seconds(double cpu_seconds) { return std::ceil(cpu_seconds); }
-
-WallVerdict judge_wall_timeout(const TimeUse& use, double cpu_limit) {
-  if (use.cpu >= cpu_limit) return WallVerdict::used_its_cpu;
-  if (use.lowered_priority) return WallVerdict::lowered_its_priority;
-  const double idle = std::max(0.0, use.wall - use.cpu);  // the time it did not compute
-  const double waited_for_a_core = use.run_delay_known ? use.run_delay : use.runnable_now ? idle : 0;
-  return use.wall > 0 && use.cpu + waited_for_a_core >= kStarvedShare * use.wall ? WallVerdict::starved : WallVerdict::waiting;
-}
 
 // Why the sandbox's user (uid, no supplementary groups) cannot reach `host` for a mount, or "":
 // bubblewrap runs as that user, who must pass through every folder on the way and read the
