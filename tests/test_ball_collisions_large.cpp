@@ -1,6 +1,6 @@
 // The ball gas on a big grid: more than 2^17 cells (about 2.1 per ball in 2-D and 2.7 in 3-D
 // at the first build, so from 90,000 and 64,000 balls), where the broad phase counting-sorts
-// the grid in two levels (ball_collisions.cpp, build_grid), and more than 2^14 balls, where
+// the grid in two levels (neighbour_lists.cpp, build_grid), and more than 2^14 balls, where
 // the pair search and the events fetch ahead from memory (the box below has 20,000: fewer
 // than 2^17 cells, but its fast balls make it slow to run). Checked against conservation
 // (no forces: kinetic energy is kept by every elastic impulse, with balls and with the

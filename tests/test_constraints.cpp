@@ -836,7 +836,7 @@ TEST(Constraints, NeedVerlet) {
 
 // ---------------------------------------------------------------------------------
 // The ball pairs' broad phase: a neighbour list kept across projections, rebuilt once a ball
-// has moved half its skin (constraint_projection.cpp).
+// has moved half its skin (ball_pair_neighbours.cpp).
 
 // A ball gas for the projection alone: ball_gas.json's lattice (ball_lattice.hpp), its positions
 // and velocityless Verlet's other state, the positions one step of dt earlier. `spread` gives the
@@ -1117,7 +1117,7 @@ TEST(BallPairs, PushesGoInTheOrderOfThePairsNotOfTheHash) {
 // ---------------------------------------------------------------------------------
 // The walls' broad phase: the sweeps' wall passes test only the bodies listed near each wall,
 // lists kept across projections until a body has moved their skin; the projection's last wall
-// pass tests every body (constraint_projection.cpp, find_bodies_near_walls).
+// pass tests every body (near_wall_lists.cpp, find_bodies_near_walls).
 
 using Walls = std::vector<motus::ConstraintProjection::Wall>;
 
