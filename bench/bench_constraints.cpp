@@ -19,7 +19,7 @@
 
 #include "motus/compare/backends/backend.hpp"
 #include "motus/compare/metrics.hpp"
-#include "motus/method.hpp"
+#include "motus/integrate/method.hpp"
 #include "motus/scene_file/scene_file.hpp"
 #include "motus/simulation.hpp"
 #include "ratio_reporter.hpp"

@@ -5,7 +5,7 @@
 #include <fmt/format.h>
 
 #include "cli_common.hpp"
-#include "motus/integrator_name.hpp"
+#include "motus/integrate/integrator_catalog.hpp"
 #include "motus/scene_file/spelling.hpp"
 #include "motus/simulation.hpp"
 #include "plugin_loading.hpp"

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "motus/method.hpp"
+#include "motus/integrate/method.hpp"
 #include "motus/plugin/plugin_set.hpp"
 #include "motus/scene.hpp"
 

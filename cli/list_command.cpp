@@ -10,7 +10,7 @@
 #include "cli_common.hpp"
 #include "locations.hpp"
 #include "plugin_loading.hpp"
-#include "motus/integrator_name.hpp"
+#include "motus/integrate/integrator_catalog.hpp"
 #include "motus/systems/system_catalog.hpp"
 #include "motus/scene_file/scene_file.hpp"
 

@@ -9,7 +9,7 @@
 #include <utility>
 #include <vector>
 
-#include "motus/integrator_name.hpp"
+#include "motus/integrate/integrator_catalog.hpp"
 #include "motus/scene.hpp"
 
 namespace motus {

@@ -29,7 +29,7 @@
 #include <cstdio>
 
 #include "motus/exact/kepler_orbit.hpp"
-#include "motus/integrator_name.hpp"
+#include "motus/integrate/integrator_catalog.hpp"
 #include "test_scenes.hpp"
 
 namespace {

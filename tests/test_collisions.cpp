@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "motus/ball_lattice.hpp"
-#include "motus/integrator_name.hpp"
+#include "motus/integrate/integrator_catalog.hpp"
 #include "motus/scene_error.hpp"
 #include "motus/simulation.hpp"
 #include "motus/scene_file/scene_file.hpp"

@@ -17,7 +17,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "motus/integrator_name.hpp"
+#include "motus/integrate/integrator_catalog.hpp"
 #include "motus/scene_error.hpp"
 #include "motus/scene_file/scene_file.hpp"
 #include "motus/simulation.hpp"

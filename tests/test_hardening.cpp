@@ -22,7 +22,7 @@
 
 #include "../fuzz/fuzz_input.hpp"
 #include "cli_harness.hpp"
-#include "motus/integrator_name.hpp"
+#include "motus/integrate/integrator_catalog.hpp"
 #include "motus/scene_error.hpp"
 #include "motus/scene_file/scene_file.hpp"
 #include "motus/simulation.hpp"

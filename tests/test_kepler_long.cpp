@@ -10,7 +10,7 @@
 #include <cstdio>
 #include <vector>
 
-#include "motus/integrator_name.hpp"
+#include "motus/integrate/integrator_catalog.hpp"
 #include "test_scenes.hpp"
 
 namespace {

@@ -24,7 +24,7 @@
 #include <functional>
 #include <limits>
 
-#include "motus/integrator_name.hpp"
+#include "motus/integrate/integrator_catalog.hpp"
 #include "test_scenes.hpp"
 
 namespace {

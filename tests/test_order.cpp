@@ -12,7 +12,7 @@
 #include <cstdio>
 #include <string>
 
-#include "motus/integrator_name.hpp"
+#include "motus/integrate/integrator_catalog.hpp"
 #include "test_scenes.hpp"
 
 namespace {

@@ -11,7 +11,7 @@
 #include <cstdio>
 #include <numbers>
 
-#include "motus/integrator_name.hpp"
+#include "motus/integrate/integrator_catalog.hpp"
 #include "test_scenes.hpp"
 
 namespace {

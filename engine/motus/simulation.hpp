@@ -12,7 +12,7 @@
 
 #include "motus/external/external_parts.hpp"
 #include "motus/integrate/step_size_control.hpp"
-#include "motus/method.hpp"
+#include "motus/integrate/method.hpp"
 #include "motus/scene.hpp"
 #include "motus/systems/first_order_system.hpp"
 #include "motus/systems/mechanical_system.hpp"

@@ -22,7 +22,7 @@
 #include "motus/external/external_parts.hpp"
 #include "motus/integrate/symplectic_euler.hpp"
 #include "motus/integrate/verlet.hpp"
-#include "motus/method.hpp"
+#include "motus/integrate/method.hpp"
 #include "motus/scene.hpp"
 #include "motus/systems/mechanical_system.hpp"
 

@@ -15,7 +15,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "motus/integrator_name.hpp"
+#include "motus/integrate/integrator_catalog.hpp"
 
 namespace motus {
 

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "motus/external/external_parts.hpp"
-#include "motus/method.hpp"
+#include "motus/integrate/method.hpp"
 #include "motus/plugin/plugin_abi.hpp"
 
 namespace motus {

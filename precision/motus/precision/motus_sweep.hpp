@@ -1,7 +1,7 @@
 #pragma once
 // motus's own integrators (and a plug-in's) swept over step sizes or tolerances on a scene with an
 // exact solution or reference states: one Curve per method (work_precision.hpp).
-#include "motus/method.hpp"
+#include "motus/integrate/method.hpp"
 #include "motus/precision/work_precision.hpp"
 #include "motus/scene.hpp"
 #include "motus/vector.hpp"

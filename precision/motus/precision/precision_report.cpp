@@ -11,7 +11,7 @@
 #include <string>
 #include <stdexcept>
 
-#include "motus/integrator_name.hpp"
+#include "motus/integrate/integrator_catalog.hpp"
 #include "motus/plot/figure.hpp"
 #include "motus/precision/odeint_peer.hpp"
 #include "motus/precision/targets.hpp"

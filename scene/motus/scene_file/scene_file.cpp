@@ -12,7 +12,7 @@
 #include "motus/ball_lattice.hpp"
 #include "motus/scene_generators.hpp"
 #include "motus/exact/exact_solution.hpp"
-#include "motus/integrator_name.hpp"
+#include "motus/integrate/integrator_catalog.hpp"
 #include "motus/message_number.hpp"
 #include "motus/scene_error.hpp"
 #include "motus/systems/system_catalog.hpp"

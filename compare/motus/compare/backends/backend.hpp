@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "motus/method.hpp"
+#include "motus/integrate/method.hpp"
 #include "motus/scene.hpp"
 
 namespace motus::compare {

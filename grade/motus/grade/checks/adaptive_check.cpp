@@ -11,7 +11,7 @@
 
 #include "motus/exact/exact_solution.hpp"
 #include "motus/grade/checks/check_support.hpp"
-#include "motus/integrator_name.hpp"
+#include "motus/integrate/integrator_catalog.hpp"
 #include "motus/scene_error.hpp"
 #include "motus/simulation.hpp"
 

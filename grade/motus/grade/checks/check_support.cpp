@@ -12,7 +12,7 @@
 #include <sstream>
 
 #include "motus/grade/wire.hpp"
-#include "motus/integrator_name.hpp"
+#include "motus/integrate/integrator_catalog.hpp"
 #include "motus/scene_error.hpp"
 #include "motus/scene_file/scene_file.hpp"
 #include "motus/scene_file/scene_overrides.hpp"

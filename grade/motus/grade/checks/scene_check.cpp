@@ -12,7 +12,7 @@
 #include <tuple>
 
 #include "motus/grade/checks/check_support.hpp"
-#include "motus/integrator_name.hpp"
+#include "motus/integrate/integrator_catalog.hpp"
 #include "motus/scene_error.hpp"
 #include "motus/simulation.hpp"
 #include "motus/systems/mechanical_system.hpp"

@@ -4,7 +4,7 @@
 #include <string>
 
 #include "motus/external/external_parts.hpp"
-#include "motus/integrator_name.hpp"
+#include "motus/integrate/integrator_catalog.hpp"
 
 namespace motus {
 

@@ -1,4 +1,4 @@
-#include "motus/integrator_name.hpp"
+#include "motus/integrate/integrator_catalog.hpp"
 
 #include <iterator>
 
