@@ -160,7 +160,7 @@ private:
   double push_out_of_plane(int i, int wall);
   double push_off_segment(int i, const Segment& s);
   void moved_apart(int i, double distance);
-  void make_fast(int i);
+  inline void make_fast(int i);
   double segment_impact(const Segment& s, const Point& p, const Point& u, double r, double horizon, Point* normal) const;
   static Point nearest_on(const Segment& s, const Point& p);  // the segment's point nearest p
   Point wall_normal(int i, int wall);
@@ -187,9 +187,9 @@ private:
   void collide(int i, int k, const Point& n, double e);
   void bounce(int i, const Point& n, double e);
   void resolve(const Event& e);
-  double wall_restitution(int wall) const;
+  inline double wall_restitution(int wall) const;
   void settle_cluster(const Event& e);
-  void mark_fast_if_needed(int i, double t);
+  inline void mark_fast_if_needed(int i, double t);
   void start_fast_paths();
   void enter_fast_path(int i, double t);
   void enter_fast_paths(int i, int k, double t);
@@ -332,6 +332,26 @@ int BallCollisions<D>::cell_index(const Cell& c) const {
   int index = 0;
   for (int k = 0; k < D; ++k) index += c[k] * stride_[k];
   return index;
+}
+
+// Called per contact from the drift (ball_collisions.cpp) and a few lines each: here, to be inlined there.
+// (make_fast and mark_fast_if_needed belong with fast_balls.cpp, wall_restitution with wall_contacts.cpp.)
+template <int D>
+void BallCollisions<D>::make_fast(int i) {
+  if (!state_[i].fast) state_[i].fast = true, fast_.push_back(i);
+  if (!state_[i].escaped) state_[i].escaped = true, escaped_.push_back(i);
+}
+
+template <int D>
+void BallCollisions<D>::mark_fast_if_needed(int i, double t) {
+  if (state_[i].fast || radius_of(i) <= 0) return;
+  if (state_[i].travelled + velocity(i).norm() * (h_ - t) > sweep_) make_fast(i);  // (and off the lists)
+}
+
+template <int D>
+double BallCollisions<D>::wall_restitution(int wall) const {
+  return wall < static_cast<int>(planes_.size()) ? planes_[static_cast<size_t>(wall)].restitution
+                                                 : segments_[static_cast<size_t>(wall) - planes_.size()].restitution;
 }
 
 extern template class BallCollisions<1>;

@@ -13,18 +13,6 @@ namespace motus {
 using namespace ball_collisions_tuning;
 
 template <int D>
-void BallCollisions<D>::make_fast(int i) {
-  if (!state_[i].fast) state_[i].fast = true, fast_.push_back(i);
-  if (!state_[i].escaped) state_[i].escaped = true, escaped_.push_back(i);
-}
-
-template <int D>
-void BallCollisions<D>::mark_fast_if_needed(int i, double t) {
-  if (state_[i].fast || radius_of(i) <= 0) return;
-  if (state_[i].travelled + velocity(i).norm() * (h_ - t) > sweep_) make_fast(i);  // (and off the lists)
-}
-
-template <int D>
 void BallCollisions<D>::start_fast_paths() {
   // (After find_wall_events of every fast ball: their horizons.) Slabs of a typical path's time
   // (the median horizon) cut in one slab a diameter of the median path, at most kPathSlabs;
@@ -93,8 +81,6 @@ void BallCollisions<D>::enter_fast_paths(int i, int k, double t) {
 
 // This file's members, for each dimension the class is instantiated for (ball_collisions.cpp).
 #define MOTUS_FAST_BALLS(D) \
-  template void BallCollisions<D>::make_fast(int); \
-  template void BallCollisions<D>::mark_fast_if_needed(int, double); \
   template void BallCollisions<D>::start_fast_paths(); \
   template double BallCollisions<D>::path_margin(int, const typename BallCollisions<D>::Point&) const; \
   template void BallCollisions<D>::enter_fast_path(int, double); \

@@ -157,12 +157,6 @@ double BallCollisions<D>::push_off_segment(int i, const Segment& s) {
   return radius_of(i) - distance;
 }
 
-template <int D>
-double BallCollisions<D>::wall_restitution(int wall) const {
-  return wall < static_cast<int>(planes_.size()) ? planes_[static_cast<size_t>(wall)].restitution
-                                                 : segments_[static_cast<size_t>(wall) - planes_.size()].restitution;
-}
-
 // This file's members, for each dimension the class is instantiated for (ball_collisions.cpp).
 #define MOTUS_WALL_CONTACTS(D) \
   template void BallCollisions<D>::initial_plane_event(int, int); \
@@ -172,8 +166,7 @@ double BallCollisions<D>::wall_restitution(int wall) const {
   template typename BallCollisions<D>::Point BallCollisions<D>::wall_normal(int, int); \
   template void BallCollisions<D>::separate_from_walls(int); \
   template double BallCollisions<D>::push_out_of_plane(int, int); \
-  template double BallCollisions<D>::push_off_segment(int, const typename BallCollisions<D>::Segment&); \
-  template double BallCollisions<D>::wall_restitution(int) const;
+  template double BallCollisions<D>::push_off_segment(int, const typename BallCollisions<D>::Segment&);
 MOTUS_WALL_CONTACTS(1)
 MOTUS_WALL_CONTACTS(2)
 MOTUS_WALL_CONTACTS(3)
