@@ -28,6 +28,8 @@ constexpr bool in_the_enums_order() {
   return true;
 }
 static_assert(in_the_enums_order(), "kIntegrators must list the integrators in the order of enum class Integrator");
+static_assert(std::size(kIntegrators) == static_cast<size_t>(Integrator::Yoshida4) + 1,
+              "kIntegrators must have a row for every integrator (Yoshida4 is the enum's last)");
 
 }  // namespace
 

@@ -18,7 +18,7 @@ enum class Integrator {
   SymplecticEulerX,
   Verlet,
   VelocityVerlet,
-  Yoshida4,
+  Yoshida4,  // the last (integrator_catalog.cpp checks that its table has a row for each, in this order)
 };
 
 struct IntegratorInfo {

@@ -16,8 +16,9 @@ struct Tolerance {
   double rtol = 1e-6;
 };
 
-// The scaled RMS norm of a step's error estimate e (err above, with e_i = y1_i − ŷ1_i): y0 (the
-// step's start) and y1 (its end) only set each component's scale sc_i.
+// The scaled RMS norm of a step's error estimate e (err above): for an embedded pair (rk45, dop853)
+// e = y1 − ŷ1, for rk4-doubling e = (y_half − y_full)/15. y0 (the step's start) and y1 (its end)
+// only set each component's scale sc_i.
 inline double scaled_error(ConstVectorRef y0, ConstVectorRef y1, ConstVectorRef error, Tolerance tol) {
   double sum = 0;
   for (Eigen::Index i = 0; i < y0.size(); ++i) {

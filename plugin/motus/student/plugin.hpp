@@ -37,6 +37,7 @@ using MechanicalStep = void (*)(const MechanicalSystem& s, double t, double h, V
 using VerletStart = Vector (*)(const MechanicalSystem& s, double t, double h, VectorIn x0, VectorIn v0);
 using VerletStep = void (*)(const MechanicalSystem& s, double t, double h, VectorInOut x, VectorInOut x_previous);
 using StepWithError = Vector (*)(const FirstOrderSystem& f, double t, double h, VectorIn y, Vector& error);
+using DoublingStep [[deprecated("use StepWithError")]] = StepWithError;  // (its old name, still accepted)
 using NextStepSize = double (*)(double h, double error_ratio);
 
 struct CollisionFunctions {
