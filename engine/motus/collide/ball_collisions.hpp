@@ -37,6 +37,7 @@
 // (start_overlaps.cpp), the fast balls' searches along their paths (fast_balls.cpp), the walls
 // (wall_contacts.cpp), the contacts' impulses and times of impact, the engine's or a plug-in's
 // (collision_rules.cpp), and the numbers they are tuned with (ball_collisions_tuning.hpp).
+#include <algorithm>  // (cell_of's clamp)
 #include <array>
 #include <vector>
 

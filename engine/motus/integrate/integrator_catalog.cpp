@@ -33,10 +33,7 @@ static_assert(std::size(kIntegrators) == static_cast<size_t>(Integrator::Yoshida
 
 }  // namespace
 
-const std::vector<IntegratorInfo>& all_integrators() {
-  static const std::vector<IntegratorInfo> list(std::begin(kIntegrators), std::end(kIntegrators));
-  return list;
-}
+std::span<const IntegratorInfo> all_integrators() { return kIntegrators; }
 
 const IntegratorInfo& info(Integrator id) { return kIntegrators[static_cast<size_t>(id)]; }
 

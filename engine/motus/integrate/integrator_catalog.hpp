@@ -1,6 +1,7 @@
 #pragma once
 // The integrators by their command-line names, and what each one is.
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -30,7 +31,7 @@ struct IntegratorInfo {
   const char* description;  // one line
 };
 
-const std::vector<IntegratorInfo>& all_integrators();
+std::span<const IntegratorInfo> all_integrators();
 const IntegratorInfo& info(Integrator id);
 std::optional<Integrator> integrator_from_name(std::string_view name);
 // {"euler", "midpoint", ...}: the names, in all_integrators()'s order (for error messages).
