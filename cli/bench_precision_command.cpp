@@ -149,15 +149,19 @@ int bench_precision_command(const BenchPrecisionOptions& o) {
   PartialFolder partial(folder, default_folder);
   // A plug-in of which this sweep uses nothing says so, on standard error (standard output is the
   // table's): none of its integrators is among --integrators, or it brings none (its collision rules
-  // and projection are never used here: bench precision takes only integrators from a plug-in).
+  // and projection are never used here: bench precision takes only integrators from a plug-in), or
+  // none of those chosen can run this scene (their curves say why).
   for (const auto& p : plugins().plugins()) {
     const auto& names = p.integrator_names;
+    auto its_own = [&](const Method& m) { return m.is_external() && std::find(names.begin(), names.end(), m.name()) != names.end(); };
+    const bool named = std::any_of(chosen.begin(), chosen.end(), its_own);
     if (std::any_of(chosen.begin(), chosen.end(), [&](const Method& m) {
-          return m.is_external() && std::find(names.begin(), names.end(), m.name()) != names.end();
+          return its_own(m) && precision::why_motus_cannot_run(scene, m).empty();
         }))
       continue;
     std::string why;
-    if (!names.empty()) why = "--integrators names none of its integrators (without --integrators each is swept)";
+    if (named) why = "none of its integrators chosen can run this scene (their curves say why)";
+    else if (!names.empty()) why = "--integrators names none of its integrators (without --integrators each is swept)";
     if (p.entry->collisions || p.entry->constraints)
       why += (why.empty() ? "" : " and ") + std::string("bench precision takes only integrators from a plug-in");
     tell("note: the plug-in {} brings {}{}: it is not used in this run\n", p.file, what_plugin_brings(p),
