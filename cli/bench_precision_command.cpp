@@ -94,7 +94,7 @@ int bench_precision_command(const BenchPrecisionOptions& o) {
   if (o.duration) checked_step_count(*o.duration, scene.dt, "--duration");
   check_time_resolution(scene.start_time, o.duration.value_or(scene.duration), scene.dt, path + ": start_time",
                         o.duration ? "--duration" : path + ": dt/duration");
-  check_position_resolution(scene, scene.dt, path);
+  check_position_resolution(scene, scene.dt, path, path + ": dt");
   double end = scene.start_time + o.duration.value_or(scene.duration);
   if (last_reference_time(scene)) {
     // Only the reference times are known: use the last one within the duration.

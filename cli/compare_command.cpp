@@ -168,7 +168,7 @@ int compare_command(const CompareOptions& o) {
   const std::string what = o.duration ? "--duration" : o.dt ? "--dt" : path + ": dt/duration";
   checked_step_count(options.duration, options.dt, what);
   check_time_resolution(scene.start_time, options.duration, options.dt, path + ": start_time", what);
-  check_position_resolution(scene, options.dt, path);
+  check_position_resolution(scene, options.dt, path, o.dt ? "--dt" : path + ": dt");
   int panel_width = 0, panel_height = 0;
   {
     char x = 0;

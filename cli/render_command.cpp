@@ -318,7 +318,7 @@ int render_command(const RenderOptions& o) {
                                                scene.dt, unit, video_fps, rate_product));
   check_time_resolution(scene.start_time, duration, scene.dt, path + ": start_time",
                         o.duration ? "--duration" : path + ": dt/duration");
-  check_position_resolution(scene, scene.dt, path);
+  check_position_resolution(scene, scene.dt, path, path + ": dt");
   const draw::Api& drawing = draw_module();
   if (!o.video.empty() && process::find_program("ffmpeg").empty())
     throw InputError("ffmpeg not found on PATH: --video needs it (install the Debian package ffmpeg)");

@@ -292,7 +292,7 @@ int run_command(const RunOptions& o) {
   const std::string what = o.steps ? "--steps" : o.duration ? "--duration" : o.dt ? "--dt" : path + ": dt/duration";
   if (!method.adaptive()) checked_step_count(duration, dt, what);
   check_time_resolution(scene.start_time, duration, dt, path + ": start_time", what);
-  check_position_resolution(scene, dt, path);
+  check_position_resolution(scene, dt, path, o.dt ? "--dt" : path + ": dt");
   const Tolerance tolerance{o.atol.value_or(scene.atol), o.rtol.value_or(scene.rtol)};
   if (!(tolerance.atol > 0) || !(tolerance.rtol > 0) || !std::isfinite(tolerance.atol) || !std::isfinite(tolerance.rtol))
     throw InputError("--atol/--rtol: must be finite and > 0");

@@ -25,9 +25,10 @@ long checked_step_count(double duration, double dt, const std::string& what) {
   return fixed_step_count(duration, dt);
 }
 
-void check_position_resolution(const SceneDescription& scene, double dt, const std::string& path) {
+void check_position_resolution(const SceneDescription& scene, double dt, const std::string& path, const std::string& dt_what) {
   if (const auto coarse = positions_too_coarse(scene, dt))
     throw InputError(path + ": " + coarse->field() + ": " + coarse->what());
+  if (const auto coarse = contacts_too_coarse(scene, dt)) throw InputError(dt_what + ": " + *coarse);
 }
 
 void check_time_resolution(double start_time, double duration, double dt, const std::string& start_what,

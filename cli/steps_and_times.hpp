@@ -19,8 +19,11 @@ long checked_step_count(double duration, double dt, const std::string& what);
 // named (a body's position, a generator's origin or spacing, a wall's offset or corner), are
 // positions_too_coarse's (motus/scene_file/scene_file.hpp): the moves, a body's speed times dt at the
 // start or after the scene's duration under the forces at the start, must be at least a thousand times
-// the positions' spacing where the bodies are.
-void check_position_resolution(const SceneDescription& scene, double dt, const std::string& path);
+// the positions' spacing where the bodies are. With contacts, where a step takes the bodies doubles
+// must also be at most a thousandth of the smallest radius apart (contacts_too_coarse), else
+// `dt_what` ("--dt", or "FILE: dt") is named: at dt = 1e16 s two balls of 0.5 m met head-on and kept
+// their velocities, exit 0.
+void check_position_resolution(const SceneDescription& scene, double dt, const std::string& path, const std::string& dt_what);
 // Refuses a run whose times cannot be told apart at its step (exit 2), naming start_what when
 // start_time is what takes the run far from 0, else step_what (dt, the duration or the option).
 void check_time_resolution(double start_time, double duration, double dt, const std::string& start_what,

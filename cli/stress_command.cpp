@@ -173,7 +173,7 @@ int stress_command(const StressOptions& o) {
   // mass-ratio run whose balls meet late may take the scene's whole duration.)
   const double longest = std::max(static_cast<double>(std::max(o.steps, o.drift_steps)) * scene.dt, scene.duration);
   check_time_resolution(scene.start_time, longest, scene.dt, path + ": start_time", path + ": dt");
-  check_position_resolution(scene, scene.dt, path);
+  check_position_resolution(scene, scene.dt, path, path + ": dt");
 
   std::vector<Integrator> asked;
   if (o.integrators.empty()) {

@@ -533,6 +533,36 @@ TEST(Hardening, PositionsTooCoarseForForcedMovesOrFarWallsAreRefused) {
                          "scene's moves of 0.001 m a step (its fastest speed times dt = 0.001 s)");
 }
 
+// Contacts are resolved at their time within a step, the bodies taken back along their moves: where a
+// step takes them, positions must be finer than the balls. Two balls of r = 0.5 m, 4 m apart, meeting
+// head-on at 1 m/s: at dt = 1e16 s (the step takes them to 1e16 m, where doubles are 2 m apart) the
+// run counted a collision and kept both velocities, exit 0; at 1e17 it saw none. Refused with dt named
+// (or --dt); at dt = 1e6 s (positions 2.3e-10 m apart there) the pair runs and bounces. A ball alone,
+// with no wall, has no contact to resolve and is not refused. (From a fuzzing audit: min_tunnel.json.)
+TEST(Hardening, AStepThatTakesBallsWherePositionsAreCoarserThanTheyAreIsRefused) {
+  TempDir dir;
+  auto scene = [](double dt, int balls) {
+    json bodies = {{{"mass", 1}, {"radius", 0.5}, {"position", {-2, 0}}, {"velocity", {1, 0}}}};
+    if (balls == 2) bodies.push_back({{"mass", 3}, {"radius", 0.5}, {"position", {2, 0}}, {"velocity", {-1, 0}}});
+    return json{{"dimensions", 2}, {"bodies", bodies}, {"integrator", "symplectic-euler"}, {"dt", dt}, {"duration", dt}}.dump();
+  };
+  write_file(dir / "huge.json", scene(1e16, 2));
+  for (const char* command : {"run", "compare", "stress"})
+    expect_one_line_exit_2(run_motus(dir, {command, (dir / "huge.json").string()}),
+                           "huge.json: dt: a step takes the bodies 1e+16 m from the origin (its fastest speed times "
+                           "dt = 1e+16 s: a move of 1e+16 m), where positions are 2 m apart, more than a thousandth of "
+                           "the smallest ball's radius (0.5 m)");
+  write_file(dir / "fine.json", scene(1e6, 2));
+  const auto fine = run_motus(dir, {"run", (dir / "fine.json").string()});
+  ASSERT_EQ(fine.status, 0) << fine.err;
+  // (elastic, masses 1 and 3, 1 and −1 m/s: v₁' = −2 and v₂' = 0)
+  EXPECT_NE(fine.out.find("v = (-2, 0)"), std::string::npos) << fine.out;
+  expect_one_line_exit_2(run_motus(dir, {"run", (dir / "fine.json").string(), "--dt", "1e16", "--steps", "1"}),
+                         "--dt: a step takes the bodies 1e+16 m from the origin");
+  write_file(dir / "alone.json", scene(1e16, 1));
+  EXPECT_EQ(run_motus(dir, {"run", (dir / "alone.json").string()}).status, 0);
+}
+
 // A generator's error names the field that is the cause: a rope's segment_length of 1e-160 m (its
 // square is no normal double) was blamed on "rope.origin: is too far from 0" with the origin at 0;
 // and a lattice's spacing of 1e308, which puts its balls at 1.5e308 m, on "bodies[1].position" in a

@@ -56,16 +56,21 @@ const MechanicalFields* fields_of(const MechanicalDescription& m) {
              : nullptr;
 }
 
+// What makes the scene's largest move: "its fastest speed times dt = 0.01 s", or a body's speed after
+// the run under its acceleration at the start.
+std::string why_it_moves(const CoarsePositions& c, double dt) {
+  const std::string step = "dt = " + message_number(dt, 6) + " s";
+  return c.acceleration > 0 ? "body " + std::to_string(c.mover) + "'s speed after " + message_number(c.duration, 6) +
+                                  " s at " + message_number(c.acceleration, 6) + " m/s², times " + step
+                            : "its fastest speed times " + step;
+}
+
 // The error for `c`, named by the field that puts the bodies there: a listed body's position; a
 // generator's origin, when that alone is too far, else its spacing; a plane's offset; a box's corner
 // nearest the origin. (`fields`: none for a description the loader did not make.)
 SceneError coarse_positions_error(const MechanicalDescription& m, const MechanicalFields* fields, const CoarsePositions& c,
                                   double dt) {
-  const std::string step = "dt = " + message_number(dt, 6) + " s";
-  const std::string why = c.acceleration > 0 ? "body " + std::to_string(c.mover) + "'s speed after " +
-                                                   message_number(c.duration, 6) + " s at " +
-                                                   message_number(c.acceleration, 6) + " m/s², times " + step
-                                             : "its fastest speed times " + step;
+  const std::string why = why_it_moves(c, dt);
   const std::string words = "positions are " + message_number(c.spacing, 6) +
                             " m apart, too coarse for the scene's moves of " + message_number(c.move, 6) + " m a step (" +
                             why + ")";
@@ -127,7 +132,9 @@ double length(const double* x, int d) {
 // acceleration the forces give at the start: the largest a step makes then, had they held. A body at
 // rest under gravity makes none at first and still moves; a run of dt = 1e-6 s from rest near the
 // origin, whose first steps move by 1e-12 m, is one.)
-std::optional<CoarsePositions> coarse_positions(const MechanicalDescription& m, double dt, double duration) {
+// The scene's largest move in a step (c.move, c.mover, c.acceleration, c.duration); nothing when a
+// move is past every double or a force is not a number (other checks say why).
+std::optional<CoarsePositions> largest_move(const MechanicalDescription& m, double dt, double duration) {
   const size_t n = m.bodies.size();
   const int d = m.dimensions;
   const auto size = static_cast<Eigen::Index>(n) * d;
@@ -164,8 +171,14 @@ std::optional<CoarsePositions> coarse_positions(const MechanicalDescription& m, 
     }
   }
   c.duration = duration;
-  if (!(c.move > 0)) return std::nullopt;  // nothing moves
-  for (size_t i = 0; i < n; ++i)
+  return c;
+}
+
+// Where the bodies are (c.far, c.where, c.index): the farthest one's largest coordinate, or where a
+// wall keeps them if that is farther.
+void find_farthest(const MechanicalDescription& m, CoarsePositions& c) {
+  const int d = m.dimensions;
+  for (size_t i = 0; i < m.bodies.size(); ++i)
     for (double x : m.bodies[i].position)
       if (std::abs(x) > c.far) c.far = std::abs(x), c.where = CoarsePositions::Where::body, c.index = i;
   // Walls keep the bodies away from the origin: on a plane's free side when that side is away from
@@ -184,6 +197,14 @@ std::optional<CoarsePositions> coarse_positions(const MechanicalDescription& m, 
       if (nearest > c.far) c.far = nearest, c.where = CoarsePositions::Where::box, c.index = j;
     }
   }
+}
+
+std::optional<CoarsePositions> coarse_positions(const MechanicalDescription& m, double dt, double duration) {
+  auto moved = largest_move(m, dt, duration);
+  if (!moved) return std::nullopt;
+  CoarsePositions c = *moved;
+  if (!(c.move > 0)) return std::nullopt;  // nothing moves
+  find_farthest(m, c);
   if (!std::isfinite(c.far)) return std::nullopt;
   c.spacing = std::nextafter(c.far, INFINITY) - c.far;
   if (c.spacing <= 1e-3 * c.move) return std::nullopt;
@@ -197,6 +218,29 @@ std::optional<SceneError> positions_too_coarse(const SceneDescription& scene, do
   const auto coarse = coarse_positions(*scene.mechanical, dt, scene.duration);
   if (!coarse) return std::nullopt;
   return coarse_positions_error(*scene.mechanical, fields_of(*scene.mechanical), *coarse, dt);
+}
+
+std::optional<std::string> contacts_too_coarse(const SceneDescription& scene, double dt) {
+  if (!scene.mechanical) return std::nullopt;
+  const MechanicalDescription& m = *scene.mechanical;
+  double smallest = INFINITY;
+  size_t balls = 0;
+  for (const auto& body : m.bodies)
+    if (body.radius > 0) ++balls, smallest = std::min(smallest, body.radius);
+  const Colliders& walls = m.colliders;
+  const bool any_wall = !walls.planes.empty() || !walls.boxes.empty() || !walls.segments.empty();
+  if (balls < 2 && !(balls == 1 && any_wall)) return std::nullopt;  // no contact to resolve
+  auto moved = largest_move(m, dt, scene.duration);
+  if (!moved || !(moved->move > 0)) return std::nullopt;
+  find_farthest(m, *moved);
+  const double reach = moved->far + moved->move;
+  if (!std::isfinite(reach)) return std::nullopt;  // (the position check, or the run, says why)
+  const double spacing = std::nextafter(reach, INFINITY) - reach;
+  if (spacing <= kContactResolution * smallest) return std::nullopt;
+  return "a step takes the bodies " + message_number(reach, 6) + " m from the origin (" + why_it_moves(*moved, dt) +
+         ": a move of " + message_number(moved->move, 6) + " m), where positions are " + message_number(spacing, 6) +
+         " m apart, more than a thousandth of the smallest ball's radius (" + message_number(smallest, 6) +
+         " m): too coarse to resolve its contacts at their time within the step; a smaller dt";
 }
 
 }  // namespace motus
