@@ -9,6 +9,8 @@
 
 #include <fmt/format.h>
 
+#include "motus/scene_error.hpp"
+
 namespace motus::cli {
 
 // Exit codes: 0 done; 1 the run itself failed; 2 bad input (scene, option or file).
@@ -31,7 +33,7 @@ void tell(fmt::format_string<Args...> format, Args&&... args) noexcept {
 // Bad input that is not inside a scene file (an option, an output path): exit 2.
 class InputError : public std::runtime_error {
 public:
-  using std::runtime_error::runtime_error;
+  explicit InputError(const std::string& message) : std::runtime_error(without_nul(message)) {}  // (scene_error.hpp)
 };
 
 // An error message as one line of at most `limit` bytes (shortened in the middle, bytes that are

@@ -563,6 +563,22 @@ TEST(Hardening, AStepThatTakesBallsWherePositionsAreCoarserThanTheyAreIsRefused)
   EXPECT_EQ(run_motus(dir, {"run", (dir / "alone.json").string()}).status, 0);
 }
 
+// A NUL written in a scene ("\u0000" in a key or a string) ended the error message: the message is a C
+// string, and "integrator: unknown integrator \"" said nothing more, a key "\u0000x" left the message
+// empty. The NUL is shown as the six characters the file wrote. (From a fuzzing audit: min_nul*.json.)
+TEST(Hardening, ANulInAKeyOrAStringIsShownNotTheEndOfTheMessage) {
+  TempDir dir;
+  const std::string start = R"({"dimensions": 1, "bodies": [{"mass": 1, "position": [0]}], "dt": 0.1, "duration": 1, )";
+  write_file(dir / "in_string.json", start + R"("integrator": "\u0000rk4"})");
+  expect_one_line_exit_2(run_motus(dir, {"run", (dir / "in_string.json").string()}),
+                         R"(in_string.json: integrator: unknown integrator "\u0000rk4", did you mean rk4? (known: euler)");
+  write_file(dir / "in_key.json", start + R"("integrator": "rk4", "\u0000x": 1})");
+  expect_one_line_exit_2(run_motus(dir, {"run", (dir / "in_key.json").string()}),
+                         R"(in_key.json: \u0000x: unknown field (expected one of: $schema, name)");
+  expect_one_line_exit_2(run_motus(dir, {"run", (dir / "in_string.json").string(), "--set", R"(integrator="\u0000")"}),
+                         R"(in_string.json: integrator: unknown integrator "\u0000" (known: euler)");
+}
+
 // A generator's error names the field that is the cause: a rope's segment_length of 1e-160 m (its
 // square is no normal double) was blamed on "rope.origin: is too far from 0" with the origin at 0;
 // and a lattice's spacing of 1e308, which puts its balls at 1.5e308 m, on "bodies[1].position" in a
