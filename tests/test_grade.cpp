@@ -2674,6 +2674,31 @@ TEST(Grade, BubblewrapFailingToStartTheServerIsTheGradersFailure) {
       << result.dump(2);
 }
 
+// A compiler stopped by the grader's own file-size limit (`ulimit -f 64`, which the sandbox cannot raise to
+// the 64 MB a build may write without CAP_SYS_RESOURCE) graded the course's solution "does not compile", 0
+// points, exit 0. It is the machine's limit: the grader's failure, exit 1, a results file that says so.
+// (Where the sandbox can raise the limit, the build runs under its own and the solution compiles.)
+TEST(Grade, ACompilerStoppedByTheGradersOwnFileSizeLimitIsTheGradersFailure) {
+  NEEDS_SANDBOX();
+  TempDir dir;
+  const fs::path assignment = integrators_with_tests(dir, "one", json::array({definitions("integrators").at("euler.table")}));
+  const fs::path submission = copy_solution(dir, "integrators", "solution");
+  const auto r = run_program(dir, "/usr/bin/prlimit",
+                             {"--fsize=65536", "--", kMotus, "grade", assignment.string(), submission.string(), "--results",
+                              (dir / "results.json").string()});
+  const json result = read_json(dir / "results.json");
+  if (r.status == 0) {  // (the sandbox raised the limit)
+    EXPECT_EQ(result["extra_data"]["compiled"], true) << result.dump(2);
+    return;
+  }
+  EXPECT_EQ(r.status, 1) << r.err << r.out;
+  EXPECT_NE(r.err.find("the compiler was stopped by this machine's file-size limit (ulimit -f: 64 KiB, below the 64 MB a "
+                       "build may write): not the submission's fault"),
+            std::string::npos)
+      << r.err;
+  EXPECT_EQ(result["extra_data"]["internal_error"], true) << result.dump(2);
+}
+
 // bubblewrap that cannot start the compiler (it says so and exits 1, for the compile and for the
 // look at the compiler's version that then tells it from a compile error that says the same): the
 // grader's failure, exit 1, and a results file that says so.

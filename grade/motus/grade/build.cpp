@@ -6,6 +6,8 @@
 #include <chrono>
 #include <filesystem>
 
+#include <sys/resource.h>
+
 namespace fs = std::filesystem;
 
 namespace motus::grade {
@@ -31,14 +33,16 @@ namespace {
 // line of its own that begins with the program's name (no path, no space: the student's words only
 // come in lines that begin with a file's path or with spaces), and the internal compiler error's
 // exit status, 4 (a student's #error with the same words exits with 1).
-bool driver_reports_cpu_limit(const std::string& errors, const Ending& ending) {
+// (`signal`: the limit's words, as strsignal gives them: the file-size limit's SIGXFSZ is "File size
+// limit exceeded".)
+bool driver_reports(const std::string& errors, const Ending& ending, const char* signal = "CPU time limit exceeded") {
   if (!ending.exited || ending.status != 4) return false;
   for (size_t start = 0; start < errors.size();) {
     const size_t end = std::min(errors.find('\n', start), errors.size());
     const std::string line = errors.substr(start, end - start);
     const size_t colon = line.find(": ");
     if (colon != std::string::npos && colon > 0 && line.find_first_of("/ \t") > colon &&
-        line.find("CPU time limit exceeded") != std::string::npos)
+        line.find(signal) != std::string::npos)
       return true;
     start = end + 1;
   }
@@ -61,7 +65,7 @@ std::string compiler_messages(const std::string& errors, const Ending& ending, c
   // reports its killed cc1plus as "internal compiler error ... Please submit a full bug report", and
   // that alone (past the 40 lines shown when a flood of errors came first) told a student to
   // report a bug in GCC, with no word of the grader's limit.
-  const bool reported = driver_reports_cpu_limit(errors, ending);
+  const bool reported = driver_reports(errors, ending);
   const bool out_of_cpu = reported || (!ending.timed_out && ending.out_of_time(limits, wall_seconds)) ||
                           (ending.timed_out && ending.verdict == WallVerdict::used_its_cpu);
   std::string output;
@@ -158,6 +162,18 @@ BuildResult build_plugin(const Assignment& a, const std::string& provided, const
     if (!result.ok && !interrupted && compiler.errors().rfind("bwrap: ", 0) == 0 && !starts_the_compiler(spec, limits))
       throw std::runtime_error("the sandbox could not start the compiler: " +
                                compiler.errors().substr(0, compiler.errors().find('\n')));
+    // The compiler stopped by a file-size limit below the one a build is given: the grader's own
+    // (`ulimit -f`), which the sandbox cannot raise without the privilege to, is this machine's
+    // limit, not the submission's — under `ulimit -f 64` the course's solution graded "does not
+    // compile", 0 points, exit 0 (an audit).
+    rlimit own{};
+    const rlim_t build_may_write = static_cast<rlim_t>(limits.file_mb) << 20;
+    if (!result.ok && !interrupted && driver_reports(compiler.errors(), ending, "File size limit exceeded") &&
+        ::getrlimit(RLIMIT_FSIZE, &own) == 0 && own.rlim_cur != RLIM_INFINITY && own.rlim_cur < build_may_write)
+      throw std::runtime_error(fmt::format("the compiler was stopped by this machine's file-size limit (ulimit -f: {} KiB, "
+                                           "below the {} MB a build may write): not the submission's fault; raise it "
+                                           "and grade again",
+                                           own.rlim_cur >> 10, limits.file_mb));
   }
   if (interrupted) throw GradingInterrupted();
   result.plugin = (fs::path(out) / "student.so").string();
