@@ -272,6 +272,7 @@ int grade_batch(const GradeCommandOptions& o, const std::string& folder) {
   struct Row {
     double score = 0, max_score = 0, seconds = 0;
     std::string status;
+    bool results_written = false;  // (a full disk can refuse even the file that says the grader failed)
   };
   std::vector<Row> rows(submissions.size());
   std::atomic<size_t> next{0}, done{0};
@@ -288,7 +289,7 @@ int grade_batch(const GradeCommandOptions& o, const std::string& folder) {
         const auto result = grade::grade_submission(assignment, submissions[i].string(), options);
         write_whole_file(results, grade::results_text(grade::gradescope_json(result)), false);  // (a folder of our own)
         rows[i] = {result.score, result.max_score, result.seconds,
-                   !result.tests[0].passed ? "missing files" : !result.compiled ? "does not compile" : "graded"};
+                   !result.tests[0].passed ? "missing files" : !result.compiled ? "does not compile" : "graded", true};
       } catch (const grade::GradingInterrupted&) {
         break;  // (Ctrl-C: the main thread says so)
       } catch (const std::exception& e) {
@@ -297,6 +298,7 @@ int grade_batch(const GradeCommandOptions& o, const std::string& folder) {
         rows[i] = {0, assignment.max_score(), 0, "grader failed"};
         try {
           write_whole_file(results, grade::results_text(grade::failed_json(assignment.name, e.what())), false);
+          rows[i].results_written = true;
         } catch (...) {
         }
       }
@@ -317,8 +319,24 @@ int grade_batch(const GradeCommandOptions& o, const std::string& folder) {
   for (auto& t : threads) t.join();  // (after Ctrl-C each ends its sandbox at once)
   // The submissions graded so far keep their results (each took its seconds of grading): the
   // folder is kept without a scores.csv, which only a whole batch has. Nothing graded: no folder.
+  // The submissions whose results file was written, and those of the rest that were graded (or
+  // failed) without one: a message that says "kept" names only what is there.
+  size_t kept_count = 0;
+  std::string unwritten;
+  for (size_t i = 0; i < submissions.size(); ++i) {
+    kept_count += rows[i].results_written;
+    if (!rows[i].results_written && !rows[i].status.empty())
+      unwritten += (unwritten.empty() ? "" : ", ") + csv_field(submissions[i].filename().string());
+  }
+  auto tell_failures = [&] {
+    for (const auto& f : failures) {
+      std::string line = grade::terminal_safe(named_as_final(f));  // (a student's folder name and an error: one line)
+      std::replace(line.begin(), line.end(), '\n', ' ');
+      tell("motus: the grader failed on {}\n", line);
+    }
+  };
   auto keep_what_was_graded = [&]() -> std::string {  // where they are now ("": nothing to keep)
-    if (done == 0) return "";
+    if (kept_count == 0) return "";
     try {
       return folder_of_results.complete();
     } catch (const std::exception&) {
@@ -329,8 +347,10 @@ int grade_batch(const GradeCommandOptions& o, const std::string& folder) {
     progress.finish();
     const std::string kept = keep_what_was_graded();
     if (kept.empty()) tell("motus: interrupted before any submission was graded; nothing was written\n");
-    else tell("motus: interrupted; the {} graded so far {} in {}/ (no scores.csv: the batch is not whole)\n",
-              done == 1 ? "1 submission" : std::to_string(done.load()) + " submissions", done == 1 ? "has its results" : "have their results", kept);
+    else tell("motus: interrupted; the {} graded so far {} in {}/ (no scores.csv: the batch is not whole){}\n",
+              kept_count == 1 ? "1 submission" : std::to_string(kept_count) + " submissions",
+              kept_count == 1 ? "has its results" : "have their results", kept,
+              unwritten.empty() ? "" : "; no results file could be written for " + unwritten);
     return kExitInterrupted;
   }
   progress.finish();
@@ -343,18 +363,19 @@ int grade_batch(const GradeCommandOptions& o, const std::string& folder) {
   try {
     write_whole_file((fs::path(written) / "scores.csv").string(), csv, false);
   } catch (const std::exception& e) {
-    throw std::runtime_error(one_line(e.what()) + "; the " + std::to_string(done.load()) + " submissions' results are kept in " +
-                             keep_what_was_graded() + "/ (no scores.csv)");
+    tell_failures();
+    const std::string kept = keep_what_was_graded();
+    const std::string what = one_line(e.what()) + (kept.empty() ? "; no submission's results could be written"
+                                                                : "; the results of " + std::to_string(kept_count) + " of the " +
+                                                                      std::to_string(submissions.size()) +
+                                                                      " submissions are kept in " + kept + "/ (no scores.csv)");
+    throw std::runtime_error(what + (unwritten.empty() || kept.empty() ? "" : "; none could be written for " + unwritten));
   }
   const std::string results_folder = folder_of_results.complete();  // (as named: "out/" is out)
   fmt::print("{}", csv);
   tell("motus: graded {} submissions of {} in {:.1f} s with {} job{}; results in {}/\n", submissions.size(),
              assignment.name, wall, jobs, jobs == 1 ? "" : "s", results_folder);
-  for (const auto& f : failures) {
-    std::string line = grade::terminal_safe(named_as_final(f));  // (a student's folder name and an error: one line)
-    std::replace(line.begin(), line.end(), '\n', ' ');
-    tell("motus: the grader failed on {}\n", line);
-  }
+  tell_failures();
   return failures.empty() ? 0 : kExitFailure;
 }
 

@@ -2699,6 +2699,37 @@ TEST(Grade, ACompilerStoppedByTheGradersOwnFileSizeLimitIsTheGradersFailure) {
   EXPECT_EQ(result["extra_data"]["internal_error"], true) << result.dump(2);
 }
 
+// A batch on a disk that fills up: alice's results were written, bob's and the scores.csv were not, and
+// the message said "the 2 submissions' results are kept", with no word of bob. It names what is kept
+// and what is not, and says the grader failed on bob. (An audit of failed writes: a tmpfs of 12 kB.)
+TEST(Grade, ABatchOnAFullDiskNamesTheResultsItCouldNotWrite) {
+  NEEDS_SANDBOX();
+  TempDir dir;
+  const fs::path assignment = integrators_with_tests(dir, "one", json::array({definitions("integrators").at("euler.table")}));
+  copy_solution(dir, "integrators", "batch/alice");
+  copy_solution(dir, "integrators", "batch/bob");
+  const fs::path small = dir / "small";
+  fs::create_directories(small);
+  if (run_program(dir, "/usr/bin/mount", {"-t", "tmpfs", "-o", "size=4k", "tmpfs", small.string()}).status != 0)
+    GTEST_SKIP() << "no tmpfs can be mounted here";
+  struct Unmount {
+    fs::path at;
+    const TempDir& dir;
+    ~Unmount() { run_program(dir, "/usr/bin/umount", {at.string()}); }
+  } unmount{small, dir};
+  const auto r = run_motus(dir, {"grade", assignment.string(), "--batch", (dir / "batch").string(), "--out",
+                                 (small / "graded").string()});
+  EXPECT_EQ(r.status, 1) << r.err;
+  EXPECT_NE(r.err.find("motus: the grader failed on bob: " + (small / "graded").string()), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("scores.csv: could not be written (No space left on device); the results of 1 of the 2 "
+                       "submissions are kept in " + (small / "graded").string() + "/ (no scores.csv); none could be "
+                       "written for bob\n"),
+            std::string::npos)
+      << r.err;
+  EXPECT_TRUE(fs::exists(small / "graded" / "alice.json"));
+  EXPECT_FALSE(fs::exists(small / "graded" / "bob.json"));
+}
+
 // bubblewrap that cannot start the compiler (it says so and exits 1, for the compile and for the
 // look at the compiler's version that then tells it from a compile error that says the same): the
 // grader's failure, exit 1, and a results file that says so.
