@@ -318,7 +318,17 @@ int run_command(const RunOptions& o) {
   if (o.trajectory == "-" && o.json)
     throw InputError("--trajectory -: standard output is the CSV's; --json wants it too (write the CSV to a file)");
   if (!o.trajectory.empty()) {
-    if (o.trajectory != "-") check_can_write(o.trajectory, o.overwrite);
+    if (o.trajectory != "-") {
+      // Never the run's own input, however spelt (--overwrite is for an earlier CSV): a scene named
+      // again as its --trajectory was replaced by the CSV (an audit).
+      std::error_code same;
+      if (std::filesystem::equivalent(o.trajectory, path, same))
+        throw InputError("--trajectory: " + o.trajectory + " is the scene this run reads; write the CSV elsewhere");
+      for (const auto& plugin : o.plugins)
+        if (std::filesystem::equivalent(o.trajectory, plugin, same))
+          throw InputError("--trajectory: " + o.trajectory + " is the plug-in this run loads; write the CSV elsewhere");
+      check_can_write(o.trajectory, o.overwrite);
+    }
     trajectory.emplace(o.trajectory, sim, scene.output_interval, o.overwrite);
     // A trajectory that will fill a disk is said before it starts (10,000 balls for 3000 s at
     // dt = 1/60 make 140 GB): rows × columns × about 20 bytes a number.

@@ -691,6 +691,24 @@ TEST(CliRun, TrajectoryRefusesToOverwriteUnlessAsked) {
   EXPECT_TRUE(fs::exists(fresh));
 }
 
+// --overwrite is for an earlier CSV, not for the run's own input: a scene named again as its
+// --trajectory (here through "sub/.."), with --overwrite, was replaced by the CSV, exit 0 (an audit).
+TEST(CliRun, TrajectoryIsNeverTheScenesOwnFile) {
+  TempDir dir;
+  fs::create_directories(dir / "sub");
+  const std::string scene_file = (dir / "spring.json").string();
+  fs::copy_file(scene("spring"), scene_file);
+  const std::string before = read_file(scene_file);
+  const Result r = run_motus(dir, {"run", scene_file, "--trajectory", (dir / "sub" / ".." / "spring.json").string(), "--overwrite"});
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(count_lines(r.err), 1) << r.err;
+  EXPECT_NE(r.err.find("--trajectory: " + (dir / "sub" / ".." / "spring.json").string() +
+                       " is the scene this run reads; write the CSV elsewhere"),
+            std::string::npos)
+      << r.err;
+  EXPECT_EQ(read_file(scene_file), before);
+}
+
 TEST(CliList, AScenesFolderThatIsNotThereIsBadInput) {
   // MOTUS_SCENES naming no folder gave an empty list and exit 0; a description over two lines
   // is listed on one.
