@@ -120,6 +120,16 @@ std::string parse_error_line(const CLI::App& app, const CLI::ParseError& e) {
       return "unknown option " + one_line(name, 80) + did_you_mean(name, option_names(*at)) + " " + help;
     }
   }
+  // An option given no value took the next option as it ("run x --integrator --steps 20": CLI11 gives
+  // --integrator "--steps", and "20" is then a word too many, which was all the error said).
+  if (!extras.empty())
+    for (const CLI::Option* o : at->get_options()) {
+      if (o->get_lnames().empty()) continue;
+      for (const std::string& value : o->results())
+        if (starts_with(value, "-") && value.size() > 1 && option_named(*at, value.substr(0, value.find('='))))
+          return "--" + o->get_lnames().front() + ": needs a value; the option " + one_line(value, 80) +
+                 " after it was taken as one " + help;
+    }
   if (dynamic_cast<const CLI::ExtrasError*>(&e) && !extras.empty())
     return "unexpected argument \"" + one_line(extras.front(), 80) + "\" " + help;
   // "Could not convert: --dt = abc"

@@ -380,6 +380,11 @@ TEST(CliErrors, TheCommandLinesMistakesAreNamedWithTheWordMostLikelyMeant) {
       {{"compare", spring, "--fps", "10"}, "--fps: only with --render (motus compare --help)"},
       {{"run"}, "SCENE is missing (motus run --help)"},
       {{"run", spring, "extra"}, "unexpected argument \"extra\" (motus run --help)"},
+      // an option with no value took the next option as its own, and only the word left over was named (a fuzzing audit)
+      {{"run", spring, "--integrator", "--steps", "20"},
+       "--integrator: needs a value; the option --steps after it was taken as one (motus run --help)"},
+      {{"compare", spring, "--out", "--duration", "1"},
+       "--out: needs a value; the option --duration after it was taken as one (motus compare --help)"},
       // after "--" every word is an argument: an option there is a word too many (it said "unknown option --")
       {{"run", "--", spring, "--repeats", "1"},
        "unexpected argument \"--repeats\" after --, where every word is an argument (options go before --) (motus run --help)"},
