@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include <fmt/format.h>
 
@@ -51,6 +52,13 @@ void check_time_resolution(double start_time, double duration, double dt, const 
   if (step_what == "--steps") {
     const int e = std::ilogb(1e-6 * dt) + 52;
     const double most = std::ceil(std::ldexp(1.0, e + 1) / dt) - 1;
+    // A dt so small that no count of steps holds (a subnormal one: doubles near 0 are 4.9e-324 apart,
+    // more than a millionth of it) said "at most -1 of 9.99989e-321".
+    if (!(most >= 1)) {
+      const double least = 1e6 * std::numeric_limits<double>::denorm_min();
+      throw InputError(fmt::format("{}: {} (no count of steps that small can be told apart: dt must be at least {:.3g})",
+                                   step_what, coarse, least));
+    }
     throw InputError(fmt::format("{}: {} (fewer steps: from t = 0, at most {:.3g} of {:g})", step_what, coarse, most, dt));
   }
   throw InputError(step_what + ": " + coarse + " (a larger dt or a shorter duration)");

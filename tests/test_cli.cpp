@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -313,6 +314,13 @@ TEST(CliErrors, BadOptionValueIsOneLineExitTwo) {
   EXPECT_EQ(tenth.status, 2);  // at dt = 0.1: 2^-24 ≤ 1e-7 < 2^-23, the times told apart up to 2^29 s
   EXPECT_NE(tenth.err.find("at most " + as_3g(std::ceil(std::ldexp(1.0, 29) / 0.1) - 1) + " of 0.1)"),
             std::string::npos) << tenth.err;
+  // A subnormal dt: near t = 0 doubles are denorm_min (4.9e-324) apart, more than a millionth of it, and no
+  // count of steps holds: it said "at most -1 of 9.99989e-321" (a fuzzing audit). dt from 1e6·denorm_min.
+  const Result tiny = run_motus(dir, {"run", scene("spring"), "--dt", "1e-320", "--steps", "20"});
+  EXPECT_EQ(tiny.status, 2);
+  EXPECT_NE(tiny.err.find("(no count of steps that small can be told apart: dt must be at least " +
+                          as_3g(1e6 * std::numeric_limits<double>::denorm_min()) + ")"),
+            std::string::npos) << tiny.err;
   // An empty number ran with the scene's own, exit 0 (found by fuzzing the options).
   for (const auto& [command, option] : std::vector<std::pair<std::string, std::string>>{
            {"run", "--dt"}, {"run", "--duration"}, {"run", "--rtol"}, {"run", "--atol"}, {"compare", "--dt"},
