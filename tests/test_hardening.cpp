@@ -579,6 +579,16 @@ TEST(Hardening, ANulInAKeyOrAStringIsShownNotTheEndOfTheMessage) {
                          R"(in_string.json: integrator: unknown integrator "\u0000" (known: euler)");
 }
 
+// A file of /proc reports a size of 0 and has more: the reader read 0 bytes of /proc/self/status and said
+// "unexpected end of input", as if it were empty. It reads to the end, and says what it found there
+// (the file starts "Name:"). (From a fuzzing audit.)
+TEST(Hardening, AFileThatReportsNoSizeIsReadToItsEnd) {
+  TempDir dir;
+  const Result r = run_motus(dir, {"run", "/proc/self/status", "--steps", "2"});
+  expect_one_line_exit_2(r, "/proc/self/status: malformed JSON at line 1, column 1: syntax error while parsing value - invalid literal");
+  EXPECT_EQ(r.err.find("unexpected end of input"), std::string::npos) << r.err;
+}
+
 // A generator's error names the field that is the cause: a rope's segment_length of 1e-160 m (its
 // square is no normal double) was blamed on "rope.origin: is too far from 0" with the origin at 0;
 // and a lattice's spacing of 1e308, which puts its balls at 1.5e308 m, on "bodies[1].position" in a

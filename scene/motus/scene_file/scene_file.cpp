@@ -639,9 +639,16 @@ SceneDescription load_scene(const std::string& file, const std::vector<std::stri
                                        std::to_string(kMaxSceneBytes >> 20) + " MB a scene file may have");
   std::ifstream in(file, std::ios::binary);
   if (!in) throw SceneFileError(file, "", "cannot be read");
-  std::string text(static_cast<size_t>(std::min<std::uintmax_t>(size, kMaxSceneBytes)), '\0');
-  in.read(text.data(), static_cast<std::streamsize>(text.size()));
-  text.resize(static_cast<size_t>(in.gcount()));
+  // Read to its end, not to the size it reports: a file of /proc reports 0 bytes and has more, and
+  // /proc/self/status read as "unexpected end of input", as if empty.
+  std::string text;
+  char chunk[1 << 16];
+  while (in.read(chunk, sizeof chunk) || in.gcount() > 0) {
+    text.append(chunk, static_cast<size_t>(in.gcount()));
+    if (text.size() > static_cast<size_t>(kMaxSceneBytes))
+      throw SceneFileError(file, "", "is more than the " + std::to_string(kMaxSceneBytes >> 20) + " MB a scene file may have");
+  }
+  if (in.bad()) throw SceneFileError(file, "", "cannot be read");
   return parse_scene(text, file, overrides);
 }
 
