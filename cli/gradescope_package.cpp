@@ -9,6 +9,7 @@
 #include "cli_common.hpp"
 #include "locations.hpp"
 #include "output_files.hpp"
+#include "motus/grade/copy_files.hpp"
 #include "motus/grade/grader.hpp"
 #include "motus/process/run_program.hpp"
 
@@ -125,7 +126,7 @@ int write_gradescope_package(const std::string& assignment_folder, const std::st
   fs::create_directories(motus);
   for (const char* part : kSourceParts) {
     const fs::path from = fs::path(source) / part;
-    if (fs::exists(from)) fs::copy(from, motus / part, fs::copy_options::recursive);
+    if (fs::exists(from)) grade::copy_tree_told(from.string(), (motus / part).string());
   }
   // The assignment graded (it may live outside the source tree) and its hidden tests. No
   // assignment's solution or hidden tests go in with the sources: a student's code may run in
@@ -133,10 +134,10 @@ int write_gradescope_package(const std::string& assignment_folder, const std::st
   if (fs::is_directory(motus / "assignments"))
     for (const auto& entry : fs::directory_iterator(motus / "assignments"))
       if (entry.is_directory()) leave_out_answers(entry.path());
-  fs::copy(assignment_folder, staging / "assignment", fs::copy_options::recursive);
+  grade::copy_tree_told(assignment_folder, (staging / "assignment").string());
   leave_out_answers(staging / "assignment");
   if (hidden) {
-    fs::copy(*hidden, staging / "hidden", fs::copy_options::recursive);
+    grade::copy_tree_told(*hidden, (staging / "hidden").string());
     leave_out_hidden(assignment_folder, *hidden, staging / "assignment");
   }
 

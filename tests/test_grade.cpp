@@ -2730,6 +2730,31 @@ TEST(Grade, ABatchOnAFullDiskNamesTheResultsItCouldNotWrite) {
   EXPECT_FALSE(fs::exists(small / "graded" / "bob.json"));
 }
 
+// --plugin-out on a full disk said "--plugin-out: the plug-in could not be written (Input/output error)":
+// libstdc++'s copy_file reports a short copy as EIO. It names the file and the cause. (An audit of failed
+// writes: a tmpfs of 8 kB.)
+TEST(Grade, PluginOutOnAFullDiskNamesTheFileAndTheCause) {
+  NEEDS_SANDBOX();
+  TempDir dir;
+  const fs::path assignment = integrators_with_tests(dir, "one", json::array({definitions("integrators").at("euler.table")}));
+  const fs::path submission = copy_solution(dir, "integrators", "solution");
+  const fs::path small = dir / "small";
+  fs::create_directories(small);
+  if (run_program(dir, "/usr/bin/mount", {"-t", "tmpfs", "-o", "size=4k", "tmpfs", small.string()}).status != 0)
+    GTEST_SKIP() << "no tmpfs can be mounted here";
+  struct Unmount {
+    fs::path at;
+    const TempDir& dir;
+    ~Unmount() { run_program(dir, "/usr/bin/umount", {at.string()}); }
+  } unmount{small, dir};
+  const auto r = run_motus(dir, {"grade", assignment.string(), submission.string(), "--results", (dir / "results.json").string(),
+                                 "--plugin-out", (small / "plugin.so").string()});
+  EXPECT_EQ(r.status, 1) << r.err;
+  EXPECT_NE(r.err.find((small / "plugin.so").string() + ": could not be written (No space left on device)"), std::string::npos)
+      << r.err;
+  EXPECT_FALSE(fs::exists(small / "plugin.so"));
+}
+
 // bubblewrap that cannot start the compiler (it says so and exits 1, for the compile and for the
 // look at the compiler's version that then tells it from a compile error that says the same): the
 // grader's failure, exit 1, and a results file that says so.

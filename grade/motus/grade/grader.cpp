@@ -16,6 +16,7 @@
 #include <fstream>
 #include <optional>
 
+#include "motus/grade/copy_files.hpp"
 #include "motus/grade/probe.hpp"
 
 namespace fs = std::filesystem;
@@ -401,8 +402,7 @@ GradeResult grade_submission(const Assignment& a, const std::string& submission,
     if (!fs::is_regular_file(fs::symlink_status(built.plugin, error)))
       throw std::runtime_error(built.plugin + ": the built plug-in is no longer a file (the submission's code replaced "
                                               "it); --plugin-out is not written");
-    fs::copy_file(built.plugin, o.plugin_out, fs::copy_options::overwrite_existing, error);
-    if (error) throw std::runtime_error("--plugin-out: the plug-in could not be written (" + error.message() + ")");
+    copy_file_told(built.plugin, o.plugin_out);  // (a full disk said "Input/output error" of --plugin-out)
   }
 
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count();
