@@ -347,7 +347,8 @@ int grade_batch(const GradeCommandOptions& o, const std::string& folder) {
     progress.finish();
     const std::string kept = keep_what_was_graded();
     if (kept.empty()) tell("motus: interrupted before any submission was graded; nothing was written\n");
-    else tell("motus: interrupted; the {} graded so far {} in {}/ (no scores.csv: the batch is not whole){}\n",
+    else tell("motus: interrupted; the {} graded so far {} in {}/ (no scores.csv: the batch is not whole){}; to grade "
+              "the batch again, give another --out\n",
               kept_count == 1 ? "1 submission" : std::to_string(kept_count) + " submissions",
               kept_count == 1 ? "has its results" : "have their results", kept,
               unwritten.empty() ? "" : "; no results file could be written for " + unwritten);
