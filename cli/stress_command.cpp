@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <ctime>
 #include <filesystem>
@@ -330,11 +331,12 @@ int stress_command(const StressOptions& o) {
              : s == "sticks"   ? static_cast<double>(report.stick_variants_measured.size() * stress::mass_ratios().size())
                                : static_cast<double>(runs.size());
   ProgressBar progress(0, units, "stress " + scene.name, 256);
-  double done = 0;
-  const stress::Tick tick = [&] { progress.update(done); };
+  double done = 0, within = 0;  // units done, and how far into the next one its runs have gone
+  // (The furthest any of a unit's runs has gone: a stability unit's trials each run from 0 again.)
+  const stress::Tick tick = [&](double fraction) { progress.update(done + (within = std::max(within, std::min(fraction, 1.0)))); };
   // (Each unit done is shown at once: the bar showed only the units done when the next one ticked,
   // and stopped short, at 64 %, when the last ones had no step left to tick.)
-  auto unit_done = [&] { progress.update(++done); };
+  auto unit_done = [&] { within = 0, progress.update(++done); };
   const auto& settings = report.settings;
   for (const auto& section : report.sections) {
     if (section == "stability")

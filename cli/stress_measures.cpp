@@ -59,8 +59,8 @@ long run_steps(Simulation& sim, long steps, double h, const std::function<bool(c
       // step more.
       sim.advance(sim.time() + static_cast<double>(n) * h, h, Tolerance{}, [&](const Simulation& s) {
         if (!go) return;
-        tick();
         ++seen;
+        tick(static_cast<double>(seen) / static_cast<double>(steps));
         if (!each(s)) go = false;
       });
       const long before = done;

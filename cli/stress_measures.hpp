@@ -27,8 +27,10 @@ struct Settings {
                                // long after they first do (at most the scene's duration)
 };
 
-// Called every step or so: the progress bar, which is also where Ctrl-C is honoured.
-using Tick = std::function<void()>;
+// Called every step or so with how far the run under way is (0 to 1 of its steps): the progress bar,
+// which is also where Ctrl-C is honoured. (Without the fraction the bar stood still through a long
+// run: one drift run of 10⁶ steps is a unit of the bar, as is a stability trial of a few hundred.)
+using Tick = std::function<void(double)>;
 
 // ---- stability: the largest stable step ---------------------------------------------------
 struct StabilityTrial {
