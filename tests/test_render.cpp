@@ -721,6 +721,30 @@ TEST(RenderPixels, TheCameraKeepsBodiesAboveTheScaleBar) {
   EXPECT_LT(lowest, bar_top) << "the ball reaches into the scale bar's box";
 }
 
+// A comparison's side-by-side view was fitted to motus's run alone: Bullet's rope, stretched to twice its
+// length, ran off the bottom of its panel, under the scale bar (a pictures audit). The shared view takes in
+// every engine that ran and stays within kFarthestInView times the first one's reach (half its widest
+// extent) of its middle; not one that went farther (a blown-up run would shrink the others to a dot), nor
+// one with a position that is not a number, nor one that did not run.
+TEST(RenderPixels, ASharedViewTakesInEveryRunThatStaysNearTheFirst) {
+  const SceneDescription scene = one_ball(2, {0.0, 0.0}, 0.1);
+  auto run_to = [](double y) {  // a ball falling from (0, 0) to (0, y)
+    Recording rec;
+    for (const double at : {0.0, y}) rec.add(0, std::vector<double>{0.0, at, 0.0, 0.0});
+    return rec;
+  };
+  // The first run reaches y = −2: its middle is y = −1 and its reach 1, so the view may go to y = −5.
+  const std::vector<Recording> runs = {run_to(-2), run_to(-4.9), run_to(-5.1), run_to(std::nan("")), run_to(-3)};
+  EXPECT_EQ(in_a_shared_view(scene, runs, 0, {true, true, true, true, false}),
+            (std::vector<bool>{true, true, false, false, false}));
+  // And its camera, fitted to the runs in view, shows the stretched one's lowest point above the scale bar.
+  Recording both;
+  for (size_t e : {0, 1}) both.states.insert(both.states.end(), runs[e].states.begin(), runs[e].states.end());
+  const Viewport view{0, 0, 640, 480};
+  const Camera camera = fit_camera(scene, both, view);
+  EXPECT_LT(project(camera, view, {0.0, -4.9 - 0.1, 0})[1], 480 - 2.4 * motus::render::detail::overlay_text_size(view));
+}
+
 // Found by a pictures audit: the 3-D camera closed in to 0.9 of the bounding sphere's distance, and
 // the box's nearest bottom corner of bouncing_balls_3d, (6, 0, 6), was drawn at y = 503 in a 480 px
 // frame (docs/render.md: the camera fits the walls). Every corner of a scene's box is in the frame.

@@ -105,14 +105,28 @@ std::string draw_comparison(const ComparisonJob& job, ComparisonPictures& pictur
     for (size_t e = 0; e < job.panels.size() && !reference; ++e)
       if (job.panels[e].unsupported.empty()) reference = &recordings[e];
     if (!reference || reference->size() == 0) return;
-    // One camera and one ground for every panel and every frame, so the panels compare.
-    const render::Camera camera = render::fit_camera(*job.scene, *reference, view);
+    // One camera and one ground for every panel and every frame, so the panels compare: fitted to
+    // every engine's bodies (Bullet's rope, stretched to twice its length, ran off the bottom of a
+    // view fitted to motus's alone, under the scale bar), but to none that goes far beyond the first
+    // engine's (in_a_shared_view): a peer that blew up would shrink the others to a dot. Its panel
+    // says its bodies leave the view.
+    std::vector<bool> in_view;
+    for (const auto& panel : job.panels) in_view.push_back(panel.unsupported.empty());
+    in_view = render::in_a_shared_view(*job.scene, recordings, static_cast<size_t>(reference - recordings.data()), in_view);
+    render::Recording everyone;
+    for (size_t e = 0; e < recordings.size(); ++e)
+      if (in_view[e]) everyone.states.insert(everyone.states.end(), recordings[e].states.begin(), recordings[e].states.end());
+    const render::Camera camera = render::fit_camera(*job.scene, everyone, view);
     render::DrawOptions options;
-    render::fit_ground(*job.scene, *reference, options);
+    render::fit_ground(*job.scene, everyone, options);
     if (reference->size() >= 2) options.frame_interval = reference->times[1] - reference->times[0];
 
     std::vector<std::string> labels;
-    for (const auto& panel : job.panels) labels.push_back(panel.label.empty() ? panel.engine : panel.label);
+    for (size_t e = 0; e < job.panels.size(); ++e) {
+      const Panel& panel = job.panels[e];
+      labels.push_back((panel.label.empty() ? panel.engine : panel.label) +
+                       (panel.unsupported.empty() && !in_view[e] ? " (its bodies go out of this view)" : ""));
+    }
     const std::string frames_folder = job.folder + "/frames";
     if (!job.first_and_last_only) fs::create_directories(frames_folder);
     const size_t frames = reference->size();

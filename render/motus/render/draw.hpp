@@ -69,6 +69,15 @@ Color body_color(int index);
 // view from above and to the side of the bounding box.
 Camera fit_camera(const SceneDescription& scene, const Recording& recording, const Viewport& viewport);
 
+// Which of several runs of one mechanical scene (a comparison's engines) one view can show together:
+// `ran[e]` says which ran, and of those, the run `reference` always, and each other one whose bodies
+// stay within kFarthestInView times the reference's reach (half its widest extent, or its largest
+// radius) from the reference's middle in every recorded state. A run that blew up would shrink the
+// others to a dot in a view fitted to it.
+constexpr double kFarthestInView = 4;
+std::vector<bool> in_a_shared_view(const SceneDescription& scene, const std::vector<Recording>& runs, size_t reference,
+                                   std::vector<bool> ran);
+
 // The ground grid for a whole run of a 3-D scene: under its lowest point (or on its
 // ground plane), as wide as everything that moved. Sets options.ground_*.
 void fit_ground(const SceneDescription& scene, const Recording& recording, DrawOptions& options);
