@@ -26,6 +26,8 @@ std::string short_number(double x) {
 nlohmann::json number_or_null(double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); }
 
 const char* name(Integrator i) { return info(i).name; }
+// Its colour, as bench precision draws it (the integrators' table is in the enum's order).
+int colour_of(Integrator i) { return plot::integrator_colour(static_cast<int>(i)); }
 
 class File {
 public:
@@ -146,6 +148,7 @@ std::vector<plot::Figure> figures(const Report& r) {
     for (const auto& s : r.stability) {
       if (!s.skipped.empty()) continue;
       plot::Series line{name(s.integrator), {}, {}, "linespoints"};
+      line.colour = colour_of(s.integrator);
       for (const auto& t : s.trials) {
         line.x.push_back(r.omega ? *r.omega * t.h : t.h);
         line.y.push_back(t.max_error);
@@ -170,6 +173,7 @@ std::vector<plot::Figure> figures(const Report& r) {
     for (const auto& d : r.drift) {
       if (!d.skipped.empty()) continue;
       plot::Series line{name(d.integrator), {}, {}};
+      line.colour = colour_of(d.integrator);
       for (const auto& s : d.samples) line.x.push_back(s.t), line.y.push_back(s.window_max <= 100 ? s.window_max : NAN);
       f.series.push_back(std::move(line));
     }
@@ -188,6 +192,7 @@ std::vector<plot::Figure> figures(const Report& r) {
     for (const auto& s : r.stiffness) {
       if (!s.skipped.empty()) continue;
       plot::Series line{name(s.integrator), {}, {}, "linespoints"};
+      line.colour = colour_of(s.integrator);
       for (const auto& run : s.runs)
         line.x.push_back(run.factor), line.y.push_back(run.blown ? r.settings.energy_factor : run.max_error);
       f.series.push_back(std::move(line));
@@ -205,6 +210,8 @@ std::vector<plot::Figure> figures(const Report& r) {
     for (Integrator i : {Integrator::SymplecticEuler, Integrator::Verlet}) {
       plot::Series pair{std::string(name(i)) + ": pair, |v - v_formula| / u", {}, {}, "linespoints"};
       plot::Series gas{std::string(name(i)) + ": the scene, max |E - E0| / |E0|", {}, {}, "linespoints"};
+      pair.colour = gas.colour = colour_of(i);  // (the method's colour; the scene's line dashed)
+      gas.dashed = true;
       for (const auto& m : r.mass_ratio)
         if (m.integrator == i) {
           pair.x.push_back(m.ratio), pair.y.push_back(m.pair.failed.empty() ? m.pair.velocity_error : NAN);
@@ -227,6 +234,8 @@ std::vector<plot::Figure> figures(const Report& r) {
     for (Integrator i : {Integrator::SymplecticEuler, Integrator::Verlet}) {
       plot::Series overlap{std::string(name(i)) + ": deepest overlap / contact distance", {}, {}, "linespoints"};
       plot::Series energy{std::string(name(i)) + ": max |E - E0| / |E0|", {}, {}, "linespoints"};
+      overlap.colour = energy.colour = colour_of(i);  // (the method's colour; the energy's line dashed)
+      energy.dashed = true;
       for (const auto& s : r.speed)
         if (s.integrator == i) {
           overlap.x.push_back(s.radii_per_step), overlap.y.push_back(s.gas_failed.empty() ? s.gas_max_overlap : NAN);

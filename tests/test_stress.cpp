@@ -689,3 +689,37 @@ TEST(Stress, ThePageIsNamedItsTablesHaveHeadersAndItsNumbersUnits) {
 }
 
 }  // namespace
+
+namespace {
+
+// Each line's colour (and dash) in a figures.gp, by its legend's title: "lc rgb '#9164c8' dt (24,6,3,6)".
+std::map<std::string, std::set<std::string>> line_styles(const std::string& script) {
+  std::map<std::string, std::set<std::string>> styles;
+  const std::regex line(R"((lc rgb '#[0-9a-f]{6}'(?: dt [^ ]+)?) title '([^']*)')");
+  for (auto it = std::sregex_iterator(script.begin(), script.end(), line); it != std::sregex_iterator(); ++it)
+    styles[(*it)[2].str()].insert((*it)[1].str());
+  return styles;
+}
+
+}  // namespace
+
+// A pictures audit: the stress page coloured its methods by their order in each figure, bench precision
+// by their place in motus's table, so rk4 was purple on one page and orange on the other. Both now take the
+// method's colour (plot::integrator_colour): one colour a method, in every figure of both pages.
+TEST(StressPages, AMethodHasTheColourItHasInBenchPrecision) {
+  TempDir dir;
+  const Result stress = run_motus(dir, {"stress", "oscillator", "--integrators", "rk4,euler", "--steps", "100",
+                                        "--drift-steps", "100", "--out", (dir / "stress").string()});
+  ASSERT_EQ(stress.status, 0) << stress.err;
+  const Result bench = run_motus(dir, {"bench", "precision", "oscillator", "--integrators", "euler,rk4", "--levels", "1",
+                                       "--per-decade", "1", "--repeats", "1", "--out", (dir / "bench").string()});
+  ASSERT_EQ(bench.status, 0) << bench.err;
+  const auto in_stress = line_styles(read_file(dir / "stress" / "figures.gp"));
+  const auto in_bench = line_styles(read_file(dir / "bench" / "figures.gp"));
+  for (const char* method : {"euler", "rk4"}) {
+    ASSERT_TRUE(in_stress.contains(method) && in_bench.contains(method)) << method;
+    EXPECT_EQ(in_stress.at(method).size(), 1u) << method << ": more than one style on the stress page";
+    EXPECT_EQ(in_stress.at(method), in_bench.at(method)) << method;
+  }
+  EXPECT_NE(in_stress.at("euler"), in_stress.at("rk4"));
+}

@@ -39,6 +39,12 @@ constexpr int motus = 0, box2d = 1, bullet = 2;
 constexpr int first_free = 3;  // (the places after them)
 }  // namespace kEngineColour
 
+// The colour of motus's integrator at `place` in its table (all_integrators(), in
+// motus/integrate/integrator_catalog.hpp): the first at motus's own place, the others after Box2D's
+// and Bullet's, so that a method keeps its colour in every figure (bench precision's diagrams and the
+// stress test's plots gave rk4 purple in one and green in the other).
+constexpr int integrator_colour(int place) { return place == 0 ? kEngineColour::motus : place - 1 + kEngineColour::first_free; }
+
 struct Figure {
   std::string stem;  // the files: FOLDER/stem.png and FOLDER/stem.svg
   std::string title, x_label, y_label;

@@ -53,8 +53,7 @@ int line_of(const Curve& curve, const std::vector<Curve>& curves) {
   if (curve.engine == "bullet") return plot::kEngineColour::bullet;
   const auto& builtin = all_integrators();
   const int motus_methods = static_cast<int>(builtin.size());
-  // (The first at motus's own place, the others after Box2D's and Bullet's.)
-  const auto at = [&](int place) { return place == 0 ? plot::kEngineColour::motus : place - 1 + plot::kEngineColour::first_free; };
+  const auto at = plot::integrator_colour;
   if (curve.engine == "motus")
     for (int m = 0; m < motus_methods; ++m)
       if (curve.method == builtin[static_cast<size_t>(m)].name) return at(m);
