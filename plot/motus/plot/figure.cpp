@@ -232,7 +232,10 @@ std::string draw(const std::vector<Figure>& figures, const std::string& folder) 
       const std::string colour = line_style(s.colour >= 0 ? static_cast<size_t>(s.colour) : k, s.dashed, s.dash);
       if (blocks[k] < 0) {
         plot_line += k ? ", " : "plot ";
-        plot_line += std::string("1/0 with lines lw ") + number(s.line_width) + colour + " title " +
+        // (One with nothing to draw, for a reason, has no sample line: "box2d: not supported" beside an
+        // orange dash read as a line that was somewhere in the plot.)
+        plot_line += std::string("1/0 with lines ") +
+                     (s.none_because.empty() ? "lw " + number(s.line_width) + colour : std::string("lt nodraw")) + " title " +
                      quoted(s.name + legend_tail(f, s));
         continue;
       }
