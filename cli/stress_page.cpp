@@ -26,6 +26,14 @@ std::string short_number(double x) {
 nlohmann::json number_or_null(double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); }
 
 const char* name(Integrator i) { return info(i).name; }
+// A figure of one line a method (up to eleven), its legend below: taller, so that the plot keeps its
+// height (eight entries and a three-line heading had left it 215 of 480 px for twenty decades; a
+// pictures audit). At the right, the legend's long entries took half the width instead.
+void wide(plot::Figure& f) {
+  f.width = 1000;
+  f.height = 760;
+}
+
 // Its colour, as bench precision draws it (the integrators' table is in the enum's order).
 int colour_of(Integrator i) { return plot::integrator_colour(static_cast<int>(i)); }
 
@@ -145,6 +153,23 @@ std::vector<plot::Figure> figures(const Report& r) {
     f.x_label = r.omega ? "ω h" : "h [s]";
     f.y_label = "largest |E - E0| / |E0| over the run";
     f.x_scale = f.y_scale = plot::Scale::log;
+    wide(f);
+    // The theory's limits, where a line should turn up: marked for the methods drawn (the note says them
+    // too, but every blow-up falls in the one decade 1 to 10, which has no tick of its own).
+    bool symplectic = false, yoshida = false, rk4 = false;
+    for (const auto& s : r.stability) {
+      if (!s.skipped.empty()) continue;
+      symplectic |= s.integrator == Integrator::SymplecticEuler || s.integrator == Integrator::SymplecticEulerX ||
+                    s.integrator == Integrator::Verlet || s.integrator == Integrator::VelocityVerlet;
+      yoshida |= s.integrator == Integrator::Yoshida4;
+      rk4 |= s.integrator == Integrator::Rk4;
+    }
+    // (Unlabelled: three limits within a factor of two sit too close for words beside each; the note names them.)
+    if (r.omega) {
+      if (yoshida) f.x_marks.push_back({1.5734, ""});
+      if (symplectic) f.x_marks.push_back({2, ""});
+      if (rk4) f.x_marks.push_back({2 * std::sqrt(2.0), ""});
+    }
     for (const auto& s : r.stability) {
       if (!s.skipped.empty()) continue;
       plot::Series line{name(s.integrator), {}, {}, "linespoints"};
@@ -157,7 +182,7 @@ std::vector<plot::Figure> figures(const Report& r) {
     }
     // (Not "the points at the top": an orbit that escapes may blow up at an error of about 1.)
     f.note = fmt::format("blown up: not finite, |E - E0| > {:g} |E0|, or a bound orbit or swing no longer bound{}{}", r.settings.energy_factor,
-                         r.omega ? "; theory: ωh = 2 (symplectic), 1.573 (yoshida4), 2√2 (rk4)" : "",
+                         r.omega ? "; grey dashes: the theory's limits, ωh = 1.573 (yoshida4), 2 (symplectic), 2√2 (rk4)" : "",
                          r.loses_energy_by_design ? "; the scene loses energy by design (a damper or drag): at 1, the "
                                                     "damping took it all; lower is not more accurate"
                                                   : "");
@@ -170,6 +195,7 @@ std::vector<plot::Figure> figures(const Report& r) {
     f.x_label = "t [s]";
     f.y_label = "largest |E - E0| / |E0| since the previous point";
     f.x_scale = f.y_scale = plot::Scale::log;
+    wide(f);
     for (const auto& d : r.drift) {
       if (!d.skipped.empty()) continue;
       plot::Series line{name(d.integrator), {}, {}};
@@ -185,10 +211,13 @@ std::vector<plot::Figure> figures(const Report& r) {
   if (has(r, "stiffness")) {
     plot::Figure f;
     f.stem = "stiffness";
-    f.title = who + fmt::format("{} raised by decades at dt = {:g} s", r.stiffness_knob.substr(0, r.stiffness_knob.find(',')), r.dt);
-    f.x_label = "factor";
+    const std::string knob = r.stiffness_knob.substr(0, r.stiffness_knob.find(','));
+    f.title = who + fmt::format("{} raised by decades at dt = {:g} s", knob, r.dt);
+    f.x_label = "factor (" + knob + " times it)";
     f.y_label = "largest |E - E0| / |E0| over the run";
     f.x_scale = f.y_scale = plot::Scale::log;
+    wide(f);
+    f.y_to = 10 * r.settings.energy_factor;  // (the blow-ups' level below the frame, not on it)
     for (const auto& s : r.stiffness) {
       if (!s.skipped.empty()) continue;
       plot::Series line{name(s.integrator), {}, {}, "linespoints"};

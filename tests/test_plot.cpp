@@ -215,6 +215,40 @@ private:
 // Found by an audit of the programs motus starts: a user's ~/.gnuplot (`set decimalsign ","`) was
 // read before figures.gp, and the tick labels of every plot read "0,5". gnuplot is started with -d
 // (--default-settings), which reads neither the user's nor the system's init file.
+// A pictures audit: the stress page's limits could not be read off its plot (every blow-up in the one
+// decade 1 to 10, no tick there), and its stiffness plot drew every blown-up run on the frame's top edge.
+// A figure's x marks are dashed grey lines from the bottom of the plot to its top (with their words when
+// they have any), taken away before the next figure; y_to ends the y axis above the data.
+TEST(Figures, MarksAndTheEndOfTheYAxisAreAFiguresOwn) {
+  TempDir folder;
+  motus::plot::Figure marked, plain;
+  marked.stem = "marked", plain.stem = "plain";
+  for (motus::plot::Figure* f : {&marked, &plain}) {
+    f->title = f->stem;
+    f->y_scale = motus::plot::Scale::log;
+    f->series.push_back({"line", {1, 2, 3}, {1, 10, 1e6}});
+  }
+  marked.x_marks = {{2, ""}, {2.5, "theory"}};
+  marked.y_to = 1e7;
+  (void)motus::plot::draw({marked, plain}, folder.path().string());
+  const std::string script = read_file(folder / "figures.gp");
+  const size_t second = script.find("set output 'marked.svg'");
+  ASSERT_NE(second, std::string::npos) << script;
+  const std::string first = script.substr(0, second);
+  EXPECT_NE(first.find("set arrow 20 from 2, graph 0 to 2, graph 1 nohead"), std::string::npos) << script;
+  EXPECT_NE(first.find("set arrow 21 from 2.5, graph 0 to 2.5, graph 1 nohead"), std::string::npos) << script;
+  EXPECT_EQ(first.find("set label 20 "), std::string::npos) << script;  // (no words)
+  EXPECT_NE(first.find("set label 21 'theory' at 2.5, graph 0.98"), std::string::npos) << script;
+  EXPECT_NE(first.find("set yrange [:10000000]"), std::string::npos) << script;
+  // The plain figure after it: the marks taken away before it is drawn, and its y axis its data's.
+  const size_t plain_start = script.rfind("set autoscale", script.find("set output 'plain.png'"));
+  const std::string plain_part = script.substr(plain_start, script.find("set output 'plain.png'") - plain_start);
+  EXPECT_NE(plain_part.find("unset arrow"), std::string::npos) << plain_part;
+  EXPECT_NE(plain_part.find("unset label 21"), std::string::npos) << plain_part;
+  EXPECT_EQ(plain_part.find("\nset arrow"), std::string::npos) << plain_part;
+  EXPECT_EQ(plain_part.find("\nset yrange"), std::string::npos) << plain_part;
+}
+
 TEST(Figures, AUsersGnuplotInitFileDoesNotChangeThePlots) {
   if (motus::plot::gnuplot_program().empty()) GTEST_SKIP() << "no gnuplot on PATH";
   TempDir dir;

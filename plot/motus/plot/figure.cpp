@@ -73,6 +73,7 @@ void axis(std::ostream& gp, const char* name, Scale scale, double threshold) {
 // character, 9/10 of the legend's 7.5): one long line was cut off at both edges. Broken after "; "
 // where it can be (the note's clauses), else at a space; at most kMostNoteLines lines.
 constexpr int kNoteLabel = 10, kMostNoteLines = 4;  // (labels 10 to 13; 1 to 3 are the figure's others)
+constexpr int kMarkLabel = 20, kMostMarks = 8;     // (the x marks' labels and arrows: 20 to 27)
 constexpr double kNoteLinePixels = 13;
 std::vector<std::string> wrap_note(const std::string& note, int width) {
   std::vector<std::string> lines;
@@ -262,6 +263,18 @@ std::string draw(const std::vector<Figure>& figures, const std::string& folder) 
     const std::string key = !below ? f.key + " Left reverse box opaque"
                                    : "below Left reverse box maxrows " + std::to_string(std::max(rows, 1));
     gp << "set autoscale\nset xtics autofreq\nset ytics autofreq\nunset label 2\nset key " << key << "\n";
+    // (Every mark of the figure before is taken away; this figure's are drawn behind its lines.)
+    gp << "unset arrow\n";
+    for (int k = kMarkLabel; k < kMarkLabel + kMostMarks; ++k) gp << "unset label " << k << "\n";
+    for (size_t k = 0; k < f.x_marks.size() && k < static_cast<size_t>(kMostMarks); ++k) {
+      const int id = kMarkLabel + static_cast<int>(k);
+      const std::string x = number(f.x_marks[k].x);
+      gp << "set arrow " << id << " from " << x << ", graph 0 to " << x << ", graph 1 nohead back dt 2 lw 1 lc rgb '#888888'\n";
+      if (!f.x_marks[k].words.empty())
+        gp << "set label " << id << " " << quoted(f.x_marks[k].words) << " at " << x
+           << ", graph 0.98 rotate by 90 right offset -0.9,0 font ',9' tc rgb '#555555'\n";
+    }
+    if (!std::isnan(f.y_to) && points > 0 && f.y_scale != Scale::symlog) gp << "set yrange [:" << number(f.y_to) << "]\n";
     // The whole run on the x axis, also where a line has gaps (exact values on a log axis).
     if (!std::isnan(f.x_from) && f.x_scale == Scale::linear) x_low = std::min(x_low, f.x_from);
     if (x_high > x_low && f.x_scale == Scale::linear)

@@ -61,6 +61,16 @@ struct Figure {
   // What a value that is not finite stands for, in the legend: "<gap_from> t = 50 s (<gap_means>)".
   std::string gap_from = "not finite from", gap_means = "blew up";
   int width = 900, height = 480;
+  // Vertical marks across the plot, each a dashed grey line at x with its words beside it, if any (a
+  // theory's limit, against which the lines are read).
+  struct Mark {
+    double x;
+    std::string words;
+  };
+  std::vector<Mark> x_marks;
+  // Where the y axis ends (NaN: where the data end): room above a level that stands for "off the
+  // chart" (a run that blew up drawn at the blow-up factor sat on the frame, every method's line in it).
+  double y_to = NAN;
 };
 
 // Draws every figure with one gnuplot run, started with its default settings (no ~/.gnuplot).
