@@ -116,7 +116,18 @@ std::vector<plot::Figure> figures(const ReportContext& c, const std::vector<Engi
   }
   changes_sign = negative && positive;
   const bool joules = energy_in_joules(runs);  // (E₀ = 0: the changes themselves)
-  if (changes_sign) {
+  // A scene that loses energy by design and loses a visible part of it: a linear axis of the signed
+  // change. On a log axis of |E − E0| bouncing_balls' three engines (0.877, 0.889, 0.902 of E0 lost)
+  // piled against its top edge, and on a symlog one ragdoll's lay on its bottom edge.
+  double largest = 0;
+  for (const auto& s : energy.series)
+    for (double y : s.y)
+      if (std::isfinite(y)) largest = std::max(largest, std::abs(y));
+  const bool linear = !kept && (joules || largest >= 1e-2);
+  if (linear) {
+    energy.y_scale = plot::Scale::linear;
+    energy.y_label = joules ? "E - E0 [J]" : "(E - E0) / |E0|";
+  } else if (changes_sign) {
     // Linear within ±threshold: the decade of the smallest change drawn (so that every change
     // that is not 0 is on the logarithmic part, and no decade below the data takes up the axis),
     // but no finer than rounding in the energy (1e-16 of it).
@@ -138,9 +149,15 @@ std::vector<plot::Figure> figures(const ReportContext& c, const std::vector<Engi
     for (auto& s : energy.series)
       for (double& y : s.y) y = std::abs(y);
   }
-  energy.note = kept ? "the scene keeps its energy: 0 is exact; each decade up is ten times more energy gained or lost"
-                     : "the scene loses energy by design (restitution below 1, damping or drag): compare the engines "
-                       "with each other, not with 0";
+  // (On a symlog axis "up" is not "more": below 0, a decade up is ten times less lost.)
+  const bool sticks = c.scene && c.scene->mechanical && !c.scene->mechanical->sticks.empty();
+  energy.note = kept ? (changes_sign ? "the scene keeps its energy: 0 is exact; each decade away from 0 is ten times more "
+                                       "energy gained (up) or lost (down)"
+                                     : "the scene keeps its energy: 0 is exact; each decade up is ten times more energy "
+                                       "gained or lost")
+                     : std::string("the scene loses energy by design (restitution below 1, damping or drag)") +
+                           (sticks ? ", and each engine's handling of its sticks takes some, its own way" : "") +
+                           ": compare the engines with each other, not with 0";
   std::vector<plot::Figure> all = {energy};
 
   auto change_of = [&](const char* stem, const char* what, bool angular) {
