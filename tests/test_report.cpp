@@ -8,6 +8,7 @@
 
 #include "accessibility.hpp"
 #include "cli_harness.hpp"
+#include "motus/render/draw.hpp"
 #include "motus/render/image.hpp"
 
 #include <cmath>
@@ -290,6 +291,25 @@ TEST(Report, EnginesThatAgreeAreAllSeenInThePicture) {
   EXPECT_GT(motus, 100) << "motus (box2d " << box2d << ", bullet " << bullet << ")";
   EXPECT_GT(box2d, 100) << "box2d (motus " << motus << ", bullet " << bullet << ")";
   EXPECT_GT(bullet, 100) << "bullet (motus " << motus << ", box2d " << box2d << ")";
+}
+
+// A pictures audit: head_on's two balls were blue and orange, motus's and Box2D's colours in the plots
+// beside them, and the orange ball read as Box2D's. A comparison's bodies take the palette from its
+// fourth colour (render::body_color(3), red, and (4), purple, for head_on's two), in every panel.
+TEST(Report, AComparisonsBodiesAreNotInTheEnginesColours) {
+  TempDir dir;
+  const auto r = compare(dir, "head_on", {"--repeats", "1"});
+  const motus::render::Image png = motus::render::read_png((r.folder / "first_and_last.png").string());
+  auto pixels_of = [&](const motus::render::Color& c) {
+    long n = 0;
+    for (size_t p = 0; p + 3 < png.rgba.size(); p += 4)
+      n += std::abs(png.rgba[p] - c.r) <= 8 && std::abs(png.rgba[p + 1] - c.g) <= 8 && std::abs(png.rgba[p + 2] - c.b) <= 8;
+    return n;
+  };
+  // Each ball is some 50 px across, in six panels: thousands of pixels of each body's colour.
+  EXPECT_GT(pixels_of(motus::render::body_color(3)), 3000);
+  EXPECT_GT(pixels_of(motus::render::body_color(4)), 3000);
+  for (int engine = 0; engine < 3; ++engine) EXPECT_LT(pixels_of(motus::render::body_color(engine)), 50) << engine;
 }
 
 // Found by an audit of what the report's pictures show.

@@ -118,6 +118,8 @@ std::string draw_comparison(const ComparisonJob& job, ComparisonPictures& pictur
       if (in_view[e]) everyone.states.insert(everyone.states.end(), recordings[e].states.begin(), recordings[e].states.end());
     const render::Camera camera = render::fit_camera(*job.scene, everyone, view);
     render::DrawOptions options;
+    // (The bodies' colours after the engines' three, as the report's replay takes them: compare/replay.cpp.)
+    options.first_body_colour = 3;
     render::fit_ground(*job.scene, everyone, options);
     if (reference->size() >= 2) options.frame_interval = reference->times[1] - reference->times[0];
 

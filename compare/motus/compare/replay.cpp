@@ -14,6 +14,7 @@
 #include <stdexcept>
 
 #include "motus/compare/replay_js.hpp"  // kReplayJs: compare/replay/replay.js, generated at build time
+#include "motus/plot/figure.hpp"
 #include "motus/plot/html.hpp"
 #include "motus/plot/write_failure.hpp"
 
@@ -136,7 +137,9 @@ void write_replay(const std::string& folder, const SceneDescription& scene, cons
   nlohmann::ordered_json radius = nlohmann::ordered_json::array(), color = nlohmann::ordered_json::array();
   for (size_t i = 0; i < n; i += static_cast<size_t>(stride)) {
     radius.push_back(m.bodies[i].radius);
-    color.push_back(i % 8);  // render/motus/render/frame.cpp, body_color
+    // (render/motus/render/frame.cpp's body_color, after the engines' three colours, as the drawn frames
+    // take them: cli/draw/draw_module.cpp. head_on's orange ball read as Box2D's.)
+    color.push_back((i + plot::kEngineColour::first_free) % 8);
   }
   head["radius"] = radius;
   head["color"] = color;

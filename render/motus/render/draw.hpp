@@ -38,6 +38,10 @@ constexpr size_t kMostTrailedBodies = 64;
 
 struct DrawOptions {
   Color background{250, 250, 247, 255};
+  // The palette's place of body 0's colour (body_color): a comparison's bodies start after its first
+  // three, which are the engines' colours in its plots (motus blue, Box2D orange, Bullet green); head_on's
+  // orange ball read as Box2D's.
+  int first_body_colour = 0;
   bool velocity_arrows = false;
   double arrow_seconds = 0.25;  // an arrow points to where the body would be this much later
   bool trails = false;          // drawn for scenes of at most kMostTrailedBodies bodies

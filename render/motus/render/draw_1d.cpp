@@ -24,7 +24,7 @@ void draw_mechanical_1d(Canvas& canvas, const Viewport& v, const MechanicalDescr
       const Vec3 bob = project(cam, v, {L * std::sin(theta), -L * std::cos(theta), 0});
       thick_line(pivot[0], pivot[1], bob[0], bob[1], 3, kStick);
       disc(pivot[0], pivot[1], 4, kInk, ss);
-      ball(bob[0], bob[1], 0.06 * unit, body_color(i), ss);
+      ball(bob[0], bob[1], 0.06 * unit, body_color(i + o.first_body_colour), ss);
       if (o.velocity_arrows && !f.velocities.empty()) {
         const double w = f.velocities[static_cast<size_t>(i)] * o.arrow_seconds;  // arc length per radian · L
         const Vec3 tip = project(cam, v, {L * std::sin(theta) + L * w * std::cos(theta), -L * std::cos(theta) + L * w * std::sin(theta), 0});
@@ -60,12 +60,12 @@ void draw_mechanical_1d(Canvas& canvas, const Viewport& v, const MechanicalDescr
     const Vec3 p = project(cam, v, {f.positions[static_cast<size_t>(i)], 0, 0});
     const double r = m.bodies[static_cast<size_t>(i)].radius * cam.scale;
     if (r > 0) {
-      ball(p[0], p[1], r, body_color(i), ss);
+      ball(p[0], p[1], r, body_color(i + o.first_body_colour), ss);
     } else {
       // A mass: a block centred on its position.
-      gl_color(darker(body_color(i), 0.7));
+      gl_color(darker(body_color(i + o.first_body_colour), 0.7));
       glRectd(p[0] - size / 2, p[1] - size / 2, p[0] + size / 2, p[1] + size / 2);
-      gl_color(body_color(i));
+      gl_color(body_color(i + o.first_body_colour));
       glRectd(p[0] - size / 2 + 2, p[1] - size / 2 + 2, p[0] + size / 2 - 2, p[1] + size / 2 - 2);
     }
     if (o.velocity_arrows && !f.velocities.empty()) {

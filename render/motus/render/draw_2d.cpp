@@ -70,7 +70,7 @@ void draw_mechanical_2d(Canvas& canvas, const Viewport& v, const MechanicalDescr
     for (int i = 0; i < n; ++i)
       for (size_t k = 1; k < count; ++k) {
         const Vec3 a = at(f.trail[k - 1], i), b = at(f.trail[k], i);
-        thick_line(a[0], a[1], b[0], b[1], 2, body_color(i), 0.15 + 0.6 * static_cast<double>(k) / count);
+        thick_line(a[0], a[1], b[0], b[1], 2, body_color(i + o.first_body_colour), 0.15 + 0.6 * static_cast<double>(k) / count);
       }
   }
   for (const auto& s : m.forces.springs) {
@@ -87,9 +87,9 @@ void draw_mechanical_2d(Canvas& canvas, const Viewport& v, const MechanicalDescr
     const Vec3 p = at(f.positions, i);
     const double r = m.bodies[static_cast<size_t>(i)].radius * cam.scale;
     if (r > 0)
-      ball(p[0], p[1], r, body_color(i), ss);
+      ball(p[0], p[1], r, body_color(i + o.first_body_colour), ss);
     else
-      disc(p[0], p[1], sticks ? 3.5 : 6, sticks ? kInk : body_color(i), ss);
+      disc(p[0], p[1], sticks ? 3.5 : 6, sticks ? kInk : body_color(i + o.first_body_colour), ss);
   }
   for (const auto& pin : m.pins) {
     const Vec3 p = project(cam, v, {pin.position[0], pin.position[1], 0});

@@ -151,7 +151,7 @@ void draw_mechanical_3d(Canvas& canvas, const Viewport& v, const MechanicalDescr
   for (const auto& box : m.colliders.boxes) box_edges({box.min[0], box.min[1], box.min[2]}, {box.max[0], box.max[1], box.max[2]});
   if (o.trails && !f.trail.empty() && static_cast<size_t>(n) <= kMostTrailedBodies)
     for (int i = 0; i < n; ++i) {
-      gl_color(mix(body_color(i), o.background, 0.4));
+      gl_color(mix(body_color(i + o.first_body_colour), o.background, 0.4));
       glBegin(GL_LINE_STRIP);
       for (const auto& x : f.trail) {
         const Vec3 p = point_of(x, d, i);
@@ -224,7 +224,7 @@ void draw_mechanical_3d(Canvas& canvas, const Viewport& v, const MechanicalDescr
   for (int i = 0; i < n; ++i) {
     const double r = m.bodies[static_cast<size_t>(i)].radius;
     if (r <= 0 && !triangles.empty()) continue;  // the cloth shows them
-    gl_color(body_color(i));
+    gl_color(body_color(i + o.first_body_colour));
     mesh.draw(point_of(f.positions, d, i), r > 0 ? r : dot_radius);
   }
   gl_color({200, 50, 50, 255});
