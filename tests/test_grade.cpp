@@ -2699,24 +2699,33 @@ TEST(Grade, ACompilerStoppedByTheGradersOwnFileSizeLimitIsTheGradersFailure) {
   EXPECT_EQ(result["extra_data"]["internal_error"], true) << result.dump(2);
 }
 
+// A full disk: a tmpfs of 4 kB (one page) at DIR/small, mounted while it lives (not where the machine
+// forbids it: then `mounted` is false).
+struct SmallDisk {
+  const TempDir& dir;
+  fs::path at;
+  bool mounted = false;
+  explicit SmallDisk(const TempDir& d) : dir(d), at(d / "small") {
+    fs::create_directories(at);
+    mounted = run_program(dir, "/usr/bin/mount", {"-t", "tmpfs", "-o", "size=4k", "tmpfs", at.string()}).status == 0;
+  }
+  ~SmallDisk() {
+    if (mounted) run_program(dir, "/usr/bin/umount", {at.string()});
+  }
+};
+
 // A batch on a disk that fills up: alice's results were written, bob's and the scores.csv were not, and
 // the message said "the 2 submissions' results are kept", with no word of bob. It names what is kept
-// and what is not, and says the grader failed on bob. (An audit of failed writes: a tmpfs of 12 kB.)
+// and what is not, and says the grader failed on bob. (An audit of failed writes: a tmpfs of 12 kB; here of 4.)
 TEST(Grade, ABatchOnAFullDiskNamesTheResultsItCouldNotWrite) {
   NEEDS_SANDBOX();
   TempDir dir;
   const fs::path assignment = integrators_with_tests(dir, "one", json::array({definitions("integrators").at("euler.table")}));
   copy_solution(dir, "integrators", "batch/alice");
   copy_solution(dir, "integrators", "batch/bob");
-  const fs::path small = dir / "small";
-  fs::create_directories(small);
-  if (run_program(dir, "/usr/bin/mount", {"-t", "tmpfs", "-o", "size=4k", "tmpfs", small.string()}).status != 0)
-    GTEST_SKIP() << "no tmpfs can be mounted here";
-  struct Unmount {
-    fs::path at;
-    const TempDir& dir;
-    ~Unmount() { run_program(dir, "/usr/bin/umount", {at.string()}); }
-  } unmount{small, dir};
+  const SmallDisk disk(dir);
+  if (!disk.mounted) GTEST_SKIP() << "no tmpfs can be mounted here";
+  const fs::path small = disk.at;
   const auto r = run_motus(dir, {"grade", assignment.string(), "--batch", (dir / "batch").string(), "--out",
                                  (small / "graded").string()});
   EXPECT_EQ(r.status, 1) << r.err;
@@ -2732,21 +2741,15 @@ TEST(Grade, ABatchOnAFullDiskNamesTheResultsItCouldNotWrite) {
 
 // --plugin-out on a full disk said "--plugin-out: the plug-in could not be written (Input/output error)":
 // libstdc++'s copy_file reports a short copy as EIO. It names the file and the cause. (An audit of failed
-// writes: a tmpfs of 8 kB.)
+// writes: a tmpfs of 8 kB; here of 4.)
 TEST(Grade, PluginOutOnAFullDiskNamesTheFileAndTheCause) {
   NEEDS_SANDBOX();
   TempDir dir;
   const fs::path assignment = integrators_with_tests(dir, "one", json::array({definitions("integrators").at("euler.table")}));
   const fs::path submission = copy_solution(dir, "integrators", "solution");
-  const fs::path small = dir / "small";
-  fs::create_directories(small);
-  if (run_program(dir, "/usr/bin/mount", {"-t", "tmpfs", "-o", "size=4k", "tmpfs", small.string()}).status != 0)
-    GTEST_SKIP() << "no tmpfs can be mounted here";
-  struct Unmount {
-    fs::path at;
-    const TempDir& dir;
-    ~Unmount() { run_program(dir, "/usr/bin/umount", {at.string()}); }
-  } unmount{small, dir};
+  const SmallDisk disk(dir);
+  if (!disk.mounted) GTEST_SKIP() << "no tmpfs can be mounted here";
+  const fs::path small = disk.at;
   const auto r = run_motus(dir, {"grade", assignment.string(), submission.string(), "--results", (dir / "results.json").string(),
                                  "--plugin-out", (small / "plugin.so").string()});
   EXPECT_EQ(r.status, 1) << r.err;
