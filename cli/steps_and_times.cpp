@@ -27,9 +27,9 @@ long checked_step_count(double duration, double dt, const std::string& what) {
 }
 
 void check_position_resolution(const SceneDescription& scene, double dt, const std::string& path, const std::string& dt_what) {
-  if (const auto coarse = positions_too_coarse(scene, dt))
-    throw InputError(path + ": " + coarse->field() + ": " + coarse->what());
-  if (const auto coarse = contacts_too_coarse(scene, dt)) throw InputError(dt_what + ": " + *coarse);
+  const CoarseResolution coarse = coarse_resolution(scene, dt);
+  if (coarse.positions) throw InputError(path + ": " + coarse.positions->field() + ": " + coarse.positions->what());
+  if (coarse.contacts) throw InputError(dt_what + ": " + *coarse.contacts);
 }
 
 void check_time_resolution(double start_time, double duration, double dt, const std::string& start_what,

@@ -17,10 +17,10 @@ long checked_step_count(double duration, double dt, const std::string& what);
 // step `dt` a command runs (exit 2), naming the field that puts its bodies there: at 1e17 m doubles
 // are 16 m apart, and a ball at 1 m/s with dt = 0.01 never moved, exit 0. The rule, and the field
 // named (a body's position, a generator's origin or spacing, a wall's offset or corner), are
-// positions_too_coarse's (motus/scene_file/scene_file.hpp): the moves, a body's speed times dt at the
+// coarse_resolution's (motus/scene_file/scene_file.hpp): the moves, a body's speed times dt at the
 // start or after the scene's duration under the forces at the start, must be at least a thousand times
 // the positions' spacing where the bodies are. With contacts, where a step takes the bodies doubles
-// must also be at most a thousandth of the smallest radius apart (contacts_too_coarse), else
+// must also be at most a thousandth of the smallest radius apart (coarse_resolution), else
 // `dt_what` ("--dt", or "FILE: dt") is named: at dt = 1e16 s two balls of 0.5 m met head-on and kept
 // their velocities, exit 0.
 void check_position_resolution(const SceneDescription& scene, double dt, const std::string& path, const std::string& dt_what);

@@ -738,8 +738,7 @@ TEST(RenderPixels, ASharedViewTakesInEveryRunThatStaysNearTheFirst) {
   EXPECT_EQ(in_a_shared_view(scene, runs, 0, {true, true, true, true, false}),
             (std::vector<bool>{true, true, false, false, false}));
   // And its camera, fitted to the runs in view, shows the stretched one's lowest point above the scale bar.
-  Recording both;
-  for (size_t e : {0, 1}) both.states.insert(both.states.end(), runs[e].states.begin(), runs[e].states.end());
+  const Recording* both[] = {&runs[0], &runs[1]};
   const Viewport view{0, 0, 640, 480};
   const Camera camera = fit_camera(scene, both, view);
   EXPECT_LT(project(camera, view, {0.0, -4.9 - 0.1, 0})[1], 480 - 2.4 * motus::render::detail::overlay_text_size(view));

@@ -9,6 +9,7 @@
 #include <new>
 
 #include "draw_api.hpp"
+#include "motus/plot/figure.hpp"
 #include "motus/process/run_program.hpp"
 #include "motus/render/canvas.hpp"
 #include "motus/render/compose.hpp"
@@ -113,13 +114,12 @@ std::string draw_comparison(const ComparisonJob& job, ComparisonPictures& pictur
     std::vector<bool> in_view;
     for (const auto& panel : job.panels) in_view.push_back(panel.unsupported.empty());
     in_view = render::in_a_shared_view(*job.scene, recordings, static_cast<size_t>(reference - recordings.data()), in_view);
-    render::Recording everyone;
+    std::vector<const render::Recording*> everyone;
     for (size_t e = 0; e < recordings.size(); ++e)
-      if (in_view[e]) everyone.states.insert(everyone.states.end(), recordings[e].states.begin(), recordings[e].states.end());
+      if (in_view[e]) everyone.push_back(&recordings[e]);
     const render::Camera camera = render::fit_camera(*job.scene, everyone, view);
     render::DrawOptions options;
-    // (The bodies' colours after the engines' three, as the report's replay takes them: compare/replay.cpp.)
-    options.first_body_colour = 3;
+    options.first_body_colour = plot::kEngineColour::first_free;  // (after the engines' colours, as the replay's)
     render::fit_ground(*job.scene, everyone, options);
     if (reference->size() >= 2) options.frame_interval = reference->times[1] - reference->times[0];
 

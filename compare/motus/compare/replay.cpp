@@ -138,7 +138,7 @@ void write_replay(const std::string& folder, const SceneDescription& scene, cons
   for (size_t i = 0; i < n; i += static_cast<size_t>(stride)) {
     radius.push_back(m.bodies[i].radius);
     // (render/motus/render/frame.cpp's body_color, after the engines' three colours, as the drawn frames
-    // take them: cli/draw/draw_module.cpp. head_on's orange ball read as Box2D's.)
+    // take them: DrawOptions::first_body_colour. head_on's orange ball read as Box2D's.)
     color.push_back((i + plot::kEngineColour::first_free) % 8);
   }
   head["radius"] = radius;

@@ -72,6 +72,9 @@ Color body_color(int index);
 // every recorded position (with a margin), for 3-D scenes and attractors a perspective
 // view from above and to the side of the bounding box.
 Camera fit_camera(const SceneDescription& scene, const Recording& recording, const Viewport& viewport);
+// The same for several runs of one scene seen in one view (a comparison's engines in in_a_shared_view):
+// every state of each, read where it is (a comparison of 10,000 balls holds hundreds of MB of them).
+Camera fit_camera(const SceneDescription& scene, std::span<const Recording* const> runs, const Viewport& viewport);
 
 // Which of several runs of one mechanical scene (a comparison's engines) one view can show together:
 // `ran[e]` says which ran, and of those, the run `reference` always, and each other one whose bodies
@@ -85,6 +88,7 @@ std::vector<bool> in_a_shared_view(const SceneDescription& scene, const std::vec
 // The ground grid for a whole run of a 3-D scene: under its lowest point (or on its
 // ground plane), as wide as everything that moved. Sets options.ground_*.
 void fit_ground(const SceneDescription& scene, const Recording& recording, DrawOptions& options);
+void fit_ground(const SceneDescription& scene, std::span<const Recording* const> runs, DrawOptions& options);
 
 void draw_mechanical(Canvas& canvas, const Viewport& viewport, const SceneDescription& scene,
                      const MechanicalFrame& frame, const Camera& camera, const DrawOptions& options = {});

@@ -49,12 +49,18 @@ Color body_color(int index) {
   return palette[static_cast<size_t>(index) % std::size(palette)];
 }
 
-Camera fit_camera(const SceneDescription& scene, const Recording& rec, const Viewport& v) {
+Camera fit_camera(const SceneDescription& scene, const Recording& recording, const Viewport& v) {
+  const Recording* one[] = {&recording};
+  return fit_camera(scene, one, v);
+}
+
+Camera fit_camera(const SceneDescription& scene, std::span<const Recording* const> runs, const Viewport& v) {
   const double aspect = static_cast<double>(v.width) / v.height;
   if (scene.first_order) {
     Box3 b;
-    for (const auto& y : rec.states)
-      if (y.size() >= 3) b.add({y[0], y[1], y[2]});
+    for (const Recording* rec : runs)
+      for (const auto& y : rec->states)
+        if (y.size() >= 3) b.add({y[0], y[1], y[2]});
     if (b.empty()) b.add({0, 0, 0}, 1);
     const Vec3 c = b.centre();
     const double r = std::max(b.radius(), 1e-9), fov = 35;
@@ -70,8 +76,9 @@ Camera fit_camera(const SceneDescription& scene, const Recording& rec, const Vie
     Box3 b;
     for (const auto& box : m.colliders.boxes) b.add({box.min[0], box.min[1], box.min[2]}), b.add({box.max[0], box.max[1], box.max[2]});
     if (b.empty())
-      for (const auto& x : rec.states)
-        for (int i = 0; i < n; ++i) b.add(point_of(x, d, i), m.bodies[static_cast<size_t>(i)].radius);
+      for (const Recording* rec : runs)
+        for (const auto& x : rec->states)
+          for (int i = 0; i < n; ++i) b.add(point_of(x, d, i), m.bodies[static_cast<size_t>(i)].radius);
     if (const auto g = ground_height(m)) b.add({b.centre()[0], *g, b.centre()[2]});
     if (b.empty()) b.add({0, 0, 0}, 1);
     const Vec3 c = b.centre();
@@ -104,8 +111,9 @@ Camera fit_camera(const SceneDescription& scene, const Recording& rec, const Vie
   }
   Box2 b;
   if (d == 1) {
-    for (const auto& x : rec.states)
-      for (int i = 0; i < n; ++i) b.add(x[static_cast<size_t>(i)], 0, m.bodies[static_cast<size_t>(i)].radius);
+    for (const Recording* rec : runs)
+      for (const auto& x : rec->states)
+        for (int i = 0; i < n; ++i) b.add(x[static_cast<size_t>(i)], 0, m.bodies[static_cast<size_t>(i)].radius);
     for (const auto& s : m.forces.springs)
       if (s.b < 0) b.add(s.anchor[0], 0);
     if (b.empty()) b.add(0, 0, 1);
@@ -117,8 +125,10 @@ Camera fit_camera(const SceneDescription& scene, const Recording& rec, const Vie
   for (const auto& box : m.colliders.boxes) b.add(box.min[0], box.min[1]), b.add(box.max[0], box.max[1]);
   for (const auto& s : m.colliders.segments) b.add(s.a[0], s.a[1]), b.add(s.b[0], s.b[1]);
   if (m.colliders.boxes.empty())
-    for (const auto& x : rec.states)
-      for (int i = 0; i < n; ++i) b.add(x[static_cast<size_t>(2 * i)], x[static_cast<size_t>(2 * i + 1)], m.bodies[static_cast<size_t>(i)].radius);
+    for (const Recording* rec : runs)
+      for (const auto& x : rec->states)
+        for (int i = 0; i < n; ++i)
+          b.add(x[static_cast<size_t>(2 * i)], x[static_cast<size_t>(2 * i + 1)], m.bodies[static_cast<size_t>(i)].radius);
   for (const auto& g : m.forces.central_gravity) b.add(g.centre[0], g.centre[1]);
   for (const auto& s : m.forces.springs)
     if (s.b < 0) b.add(s.anchor[0], s.anchor[1]);
@@ -166,14 +176,20 @@ std::vector<bool> in_a_shared_view(const SceneDescription& scene, const std::vec
   return ran;
 }
 
-void fit_ground(const SceneDescription& scene, const Recording& rec, DrawOptions& options) {
+void fit_ground(const SceneDescription& scene, const Recording& recording, DrawOptions& options) {
+  const Recording* one[] = {&recording};
+  fit_ground(scene, one, options);
+}
+
+void fit_ground(const SceneDescription& scene, std::span<const Recording* const> runs, DrawOptions& options) {
   if (!scene.mechanical || scene.mechanical->dimensions != 3) return;
   const auto& m = *scene.mechanical;
   const int n = static_cast<int>(m.bodies.size());
   Box3 b;
   for (const auto& box : m.colliders.boxes) b.add({box.min[0], box.min[1], box.min[2]}), b.add({box.max[0], box.max[1], box.max[2]});
-  for (const auto& x : rec.states)
-    for (int i = 0; i < n; ++i) b.add(point_of(x, 3, i), m.bodies[static_cast<size_t>(i)].radius);
+  for (const Recording* rec : runs)
+    for (const auto& x : rec->states)
+      for (int i = 0; i < n; ++i) b.add(point_of(x, 3, i), m.bodies[static_cast<size_t>(i)].radius);
   if (b.empty()) return;
   const Vec3 c = b.centre();
   options.ground_centre = Vec3{c[0], ground_height(m).value_or(b.lo[1]), c[2]};

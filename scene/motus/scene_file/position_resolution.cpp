@@ -1,4 +1,4 @@
-// positions_too_coarse (scene_file.hpp): whether doubles are fine enough where the bodies are for the
+// coarse_resolution (scene_file.hpp): whether doubles are fine enough where the bodies are for the
 // scene's moves at the step run, a check on a loaded scene and not part of reading one; it names the
 // fields of the scene this thread loaded last, kept here in a thread_local copy.
 #include "motus/scene_file/position_resolution.hpp"
@@ -17,7 +17,7 @@
 namespace motus {
 namespace {
 
-// Where the bodies are too far for the scene's moves (positions_too_coarse), and what makes the moves.
+// Where the bodies are too far for the scene's moves (coarse_resolution), and what makes the moves.
 struct CoarsePositions {
   enum class Where { body, plane, box };
   Where where = Where::body;  // what puts the bodies that far
@@ -128,12 +128,12 @@ double length(const double* x, int d) {
   return largest * std::sqrt(sum);
 }
 
-// (The moves are the bodies' speeds times dt, at the start and after the run's `duration` under the
-// acceleration the forces give at the start: the largest a step makes then, had they held. A body at
-// rest under gravity makes none at first and still moves; a run of dt = 1e-6 s from rest near the
-// origin, whose first steps move by 1e-12 m, is one.)
 // The scene's largest move in a step (c.move, c.mover, c.acceleration, c.duration); nothing when a
-// move is past every double or a force is not a number (other checks say why).
+// move is past every double or a force is not a number (other checks say why). The moves are the
+// bodies' speeds times dt, at the start and after the run's `duration` under the acceleration the
+// forces give at the start: the largest a step makes then, had they held. (A body at rest under
+// gravity makes none at first and still moves; a run of dt = 1e-6 s from rest near the origin, whose
+// first steps move by 1e-12 m, is one.)
 std::optional<CoarsePositions> largest_move(const MechanicalDescription& m, double dt, double duration) {
   const size_t n = m.bodies.size();
   const int d = m.dimensions;
@@ -199,30 +199,15 @@ void find_farthest(const MechanicalDescription& m, CoarsePositions& c) {
   }
 }
 
-std::optional<CoarsePositions> coarse_positions(const MechanicalDescription& m, double dt, double duration) {
-  auto moved = largest_move(m, dt, duration);
-  if (!moved) return std::nullopt;
-  CoarsePositions c = *moved;
-  if (!(c.move > 0)) return std::nullopt;  // nothing moves
-  find_farthest(m, c);
-  if (!std::isfinite(c.far)) return std::nullopt;
+// Whether the positions are too coarse for the moves `c` (largest_move, find_farthest): spacing set.
+bool too_coarse_for_moves(CoarsePositions& c) {
+  if (!(c.move > 0) || !std::isfinite(c.far)) return false;  // (nothing moves; or no position to judge)
   c.spacing = std::nextafter(c.far, INFINITY) - c.far;
-  if (c.spacing <= 1e-3 * c.move) return std::nullopt;
-  return c;
+  return c.spacing > 1e-3 * c.move;
 }
 
-}  // namespace
-
-std::optional<SceneError> positions_too_coarse(const SceneDescription& scene, double dt) {
-  if (!scene.mechanical) return std::nullopt;
-  const auto coarse = coarse_positions(*scene.mechanical, dt, scene.duration);
-  if (!coarse) return std::nullopt;
-  return coarse_positions_error(*scene.mechanical, fields_of(*scene.mechanical), *coarse, dt);
-}
-
-std::optional<std::string> contacts_too_coarse(const SceneDescription& scene, double dt) {
-  if (!scene.mechanical) return std::nullopt;
-  const MechanicalDescription& m = *scene.mechanical;
+// The contacts' check (coarse_resolution in scene_file.hpp) on the moves `c`: what is wrong, or nothing.
+std::optional<std::string> too_coarse_for_contacts(const MechanicalDescription& m, const CoarsePositions& c, double dt) {
   double smallest = INFINITY;
   size_t balls = 0;
   for (const auto& body : m.bodies)
@@ -230,17 +215,29 @@ std::optional<std::string> contacts_too_coarse(const SceneDescription& scene, do
   const Colliders& walls = m.colliders;
   const bool any_wall = !walls.planes.empty() || !walls.boxes.empty() || !walls.segments.empty();
   if (balls < 2 && !(balls == 1 && any_wall)) return std::nullopt;  // no contact to resolve
-  auto moved = largest_move(m, dt, scene.duration);
-  if (!moved || !(moved->move > 0)) return std::nullopt;
-  find_farthest(m, *moved);
-  const double reach = moved->far + moved->move;
+  if (!(c.move > 0)) return std::nullopt;
+  const double reach = c.far + c.move;
   if (!std::isfinite(reach)) return std::nullopt;  // (the position check, or the run, says why)
   const double spacing = std::nextafter(reach, INFINITY) - reach;
   if (spacing <= kContactResolution * smallest) return std::nullopt;
-  return "a step takes the bodies " + message_number(reach, 6) + " m from the origin (" + why_it_moves(*moved, dt) +
-         ": a move of " + message_number(moved->move, 6) + " m), where positions are " + message_number(spacing, 6) +
+  return "a step takes the bodies " + message_number(reach, 6) + " m from the origin (" + why_it_moves(c, dt) +
+         ": a move of " + message_number(c.move, 6) + " m), where positions are " + message_number(spacing, 6) +
          " m apart, more than a thousandth of the smallest ball's radius (" + message_number(smallest, 6) +
          " m): too coarse to resolve its contacts at their time within the step; a smaller dt";
+}
+
+}  // namespace
+
+CoarseResolution coarse_resolution(const SceneDescription& scene, double dt) {
+  if (!scene.mechanical) return {};
+  const MechanicalDescription& m = *scene.mechanical;
+  // (The forces at the start evaluated once, for both checks: mutual gravity is every pair.)
+  auto moved = largest_move(m, dt, scene.duration);
+  if (!moved) return {};
+  CoarsePositions c = *moved;
+  find_farthest(m, c);
+  if (too_coarse_for_moves(c)) return {coarse_positions_error(m, fields_of(m), c, dt), std::nullopt};
+  return {std::nullopt, too_coarse_for_contacts(m, c, dt)};
 }
 
 }  // namespace motus

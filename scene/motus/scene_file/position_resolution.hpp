@@ -1,5 +1,5 @@
 #pragma once
-// What the position-resolution check (position_resolution.cpp, positions_too_coarse) keeps of the scene
+// What the position-resolution check (position_resolution.cpp, coarse_resolution) keeps of the scene
 // this thread loaded last: the fields its bodies and walls came from, which the scene reader hands it.
 #include <array>
 #include <cstddef>
@@ -25,7 +25,7 @@ struct MechanicalFields {
 };
 
 // Keeps `fields` as the ones of `m`, the mechanical scene this thread loaded last (read_scene calls it),
-// for positions_too_coarse's messages.
+// for coarse_resolution's messages.
 void remember_fields(const MechanicalDescription& m, MechanicalFields fields);
 
 }  // namespace motus

@@ -43,17 +43,20 @@ public:
 // description made elsewhere) bodies[i].position or the wall's kind.
 // (Mutual gravity is left out of the forces of a scene of more than 4096 bodies: its every pair is
 // more work than a check should be.)
-std::optional<SceneError> positions_too_coarse(const SceneDescription& scene, double dt);
-
-// Positions too coarse for the contacts a step of dt resolves: a collision is resolved at its time
-// within the step, the bodies taken back along their moves, so where one step takes them (the
-// farthest body's coordinate plus the scene's largest move, as positions_too_coarse counts it)
-// doubles must be at most kContactResolution of the smallest ball's radius apart. A scene with
-// contacts (two balls, or a ball and a wall) only: a head-on pair of balls of r = 0.5 m at dt = 1e16 s
-// (2 m apart where the step took them) left both velocities as they were, exit 0. What is wrong, or
-// nothing; the field to blame is dt (or the option that set it).
+//
+// And, when the positions pass, positions too coarse for the contacts a step of dt resolves: a
+// collision is resolved at its time within the step, the bodies taken back along their moves, so where
+// one step takes them (the farthest body's coordinate, as above, plus the scene's largest move) doubles
+// must be at most kContactResolution of the smallest ball's radius apart. A scene with contacts (two
+// balls, or a ball and a wall) only: a head-on pair of balls of r = 0.5 m at dt = 1e16 s (2 m apart where
+// the step took them) left both velocities as they were, exit 0. What is wrong, or nothing; the field to
+// blame is dt (or the option that set it).
 constexpr double kContactResolution = 1e-3;
-std::optional<std::string> contacts_too_coarse(const SceneDescription& scene, double dt);
+struct CoarseResolution {
+  std::optional<SceneError> positions;  // too coarse for the moves, and the field that puts the bodies there
+  std::optional<std::string> contacts;  // too coarse for the contacts (dt's fault)
+};
+CoarseResolution coarse_resolution(const SceneDescription& scene, double dt);
 
 // Reads and checks a scene file, after applying `overrides` ("PATH=VALUE", the
 // command line's --set) to the JSON exactly as if the file had said them.
