@@ -26,7 +26,8 @@
 //     from the section's top left corner.
 //   - In the canvas, scene coordinates (x right, y up; a 3-D scene seen along −z, so z is dropped;
 //     a 1-D scene on the line y = 0) map by one view for every engine: data.view = [x0, y0, x1, y1]
-//     (the walls, or every body over the run: replay.cpp, replay_view) is centred and its longer side
+//     (the walls, or every body over the run of each engine in view: replay.cpp, replay_view and
+//     engines_in_view, which leaves out a peer that blew up) is centred and its longer side
 //     fills 90 % of the canvas: s = 0.9 N / max(x1 − x0, y1 − y0) (1 m when both are 0), and
 //       pixel = (N/2 + (x − (x0 + x1)/2) s,  N/2 − (y − (y0 + y1)/2) s).
 //   - The canvas's backing store has devicePixelRatio pixels per CSS pixel, so drawings stay sharp.

@@ -17,6 +17,7 @@
 #include "motus/plot/figure.hpp"
 #include "motus/plot/html.hpp"
 #include "motus/plot/write_failure.hpp"
+#include "motus/render/shared_view.hpp"
 
 namespace motus::compare {
 namespace {
@@ -69,6 +70,23 @@ void put_number(Buffer& out, double x, int digits) {
 
 }  // namespace
 
+std::vector<bool> engines_in_view(const SceneDescription& scene, const std::vector<EngineRun>& runs) {
+  const auto& m = *scene.mechanical;
+  std::vector<bool> in_view;
+  size_t reference = runs.size();  // the first engine with frames (motus, when it ran)
+  for (size_t e = 0; e < runs.size(); ++e) {
+    in_view.push_back(runs[e].supported && !runs[e].frames.empty());
+    if (in_view.back() && reference == runs.size()) reference = e;
+  }
+  double largest_radius = 0;
+  for (const auto& body : m.bodies) largest_radius = std::max(largest_radius, body.radius);
+  const auto states = [&](size_t e, const auto& visit) {
+    for (const auto& f : runs[e].frames)
+      if (f.x.size() >= m.bodies.size() * static_cast<size_t>(m.dimensions)) visit(f.x);
+  };
+  return render::in_a_shared_view(m.dimensions, m.bodies.size(), largest_radius, states, reference, std::move(in_view));
+}
+
 ReplayView replay_view(const SceneDescription& scene, const std::vector<EngineRun>& runs) {
   const auto& m = *scene.mechanical;
   const int d = m.dimensions;
@@ -79,9 +97,10 @@ ReplayView replay_view(const SceneDescription& scene, const std::vector<EngineRu
   }
   for (const auto& s : m.colliders.segments) b.add(s.a[0], s.a[1]), b.add(s.b[0], s.b[1]);
   if (b.empty()) {
-    for (const auto& r : runs) {
-      if (!r.supported) continue;
-      for (const auto& f : r.frames)
+    const std::vector<bool> in_view = engines_in_view(scene, runs);
+    for (size_t e = 0; e < runs.size(); ++e) {
+      if (!in_view[e]) continue;
+      for (const auto& f : runs[e].frames)
         for (size_t i = 0; i < m.bodies.size() && (i + 1) * static_cast<size_t>(d) <= f.x.size(); ++i)
           b.add(f.x[i * d], d == 1 ? 0 : f.x[i * d + 1], m.bodies[i].radius);
     }
@@ -89,7 +108,7 @@ ReplayView replay_view(const SceneDescription& scene, const std::vector<EngineRu
       for (const auto& body : m.bodies) b.add(body.position[0], d == 1 ? 0 : body.position[1], body.radius);
     // Each plane seen edge-on (its normal in the picture's plane): the point of it nearest to the
     // bodies, so that the ground they bounce on is in view.
-    if (!b.empty()) {
+  if (!b.empty()) {
       const double cx = (b.x0 + b.x1) / 2, cy = (b.y0 + b.y1) / 2;
       for (const auto& p : m.colliders.planes) {
         const double nx = p.normal[0], ny = d == 1 ? 0 : p.normal[1], length = std::hypot(nx, ny);
@@ -250,9 +269,14 @@ std::string replay_section(const SceneDescription& scene, const std::vector<Engi
       "<div class=\"replay-title\"><h2>Replay</h2><button type=\"button\" class=\"replay-close\" hidden>"
       "show the whole report</button></div>\n"
       "<noscript><p class=\"no\">The replay needs JavaScript.</p></noscript>\n<div class=\"replay-panels\" hidden>\n";
-  for (const auto& r : runs) {
+  const std::vector<bool> in_view = engines_in_view(scene, runs);
+  for (size_t e = 0; e < runs.size(); ++e) {
+    const EngineRun& r = runs[e];
     html += "<div class=\"replay-panel\"><div class=\"replay-caption\"><b>" + html_escape(r.engine) + "</b> <small>" +
-            html_escape(r.version) + "</small><br>";
+            html_escape(r.version) + "</small>";
+    // (a run that blew up, left out of the view the others share: its bodies leave its panel)
+    if (r.supported && !r.frames.empty() && !in_view[e]) html += " <small class=\"replay-outside\">(goes out of view)</small>";
+    html += "<br>";
     if (r.supported && !r.frames.empty()) {
       html += "<span class=\"replay-time\"></span> &nbsp; <span class=\"replay-energy\"></span></div>"
               "<canvas class=\"replay-canvas\" width=\"288\" height=\"288\" role=\"img\" aria-label=\"" +

@@ -16,9 +16,14 @@ namespace motus::compare {
 // At most this many bodies are drawn (and written): beyond it every k-th body, k = ceil(n / limit).
 inline constexpr long kReplayBodyLimit = 20000;
 
+// Which engines the replay's one view is fitted to: those with frames whose bodies stay near the first
+// such engine's (render/motus/render/shared_view.hpp: within kFarthestInView times its reach). A peer
+// that blew up is left out, and its panel says that its bodies go out of view.
+std::vector<bool> engines_in_view(const SceneDescription& scene, const std::vector<EngineRun>& runs);
+
 // The part of the scene the replay shows, in scene coordinates (x right, y up; 3-D seen along −z,
 // 1-D on the line y = 0): the walls (boxes and segments) if there are any, else every body's disc
-// at every kept frame of every engine, plus the point of each plane nearest to that; never empty.
+// at every kept frame of the engines in view, plus the point of each plane nearest to that; never empty.
 struct ReplayView {
   double x0 = 0, y0 = 0, x1 = 0, y1 = 0;
 };

@@ -18,6 +18,7 @@
 
 #include "motus/render/camera.hpp"
 #include "motus/render/canvas.hpp"
+#include "motus/render/shared_view.hpp"
 #include "motus/scene.hpp"
 
 namespace motus::render {
@@ -76,12 +77,10 @@ Camera fit_camera(const SceneDescription& scene, const Recording& recording, con
 // every state of each, read where it is (a comparison of 10,000 balls holds hundreds of MB of them).
 Camera fit_camera(const SceneDescription& scene, std::span<const Recording* const> runs, const Viewport& viewport);
 
-// Which of several runs of one mechanical scene (a comparison's engines) one view can show together:
-// `ran[e]` says which ran, and of those, the run `reference` always, and each other one whose bodies
-// stay within kFarthestInView times the reference's reach (half its widest extent, or its largest
-// radius) from the reference's middle in every recorded state. A run that blew up would shrink the
-// others to a dot in a view fitted to it.
-constexpr double kFarthestInView = 4;
+// Which of several runs of one mechanical scene (a comparison's engines) one view can show together,
+// by shared_view.hpp's rule: `ran[e]` says which ran, and of those, the run `reference` always, and
+// each other one whose bodies stay within kFarthestInView times the reference's reach in every
+// recorded state. A run that blew up would shrink the others to a dot in a view fitted to it.
 std::vector<bool> in_a_shared_view(const SceneDescription& scene, const std::vector<Recording>& runs, size_t reference,
                                    std::vector<bool> ran);
 

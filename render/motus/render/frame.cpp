@@ -151,29 +151,13 @@ Camera fit_camera(const SceneDescription& scene, std::span<const Recording* cons
 std::vector<bool> in_a_shared_view(const SceneDescription& scene, const std::vector<Recording>& runs, size_t reference,
                                    std::vector<bool> ran) {
   if (!scene.mechanical || reference >= runs.size()) return ran;
-  const int d = scene.mechanical->dimensions;
-  const size_t n = scene.mechanical->bodies.size();
-  double low[3] = {kInf, kInf, kInf}, high[3] = {-kInf, -kInf, -kInf};
-  for (const auto& x : runs[reference].states)
-    for (size_t i = 0; i < n; ++i)
-      for (int k = 0; k < d; ++k) {
-        const double c = x[i * static_cast<size_t>(d) + static_cast<size_t>(k)];
-        low[k] = std::min(low[k], c), high[k] = std::max(high[k], c);
-      }
-  double middle[3] = {0, 0, 0}, reach = 0;
-  for (int k = 0; k < d; ++k) middle[k] = (low[k] + high[k]) / 2, reach = std::max(reach, (high[k] - low[k]) / 2);
-  if (!std::isfinite(reach)) return ran;  // (the reference's own bodies are past every double: no scale to judge by)
-  for (const auto& body : scene.mechanical->bodies) reach = std::max(reach, body.radius);  // (a ball at rest has a size)
-  reach = std::max(reach, 1e-9);
-  for (size_t e = 0; e < runs.size(); ++e) {
-    if (!ran[e] || e == reference) continue;
-    for (const auto& x : runs[e].states)
-      for (size_t i = 0; i < n && ran[e]; ++i)
-        for (int k = 0; k < d; ++k)
-          if (!(std::abs(x[i * static_cast<size_t>(d) + static_cast<size_t>(k)] - middle[k]) <= kFarthestInView * reach))
-            ran[e] = false;  // (NaN too)
-  }
-  return ran;
+  double largest_radius = 0;
+  for (const auto& body : scene.mechanical->bodies) largest_radius = std::max(largest_radius, body.radius);
+  const auto states = [&](size_t e, const auto& visit) {
+    for (const auto& x : runs[e].states) visit(x);
+  };
+  return in_a_shared_view(scene.mechanical->dimensions, scene.mechanical->bodies.size(), largest_radius, states, reference,
+                          std::move(ran));
 }
 
 void fit_ground(const SceneDescription& scene, const Recording& recording, DrawOptions& options) {
