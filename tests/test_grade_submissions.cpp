@@ -186,6 +186,48 @@ TEST(GradeSubmissions, ACompileStoppedAtItsCpuLimitSaysSoFirstNotAsABugInGcc) {
             "The compiler said:\n" + kConstexprLoopError + "(the compiler exited with status 1)\n");
 }
 
+// A student who wrote rk4_step(…, Vector y) (the value, not the handout's VectorInOut) saw only the linker's
+// "undefined reference to `student::rk4_step(…, Eigen::Ref<Eigen::Matrix<double, -1, 1, 0, -1, 1>, 0,
+// Eigen::InnerStride<1> >)'", in Eigen's words and not the handout's (an audit of plausible mistakes). The
+// build's output says first which function, that other parameters make another function, and how the
+// handout's types read there; the linker's words follow unchanged.
+TEST(GradeSubmissions, AFunctionDefinedWithOtherParametersIsNamedInTheHandoutsWords) {
+  const auto limits = compile_limits();
+  motus::grade::Ending ended;
+  ended.exited = true;
+  ended.status = 1;
+  const std::string linker =
+      "/usr/bin/ld: /tmp/ccLCEwbe.o: in function `motus_plugin':\n"
+      "plugin.cpp:(.text+0x25e): undefined reference to `student::rk4_step(student::FirstOrderSystem const&, double, "
+      "double, Eigen::Ref<Eigen::Matrix<double, -1, 1, 0, -1, 1>, 0, Eigen::InnerStride<1> >)'\n"
+      "plugin.cpp:(.text+0x2a1): undefined reference to `student::rk4_step(student::FirstOrderSystem const&, double, "
+      "double, Eigen::Ref<Eigen::Matrix<double, -1, 1, 0, -1, 1>, 0, Eigen::InnerStride<1> >)'\n"
+      "plugin.cpp:(.text+0x2f0): undefined reference to `student::midpoint_step(student::FirstOrderSystem const&, "
+      "double, double, Eigen::Ref<Eigen::Matrix<double, -1, 1, 0, -1, 1>, 0, Eigen::InnerStride<1> >)'\n"
+      "collect2: error: ld returned 1 exit status\n";
+  const std::string shown = motus::grade::compiler_messages(linker, ended, limits, 1);
+  const std::string first = shown.substr(0, shown.find('\n'));
+  EXPECT_EQ(first.rfind("The handout's header declares student::rk4_step, student::midpoint_step, and your files define "
+                        "none of them with exactly their parameters",
+                        0),
+            0u)
+      << shown;
+  EXPECT_NE(first.find("VectorInOut is Eigen::Ref<Eigen::Matrix<double, -1, 1, ...>>"), std::string::npos) << first;
+  EXPECT_EQ(shown.substr(shown.find('\n') + 1), "The compiler said:\n" + linker + "(the compiler exited with status 1)\n");
+
+  // One function: said in the singular. And a student's own words that only look like it (an #error
+  // line, a file's path first) add nothing.
+  const std::string one = motus::grade::compiler_messages(linker.substr(0, linker.find("plugin.cpp:(.text+0x2a1)")), ended, limits, 1);
+  EXPECT_EQ(one.rfind("The handout's header declares student::rk4_step, and your files define no function of that name "
+                      "with exactly its parameters",
+                      0),
+            0u)
+      << one;
+  const std::string forged = "/submission/integrators.cpp:1:2: error: #error undefined reference to `student::rk4_step(\n";
+  EXPECT_EQ(motus::grade::compiler_messages(forged, ended, limits, 1),
+            "The compiler said:\n" + forged + "(the compiler exited with status 1)\n");
+}
+
 // ---------------------------------------------------------------------------------------------------
 // 4. An unknown assignment
 

@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <chrono>
 #include <filesystem>
+#include <string>
+#include <vector>
 
 #include <sys/resource.h>
 
@@ -58,6 +60,22 @@ bool starts_the_compiler(SandboxSpec spec, const Limits& limits) {
   return ending.exited && ending.status == 0;
 }
 
+// The student's functions the linker found no definition of, in order, once each: a line of the
+// linker's own (`plugin.cpp:(.text+0x25e): undefined reference to `student::rk4_step(…)'`), which
+// names the parameters in Eigen's words and not the handout's (VectorInOut is an Eigen::Ref<…>).
+std::vector<std::string> undefined_student_functions(const std::string& errors) {
+  static const std::string kMark = "): undefined reference to `student::";
+  std::vector<std::string> names;
+  for (size_t at = errors.find(kMark); at != std::string::npos; at = errors.find(kMark, at + 1)) {
+    const size_t begin = at + kMark.size() - std::string("student::").size();
+    const size_t end = errors.find_first_of("('\n", begin);
+    if (end == std::string::npos) break;
+    const std::string name = errors.substr(begin, end - begin);
+    if (std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
+  }
+  return names;
+}
+
 }  // namespace
 
 std::string compiler_messages(const std::string& errors, const Ending& ending, const Limits& limits, double wall_seconds) {
@@ -77,6 +95,19 @@ std::string compiler_messages(const std::string& errors, const Ending& ending, c
                          reported ? " The compiler's \"internal compiler error\" (and its \"bug report\") is that stop, not "
                                     "a bug in GCC to report."
                                   : "");
+  const std::vector<std::string> undefined = undefined_student_functions(errors);
+  if (!undefined.empty()) {
+    std::string names;
+    for (const auto& name : undefined) names += (names.empty() ? "" : ", ") + name;
+    const bool one = undefined.size() == 1;
+    output += fmt::format(
+        "The handout's header declares {}, and your files define {} with exactly {} parameters: a function of the same "
+        "name with other parameter types (Vector where the header has VectorInOut, a const left out) is another "
+        "function. Copy {} first line from the header. (The linker below names the handout's types in Eigen's words: "
+        "VectorInOut is Eigen::Ref<Eigen::Matrix<double, -1, 1, ...>>, VectorIn the same Ref of a const Matrix, Vector "
+        "Eigen::Matrix<double, -1, 1, ...>.)\n",
+        names, one ? "no function of that name" : "none of them", one ? "its" : "their", one ? "its" : "each one's");
+  }
   output += "The compiler said:\n" + cut(errors, 40, 6000);
   if (!ending.exited || ending.status != 0) output += "(the compiler " + ending.describe(limits, wall_seconds) + ")\n";
   return output;
