@@ -23,8 +23,10 @@ size_t columns(const std::string& s) {
 
 std::string seconds_text(double s) {
   char text[32];
-  if (s < 60) std::snprintf(text, sizeof text, "%.0f s", s);
-  else if (s < 3600) std::snprintf(text, sizeof text, "%.0f min %02.0f s", std::floor(s / 60), std::fmod(s, 60));
+  // Whole seconds first: 119.6 s is "2 min 00 s" (its minutes and seconds rounded apart said "1 min 60 s").
+  const double whole = std::round(s);
+  if (whole < 60) std::snprintf(text, sizeof text, "%.0f s", whole);
+  else if (whole < 3600) std::snprintf(text, sizeof text, "%.0f min %02.0f s", std::floor(whole / 60), std::fmod(whole, 60));
   else std::snprintf(text, sizeof text, "%.1f h", s / 3600);
   return text;
 }
@@ -42,6 +44,28 @@ ProgressBar::ProgressBar(double start, double end, std::string label, unsigned c
 
 ProgressBar::~ProgressBar() { finish(); }
 
+void ProgressBar::start_ticking() {
+  if (!enabled_ || ticker_.joinable()) return;
+  ticker_stop_ = false;
+  ticker_ = std::thread([this] {
+    std::unique_lock lock(ticker_mutex_);
+    // (A quarter of a second: the seconds shown change once a second.)
+    while (!ticker_wake_.wait_for(lock, std::chrono::milliseconds(250), [this] { return ticker_stop_; })) {
+      const auto clock = Clock::now();
+      if (due(clock)) draw(clock);
+    }
+  });
+}
+
+void ProgressBar::stop_ticker() {
+  {
+    std::lock_guard lock(ticker_mutex_);
+    ticker_stop_ = true;
+  }
+  ticker_wake_.notify_one();
+  ticker_.join();
+}
+
 int ProgressBar::width() const {
   if (const char* env = std::getenv("COLUMNS"); env && std::atoi(env) > 0) return std::atoi(env);
   winsize size{};
@@ -50,6 +74,7 @@ int ProgressBar::width() const {
 }
 
 void ProgressBar::phase(const std::string& name, double start, double end) {
+  stop_ticking();
   phase_ = name;
   start_ = start;
   end_ = end;
@@ -61,17 +86,23 @@ void ProgressBar::phase(const std::string& name, double start, double end) {
   calls_ = 0;
 }
 
-void ProgressBar::step(const std::string& name) { step_ = name; }
+void ProgressBar::step(const std::string& name) {
+  stop_ticking();
+  step_ = name;
+}
 
 void ProgressBar::note(const std::string& what) {
+  stop_ticking();
   note_ = what;
   // (The phase's range stays: it was set to 0…0 here, and the next update of a grading's tests
   // drew 100 % with 2 of 31 done.)
   const auto clock = Clock::now();
   if (enabled_ && (shown_ || always_ || std::chrono::duration<double>(clock - began_).count() >= 2.0)) draw(clock);
+  start_ticking();
 }
 
 void ProgressBar::refresh() {
+  stop_ticking();
   const auto clock = Clock::now();
   if (due(clock)) draw(clock);
 }
@@ -83,6 +114,7 @@ bool ProgressBar::due(Clock::time_point clock) const {
 }
 
 void ProgressBar::update(double now) {
+  stop_ticking();
   // Every long loop reports its progress here: a safe point to stop at, at every call (a flag's
   // read), however long a step takes.
   cli::stop_if_interrupted();
@@ -157,6 +189,7 @@ void ProgressBar::draw(Clock::time_point clock) {
 }
 
 void ProgressBar::finish() {
+  stop_ticking();
   if (!shown_) return;
   std::fprintf(stderr, "\r%*s\r", width() - 1, "");  // clear the line for the summary
   std::fflush(stderr);

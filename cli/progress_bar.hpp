@@ -11,7 +11,10 @@
 //                          value the bar took (a short run's, drawn within a few milliseconds)
 //   COLUMNS=N              the width to fit (else the terminal's, else 80)
 #include <chrono>
+#include <condition_variable>
+#include <mutex>
 #include <string>
+#include <thread>
 
 namespace motus {
 
@@ -30,15 +33,20 @@ public:
   // No time to go is shown: for work whose steps cost unlike amounts (bench precision's levels,
   // each halving the step, cost twice the one before: an estimate from the rate so far says
   // seconds where minutes are left).
-  void without_estimate() { estimate_ = false; }
+  void without_estimate() {
+    stop_ticking();
+    estimate_ = false;
+  }
   // Names the step under way in this phase (the test a grading runs), shown after the phase's
   // name and before its bar until the next step or phase. Drawn by the next update or refresh
   // that draws.
   void step(const std::string& name);
   // Shows `what` (a phase without steps, such as ffmpeg encoding) until the next update: its
-  // name and the seconds so far, no bar. Drawn at once, since no update may come while it lasts;
-  // so one a phase, not one a step. The phase it follows keeps its range: an update after it
-  // shows that phase's fraction again (a note had made it 100 %).
+  // name and the seconds so far, no bar. Drawn at once, and redrawn by a thread of its own while
+  // it lasts, since no update may come meanwhile (the seconds stood still for the 26 s of a video's
+  // ffmpeg); so one a phase, not one a step. Until the next call of any other member the caller
+  // must leave the bar alone (every member stops that thread first). The phase it follows keeps its
+  // range: an update after it shows that phase's fraction again (a note had made it 100 %).
   void note(const std::string& what);
   // Redraws what the bar shows, when a redraw is due: the seconds go on during a wait with
   // nothing to count (a compiler's run). Unlike update, never a place to stop for Ctrl-C: it
@@ -55,6 +63,13 @@ private:
   // Whether a line is to be drawn now: enabled, after the first two seconds (from the start with
   // MOTUS_PROGRESS=always), and a tenth of a second after the last line (except the first).
   bool due(Clock::time_point clock) const;
+  // The note's redraws (note()): a thread that draws when due until stop_ticking, which every other
+  // member calls first, so that only one thread draws at a time.
+  void start_ticking();
+  void stop_ticking() {
+    if (ticker_.joinable()) stop_ticker();
+  }
+  void stop_ticker();
   void draw(Clock::time_point clock);
   int width() const;
 
@@ -75,6 +90,10 @@ private:
   // batch) counts down between them instead of growing.
   double moved_at_ = 0, moved_to_ = -1;
   bool estimate_ = true;
+  std::thread ticker_;
+  std::mutex ticker_mutex_;
+  std::condition_variable ticker_wake_;
+  bool ticker_stop_ = false;
 };
 
 }  // namespace motus
