@@ -192,16 +192,19 @@ int compare_command(const CompareOptions& o) {
   // --render at 60 fps over 10⁵ s to std::bad_alloc).
   {
     const double numbers = 2.0 * scene.mechanical->dimensions * static_cast<double>(scene.mechanical->bodies.size());
-    const double frames = static_cast<double>(fixed_step_count(options.duration, options.dt)) /
-                              static_cast<double>(options.frame_every) + 1;
+    const double steps = static_cast<double>(fixed_step_count(options.duration, options.dt));
+    const double frames = steps / static_cast<double>(options.frame_every) + 1;
     const double engines = static_cast<double>(std::max<size_t>(options.engines.size(), 1));
-    const double kept = engines * frames * (o.render ? 2 : 1) + static_cast<double>(options.samples) + 1;
+    // (With --render, each engine's frames and the drawing's copy of them. motus's samples: every step
+    // of a run with fewer steps than --samples.)
+    const double samples = std::min(static_cast<double>(options.samples), steps);
+    const double kept = engines * frames * (o.render ? 2 : 1) + samples + 1;
     const double gigabytes = kept * (numbers * 8 + 48) / 1e9;
     if (gigabytes > 4)
       throw InputError(fmt::format("{}: keeps about {:.0f} GB of states for the report ({:.0f} frames of {} engine{} and "
-                                   "{} samples, {:.0f} numbers each; at most 4 GB): fewer --samples, {}a shorter --duration",
+                                   "{:.0f} samples, {:.0f} numbers each; at most 4 GB): fewer --samples, {}a shorter --duration",
                                    o.render ? "--fps/--samples/--duration" : "--samples/--duration", gigabytes, frames,
-                                   options.engines.size(), options.engines.size() == 1 ? "" : "s", options.samples,
+                                   options.engines.size(), options.engines.size() == 1 ? "" : "s", samples,
                                    numbers, o.render ? "a lower --fps, " : ""));
   }
   const auto among_engines = [&](const std::string& engine) {

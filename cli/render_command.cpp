@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <filesystem>
 #include <new>
 #include <fstream>
@@ -405,6 +406,12 @@ int render_command(const RenderOptions& o) {
          fps, scene.name, scene.dt, unit, distinct, frames, 1 / scene.dt);
   }
 
+  // When the run stopped being finite: read here, as the drawing takes the states.
+  double not_finite_from = std::numeric_limits<double>::quiet_NaN();
+  for (size_t k = 0; k < recording.states.size() && std::isnan(not_finite_from); ++k)
+    if (!std::all_of(recording.states[k].begin(), recording.states[k].end(), [](double y) { return std::isfinite(y); }))
+      not_finite_from = recording.times[k];
+
   // Draw.
   job.scene = &scene;
   job.frames = &recording;
@@ -466,14 +473,13 @@ int render_command(const RenderOptions& o) {
                (without_trailing_separators(o.out) / video_name).string(), static_cast<double>(frames) / video_fps,
                video_fps);
   // An unstable run is drawn as it went (the frames show it), but it is not a run that went well.
-  for (size_t k = 0; k < recording.states.size(); ++k)
-    if (!std::all_of(recording.states[k].begin(), recording.states[k].end(), [](double y) { return std::isfinite(y); })) {
-      std::fflush(stdout);  // (the frames' line first, also through a pipe: it says where they are)
-      tell("motus: the run failed: the state was no longer finite by t = {:g} ({}); the frames above show it as it "
-           "went\n",
-           recording.times[k], non_finite_suspect(sim, method, "a smaller step (--set dt=...)"));
-      return 1;
-    }
+  if (!std::isnan(not_finite_from)) {
+    std::fflush(stdout);  // (the frames' line first, also through a pipe: it says where they are)
+    tell("motus: the run failed: the state was no longer finite by t = {:g} ({}); the frames above show it as it "
+         "went\n",
+         not_finite_from, non_finite_suspect(sim, method, "a smaller step (--set dt=...)"));
+    return 1;
+  }
   return 0;
 }
 
