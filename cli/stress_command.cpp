@@ -323,22 +323,55 @@ int stress_command(const StressOptions& o) {
   if (!default_folder && output_exists(folder)) throw InputError(folder + ": already exists; stress never overwrites a page (choose another --out)");
   PartialFolder partial(folder, default_folder);
 
-  // The work, counted in units for the progress bar: one unit per integrator and section, or per row.
+  // The work, for the progress bar: a unit per integrator and section (or per row), each weighed by the
+  // steps it takes, as settings and the scene set them. (All alike, a drift run of 5·10⁷ steps weighed
+  // as much as a stability search of a few hundred thousand: the bar went to 37 % in 2 s, then crawled
+  // to its end with "~3 s to go".) A unit of several runs from t = 0 (a stability search's trials, a
+  // stiffness sweep's factors) counts them as they start again.
+  const auto& settings = report.settings;
+  const double run_steps = std::max(1.0, std::min(settings.duration, scene.duration) / scene.dt);
+  struct Unit {
+    double weight;  // steps
+    double runs;    // runs from t = 0 that it takes, about
+  };
+  const auto unit_of = [&](const std::string& section) -> Unit {
+    // (A search for the stability limit: about 10 doublings and 24 halvings of its bracket.)
+    if (section == "stability") return {34.0 * static_cast<double>(settings.steps), 34};
+    if (section == "stiffness")
+      return {static_cast<double>(stress::stiffness_factors().size() * static_cast<size_t>(settings.steps)),
+              static_cast<double>(stress::stiffness_factors().size())};
+    if (section == "drift") return {static_cast<double>(settings.drift_steps), 1};
+    return {run_steps, 1};  // mass_ratio, speed, sticks: a run of --duration
+  };
   double units = 0;
-  for (const auto& s : report.sections)
-    units += s == "mass_ratio" ? static_cast<double>(contact_integrators.size() * stress::mass_ratios().size())
-             : s == "speed"    ? static_cast<double>(contact_integrators.size() * stress::speeds().size())
-             : s == "sticks"   ? static_cast<double>(report.stick_variants_measured.size() * stress::mass_ratios().size())
-                               : static_cast<double>(runs.size());
+  for (const auto& s : report.sections) {
+    const double count = s == "mass_ratio" ? static_cast<double>(contact_integrators.size() * stress::mass_ratios().size())
+                         : s == "speed"    ? static_cast<double>(contact_integrators.size() * stress::speeds().size())
+                         : s == "sticks"   ? static_cast<double>(report.stick_variants_measured.size() * stress::mass_ratios().size())
+                                           : static_cast<double>(runs.size());
+    units += count * unit_of(s).weight;
+  }
   ProgressBar progress(0, units, "stress " + scene.name, 256);
-  double done = 0, within = 0;  // units done, and how far into the next one its runs have gone
-  // (The furthest any of a unit's runs has gone: a stability unit's trials each run from 0 again.)
-  const stress::Tick tick = [&](double fraction) { progress.update(done + (within = std::max(within, std::min(fraction, 1.0)))); };
+  Unit unit{1, 1};
+  double done = 0;       // the weight of the units done
+  double within = 0;     // how far into the unit under way, 0 to 1
+  double runs_done = 0, last_fraction = 0;  // of the unit under way's runs
+  const stress::Tick tick = [&](double fraction) {
+    fraction = std::clamp(fraction, 0.0, 1.0);
+    if (fraction < last_fraction) ++runs_done;  // (a run from t = 0 again)
+    last_fraction = fraction;
+    within = std::max(within, std::min(1.0, (runs_done + fraction) / unit.runs));
+    progress.update(done + unit.weight * within);
+  };
   // (Each unit done is shown at once: the bar showed only the units done when the next one ticked,
   // and stopped short, at 64 %, when the last ones had no step left to tick.)
-  auto unit_done = [&] { within = 0, progress.update(++done); };
-  const auto& settings = report.settings;
+  auto unit_done = [&] {
+    done += unit.weight;
+    within = 0, runs_done = 0, last_fraction = 0;
+    progress.update(done);
+  };
   for (const auto& section : report.sections) {
+    unit = unit_of(section);
     if (section == "stability")
       for (Integrator i : runs) report.stability.push_back(stress::measure_stability(scene, i, settings, tick)), unit_done();
     if (section == "drift")
