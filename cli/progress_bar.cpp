@@ -1,5 +1,7 @@
 #include "progress_bar.hpp"
 
+#include <pthread.h>
+#include <signal.h>
 #include <sys/ioctl.h>
 #include <unistd.h>
 
@@ -7,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <system_error>
 
 #include "interrupt.hpp"
 
@@ -47,14 +50,24 @@ ProgressBar::~ProgressBar() { finish(); }
 void ProgressBar::start_ticking() {
   if (!enabled_ || ticker_.joinable()) return;
   ticker_stop_ = false;
-  ticker_ = std::thread([this] {
-    std::unique_lock lock(ticker_mutex_);
-    // (A quarter of a second: the seconds shown change once a second.)
-    while (!ticker_wake_.wait_for(lock, std::chrono::milliseconds(250), [this] { return ticker_stop_; })) {
-      const auto clock = Clock::now();
-      if (due(clock)) draw(clock);
-    }
-  });
+  // The thread takes no signal: Ctrl-C and the alarms of interrupt.cpp stay the main thread's, whose
+  // wait for ffmpeg they interrupt. (It inherits the mask it is started with.)
+  sigset_t all, before;
+  sigfillset(&all);
+  pthread_sigmask(SIG_SETMASK, &all, &before);
+  try {
+    ticker_ = std::thread([this] {
+      std::unique_lock lock(ticker_mutex_);
+      // (A quarter of a second: the seconds shown change once a second.)
+      while (!ticker_wake_.wait_for(lock, std::chrono::milliseconds(250), [this] { return ticker_stop_; })) {
+        const auto clock = Clock::now();
+        if (due(clock)) draw(clock);
+      }
+    });
+  } catch (const std::system_error&) {
+    // (No thread to be had: the note stays as drawn, as it did before; not a reason to fail the run.)
+  }
+  pthread_sigmask(SIG_SETMASK, &before, nullptr);
 }
 
 void ProgressBar::stop_ticker() {

@@ -341,7 +341,11 @@ int stress_command(const StressOptions& o) {
       return {static_cast<double>(stress::stiffness_factors().size() * static_cast<size_t>(settings.steps)),
               static_cast<double>(stress::stiffness_factors().size())};
     if (section == "drift") return {static_cast<double>(settings.drift_steps), 1};
-    return {run_steps, 1};  // mass_ratio, speed, sticks: a run of --duration
+    // A mass ratio's pair (8 steps), then with the scene its run of --duration; a speed's pair (at most
+    // 1,000 steps), then with the scene its gas (at most 300).
+    if (section == "mass_ratio") return report.mass_ratio_scene ? Unit{8 + run_steps, 2} : Unit{8, 1};
+    if (section == "speed") return report.speed_scene ? Unit{1300, 2} : Unit{1000, 1};
+    return {run_steps, 1};  // sticks: a run of --duration
   };
   double units = 0;
   for (const auto& s : report.sections) {

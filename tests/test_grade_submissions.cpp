@@ -196,16 +196,17 @@ TEST(GradeSubmissions, AFunctionDefinedWithOtherParametersIsNamedInTheHandoutsWo
   motus::grade::Ending ended;
   ended.exited = true;
   ended.status = 1;
+  const std::string handout = read_file(fs::path(kAssignments) / "integrators/integrators.hpp");
   const std::string linker =
       "/usr/bin/ld: /tmp/ccLCEwbe.o: in function `motus_plugin':\n"
       "plugin.cpp:(.text+0x25e): undefined reference to `student::rk4_step(student::FirstOrderSystem const&, double, "
       "double, Eigen::Ref<Eigen::Matrix<double, -1, 1, 0, -1, 1>, 0, Eigen::InnerStride<1> >)'\n"
       "plugin.cpp:(.text+0x2a1): undefined reference to `student::rk4_step(student::FirstOrderSystem const&, double, "
       "double, Eigen::Ref<Eigen::Matrix<double, -1, 1, 0, -1, 1>, 0, Eigen::InnerStride<1> >)'\n"
-      "plugin.cpp:(.text+0x2f0): undefined reference to `student::midpoint_step(student::FirstOrderSystem const&, "
-      "double, double, Eigen::Ref<Eigen::Matrix<double, -1, 1, 0, -1, 1>, 0, Eigen::InnerStride<1> >)'\n"
+      "/usr/bin/ld: plugin.cpp:(.text+0x2f0): undefined reference to `student::midpoint_step(student::FirstOrderSystem "
+      "const&, double, double, Eigen::Ref<Eigen::Matrix<double, -1, 1, 0, -1, 1>, 0, Eigen::InnerStride<1> >)'\n"
       "collect2: error: ld returned 1 exit status\n";
-  const std::string shown = motus::grade::compiler_messages(linker, ended, limits, 1);
+  const std::string shown = motus::grade::compiler_messages(linker, ended, limits, 1, handout);
   const std::string first = shown.substr(0, shown.find('\n'));
   EXPECT_EQ(first.rfind("The handout's header declares student::rk4_step, student::midpoint_step, and your files define "
                         "none of them with exactly their parameters",
@@ -215,17 +216,25 @@ TEST(GradeSubmissions, AFunctionDefinedWithOtherParametersIsNamedInTheHandoutsWo
   EXPECT_NE(first.find("VectorInOut is Eigen::Ref<Eigen::Matrix<double, -1, 1, ...>>"), std::string::npos) << first;
   EXPECT_EQ(shown.substr(shown.find('\n') + 1), "The compiler said:\n" + linker + "(the compiler exited with status 1)\n");
 
-  // One function: said in the singular. And a student's own words that only look like it (an #error
-  // line, a file's path first) add nothing.
-  const std::string one = motus::grade::compiler_messages(linker.substr(0, linker.find("plugin.cpp:(.text+0x2a1)")), ended, limits, 1);
+  // One function: said in the singular.
+  const std::string one =
+      motus::grade::compiler_messages(linker.substr(0, linker.find("plugin.cpp:(.text+0x2a1)")), ended, limits, 1, handout);
   EXPECT_EQ(one.rfind("The handout's header declares student::rk4_step, and your files define no function of that name "
                       "with exactly its parameters",
                       0),
             0u)
       << one;
-  const std::string forged = "/submission/integrators.cpp:1:2: error: #error undefined reference to `student::rk4_step(\n";
-  EXPECT_EQ(motus::grade::compiler_messages(forged, ended, limits, 1),
-            "The compiler said:\n" + forged + "(the compiler exited with status 1)\n");
+  // Nothing more where the name is not the handout's (a helper of the student's own, declared and never
+  // defined: another mistake), nor for a variable, nor for a student's own words that only look like the
+  // linker's (an #error line begins with a file's line number), nor without the handout's text.
+  const auto as_it_was = [&](const std::string& errors, const std::string& text) {
+    EXPECT_EQ(motus::grade::compiler_messages(errors, ended, limits, 1, text),
+              "The compiler said:\n" + errors + "(the compiler exited with status 1)\n");
+  };
+  as_it_was("integrators.cpp:(.text+0x10): undefined reference to `student::my_helper(double)'\n", handout);
+  as_it_was("integrators.cpp:(.text+0x10): undefined reference to `student::kTable'\n", handout);
+  as_it_was("/submission/integrators.cpp:1:2: error: #error x:(.t): undefined reference to `student::rk4_step(\n", handout);
+  as_it_was(linker, "");
 }
 
 // ---------------------------------------------------------------------------------------------------

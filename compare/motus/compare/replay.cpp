@@ -108,7 +108,7 @@ ReplayView replay_view(const SceneDescription& scene, const std::vector<EngineRu
       for (const auto& body : m.bodies) b.add(body.position[0], d == 1 ? 0 : body.position[1], body.radius);
     // Each plane seen edge-on (its normal in the picture's plane): the point of it nearest to the
     // bodies, so that the ground they bounce on is in view.
-  if (!b.empty()) {
+    if (!b.empty()) {
       const double cx = (b.x0 + b.x1) / 2, cy = (b.y0 + b.y1) / 2;
       for (const auto& p : m.colliders.planes) {
         const double nx = p.normal[0], ny = d == 1 ? 0 : p.normal[1], length = std::hypot(nx, ny);

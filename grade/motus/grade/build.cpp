@@ -3,8 +3,11 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -60,25 +63,41 @@ bool starts_the_compiler(SandboxSpec spec, const Limits& limits) {
   return ending.exited && ending.status == 0;
 }
 
-// The student's functions the linker found no definition of, in order, once each: a line of the
-// linker's own (`plugin.cpp:(.text+0x25e): undefined reference to `student::rk4_step(…)'`), which
-// names the parameters in Eigen's words and not the handout's (VectorInOut is an Eigen::Ref<…>).
-std::vector<std::string> undefined_student_functions(const std::string& errors) {
-  static const std::string kMark = "): undefined reference to `student::";
+// The handout's functions the linker found no definition of, in order, once each: from the linker's
+// own lines (`plugin.cpp:(.text+0x25e): undefined reference to `student::rk4_step(…)'`: an object's
+// section, never a line of the student's own words, which begin with a file's line number), which name
+// the parameters in Eigen's words and not the handout's (VectorInOut is an Eigen::Ref<…>). Only a name
+// the handout's headers (`handout`, their text) declare as a function: a helper of the student's own,
+// declared and never defined, is another mistake.
+std::vector<std::string> undefined_handout_functions(const std::string& errors, const std::string& handout) {
+  static const std::string kMark = ": undefined reference to `student::";
   std::vector<std::string> names;
-  for (size_t at = errors.find(kMark); at != std::string::npos; at = errors.find(kMark, at + 1)) {
-    const size_t begin = at + kMark.size() - std::string("student::").size();
-    const size_t end = errors.find_first_of("('\n", begin);
-    if (end == std::string::npos) break;
-    const std::string name = errors.substr(begin, end - begin);
-    if (std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
+  for (size_t start = 0; start < errors.size();) {
+    const size_t end = std::min(errors.find('\n', start), errors.size());
+    const std::string line = errors.substr(start, end - start);
+    start = end + 1;
+    // (GNU ld may begin the line with its own path: "/usr/bin/ld: plugin.cpp:(.text+0x25e): …")
+    const std::string own = line.rfind("/usr/bin/ld: ", 0) == 0 ? line.substr(13) : line;
+    const size_t mark = own.find(kMark), section = own.find(":(.");
+    if (mark == std::string::npos || section == std::string::npos || own.find(' ') < section || section + 3 > mark) continue;
+    const size_t name_begin = mark + kMark.size(), paren = own.find('(', name_begin);
+    if (paren == std::string::npos) continue;  // (a variable: `student::kTable')
+    const std::string name = own.substr(name_begin, paren - name_begin);
+    bool declared = false;
+    for (size_t at = handout.find(name); at != std::string::npos && !declared; at = handout.find(name, at + 1)) {
+      const bool starts = at == 0 || !(std::isalnum(static_cast<unsigned char>(handout[at - 1])) || handout[at - 1] == '_');
+      const size_t after = handout.find_first_not_of(" \t", at + name.size());
+      declared = starts && after != std::string::npos && handout[after] == '(';
+    }
+    if (declared && std::find(names.begin(), names.end(), "student::" + name) == names.end()) names.push_back("student::" + name);
   }
   return names;
 }
 
 }  // namespace
 
-std::string compiler_messages(const std::string& errors, const Ending& ending, const Limits& limits, double wall_seconds) {
+std::string compiler_messages(const std::string& errors, const Ending& ending, const Limits& limits, double wall_seconds,
+                              const std::string& handout) {
   // Stopped by its CPU limit: said first, on a line of its own that no cut removes. The driver
   // reports its killed cc1plus as "internal compiler error ... Please submit a full bug report", and
   // that alone (past the 40 lines shown when a flood of errors came first) told a student to
@@ -95,7 +114,7 @@ std::string compiler_messages(const std::string& errors, const Ending& ending, c
                          reported ? " The compiler's \"internal compiler error\" (and its \"bug report\") is that stop, not "
                                     "a bug in GCC to report."
                                   : "");
-  const std::vector<std::string> undefined = undefined_student_functions(errors);
+  const std::vector<std::string> undefined = undefined_handout_functions(errors, handout);
   if (!undefined.empty()) {
     std::string names;
     for (const auto& name : undefined) names += (names.empty() ? "" : ", ") + name;
@@ -183,7 +202,14 @@ BuildResult build_plugin(const Assignment& a, const std::string& provided, const
         throw MachineTooBusy(starved_message("the compiler", ending.use, cpu_limit_seconds(limits.cpu_seconds)));
       wall = backstop;  // (as the submission's result says it: the same on any machine)
     }
-    result.output = compiler_messages(compiler.errors(), ending, limits, wall);
+    // (The handout's headers, read for the names they declare: a link error names the function by them.)
+    std::string handout;
+    for (const auto& file : a.provided)
+      if (const auto extension = fs::path(file).extension(); extension == ".hpp" || extension == ".h") {
+        std::ifstream in(fs::path(provided) / file, std::ios::binary);
+        handout += std::string(std::istreambuf_iterator<char>(in), {}) + "\n";
+      }
+    result.output = compiler_messages(compiler.errors(), ending, limits, wall, handout);
     result.ok = ending.exited && ending.status == 0 && fs::is_regular_file(fs::path(out) / "student.so");
     // bubblewrap's own failure (it prints "bwrap: …" and exits 1) is the sandbox's, not the code's.
     // The compiler's words start with a file's name, which the code can choose (#line 1 "bwrap:

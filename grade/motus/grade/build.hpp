@@ -42,9 +42,10 @@ BuildResult build_plugin(const Assignment& assignment, const std::string& provid
 std::string cut(const std::string& text, size_t lines, size_t bytes);
 
 // What the build test shows of a compile that ended as `ending`: a line of the grader's first when
-// the compile used up its CPU limit, and one when the linker found no definition of a student's
-// function (defined with other parameters, in Eigen's words there), then "The compiler said:" and
-// its messages (`errors`) cut, and how it ended.
-std::string compiler_messages(const std::string& errors, const Ending& ending, const Limits& limits, double wall_seconds);
+// the compile used up its CPU limit, and one when the linker found no definition of a function the
+// handout's headers (`handout`: their text) declare (defined with other parameters, in Eigen's words
+// there), then "The compiler said:" and its messages (`errors`) cut, and how it ended.
+std::string compiler_messages(const std::string& errors, const Ending& ending, const Limits& limits, double wall_seconds,
+                              const std::string& handout = "");
 
 }  // namespace motus::grade
