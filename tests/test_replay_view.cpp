@@ -52,7 +52,7 @@ TEST(ReplayView, TakesInTheEnginesThatStayNearTheFirstOne) {
   EXPECT_EQ(engines_in_view(scene, runs), (std::vector<bool>{true, true, false, false, false}));
 
   // The view: the two in view, each disc whole (radius 0.1 m): x from −0.1 to 0.1, y from −5.0 to 0.1.
-  const ReplayView view = replay_view(scene, runs);
+  const ReplayView view = replay_view(scene, runs, engines_in_view(scene, runs));
   EXPECT_DOUBLE_EQ(view.x0, -0.1);
   EXPECT_DOUBLE_EQ(view.x1, 0.1);
   EXPECT_DOUBLE_EQ(view.y0, -4.9 - 0.1);
@@ -63,7 +63,7 @@ TEST(ReplayView, TakesInTheEnginesThatStayNearTheFirstOne) {
 TEST(ReplayView, ThePanelOfAnEngineLeftOutSaysItsBodiesGoOutOfView) {
   const SceneDescription scene = one_ball();
   const std::vector<EngineRun> runs = {falling_to("motus", -2), falling_to("bullet", -1e6)};
-  const std::string html = replay_section(scene, runs);
+  const std::string html = replay_section(scene, runs, engines_in_view(scene, runs));
   const auto bullet = html.find("<b>bullet</b>");
   ASSERT_NE(bullet, std::string::npos) << html;
   const auto outside = html.find("(goes out of view)");

@@ -78,16 +78,14 @@ std::vector<bool> engines_in_view(const SceneDescription& scene, const std::vect
     in_view.push_back(runs[e].supported && !runs[e].frames.empty());
     if (in_view.back() && reference == runs.size()) reference = e;
   }
-  double largest_radius = 0;
-  for (const auto& body : m.bodies) largest_radius = std::max(largest_radius, body.radius);
   const auto states = [&](size_t e, const auto& visit) {
     for (const auto& f : runs[e].frames)
       if (f.x.size() >= m.bodies.size() * static_cast<size_t>(m.dimensions)) visit(f.x);
   };
-  return render::in_a_shared_view(m.dimensions, m.bodies.size(), largest_radius, states, reference, std::move(in_view));
+  return render::in_a_shared_view(scene, states, reference, std::move(in_view));
 }
 
-ReplayView replay_view(const SceneDescription& scene, const std::vector<EngineRun>& runs) {
+ReplayView replay_view(const SceneDescription& scene, const std::vector<EngineRun>& runs, const std::vector<bool>& in_view) {
   const auto& m = *scene.mechanical;
   const int d = m.dimensions;
   Bounds b;
@@ -97,7 +95,6 @@ ReplayView replay_view(const SceneDescription& scene, const std::vector<EngineRu
   }
   for (const auto& s : m.colliders.segments) b.add(s.a[0], s.a[1]), b.add(s.b[0], s.b[1]);
   if (b.empty()) {
-    const std::vector<bool> in_view = engines_in_view(scene, runs);
     for (size_t e = 0; e < runs.size(); ++e) {
       if (!in_view[e]) continue;
       for (const auto& f : runs[e].frames)
@@ -122,7 +119,8 @@ ReplayView replay_view(const SceneDescription& scene, const std::vector<EngineRu
   return {b.x0, b.y0, b.x1, b.y1};
 }
 
-void write_replay(const std::string& folder, const SceneDescription& scene, const std::vector<EngineRun>& runs) {
+void write_replay(const std::string& folder, const SceneDescription& scene, const std::vector<EngineRun>& runs,
+                  const std::vector<bool>& in_view) {
   {
     const std::string path = folder + "/replay.js";
     std::ofstream js(path, std::ios::binary);
@@ -133,7 +131,7 @@ void write_replay(const std::string& folder, const SceneDescription& scene, cons
   const int d = m.dimensions;
   const size_t n = m.bodies.size();
   const long stride = body_stride(n);
-  const ReplayView view = replay_view(scene, runs);
+  const ReplayView view = replay_view(scene, runs, in_view);
 
   // Digits enough for a ten-thousandth of the view at the largest coordinate written (6 at least).
   double largest = 0;
@@ -257,7 +255,8 @@ std::string replay_style() {
          "#replay [hidden]{display:none!important}";
 }
 
-std::string replay_section(const SceneDescription& scene, const std::vector<EngineRun>& runs) {
+std::string replay_section(const SceneDescription& scene, const std::vector<EngineRun>& runs,
+                           const std::vector<bool>& in_view) {
   const auto& m = *scene.mechanical;
   const size_t n = m.bodies.size();
   const long stride = body_stride(n);
@@ -269,7 +268,6 @@ std::string replay_section(const SceneDescription& scene, const std::vector<Engi
       "<div class=\"replay-title\"><h2>Replay</h2><button type=\"button\" class=\"replay-close\" hidden>"
       "show the whole report</button></div>\n"
       "<noscript><p class=\"no\">The replay needs JavaScript.</p></noscript>\n<div class=\"replay-panels\" hidden>\n";
-  const std::vector<bool> in_view = engines_in_view(scene, runs);
   for (size_t e = 0; e < runs.size(); ++e) {
     const EngineRun& r = runs[e];
     html += "<div class=\"replay-panel\"><div class=\"replay-caption\"><b>" + html_escape(r.engine) + "</b> <small>" +

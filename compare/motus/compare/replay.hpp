@@ -18,7 +18,8 @@ inline constexpr long kReplayBodyLimit = 20000;
 
 // Which engines the replay's one view is fitted to: those with frames whose bodies stay near the first
 // such engine's (render/motus/render/shared_view.hpp: within kFarthestInView times its reach). A peer
-// that blew up is left out, and its panel says that its bodies go out of view.
+// that blew up is left out, and its panel says that its bodies go out of view. Found once for a report,
+// and given to replay_view, write_replay and replay_section.
 std::vector<bool> engines_in_view(const SceneDescription& scene, const std::vector<EngineRun>& runs);
 
 // The part of the scene the replay shows, in scene coordinates (x right, y up; 3-D seen along −z,
@@ -27,11 +28,12 @@ std::vector<bool> engines_in_view(const SceneDescription& scene, const std::vect
 struct ReplayView {
   double x0 = 0, y0 = 0, x1 = 0, y1 = 0;
 };
-ReplayView replay_view(const SceneDescription& scene, const std::vector<EngineRun>& runs);
+ReplayView replay_view(const SceneDescription& scene, const std::vector<EngineRun>& runs, const std::vector<bool>& in_view);
 
 // Writes replay.js and replay-data.js into `folder` (which must exist); a file that cannot be
 // written whole throws std::runtime_error naming it. `scene` must be mechanical.
-void write_replay(const std::string& folder, const SceneDescription& scene, const std::vector<EngineRun>& runs);
+void write_replay(const std::string& folder, const SceneDescription& scene, const std::vector<EngineRun>& runs,
+                  const std::vector<bool>& in_view);
 
 // The replay's CSS (its fixed layout, scoped to #replay), for the page's <style> in <head>: a
 // <style> element is not allowed inside a <section>.
@@ -40,6 +42,7 @@ std::string replay_style();
 // The <section id="replay"> for index.html — a panel per engine in engine order (a canvas, or the
 // reasons an engine could not run the scene), the controls, notes on what is drawn — followed by
 // the two <script src> tags.
-std::string replay_section(const SceneDescription& scene, const std::vector<EngineRun>& runs);
+std::string replay_section(const SceneDescription& scene, const std::vector<EngineRun>& runs,
+                           const std::vector<bool>& in_view);
 
 }  // namespace motus::compare

@@ -488,8 +488,9 @@ void write_report(const std::string& folder, const ReportContext& c, const std::
                           "that are infinite, or not a number).</p>\n",
                           html_escape(e["engine"].get<std::string>()), e["not_finite_from"].get<double>());
   if (c.scene) {  // the engines side by side, played back in the page
-    write_replay(folder, *c.scene, runs);
-    html << replay_section(*c.scene, runs);
+    const std::vector<bool> in_view = engines_in_view(*c.scene, runs);
+    write_replay(folder, *c.scene, runs, in_view);
+    html << replay_section(*c.scene, runs, in_view);
   }
   if (summary.contains("exact")) {
     const auto& x = summary["exact"];

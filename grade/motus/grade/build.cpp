@@ -202,13 +202,15 @@ BuildResult build_plugin(const Assignment& a, const std::string& provided, const
         throw MachineTooBusy(starved_message("the compiler", ending.use, cpu_limit_seconds(limits.cpu_seconds)));
       wall = backstop;  // (as the submission's result says it: the same on any machine)
     }
-    // (The handout's headers, read for the names they declare: a link error names the function by them.)
+    // (The handout's headers, read for the names they declare when the linker found a student's function
+    // missing: a link error names the function by them.)
     std::string handout;
-    for (const auto& file : a.provided)
-      if (const auto extension = fs::path(file).extension(); extension == ".hpp" || extension == ".h") {
-        std::ifstream in(fs::path(provided) / file, std::ios::binary);
-        handout += std::string(std::istreambuf_iterator<char>(in), {}) + "\n";
-      }
+    if (compiler.errors().find("undefined reference to `student::") != std::string::npos)
+      for (const auto& file : a.provided)
+        if (const auto extension = fs::path(file).extension(); extension == ".hpp" || extension == ".h") {
+          std::ifstream in(fs::path(provided) / file, std::ios::binary);
+          handout += std::string(std::istreambuf_iterator<char>(in), {}) + "\n";
+        }
     result.output = compiler_messages(compiler.errors(), ending, limits, wall, handout);
     result.ok = ending.exited && ending.status == 0 && fs::is_regular_file(fs::path(out) / "student.so");
     // bubblewrap's own failure (it prints "bwrap: …" and exits 1) is the sandbox's, not the code's.

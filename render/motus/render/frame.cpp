@@ -150,14 +150,11 @@ Camera fit_camera(const SceneDescription& scene, std::span<const Recording* cons
 
 std::vector<bool> in_a_shared_view(const SceneDescription& scene, const std::vector<Recording>& runs, size_t reference,
                                    std::vector<bool> ran) {
-  if (!scene.mechanical || reference >= runs.size()) return ran;
-  double largest_radius = 0;
-  for (const auto& body : scene.mechanical->bodies) largest_radius = std::max(largest_radius, body.radius);
+  if (reference >= runs.size()) return ran;
   const auto states = [&](size_t e, const auto& visit) {
     for (const auto& x : runs[e].states) visit(x);
   };
-  return in_a_shared_view(scene.mechanical->dimensions, scene.mechanical->bodies.size(), largest_radius, states, reference,
-                          std::move(ran));
+  return in_a_shared_view(scene, states, reference, std::move(ran));
 }
 
 void fit_ground(const SceneDescription& scene, const Recording& recording, DrawOptions& options) {

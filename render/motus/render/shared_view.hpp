@@ -9,6 +9,8 @@
 #include <limits>
 #include <vector>
 
+#include "motus/scene.hpp"
+
 namespace motus::render {
 
 // How far from the reference run's middle another run's bodies may go, in the reference's reaches.
@@ -49,6 +51,18 @@ std::vector<bool> in_a_shared_view(int d, std::size_t bodies, double largest_rad
     ran[e] = inside;
   }
   return ran;
+}
+
+// The same for runs of a mechanical scene: its dimensions, its bodies, its largest radius (`ran` as it
+// is for any other scene).
+template <class States>
+std::vector<bool> in_a_shared_view(const SceneDescription& scene, const States& states, std::size_t reference,
+                                   std::vector<bool> ran) {
+  if (!scene.mechanical) return ran;
+  const auto& m = *scene.mechanical;
+  double largest_radius = 0;
+  for (const auto& body : m.bodies) largest_radius = std::max(largest_radius, body.radius);
+  return in_a_shared_view(m.dimensions, m.bodies.size(), largest_radius, states, reference, std::move(ran));
 }
 
 }  // namespace motus::render
